@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# Installs the Debian packages moreau builds and tests with. Idempotent: only packages that are
+# missing are installed, so running it on a ready machine costs a dpkg query and nothing else.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config
+  libeigen3-dev        # dense/sparse linear algebra
+  libsuitesparse-dev   # CHOLMOD/UMFPACK (FEM engine)
+  nlohmann-json3-dev   # scene files
+  libcli11-dev         # command line
+  libfmt-dev           # formatting
+  libmuparser-dev      # time functions in boundary conditions
+  libtinyobjloader-dev # OBJ meshes
+  tetgen               # tetrahedralizing OBJ surfaces for soft bodies
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}" >&2
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then sudo_cmd=(sudo); fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -1,0 +1,54 @@
+#include "moreau/collision/collider.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace moreau {
+
+namespace {
+
+ColliderDistance box_distance(const Vec3& half, const Vec3& q) {
+  // q in the box frame. Outside: distance to the clamped point; inside: to the nearest face.
+  const Vec3 excess = q.cwiseAbs() - half;
+  if (excess.maxCoeff() > 0) {
+    const Vec3 outside = excess.cwiseMax(0.0);
+    Vec3 n(std::copysign(outside.x(), q.x()), std::copysign(outside.y(), q.y()), std::copysign(outside.z(), q.z()));
+    const Real d = n.norm();
+    return {d, n / d};
+  }
+  int axis = 0;
+  excess.maxCoeff(&axis);
+  Vec3 n = Vec3::Zero();
+  n[axis] = q[axis] >= 0 ? 1.0 : -1.0;
+  return {excess[axis], n};
+}
+
+ColliderDistance sphere_distance(const Vec3& center, Real radius, const Vec3& x) {
+  const Vec3 d = x - center;
+  const Real r = d.norm();
+  if (r <= 0) return {-radius, Vec3::UnitY()};
+  return {r - radius, d / r};
+}
+
+}  // namespace
+
+ColliderDistance collider_distance(const Collider& c, const Vec3& center, const Vec3& x) {
+  switch (c.shape) {
+    case ColliderShape::plane:
+      return {c.normal.dot(x - center), c.normal};
+    case ColliderShape::sphere:
+      return sphere_distance(center, c.radius, x);
+    case ColliderShape::box: {
+      const ColliderDistance local = box_distance(c.half_extents, c.rotation.transpose() * (x - center));
+      return {local.distance, c.rotation * local.normal};
+    }
+    case ColliderShape::capsule: {
+      const Vec3 axis = c.rotation.col(1);
+      const Real s = std::clamp(axis.dot(x - center), -c.half_height, c.half_height);
+      return sphere_distance(center + s * axis, c.radius, x);
+    }
+  }
+  return {1e30, Vec3::UnitY()};
+}
+
+}  // namespace moreau

@@ -1,0 +1,38 @@
+#pragma once
+// Analytic collider shapes (plane, box, sphere, capsule) that particles collide with, static or
+// kinematic (moving with a prescribed constant velocity). Each shape answers one question: the
+// signed distance from a point to its surface and the outward normal there.
+#include <string>
+
+#include "moreau/math/types.hpp"
+
+namespace moreau {
+
+enum class ColliderShape { plane, box, sphere, capsule };
+
+struct Collider {
+  ColliderShape shape = ColliderShape::plane;
+  Vec3 position = Vec3::Zero();       // m: plane point, box/sphere center, capsule center at t = 0
+  Mat3 rotation = Mat3::Identity();   // local -> world (box, capsule)
+  Vec3 velocity = Vec3::Zero();       // m/s, kinematic translation
+  Vec3 normal = Vec3::UnitY();        // plane normal (unit)
+  Vec3 half_extents = Vec3::Zero();   // m, box
+  Real radius = 0;                    // m, sphere and capsule
+  Real half_height = 0;               // m, capsule: half length of the segment along local y
+  Real static_friction = 0.5;         // mu_s
+  Real dynamic_friction = 0.5;        // mu_k
+  Real restitution = 0;               // e
+
+  Vec3 position_at(Real time) const { return position + time * velocity; }
+};
+
+struct ColliderDistance {
+  Real distance;  // m, negative inside
+  Vec3 normal;    // outward unit normal at the closest surface point
+};
+
+/// Signed distance from x to the collider whose reference point is at `center` (its position at
+/// the time of the query).
+ColliderDistance collider_distance(const Collider& c, const Vec3& center, const Vec3& x);
+
+}  // namespace moreau

@@ -1,0 +1,270 @@
+#include "moreau/collision/contacts.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+
+#include "moreau/model/state.hpp"
+
+namespace moreau {
+
+void ColliderContacts::clear() {
+  particle.clear();
+  collider.clear();
+  group_offsets.clear();
+  lambda_normal.clear();
+  normal.clear();
+  static_friction.clear();
+  dynamic_friction.clear();
+  restitution.clear();
+}
+
+void ParticleContacts::clear() {
+  pair.clear();
+  batches.offsets.assign(1, 0);
+  lambda_normal.clear();
+  normal.clear();
+  static_friction.clear();
+  dynamic_friction.clear();
+  restitution.clear();
+}
+
+namespace {
+// Friction and restitution of a pair: the mean of the two (Mueller 2020, sec. 3.5).
+Real combine(Real a, Real b) { return 0.5 * (a + b); }
+}  // namespace
+
+void detect_collider_contacts(const Model& model, State& state) {
+  ColliderContacts& c = state.collider_contacts;
+  c.clear();
+  if (model.colliders.empty()) return;
+  const Real dt = model.settings.dt, k = model.settings.contact_margin_factor;
+  for (Index p = 0; p < model.particle_count(); ++p) {
+    if (model.particle_inv_mass[p] <= 0) continue;
+    const ObjectInfo& obj = model.objects[model.particle_object[p]];
+    const Index group_start = static_cast<Index>(c.particle.size());
+    for (Index ci = 0; ci < static_cast<Index>(model.colliders.size()); ++ci) {
+      const Collider& col = model.colliders[ci];
+      const Real d = collider_distance(col, col.position_at(state.time), state.position[p]).distance;
+      // Reach: what the particle can travel in the step, by its velocity and by gravity.
+      const Real reach = model.particle_collider_gap[p] +
+                         k * dt * ((state.velocity[p] - col.velocity).norm() + dt * model.settings.gravity.norm());
+      if (d > reach) continue;
+      c.particle.push_back(p);
+      c.collider.push_back(ci);
+      c.lambda_normal.push_back(0);
+      c.normal.push_back(Vec3::Zero());
+      c.static_friction.push_back(combine(obj.static_friction, col.static_friction));
+      c.dynamic_friction.push_back(combine(obj.dynamic_friction, col.dynamic_friction));
+      c.restitution.push_back(combine(obj.restitution, col.restitution));
+    }
+    if (static_cast<Index>(c.particle.size()) > group_start) c.group_offsets.push_back(group_start);
+  }
+  c.group_offsets.push_back(static_cast<Index>(c.particle.size()));
+}
+
+void detect_particle_contacts(const Model& model, State& state) {
+  ParticleContacts& c = state.particle_contacts;
+  ContactScratch& scratch = state.contact_scratch;
+  c.clear();
+  if (!model.settings.particle_contacts || model.contact_particle.size() < 2) return;
+
+  // Cell size: the largest contact distance, so every candidate lies in the 27 cells around a particle.
+  Real max_radius = 0, max_speed = 0;
+  for (Index p : model.contact_particle) {
+    max_radius = std::max(max_radius, model.particle_radius[p]);
+    max_speed = std::max(max_speed, state.velocity[p].norm());
+  }
+  const Real dt = model.settings.dt, k = model.settings.contact_margin_factor;
+  // The swept margin is capped at two radii to keep the grid useful when one particle is fast.
+  const Real cell = 2 * max_radius + std::min(2 * k * dt * max_speed, 2 * max_radius);
+  scratch.hash.build(model.contact_particle, state.position.data(), cell);
+
+  const int threads = std::max(1, model.settings.threads > 0 ? model.settings.threads : omp_get_max_threads());
+  scratch.thread_pairs.resize(threads);
+  const Index n = static_cast<Index>(model.contact_particle.size());
+#pragma omp parallel num_threads(threads)
+  {
+    auto& pairs = scratch.thread_pairs[omp_get_thread_num()];
+    pairs.clear();
+    // Static schedule: thread t gets the t-th contiguous chunk, so concatenating the per-thread
+    // lists in thread order reproduces the serial order for any thread count.
+#pragma omp for schedule(static)
+    for (Index a = 0; a < n; ++a) {
+      const Index i = model.contact_particle[a];
+      const Index oi = model.particle_object[i];
+      scratch.hash.for_each_near(state.position[i], [&](Index j) {
+        if (j <= i) return;
+        const Index oj = model.particle_object[j];
+        if (model.particle_inv_mass[i] <= 0 && model.particle_inv_mass[j] <= 0) return;
+        const Real contact_distance = model.particle_radius[i] + model.particle_radius[j];
+        if (oi == oj) {
+          if (!model.objects[oi].self_collision) return;
+          // Neighbours that are closer than the contact distance at rest never collide.
+          if ((model.particle_rest_position[i] - model.particle_rest_position[j]).norm() < contact_distance) return;
+        }
+        const Real reach = contact_distance + std::min(k * dt * (state.velocity[i] - state.velocity[j]).norm(), contact_distance);
+        if ((state.position[i] - state.position[j]).squaredNorm() < reach * reach) pairs.push_back({i, j});
+      });
+    }
+  }
+  for (const auto& pairs : scratch.thread_pairs) c.pair.insert(c.pair.end(), pairs.begin(), pairs.end());
+  if (c.pair.empty()) return;
+
+  // Greedy colouring with 64 colours per particle (a 64-bit mask); pairs that find none go to
+  // single-pair batches at the end.
+  const size_t m = c.pair.size();
+  scratch.particle_colors.assign(model.particle_count(), 0);
+  scratch.pair_color.resize(m);
+  int colors = 0;
+  for (size_t q = 0; q < m; ++q) {
+    const auto [i, j] = c.pair[q];
+    std::uint64_t taken = 0;
+    if (model.particle_inv_mass[i] > 0) taken |= scratch.particle_colors[i];
+    if (model.particle_inv_mass[j] > 0) taken |= scratch.particle_colors[j];
+    const int color = taken == ~std::uint64_t{0} ? 64 : std::countr_one(taken);
+    if (color < 64) {
+      if (model.particle_inv_mass[i] > 0) scratch.particle_colors[i] |= std::uint64_t{1} << color;
+      if (model.particle_inv_mass[j] > 0) scratch.particle_colors[j] |= std::uint64_t{1} << color;
+    }
+    scratch.pair_color[q] = color;
+    colors = std::max(colors, color + 1);
+  }
+  scratch.color_count.assign(colors + 1, 0);
+  for (size_t q = 0; q < m; ++q) ++scratch.color_count[scratch.pair_color[q] + 1];
+  for (int col = 0; col < colors; ++col) scratch.color_count[col + 1] += scratch.color_count[col];
+  scratch.order.resize(m);
+  for (size_t q = 0; q < m; ++q) scratch.order[scratch.color_count[scratch.pair_color[q]]++] = static_cast<Index>(q);
+  // color_count[c] is now the end of colour c.
+  auto& sorted = scratch.thread_pairs[0];
+  sorted.clear();
+  for (Index q : scratch.order) sorted.push_back(c.pair[q]);
+  c.pair.swap(sorted);
+  c.batches.offsets.assign(1, 0);
+  for (int col = 0; col < colors; ++col) {
+    const Index end = scratch.color_count[col];
+    if (col == 64) {  // overflow: one pair per batch
+      for (Index q = c.batches.offsets.back() + 1; q <= end; ++q) c.batches.offsets.push_back(q);
+    } else if (end > c.batches.offsets.back()) {
+      c.batches.offsets.push_back(end);
+    }
+  }
+  c.lambda_normal.assign(m, 0);
+  c.normal.assign(m, Vec3::Zero());
+  c.static_friction.resize(m);
+  c.dynamic_friction.resize(m);
+  c.restitution.resize(m);
+  for (size_t q = 0; q < m; ++q) {
+    const ObjectInfo& a = model.objects[model.particle_object[c.pair[q][0]]];
+    const ObjectInfo& b = model.objects[model.particle_object[c.pair[q][1]]];
+    c.static_friction[q] = combine(a.static_friction, b.static_friction);
+    c.dynamic_friction[q] = combine(a.dynamic_friction, b.dynamic_friction);
+    c.restitution[q] = combine(a.restitution, b.restitution);
+  }
+}
+
+void project_collider_contacts(const Model& model, State& state, const SubstepContext& s, Real substep_end_time) {
+  ColliderContacts& c = state.collider_contacts;
+  const Index groups = static_cast<Index>(c.group_offsets.size()) - 1;
+#pragma omp for schedule(static)
+  for (Index g = 0; g < groups; ++g) {
+    for (Index q = c.group_offsets[g]; q < c.group_offsets[g + 1]; ++q) {
+      const Index p = c.particle[q];
+      const Collider& col = model.colliders[c.collider[q]];
+      const Real w = s.inv_mass[p];
+      const ColliderDistance d = collider_distance(col, col.position_at(substep_end_time), s.x[p]);
+      c.normal[q] = d.normal;
+      const Real penetration = d.distance - model.particle_collider_gap[p];
+      if (penetration >= 0) continue;
+      const Real dl = -penetration / w;
+      c.lambda_normal[q] += dl;
+      s.x[p] += w * dl * d.normal;
+      // Static friction: cancel the tangential motion relative to the collider while it is below
+      // the friction cone.
+      const Vec3 dp = (s.x[p] - s.x_start[p]) - s.h * col.velocity;
+      const Vec3 dp_t = dp - dp.dot(d.normal) * d.normal;
+      if (dp_t.norm() < c.static_friction[q] * c.lambda_normal[q] * w) s.x[p] -= dp_t;
+    }
+  }
+}
+
+void project_particle_contacts(const Model& model, State& state, const SubstepContext& s) {
+  ParticleContacts& c = state.particle_contacts;
+  for_each_by_color(c.batches, [&](Index q) {
+    const auto [i, j] = c.pair[q];
+    const Real wi = s.inv_mass[i], wj = s.inv_mass[j], w = wi + wj;
+    const Vec3 d = s.x[i] - s.x[j];
+    const Real length = d.norm();
+    if (length <= 0) return;
+    const Vec3 n = d / length;
+    c.normal[q] = n;
+    const Real C = length - (model.particle_radius[i] + model.particle_radius[j]);
+    if (C >= 0) return;
+    const Real dl = -C / w;
+    c.lambda_normal[q] += dl;
+    s.x[i] += wi * dl * n;
+    s.x[j] -= wj * dl * n;
+    const Vec3 dp = (s.x[i] - s.x_start[i]) - (s.x[j] - s.x_start[j]);
+    const Vec3 dp_t = dp - dp.dot(n) * n;
+    if (dp_t.norm() < c.static_friction[q] * c.lambda_normal[q] * w) {
+      s.x[i] -= (wi / w) * dp_t;
+      s.x[j] += (wj / w) * dp_t;
+    }
+  });
+}
+
+namespace {
+
+/// Relative-velocity change dv for one active contact (see the header for the two laws).
+Vec3 contact_velocity_change(const Vec3& v_rel, const Vec3& v_rel_before, const Vec3& n, Real lambda_n, Real w,
+                             Real mu_k, Real e, Real h, Real g) {
+  const Real vn = n.dot(v_rel);
+  const Vec3 vt = v_rel - vn * n;
+  Vec3 dv = Vec3::Zero();
+  const Real vt_norm = vt.norm();
+  if (vt_norm > 0) dv -= vt / vt_norm * std::min(mu_k * w * lambda_n / h, vt_norm);
+  const Real vn_before = n.dot(v_rel_before);
+  if (std::abs(vn) <= 2 * g * h) e = 0;
+  dv += n * (-vn + std::max(-e * vn_before, 0.0));
+  return dv;
+}
+
+}  // namespace
+
+void collider_contact_velocities(const Model& model, State& state, Real h) {
+  ColliderContacts& c = state.collider_contacts;
+  const Real g = model.settings.gravity.norm();
+  const Index groups = static_cast<Index>(c.group_offsets.size()) - 1;
+#pragma omp for schedule(static)
+  for (Index gi = 0; gi < groups; ++gi) {
+    for (Index q = c.group_offsets[gi]; q < c.group_offsets[gi + 1]; ++q) {
+      if (c.lambda_normal[q] <= 0) continue;
+      const Index p = c.particle[q];
+      const Vec3& vc = model.colliders[c.collider[q]].velocity;
+      const Vec3 dv = contact_velocity_change(state.velocity[p] - vc, state.velocity_before[p] - vc, c.normal[q],
+                                              c.lambda_normal[q], model.particle_inv_mass[p], c.dynamic_friction[q],
+                                              c.restitution[q], h, g);
+      state.velocity[p] += dv;
+    }
+  }
+}
+
+void particle_contact_velocities(const Model& model, State& state, Real h) {
+  ParticleContacts& c = state.particle_contacts;
+  const Real g = model.settings.gravity.norm();
+  for_each_by_color(c.batches, [&](Index q) {
+    if (c.lambda_normal[q] <= 0) return;
+    const auto [i, j] = c.pair[q];
+    const Real wi = model.particle_inv_mass[i], wj = model.particle_inv_mass[j], w = wi + wj;
+    const Vec3 dv = contact_velocity_change(state.velocity[i] - state.velocity[j],
+                                            state.velocity_before[i] - state.velocity_before[j], c.normal[q],
+                                            c.lambda_normal[q], w, c.dynamic_friction[q], c.restitution[q], h, g);
+    // Impulse p = dv / (wi + wj): particle i gains wi p, particle j loses wj p.
+    state.velocity[i] += (wi / w) * dv;
+    state.velocity[j] -= (wj / w) * dv;
+  });
+}
+
+}  // namespace moreau

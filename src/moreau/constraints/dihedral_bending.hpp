@@ -1,0 +1,59 @@
+#pragma once
+// Dihedral bending constraints on the hinges of a triangle surface.
+//
+// Hinge: shared edge (e0, e1), opposite vertices o0 (triangle e0,e1,o0) and o1 (triangle e1,e0,o1).
+//   nA = (e1-e0) x (o0-e0),  nB = (o1-e0) x (e1-e0),  e = e1 - e0,  l = |e|
+//   theta = atan2((nA^ x nB^) . e^, nA^ . nB^)       (signed dihedral angle, 0 when flat)
+//   C = theta - theta0                                (rad)
+//   grad_o0 = -l nA/|nA|^2,   grad_o1 = -l nB/|nB|^2
+//   grad_e0 = -((o0-e1).e/l) nA/|nA|^2 - ((o1-e1).e/l) nB/|nB|^2
+//   grad_e1 =  ((o0-e0).e/l) nA/|nA|^2 + ((o1-e0).e/l) nB/|nB|^2
+//   (Bridson, Marino, Fedkiw 2003, "Simulation of clothing with folds and wrinkles", sec. 4.2;
+//    signs fixed by our finite-difference test.)
+//   compliance alpha (rad^2/J = 1/(N m)). From a bending stiffness k_B (N m) of the continuum
+//   energy (k_B/2) int kappa^2 dA, the discrete-shells hinge energy is
+//   (k_B/2) 3 l^2/(A_A + A_B) (theta - theta0)^2 (Grinspun et al. 2003), so
+//   alpha = (A_A + A_B) / (3 k_B l^2).
+#include <vector>
+
+#include "moreau/constraints/constraint_batches.hpp"
+#include "moreau/constraints/xpbd_update.hpp"
+#include "moreau/geometry/meshes.hpp"
+
+namespace moreau {
+
+struct DihedralBendingConstraints {
+  std::vector<Hinge> hinges;
+  std::vector<Real> rest_angle;    // rad
+  std::vector<Real> compliance;    // 1/(N m)
+  std::vector<Real> damping_time;  // s
+  std::vector<Index> object;
+  ColorBatches batches;
+
+  size_t size() const { return hinges.size(); }
+  void add(const Hinge& h, Real theta0, Real alpha, Real tau, Index obj) {
+    hinges.push_back(h);
+    rest_angle.push_back(theta0);
+    compliance.push_back(alpha);
+    damping_time.push_back(tau);
+    object.push_back(obj);
+  }
+  void color(const std::vector<Real>& particle_inv_mass);
+};
+
+struct DihedralValue {
+  Real theta;
+  std::array<Vec3, 4> grad;  // with respect to e0, e1, o0, o1
+};
+
+DihedralValue evaluate_dihedral(const Vec3& e0, const Vec3& e1, const Vec3& o0, const Vec3& o1);
+
+/// Hinge compliance for a bending stiffness k_B (N m), from the discrete-shells energy above.
+Real hinge_compliance_from_bending_stiffness(const Vec3& e0, const Vec3& e1, const Vec3& o0, const Vec3& o1,
+                                             Real bending_stiffness);
+
+void project_dihedral_bending(const DihedralBendingConstraints& c, Real* lambda, const SubstepContext& s);
+Real dihedral_bending_energy(const DihedralBendingConstraints& c, const Vec3* x, Index object);
+Real dihedral_bending_max_error(const DihedralBendingConstraints& c, const Vec3* x, Index object);
+
+}  // namespace moreau

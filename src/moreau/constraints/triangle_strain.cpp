@@ -1,0 +1,99 @@
+#include "moreau/constraints/triangle_strain.hpp"
+
+#include <Eigen/Dense>
+
+namespace moreau {
+
+void TriangleStrainConstraints::add(const std::array<Index, 3>& tri, const Vec3& x0, const Vec3& x1, const Vec3& x2,
+                                    Real youngs_modulus, Real poisson_ratio, Real thickness, Real tau, Index obj) {
+  // Orthonormal rest basis: u along the first edge, v in the triangle plane.
+  const Vec3 e1 = x1 - x0, e2 = x2 - x0;
+  const Vec3 u = e1.normalized();
+  const Vec3 v = (e2 - e2.dot(u) * u).normalized();
+  Mat2 Dm;
+  Dm << e1.dot(u), e2.dot(u), e1.dot(v), e2.dot(v);
+  const Real area = 0.5 * std::abs(Dm.determinant());
+  const Real mu = youngs_modulus / (2 * (1 + poisson_ratio));
+  const Real lambda_ps = youngs_modulus * poisson_ratio / (1 - poisson_ratio * poisson_ratio);
+  Mat3 K;
+  K << lambda_ps + 2 * mu, lambda_ps, 0, lambda_ps, lambda_ps + 2 * mu, 0, 0, 0, mu;
+  particles.push_back(tri);
+  rest_inverse.push_back(Dm.inverse());
+  compliance.push_back((area * thickness * K).inverse());
+  damping_time.push_back(tau);
+  object.push_back(obj);
+}
+
+void TriangleStrainConstraints::color(const std::vector<Real>& particle_inv_mass) {
+  std::vector<std::array<Index, 4>> stencils;
+  for (const auto& t : particles) stencils.push_back({t[0], t[1], t[2], -1});
+  const auto permutation = color_constraints(stencils, particle_inv_mass, batches);
+  apply_permutation(particles, permutation);
+  apply_permutation(rest_inverse, permutation);
+  apply_permutation(compliance, permutation);
+  apply_permutation(damping_time, permutation);
+  apply_permutation(object, permutation);
+}
+
+TriangleStrainValue evaluate_triangle_strain(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Mat2& M) {
+  Mat32 Ds;
+  Ds.col(0) = x1 - x0;
+  Ds.col(1) = x2 - x0;
+  const Mat32 F = Ds * M;
+  const Vec3 f1 = F.col(0), f2 = F.col(1);
+  TriangleStrainValue v;
+  v.C = Vec3(0.5 * (f1.squaredNorm() - 1), 0.5 * (f2.squaredNorm() - 1), f1.dot(f2));
+  for (int k = 1; k <= 2; ++k) {
+    Mat3& g = v.grad[k];
+    g.row(0) = (f1 * M(k - 1, 0)).transpose();
+    g.row(1) = (f2 * M(k - 1, 1)).transpose();
+    g.row(2) = (f2 * M(k - 1, 0) + f1 * M(k - 1, 1)).transpose();
+  }
+  v.grad[0] = -(v.grad[1] + v.grad[2]);
+  return v;
+}
+
+void project_triangle_strain(const TriangleStrainConstraints& c, Vec3* lambda, const SubstepContext& s) {
+  for_each_by_color(c.batches, [&](Index k) {
+    const auto& p = c.particles[k];
+    const TriangleStrainValue v = evaluate_triangle_strain(s.x[p[0]], s.x[p[1]], s.x[p[2]], c.rest_inverse[k]);
+    // Block XPBD update: [(1+gamma) J W J^T + alpha~] dlambda = -(C + alpha~ lambda + gamma J dx).
+    Mat3 JWJt = Mat3::Zero();
+    Vec3 J_dx = Vec3::Zero();
+    for (int i = 0; i < 3; ++i) {
+      JWJt += s.inv_mass[p[i]] * v.grad[i] * v.grad[i].transpose();
+      J_dx += v.grad[i] * (s.x[p[i]] - s.x_start[p[i]]);
+    }
+    const Mat3 alpha_tilde = c.compliance[k] / (s.h * s.h);
+    const Real gamma = c.damping_time[k] / s.h;
+    const Mat3 A = (1 + gamma) * JWJt + alpha_tilde;
+    const Vec3 rhs = -(v.C + alpha_tilde * lambda[k] + gamma * J_dx);
+    const Vec3 dl = A.ldlt().solve(rhs);
+    if (!dl.allFinite()) return;
+    lambda[k] += dl;
+    for (int i = 0; i < 3; ++i) s.x[p[i]] += s.inv_mass[p[i]] * (v.grad[i].transpose() * dl);
+  });
+}
+
+Real triangle_strain_energy(const TriangleStrainConstraints& c, const Vec3* x, Index object) {
+  Real energy = 0;
+  for (size_t k = 0; k < c.size(); ++k) {
+    if (object >= 0 && c.object[k] != object) continue;
+    const auto& p = c.particles[k];
+    const Vec3 C = evaluate_triangle_strain(x[p[0]], x[p[1]], x[p[2]], c.rest_inverse[k]).C;
+    energy += 0.5 * C.dot(c.compliance[k].ldlt().solve(C));
+  }
+  return energy;
+}
+
+Real triangle_strain_max_error(const TriangleStrainConstraints& c, const Vec3* x, Index object) {
+  Real error = 0;
+  for (size_t k = 0; k < c.size(); ++k) {
+    if (object >= 0 && c.object[k] != object) continue;
+    const auto& p = c.particles[k];
+    error = std::max(error, evaluate_triangle_strain(x[p[0]], x[p[1]], x[p[2]], c.rest_inverse[k]).C.cwiseAbs().maxCoeff());
+  }
+  return error;
+}
+
+}  // namespace moreau

@@ -1,0 +1,31 @@
+#pragma once
+// The XPBD multiplier update shared by every constraint family.
+//
+// Macklin, Mueller, Chentanez 2016 (XPBD), eq. (18) with damping, eq. (26):
+//   dlambda = (-C - alpha~ lambda - gamma gradC (x - x_start)) / ((1 + gamma) gradC W gradC^T + alpha~)
+//   alpha~ = alpha / h^2,   gamma = alpha~ beta~ / h,   beta~ = h^2 beta.
+// moreau states damping as a time constant tau (s) of stiffness-proportional (Kelvin-Voigt)
+// damping, beta = tau / alpha, so that gamma = tau / h for every constraint, rigid or compliant.
+#include "moreau/math/types.hpp"
+
+namespace moreau {
+
+/// What a projection needs from the current substep.
+struct SubstepContext {
+  Vec3* x;                    // positions being corrected, m
+  const Vec3* x_start;        // positions at the start of the substep, m
+  const Real* inv_mass;       // 1/kg (0: the particle does not move)
+  Real h;                     // substep, s
+};
+
+/// Scalar XPBD update. `w_grad_sq` = sum_i w_i |grad_i C|^2; `grad_dot_dx` = sum_i grad_i C . (x_i - x_start_i).
+inline Real xpbd_delta_lambda(Real C, Real lambda, Real compliance, Real damping_time, Real h, Real w_grad_sq,
+                              Real grad_dot_dx) {
+  const Real alpha_tilde = compliance / (h * h);
+  const Real gamma = damping_time / h;
+  const Real denominator = (1 + gamma) * w_grad_sq + alpha_tilde;
+  if (denominator <= 0) return 0;
+  return (-C - alpha_tilde * lambda - gamma * grad_dot_dx) / denominator;
+}
+
+}  // namespace moreau

@@ -1,0 +1,63 @@
+#include "moreau/io/frame_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+#include "moreau/collision/collider_surface.hpp"
+
+namespace moreau {
+
+std::string safe_file_name(const std::string& name) {
+  std::string s = name;
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+  return s;
+}
+
+FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string scene_name)
+    : model_(model), out_dir_(std::move(out_dir)), scene_name_(safe_file_name(scene_name)) {
+  // Draw planes large enough to hold the scene's particles.
+  Vec3 lo = Vec3::Constant(-1), hi = Vec3::Constant(1);
+  for (const auto& x : model.particle_rest_position) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  plane_half_size_ = 0.75 * (hi - lo).maxCoeff();
+}
+
+void FrameWriter::write(const State& state) {
+  for (size_t o = 0; o < model_.objects.size(); ++o) {
+    const ObjectInfo& obj = model_.objects[o];
+    const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(obj.name), frame_);
+    const std::string path = out_dir_ + "/" + file;
+    if (obj.kind == ObjectKind::collider) {
+      const TriangleMesh m = collider_surface(model_.colliders[obj.collider], state.time, plane_half_size_);
+      std::vector<Index> conn;
+      for (const auto& t : m.triangles) conn.insert(conn.end(), t.begin(), t.end());
+      const Vec3 v = model_.colliders[obj.collider].velocity;
+      write_vtu(path, m.vertices, conn, 3, VtkCell::triangle, {{"velocity", std::vector<Vec3>(m.vertices.size(), v)}});
+    } else {
+      const Index b = obj.particle_begin, n = obj.particle_count();
+      std::vector<Vec3> x(state.position.begin() + b, state.position.begin() + b + n);
+      std::vector<Vec3> v(state.velocity.begin() + b, state.velocity.begin() + b + n);
+      std::vector<Vec3> u(n);
+      for (Index i = 0; i < n; ++i) u[i] = x[i] - model_.particle_rest_position[b + i];
+      std::vector<Index> conn;
+      if (obj.kind == ObjectKind::soft_body) {
+        for (const auto& t : obj.tets)
+          for (Index p : t) conn.push_back(p - b);
+        write_vtu(path, x, conn, 4, VtkCell::tetra, {{"velocity", v}, {"displacement", u}});
+      } else {
+        for (const auto& t : obj.surface)
+          for (Index p : t) conn.push_back(p - b);
+        write_vtu(path, x, conn, 3, VtkCell::triangle, {{"velocity", v}, {"displacement", u}});
+      }
+    }
+    entries_.push_back({state.time, static_cast<int>(o), file});
+  }
+  write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", entries_);
+  ++frame_;
+}
+
+}  // namespace moreau

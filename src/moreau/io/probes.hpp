@@ -1,0 +1,33 @@
+#pragma once
+// Probes: named measurements written to probes.csv, one row per output step. Scalars give one
+// column `<name>`, vectors three columns `<name>.x, <name>.y, <name>.z`.
+#include <string>
+#include <vector>
+
+#include "moreau/model/diagnostics.hpp"
+
+namespace moreau {
+
+enum class ProbeType { point, energy, center_of_mass, extent, momentum, constraint_error };
+
+struct ProbeSpec {
+  std::string name;
+  ProbeType type = ProbeType::point;
+  Index object = -1;                 // -1: every object ("*")
+  std::string quantity;              // point: position|displacement|velocity; energy: kinetic|potential|elastic|total;
+                                     // extent: min|max; momentum: linear|angular
+  Index particle = -1;               // point probes: global particle index
+  int axis = 1;                      // extent
+  Vec3 about = Vec3::Zero();         // angular momentum reference point, m
+  ConstraintFamily family = ConstraintFamily::all;
+
+  bool is_vector() const;
+};
+
+/// Column headers of one probe.
+std::vector<std::string> probe_columns(const ProbeSpec& probe);
+
+/// Appends the probe's current value(s) to `values`.
+void evaluate_probe(const ProbeSpec& probe, const Model& model, const State& state, std::vector<Real>& values);
+
+}  // namespace moreau

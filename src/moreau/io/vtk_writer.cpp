@@ -1,0 +1,76 @@
+#include "moreau/io/vtk_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <cstdint>
+#include <fstream>
+#include <stdexcept>
+
+namespace moreau {
+
+namespace {
+
+/// Collects the binary blocks of the appended section and their offsets.
+struct AppendedData {
+  std::string bytes;
+  template <class T>
+  std::uint64_t add(const std::vector<T>& values) {
+    const std::uint64_t offset = bytes.size();
+    const std::uint64_t size = values.size() * sizeof(T);
+    bytes.append(reinterpret_cast<const char*>(&size), sizeof(size));
+    bytes.append(reinterpret_cast<const char*>(values.data()), size);
+    return offset;
+  }
+};
+
+std::vector<double> flatten(const std::vector<Vec3>& v) {
+  std::vector<double> out;
+  out.reserve(v.size() * 3);
+  for (const auto& p : v) out.insert(out.end(), {p.x(), p.y(), p.z()});
+  return out;
+}
+
+}  // namespace
+
+void write_vtu(const std::string& path, const std::vector<Vec3>& points, const std::vector<Index>& connectivity,
+               int nodes_per_cell, VtkCell cell_type, const std::vector<VtkPointArray>& point_arrays) {
+  const size_t cells = connectivity.size() / nodes_per_cell;
+  AppendedData data;
+  std::string xml;
+  xml += "<?xml version=\"1.0\"?>\n";
+  xml += "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  xml += "<UnstructuredGrid>\n";
+  xml += fmt::format("<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", points.size(), cells);
+  xml += "<PointData>\n";
+  for (const auto& a : point_arrays)
+    xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n",
+                       a.name, data.add(flatten(a.values)));
+  xml += "</PointData>\n<Points>\n";
+  xml += fmt::format("<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n",
+                     data.add(flatten(points)));
+  xml += "</Points>\n<Cells>\n";
+  std::vector<std::int64_t> conn(connectivity.begin(), connectivity.end()), offsets(cells);
+  std::vector<std::uint8_t> types(cells, static_cast<std::uint8_t>(cell_type));
+  for (size_t c = 0; c < cells; ++c) offsets[c] = static_cast<std::int64_t>((c + 1) * nodes_per_cell);
+  xml += fmt::format("<DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>\n", data.add(conn));
+  xml += fmt::format("<DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>\n", data.add(offsets));
+  xml += fmt::format("<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"{}\"/>\n", data.add(types));
+  xml += "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
+
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path));
+  out << xml;
+  out.write(data.bytes.data(), static_cast<std::streamsize>(data.bytes.size()));
+  out << "\n</AppendedData>\n</VTKFile>\n";
+}
+
+void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries) {
+  std::ofstream out(path);
+  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path));
+  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n<Collection>\n";
+  for (const auto& e : entries)
+    out << fmt::format("<DataSet timestep=\"{:.9g}\" part=\"{}\" file=\"{}\"/>\n", e.time, e.part, e.file);
+  out << "</Collection>\n</VTKFile>\n";
+}
+
+}  // namespace moreau

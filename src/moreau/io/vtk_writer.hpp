@@ -1,0 +1,32 @@
+#pragma once
+// VTK XML writers (ParaView, VisIt, Blender importers). Unstructured grids (.vtu) carry point
+// arrays; the data is raw binary in an appended section (little-endian, UInt64 headers), which
+// keeps frames small and fast to write.
+#include <string>
+#include <vector>
+
+#include "moreau/math/types.hpp"
+
+namespace moreau {
+
+/// VTK cell type ids.
+enum class VtkCell : unsigned char { triangle = 5, tetra = 10 };
+
+struct VtkPointArray {
+  std::string name;
+  std::vector<Vec3> values;
+};
+
+/// Writes an unstructured grid of one cell type with 3-component point arrays.
+void write_vtu(const std::string& path, const std::vector<Vec3>& points, const std::vector<Index>& connectivity,
+               int nodes_per_cell, VtkCell cell_type, const std::vector<VtkPointArray>& point_arrays);
+
+/// A ParaView collection (.pvd): each entry is (time, part, file relative to the .pvd).
+struct PvdEntry {
+  Real time;
+  int part;
+  std::string file;
+};
+void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries);
+
+}  // namespace moreau

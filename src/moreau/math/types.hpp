@@ -1,0 +1,20 @@
+#pragma once
+// Scalar and small-vector types used throughout moreau. Everything is double precision: XPBD with
+// small substeps needs it (Macklin et al. 2019, "Small Steps", note on precision).
+#include <Eigen/Dense>
+#include <array>
+#include <cstdint>
+
+namespace moreau {
+
+using Real = double;
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+using Mat2 = Eigen::Matrix2d;
+using Mat3 = Eigen::Matrix3d;
+using Mat32 = Eigen::Matrix<double, 3, 2>;
+using Index = std::int32_t;
+
+inline constexpr Real kPi = 3.14159265358979323846;
+
+}  // namespace moreau

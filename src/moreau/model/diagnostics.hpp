@@ -1,0 +1,24 @@
+#pragma once
+// Whole-body quantities of a state: energies, momenta, centre of mass, constraint errors.
+// `object` selects one object's particles and constraints; -1 means every object.
+#include "moreau/model/state.hpp"
+
+namespace moreau {
+
+Real kinetic_energy(const Model& model, const State& state, Index object);
+/// Gravitational potential energy -sum m g.x (zero at the origin), J.
+Real potential_energy(const Model& model, const State& state, Index object);
+/// Stored elastic energy of every compliant constraint, J.
+Real elastic_energy(const Model& model, const State& state, Index object);
+Vec3 linear_momentum(const Model& model, const State& state, Index object);
+/// Angular momentum about `about`, kg m^2/s.
+Vec3 angular_momentum(const Model& model, const State& state, Index object, const Vec3& about);
+Vec3 center_of_mass(const Model& model, const State& state, Index object);
+
+/// Constraint families that constraint_error can be asked about.
+enum class ConstraintFamily { all, distance, bending, triangle_strain, neo_hookean_volume, tet_volume, attachment };
+
+/// max |C| of the object's constraints of `family` (for Neo-Hookean tets: max |det F - 1|).
+Real max_constraint_error(const Model& model, const State& state, Index object, ConstraintFamily family);
+
+}  // namespace moreau

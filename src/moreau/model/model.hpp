@@ -1,0 +1,76 @@
+#pragma once
+// The Model: everything a scene builds that does not change during a run — particles' masses and
+// rest positions, objects, colliders, constraint families (already colour-sorted) and settings.
+// Every stage of a step takes (const Model&, State&).
+#include <string>
+#include <vector>
+
+#include "moreau/collision/collider.hpp"
+#include "moreau/constraints/attachment.hpp"
+#include "moreau/constraints/dihedral_bending.hpp"
+#include "moreau/constraints/distance.hpp"
+#include "moreau/constraints/neo_hookean_tet.hpp"
+#include "moreau/constraints/tet_volume.hpp"
+#include "moreau/constraints/triangle_strain.hpp"
+
+namespace moreau {
+
+enum class ObjectKind { collider, cloth, soft_body };
+
+/// One named scene object. Particles of an object are the contiguous range [particle_begin, particle_end).
+struct ObjectInfo {
+  std::string name;
+  ObjectKind kind = ObjectKind::cloth;
+  Index particle_begin = 0, particle_end = 0;
+  std::vector<std::array<Index, 3>> surface;  // global particle indices: cloth triangles / soft-body boundary
+  std::vector<std::array<Index, 4>> tets;     // global particle indices (soft bodies)
+  Index collider = -1;                        // index into Model::colliders (colliders only)
+  bool self_collision = false;                // particle contacts within the object
+  Real static_friction = 0.5, dynamic_friction = 0.5, restitution = 0;
+
+  Index particle_count() const { return particle_end - particle_begin; }
+  bool has_particles() const { return particle_end > particle_begin; }
+};
+
+struct SolverSettings {
+  Real dt = 1.0 / 60;                       // s, output-independent step
+  int substeps = 20;
+  int iterations = 1;
+  Vec3 gravity = Vec3(0, -9.81, 0);         // m/s^2
+  int threads = 0;                          // 0 = all cores
+  bool particle_contacts = true;            // contacts between objects and cloth self-collision
+  Real contact_margin_factor = 2.0;         // contact candidates within r_i + r_j + k dt |v_rel| (Mueller 2020: k = 2)
+  Real max_speed = 1e3;                     // m/s; faster particles are reported as a numerical failure
+};
+
+struct Model {
+  // Particles (one entry per simulated point).
+  std::vector<Vec3> particle_rest_position;   // m
+  std::vector<Real> particle_mass;            // kg (pinned particles keep their mass for probes)
+  std::vector<Real> particle_inv_mass;        // 1/kg; 0 = pinned
+  std::vector<Real> particle_radius;          // m, collision radius for particle-particle contacts
+  std::vector<Real> particle_collider_gap;    // m, distance kept from colliders
+  std::vector<Index> particle_object;         // owning object
+  std::vector<Index> contact_particle;        // particles that take part in particle-particle contacts
+
+  std::vector<ObjectInfo> objects;
+  std::vector<Collider> colliders;
+
+  // Constraint families, colour-sorted at build time.
+  DistanceConstraints distance;
+  DihedralBendingConstraints bending;
+  TriangleStrainConstraints triangle_strain;
+  NeoHookeanTetConstraints neo_hookean;
+  TetVolumeConstraints tet_volume;
+  AttachmentConstraints attachment;
+
+  SolverSettings settings;
+
+  Index particle_count() const { return static_cast<Index>(particle_inv_mass.size()); }
+  /// Object index by name, or -1.
+  Index find_object(const std::string& name) const;
+  /// Colours every family (call once after all constraints are added).
+  void color_constraints();
+};
+
+}  // namespace moreau

@@ -1,0 +1,21 @@
+#include "moreau/model/state.hpp"
+
+namespace moreau {
+
+State make_rest_state(const Model& model) {
+  State s;
+  const size_t n = model.particle_count();
+  s.position = model.particle_rest_position;
+  s.velocity.assign(n, Vec3::Zero());
+  s.substep_start = s.position;
+  s.velocity_before.assign(n, Vec3::Zero());
+  s.distance_lambda.assign(model.distance.size(), 0);
+  s.bending_lambda.assign(model.bending.size(), 0);
+  s.triangle_strain_lambda.assign(model.triangle_strain.size(), Vec3::Zero());
+  s.neo_hookean_lambda.assign(model.neo_hookean.size(), Vec2::Zero());
+  s.tet_volume_lambda.assign(model.tet_volume.size(), 0);
+  s.attachment_lambda.assign(model.attachment.size(), Vec3::Zero());
+  return s;
+}
+
+}  // namespace moreau

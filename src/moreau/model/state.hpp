@@ -1,0 +1,36 @@
+#pragma once
+// The State: what a step changes — positions, velocities, multipliers, contacts and time.
+// Buffers are sized when the state is created; contact buffers only grow.
+#include <vector>
+
+#include "moreau/collision/contacts.hpp"
+#include "moreau/model/model.hpp"
+
+namespace moreau {
+
+struct State {
+  Real time = 0;                        // s
+  long step = 0;                        // completed steps
+
+  std::vector<Vec3> position;           // m
+  std::vector<Vec3> velocity;           // m/s
+  std::vector<Vec3> substep_start;      // m, positions at the start of the current substep
+  std::vector<Vec3> velocity_before;    // m/s, velocity after prediction, before the solve (restitution)
+
+  // Multipliers, reset at every substep and accumulated over its iterations.
+  std::vector<Real> distance_lambda;
+  std::vector<Real> bending_lambda;
+  std::vector<Vec3> triangle_strain_lambda;
+  std::vector<Vec2> neo_hookean_lambda;
+  std::vector<Real> tet_volume_lambda;
+  std::vector<Vec3> attachment_lambda;
+
+  ColliderContacts collider_contacts;
+  ParticleContacts particle_contacts;
+  ContactScratch contact_scratch;
+};
+
+/// A state at rest in the model's rest configuration, with all buffers sized.
+State make_rest_state(const Model& model);
+
+}  // namespace moreau

@@ -1,0 +1,46 @@
+#include "moreau/scene/object_builders.hpp"
+
+namespace moreau {
+
+void build_collider(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx) {
+  Collider c;
+  const JsonObject shape = object.object("shape");
+  const std::string type = shape.choice("type", {"plane", "box", "sphere", "capsule"});
+  if (type == "plane") {
+    c.shape = ColliderShape::plane;
+    const Vec3 n = shape.vec3("normal", Vec3::UnitY());
+    if (n.norm() <= 0) shape.fail("normal", "the plane normal must not be zero");
+    c.normal = n.normalized();
+    if (shape.has("point") && shape.has("offset")) shape.fail("point", "give either \"point\" or \"offset\", not both");
+    c.position = shape.has("point") ? shape.vec3("point") : Vec3(c.normal * shape.number("offset", 0.0));
+  } else if (type == "box") {
+    c.shape = ColliderShape::box;
+    c.position = shape.vec3("center");
+    if (shape.has("size") == shape.has("half_extents"))
+      shape.fail("half_extents", "give exactly one of \"half_extents\" or \"size\" (m)");
+    c.half_extents = shape.has("size") ? Vec3(0.5 * shape.vec3("size")) : shape.vec3("half_extents");
+    if (c.half_extents.minCoeff() <= 0) shape.fail("half_extents", "every extent must be > 0");
+    c.rotation = rotation_from_degrees(shape.vec3("rotation_deg", Vec3::Zero()));
+  } else if (type == "sphere") {
+    c.shape = ColliderShape::sphere;
+    c.position = shape.vec3("center");
+    c.radius = shape.number("radius", Range::positive());
+  } else {
+    c.shape = ColliderShape::capsule;
+    c.position = shape.vec3("center");
+    c.radius = shape.number("radius", Range::positive());
+    c.half_height = shape.number("half_height", Range::non_negative());
+    c.rotation = rotation_from_degrees(shape.vec3("rotation_deg", Vec3::Zero()));
+  }
+  shape.finish();
+  c.velocity = object.vec3("velocity", Vec3::Zero());
+  read_contact_material(object, c.static_friction, c.dynamic_friction, c.restitution);
+  info.kind = ObjectKind::collider;
+  info.collider = static_cast<Index>(ctx.model.colliders.size());
+  info.static_friction = c.static_friction;
+  info.dynamic_friction = c.dynamic_friction;
+  info.restitution = c.restitution;
+  ctx.model.colliders.push_back(c);
+}
+
+}  // namespace moreau

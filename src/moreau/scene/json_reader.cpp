@@ -1,0 +1,245 @@
+#include "moreau/scene/json_reader.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "moreau/errors.hpp"
+
+namespace moreau {
+
+using nlohmann::json;
+
+std::string Range::describe() const {
+  const bool has_lo = lo > -1e299, has_hi = hi < 1e299;
+  if (has_lo && has_hi) return fmt::format("{}{}, {}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
+  if (has_lo) return fmt::format("{} {}", lo_open ? ">" : ">=", lo);
+  if (has_hi) return fmt::format("{} {}", hi_open ? "<" : "<=", hi);
+  return "any number";
+}
+
+namespace {
+std::string type_name(const json& v) {
+  if (v.is_number()) return "a number";
+  if (v.is_string()) return "a string";
+  if (v.is_boolean()) return "a boolean";
+  if (v.is_array()) return "an array";
+  if (v.is_object()) return "an object";
+  return "null";
+}
+
+std::string join(const std::vector<std::string>& items) {
+  std::string out;
+  for (size_t i = 0; i < items.size(); ++i) out += (i ? ", " : "") + items[i];
+  return out;
+}
+}  // namespace
+
+JsonObject::JsonObject(const json& value, std::string path, std::string file)
+    : j_(&value), path_(std::move(path)), file_(std::move(file)) {
+  if (!value.is_object())
+    throw InputError(fmt::format("{}: {}: expected an object, found {}", file_, path_.empty() ? "(top level)" : path_,
+                                 type_name(value)));
+}
+
+bool JsonObject::has(const std::string& key) const {
+  known_.insert(key);
+  return j_->contains(key);
+}
+
+void JsonObject::fail(const std::string& key, const std::string& problem) const {
+  throw InputError(fmt::format("{}: {}: {}", file_, path_of(key), problem));
+}
+
+const json& JsonObject::require(const std::string& key) const {
+  known_.insert(key);
+  auto it = j_->find(key);
+  if (it == j_->end()) fail(key, "missing required key");
+  return *it;
+}
+
+const json& JsonObject::raw(const std::string& key) const { return require(key); }
+
+Real JsonObject::number(const std::string& key, Range range) const {
+  const json& v = require(key);
+  if (!v.is_number()) fail(key, fmt::format("expected a number, found {}", type_name(v)));
+  const Real x = v.get<Real>();
+  if (!std::isfinite(x) || !range.contains(x))
+    fail(key, fmt::format("{} is out of range; allowed: {}", x, range.describe()));
+  return x;
+}
+
+Real JsonObject::number(const std::string& key, Real fallback, Range range) const {
+  return has(key) ? number(key, range) : fallback;
+}
+
+int JsonObject::required_integer(const std::string& key, int min, int max) const {
+  const json& v = require(key);
+  if (!v.is_number_integer()) fail(key, fmt::format("expected an integer, found {}", v.dump()));
+  const long long x = v.get<long long>();
+  if (x < min || x > max) fail(key, fmt::format("{} is out of range; allowed: [{}, {}]", x, min, max));
+  return static_cast<int>(x);
+}
+
+int JsonObject::integer(const std::string& key, int fallback, int min, int max) const {
+  return has(key) ? required_integer(key, min, max) : fallback;
+}
+
+bool JsonObject::boolean(const std::string& key, bool fallback) const {
+  if (!has(key)) return fallback;
+  const json& v = require(key);
+  if (!v.is_boolean()) fail(key, fmt::format("expected true or false, found {}", type_name(v)));
+  return v.get<bool>();
+}
+
+std::string JsonObject::string(const std::string& key) const {
+  const json& v = require(key);
+  if (!v.is_string()) fail(key, fmt::format("expected a string, found {}", type_name(v)));
+  return v.get<std::string>();
+}
+
+std::string JsonObject::choice(const std::string& key, const std::vector<std::string>& allowed) const {
+  const std::string s = string(key);
+  for (const auto& a : allowed)
+    if (s == a) return s;
+  fail(key, fmt::format("'{}' is not valid; allowed: {}", s, join(allowed)));
+}
+
+std::string JsonObject::choice(const std::string& key, const std::string& fallback,
+                               const std::vector<std::string>& allowed) const {
+  return has(key) ? choice(key, allowed) : fallback;
+}
+
+Vec3 JsonObject::vec3(const std::string& key) const {
+  const json& v = require(key);
+  if (!v.is_array() || v.size() != 3 || !v[0].is_number() || !v[1].is_number() || !v[2].is_number())
+    fail(key, fmt::format("expected an array of 3 numbers, found {}", v.dump()));
+  return Vec3(v[0].get<Real>(), v[1].get<Real>(), v[2].get<Real>());
+}
+
+Vec3 JsonObject::vec3(const std::string& key, const Vec3& fallback) const { return has(key) ? vec3(key) : fallback; }
+
+Vec2 JsonObject::vec2(const std::string& key, Range range) const {
+  const json& v = require(key);
+  if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number())
+    fail(key, fmt::format("expected an array of 2 numbers, found {}", v.dump()));
+  const Vec2 out(v[0].get<Real>(), v[1].get<Real>());
+  if (!range.contains(out.x()) || !range.contains(out.y()))
+    fail(key, fmt::format("{} is out of range; each entry allowed: {}", v.dump(), range.describe()));
+  return out;
+}
+
+std::vector<int> JsonObject::integers(const std::string& key, size_t count, int min) const {
+  const json& v = require(key);
+  bool ok = v.is_array() && v.size() == count;
+  for (size_t i = 0; ok && i < v.size(); ++i) ok = v[i].is_number_integer() && v[i].get<long long>() >= min;
+  if (!ok) fail(key, fmt::format("expected an array of {} integers >= {}, found {}", count, min, v.dump()));
+  return v.get<std::vector<int>>();
+}
+
+std::vector<int> JsonObject::integer_list(const std::string& key, int min) const {
+  const json& v = require(key);
+  bool ok = v.is_array();
+  for (size_t i = 0; ok && i < v.size(); ++i) ok = v[i].is_number_integer() && v[i].get<long long>() >= min;
+  if (!ok) fail(key, fmt::format("expected an array of integers >= {}, found {}", min, v.dump()));
+  return v.get<std::vector<int>>();
+}
+
+JsonObject JsonObject::object(const std::string& key) const { return JsonObject(require(key), path_of(key), file_); }
+
+std::optional<JsonObject> JsonObject::optional_object(const std::string& key) const {
+  if (!has(key)) return std::nullopt;
+  return object(key);
+}
+
+std::vector<JsonObject> JsonObject::object_list(const std::string& key) const {
+  std::vector<JsonObject> out;
+  if (!has(key)) return out;
+  const json& v = require(key);
+  if (!v.is_array()) fail(key, fmt::format("expected an array, found {}", type_name(v)));
+  for (size_t i = 0; i < v.size(); ++i) out.emplace_back(v[i], fmt::format("{}[{}]", path_of(key), i), file_);
+  return out;
+}
+
+void JsonObject::finish() const {
+  for (auto it = j_->begin(); it != j_->end(); ++it) {
+    if (known_.count(it.key())) continue;
+    std::vector<std::string> allowed(known_.begin(), known_.end());
+    fail(it.key(), fmt::format("unknown key; allowed here: {}", join(allowed)));
+  }
+}
+
+json parse_json_file(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(fmt::format("{}: cannot open scene file (does it exist and is it readable?)", path));
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string text = buffer.str();
+  try {
+    return json::parse(text);
+  } catch (const json::parse_error& e) {
+    // Translate the byte offset into a line and column.
+    size_t line = 1, column = 1;
+    const size_t end = std::min<size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
+    for (size_t i = 0; i < end; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        column = 1;
+      } else {
+        ++column;
+      }
+    }
+    std::string what = e.what();
+    const auto colon = what.find("syntax error");
+    throw InputError(fmt::format("{}:{}:{}: malformed JSON: {}", path, line, column,
+                                 colon == std::string::npos ? what : what.substr(colon)));
+  }
+}
+
+void apply_override(json& scene, const std::string& assignment, const std::string& file) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(fmt::format("--set '{}': expected path=value, e.g. settings.substeps=40", assignment));
+  const std::string path = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  json value;
+  try {
+    value = json::parse(text);
+  } catch (const json::parse_error&) {
+    value = text;  // a bare word is a string
+  }
+  json* node = &scene;
+  std::string walked;
+  std::stringstream segments(path);
+  std::string segment;
+  std::vector<std::string> parts;
+  while (std::getline(segments, segment, '.')) parts.push_back(segment);
+  for (size_t i = 0; i < parts.size(); ++i) {
+    const std::string& s = parts[i];
+    const bool last = i + 1 == parts.size();
+    walked += (walked.empty() ? "" : ".") + s;
+    if (node->is_array()) {
+      json* next = nullptr;
+      if (!s.empty() && s.find_first_not_of("0123456789") == std::string::npos) {
+        const size_t k = std::stoul(s);
+        if (k < node->size()) next = &(*node)[k];
+      } else {
+        for (auto& item : *node)
+          if (item.is_object() && item.value("name", "") == s) next = &item;
+      }
+      if (!next)
+        throw InputError(fmt::format("{}: --set {}: no element '{}' in this array (use an index or an object name)", file,
+                                     path, walked));
+      node = next;
+    } else if (node->is_object()) {
+      if (!last && !node->contains(s)) (*node)[s] = json::object();
+      node = &(*node)[s];
+    } else {
+      throw InputError(fmt::format("{}: --set {}: '{}' is not an object or array", file, path, walked));
+    }
+    if (last) *node = value;
+  }
+}
+
+}  // namespace moreau

@@ -1,0 +1,31 @@
+#pragma once
+// A loaded scene: the model, its initial state, and what the run should measure and write.
+#include <string>
+#include <vector>
+
+#include "moreau/io/probes.hpp"
+#include "moreau/model/state.hpp"
+
+namespace moreau {
+
+struct OutputSettings {
+  int every = 1;          // write frames and probe rows every N steps
+  bool write_vtk = true;  // frames/*.vtu + <scene>.pvd
+};
+
+struct Scene {
+  std::string name;
+  std::string file;
+  std::string solver = "xpbd";
+  Real duration = 1.0;  // s
+  Model model;
+  State initial_state;
+  OutputSettings output;
+  std::vector<ProbeSpec> probes;
+};
+
+/// Reads, validates and builds a scene. `overrides` are "path=value" assignments applied to the
+/// JSON before validation. Throws InputError on any problem; nothing is written.
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+
+}  // namespace moreau

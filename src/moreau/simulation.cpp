@@ -1,0 +1,182 @@
+// The run loop behind moreau::Simulation: step, sample probes, write frames, time the stages,
+// draw progress, and write run.json.
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "moreau/io/frame_writer.hpp"
+#include "moreau/io/progress_bar.hpp"
+#include "moreau/model/diagnostics.hpp"
+#include "moreau/moreau.hpp"
+#include "moreau/scene/scene.hpp"
+#include "moreau/solvers/xpbd/xpbd_step.hpp"
+
+namespace moreau {
+
+namespace fs = std::filesystem;
+
+const char* version() { return MOREAU_VERSION; }
+
+Simulation::Simulation(std::unique_ptr<Scene> scene) : scene_(std::move(scene)) {}
+Simulation::~Simulation() = default;
+Simulation::Simulation(Simulation&&) noexcept = default;
+Simulation& Simulation::operator=(Simulation&&) noexcept = default;
+
+Simulation Simulation::load(const std::string& scene_path, const std::vector<std::string>& overrides) {
+  return Simulation(std::make_unique<Scene>(load_scene(scene_path, overrides)));
+}
+
+const std::string& Simulation::name() const { return scene_->name; }
+Scene& Simulation::internals() { return *scene_; }
+double Simulation::time() const { return scene_->initial_state.time; }
+
+void Simulation::step() {
+  StageTimer timer;
+  xpbd_step(scene_->model, scene_->initial_state, timer);
+}
+
+std::vector<double> Simulation::position(const std::string& object, int vertex) const {
+  const Index o = scene_->model.find_object(object);
+  if (o < 0 || vertex < 0 || vertex >= scene_->model.objects[o].particle_count())
+    throw InputError(fmt::format("no vertex {} in object '{}'", vertex, object));
+  const Vec3& x = scene_->initial_state.position[scene_->model.objects[o].particle_begin + vertex];
+  return {x.x(), x.y(), x.z()};
+}
+
+std::string Simulation::summary() const {
+  const Model& m = scene_->model;
+  std::string s = fmt::format("scene '{}' ({}): solver {}, dt {} s, {} substeps x {} iterations, duration {} s\n",
+                              scene_->name, scene_->file, scene_->solver, m.settings.dt, m.settings.substeps,
+                              m.settings.iterations, scene_->duration);
+  for (const auto& o : m.objects) {
+    static const char* kinds[] = {"collider", "cloth", "soft_body"};
+    s += fmt::format("  {:<10} {:<16}", kinds[static_cast<int>(o.kind)], o.name);
+    if (o.has_particles())
+      s += fmt::format(" {} particles, {} surface triangles, {} tetrahedra", o.particle_count(), o.surface.size(), o.tets.size());
+    s += "\n";
+  }
+  auto family = [&](const char* name, size_t count, const ColorBatches* b) {
+    if (count == 0) return;
+    s += fmt::format("  constraints {:<16} {:>8}", name, count);
+    if (b) s += fmt::format("  in {} colours", b->color_count());
+    s += "\n";
+  };
+  family("distance", m.distance.size(), &m.distance.batches);
+  family("bending", m.bending.size(), &m.bending.batches);
+  family("triangle_strain", m.triangle_strain.size(), &m.triangle_strain.batches);
+  family("neo_hookean", m.neo_hookean.size(), &m.neo_hookean.batches);
+  family("tet_volume", m.tet_volume.size(), &m.tet_volume.batches);
+  family("attachment", m.attachment.size(), nullptr);
+  s += fmt::format("  probes: {}\n", scene_->probes.size());
+  return s;
+}
+
+namespace {
+
+nlohmann::json run_summary_json(const Scene& scene, const StageTimer& timer, const State& state, long steps,
+                                double wall_time, int threads, const std::string& status, const std::string& message) {
+  const Model& m = scene.model;
+  nlohmann::json j;
+  j["moreau_version"] = version();
+  j["scene"] = scene.name;
+  j["scene_file"] = scene.file;
+  j["status"] = status;
+  if (!message.empty()) j["message"] = message;
+  j["solver"] = scene.solver;
+  j["dt"] = m.settings.dt;
+  j["substeps"] = m.settings.substeps;
+  j["iterations"] = m.settings.iterations;
+  j["threads"] = threads;
+  j["steps"] = steps;
+  j["simulated_time_s"] = state.time;
+  j["wall_time_s"] = wall_time;
+  j["counts"] = {{"particles", m.particle_count()},
+                 {"objects", m.objects.size()},
+                 {"colliders", m.colliders.size()},
+                 {"constraints",
+                  {{"distance", m.distance.size()},
+                   {"bending", m.bending.size()},
+                   {"triangle_strain", m.triangle_strain.size()},
+                   {"neo_hookean", m.neo_hookean.size()},
+                   {"tet_volume", m.tet_volume.size()},
+                   {"attachment", m.attachment.size()}}}};
+  nlohmann::json stages = nlohmann::json::object();
+  for (int s = 0; s < static_cast<int>(Stage::count); ++s)
+    stages[std::string(kStageNames[s])] = timer.seconds(static_cast<Stage>(s));
+  j["stage_time_s"] = stages;
+  if (status == "completed") {
+    j["final_energy_j"] = {{"kinetic", kinetic_energy(m, state, -1)},
+                           {"potential", potential_energy(m, state, -1)},
+                           {"elastic", elastic_energy(m, state, -1)}};
+  }
+  return j;
+}
+
+}  // namespace
+
+RunResult Simulation::run(const RunOptions& options) {
+  Scene& scene = *scene_;
+  Model& model = scene.model;
+  if (options.threads) model.settings.threads = *options.threads;
+  const double duration = options.duration.value_or(scene.duration);
+  const int threads = solver_thread_count(model);
+
+  RunResult result;
+  result.out_dir = options.out_dir.empty() ? "out/" + safe_file_name(scene.name) : options.out_dir;
+  const fs::path dir(result.out_dir);
+  fs::create_directories(dir);
+  fs::remove_all(dir / "frames");
+  fs::create_directories(dir / "frames");
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().extension() == ".pvd") fs::remove(entry.path());
+
+  State& state = scene.initial_state;
+  FrameWriter frames(model, result.out_dir, scene.name);
+  std::ofstream csv(dir / "probes.csv");
+  csv << "time";
+  for (const auto& p : scene.probes)
+    for (const auto& c : probe_columns(p)) csv << ',' << c;
+  csv << '\n';
+  std::vector<Real> values;
+  auto sample = [&] {
+    values.clear();
+    for (const auto& p : scene.probes) evaluate_probe(p, model, state, values);
+    csv << fmt::format("{:.9g}", state.time);
+    for (Real v : values) csv << fmt::format(",{:.17g}", v);
+    csv << '\n';
+    if (scene.output.write_vtk) frames.write(state);
+  };
+
+  const long steps = std::max<long>(1, std::lround(duration / model.settings.dt));
+  StageTimer timer;
+  ProgressBar progress(options.progress, duration);
+  sample();
+  double wall = 0;
+  std::string status = "completed", message;
+  try {
+    for (long s = 0; s < steps; ++s) {
+      const auto t0 = std::chrono::steady_clock::now();
+      xpbd_step(model, state, timer);
+      wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      result.steps = s + 1;
+      if ((s + 1) % scene.output.every == 0 || s + 1 == steps) sample();
+      progress.update(state.time, result.steps, wall);
+    }
+  } catch (const NumericalError& e) {
+    status = "failed";
+    message = e.what();
+  }
+  progress.finish();
+  result.wall_time_s = wall;
+  std::ofstream(dir / "run.json") << run_summary_json(scene, timer, state, result.steps, wall, threads, status, message).dump(2)
+                                  << '\n';
+  if (status != "completed") throw NumericalError(message);
+  return result;
+}
+
+}  // namespace moreau

@@ -1,0 +1,126 @@
+#include "moreau/solvers/xpbd/xpbd_step.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <cmath>
+
+#include "moreau/errors.hpp"
+
+namespace moreau {
+
+int solver_thread_count(const Model& model) {
+  return model.settings.threads > 0 ? model.settings.threads : omp_get_max_threads();
+}
+
+namespace {
+
+// x_start = x; v += h g; x += h v (Mueller 2020, Algorithm 2). Also clears the multipliers.
+void predict(const Model& model, State& state, Real h) {
+  const Index n = model.particle_count();
+  const Vec3 dv = h * model.settings.gravity;
+#pragma omp for schedule(static) nowait
+  for (Index p = 0; p < n; ++p) {
+    state.substep_start[p] = state.position[p];
+    if (model.particle_inv_mass[p] <= 0) continue;
+    state.velocity[p] += dv;
+    state.velocity_before[p] = state.velocity[p];
+    state.position[p] += h * state.velocity[p];
+  }
+  auto clear = [](auto& values, auto zero) {
+    const Index m = static_cast<Index>(values.size());
+#pragma omp for schedule(static) nowait
+    for (Index k = 0; k < m; ++k) values[k] = zero;
+  };
+  clear(state.distance_lambda, Real{0});
+  clear(state.bending_lambda, Real{0});
+  clear(state.triangle_strain_lambda, Vec3::Zero().eval());
+  clear(state.neo_hookean_lambda, Vec2::Zero().eval());
+  clear(state.tet_volume_lambda, Real{0});
+  clear(state.attachment_lambda, Vec3::Zero().eval());
+  clear(state.collider_contacts.lambda_normal, Real{0});
+  clear(state.particle_contacts.lambda_normal, Real{0});
+#pragma omp barrier
+}
+
+// v = (x - x_start) / h
+void update_velocity(const Model& model, State& state, Real h) {
+  const Index n = model.particle_count();
+#pragma omp for schedule(static)
+  for (Index p = 0; p < n; ++p)
+    if (model.particle_inv_mass[p] > 0) state.velocity[p] = (state.position[p] - state.substep_start[p]) / h;
+}
+
+void check_state(const Model& model, const State& state) {
+  const Real limit = model.settings.max_speed;
+  for (Index p = 0; p < model.particle_count(); ++p) {
+    const bool finite = state.position[p].allFinite() && state.velocity[p].allFinite();
+    if (finite && state.velocity[p].norm() <= limit) continue;
+    const ObjectInfo& obj = model.objects[model.particle_object[p]];
+    throw NumericalError(fmt::format(
+        "simulation diverged at step {} (t = {:.6g} s) in object '{}': particle {} has {} "
+        "(limit {} m/s, settings.max_speed); try more substeps, a smaller dt or softer materials",
+        state.step, state.time, obj.name, p - obj.particle_begin,
+        finite ? fmt::format("speed {:.3g} m/s", state.velocity[p].norm()) : std::string("a non-finite position or velocity"),
+        limit));
+  }
+}
+
+}  // namespace
+
+void xpbd_step(const Model& model, State& state, StageTimer& timer) {
+  timer.start();
+  detect_collider_contacts(model, state);
+  detect_particle_contacts(model, state);
+  timer.lap(Stage::detect_contacts);
+
+  const Real dt = model.settings.dt;
+  const int substeps = model.settings.substeps, iterations = model.settings.iterations;
+  const Real h = dt / substeps;
+  const SubstepContext ctx{state.position.data(), state.substep_start.data(), model.particle_inv_mass.data(), h};
+  const Real start_time = state.time;
+
+#pragma omp parallel num_threads(solver_thread_count(model))
+  {
+    auto lap = [&](Stage stage) {
+#pragma omp master
+      timer.lap(stage);
+    };
+    for (int sub = 0; sub < substeps; ++sub) {
+      const Real substep_end = start_time + (sub + 1) * h;
+      predict(model, state, h);
+      lap(Stage::predict);
+      for (int it = 0; it < iterations; ++it) {
+        project_distance(model.distance, state.distance_lambda.data(), ctx);
+        lap(Stage::distance);
+        project_dihedral_bending(model.bending, state.bending_lambda.data(), ctx);
+        lap(Stage::bending);
+        project_triangle_strain(model.triangle_strain, state.triangle_strain_lambda.data(), ctx);
+        lap(Stage::triangle_strain);
+        project_neo_hookean(model.neo_hookean, state.neo_hookean_lambda.data(), ctx);
+        lap(Stage::neo_hookean);
+        project_tet_volume(model.tet_volume, state.tet_volume_lambda.data(), ctx);
+        lap(Stage::tet_volume);
+        project_attachments(model.attachment, state.attachment_lambda.data(), ctx);
+        lap(Stage::attachments);
+        project_particle_contacts(model, state, ctx);
+        lap(Stage::particle_contacts);
+        project_collider_contacts(model, state, ctx, substep_end);
+        lap(Stage::collider_contacts);
+      }
+      update_velocity(model, state, h);
+      lap(Stage::update_velocity);
+      particle_contact_velocities(model, state, h);
+      collider_contact_velocities(model, state, h);
+#pragma omp barrier
+      lap(Stage::velocity_pass);
+    }
+  }
+
+  state.time = start_time + dt;
+  state.step += 1;
+  check_state(model, state);
+  timer.lap(Stage::check_state);
+}
+
+}  // namespace moreau
