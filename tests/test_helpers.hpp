@@ -30,7 +30,7 @@ inline Scene scene_from_json(const std::string& json, const std::vector<std::str
 
 inline void run_steps(Scene& scene, long steps) {
   StageTimer timer;
-  for (long s = 0; s < steps; ++s) xpbd_step(scene.model, scene.initial_state, timer);
+  for (long s = 0; s < steps; ++s) xpbd_step(scene.model, scene.state, timer);
 }
 
 struct CommandResult {

@@ -29,10 +29,10 @@ Real hanging_bar_stretch(int iterations) {
   long samples = 0;
   StageTimer timer;
   for (int step = 0; step < 250; ++step) {
-    xpbd_step(s.model, s.initial_state, timer);
+    xpbd_step(s.model, s.state, timer);
     for (Index p = 0; p < m.particle_count(); ++p)
       if (m.particle_rest_position[p].y() < -0.999) {
-        sum += s.initial_state.position[p].y() - m.particle_rest_position[p].y();
+        sum += s.state.position[p].y() - m.particle_rest_position[p].y();
         ++samples;
       }
   }
@@ -62,11 +62,11 @@ TEST(SoftBodyValidation, SquashedBlockRecoversItsRestVolume) {
       "mesh": {"type": "box", "min": [0, 0, 0], "max": [0.2, 0.2, 0.2], "cells": [4, 4, 4]},
       "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000, "damping": 0.01}}]})");
   // Squash flat: every vertex's height scaled by 1/20.
-  for (auto& x : s.initial_state.position) x.y() *= 0.05;
+  for (auto& x : s.state.position) x.y() *= 0.05;
   test::run_steps(s, 400);
   Real volume = 0;
   for (const auto& t : s.model.objects[0].tets) {
-    const auto& x = s.initial_state.position;
+    const auto& x = s.state.position;
     volume += tet_signed_volume(x[t[0]], x[t[1]], x[t[2]], x[t[3]]);
   }
   const Real rest = 0.2 * 0.2 * 0.2;
@@ -91,10 +91,10 @@ TEST(SoftBodyValidation, CantileverDeflectionConvergesWithSubsteps) {
     long n = 0;
     StageTimer timer;
     for (int step = 0; step < 400; ++step) {
-      xpbd_step(s.model, s.initial_state, timer);
+      xpbd_step(s.model, s.state, timer);
       for (Index p = 0; p < s.model.particle_count(); ++p)
         if (s.model.particle_rest_position[p].x() > 0.999)
-          y += s.initial_state.position[p].y() - s.model.particle_rest_position[p].y(), ++n;
+          y += s.state.position[p].y() - s.model.particle_rest_position[p].y(), ++n;
     }
     return -y / n;
   };

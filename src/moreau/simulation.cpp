@@ -33,18 +33,18 @@ Simulation Simulation::load(const std::string& scene_path, const std::vector<std
 
 const std::string& Simulation::name() const { return scene_->name; }
 Scene& Simulation::internals() { return *scene_; }
-double Simulation::time() const { return scene_->initial_state.time; }
+double Simulation::time() const { return scene_->state.time; }
 
 void Simulation::step() {
   StageTimer timer;
-  xpbd_step(scene_->model, scene_->initial_state, timer);
+  xpbd_step(scene_->model, scene_->state, timer);
 }
 
 std::vector<double> Simulation::position(const std::string& object, int vertex) const {
   const Index o = scene_->model.find_object(object);
   if (o < 0 || vertex < 0 || vertex >= scene_->model.objects[o].particle_count())
     throw InputError(fmt::format("no vertex {} in object '{}'", vertex, object));
-  const Vec3& x = scene_->initial_state.position[scene_->model.objects[o].particle_begin + vertex];
+  const Vec3& x = scene_->state.position[scene_->model.objects[o].particle_begin + vertex];
   return {x.x(), x.y(), x.z()};
 }
 
@@ -135,7 +135,7 @@ RunResult Simulation::run(const RunOptions& options) {
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.path().extension() == ".pvd") fs::remove(entry.path());
 
-  State& state = scene.initial_state;
+  State& state = scene.state;
   FrameWriter frames(model, result.out_dir, scene.name);
   std::ofstream csv(dir / "probes.csv");
   csv << "time";

@@ -1,6 +1,7 @@
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 
 #include "moreau/errors.hpp"
 #include "moreau/scene/object_builders.hpp"
@@ -82,6 +83,11 @@ void read_pins(const JsonObject& object, const ObjectInfo& info, SceneBuildConte
       pin.fail(pin.has("box") ? "box" : pin.has("sphere") ? "sphere" : "vertices",
                "this pin region contains no vertex of the object; check its coordinates (m)");
     for (Index p : selected) {
+      // A particle already pinned rigidly, or attached by an earlier region, keeps that pin: two
+      // attachments on one particle would also race in the attachments' parallel loop.
+      if (m.particle_inv_mass[p] == 0 ||
+          std::find(m.attachment.particle.begin(), m.attachment.particle.end(), p) != m.attachment.particle.end())
+        continue;
       if (compliance == 0) {
         m.particle_inv_mass[p] = 0;
         ctx.initial_velocity[p] = Vec3::Zero();

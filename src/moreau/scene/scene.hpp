@@ -19,7 +19,7 @@ struct Scene {
   std::string solver = "xpbd";
   Real duration = 1.0;  // s
   Model model;
-  State initial_state;
+  State state;
   OutputSettings output;
   std::vector<ProbeSpec> probes;
 };

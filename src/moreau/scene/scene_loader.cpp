@@ -147,8 +147,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   for (const JsonObject& probe : top.object_list("probes")) scene.probes.push_back(read_probe(probe, scene.model));
   top.finish();
 
-  scene.initial_state = make_rest_state(scene.model);
-  scene.initial_state.velocity = initial_velocity;
+  scene.state = make_rest_state(scene.model);
+  scene.state.velocity = initial_velocity;
   return scene;
 }
 
