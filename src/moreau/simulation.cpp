@@ -68,6 +68,7 @@ std::string Simulation::summary() const {
   };
   family("distance", m.distance.size(), &m.distance.batches);
   family("bending", m.bending.size(), &m.bending.batches);
+  family("isometric_bending", m.isometric_bending.size(), &m.isometric_bending.batches);
   family("triangle_strain", m.triangle_strain.size(), &m.triangle_strain.batches);
   family("neo_hookean", m.neo_hookean.size(), &m.neo_hookean.batches);
   family("tet_volume", m.tet_volume.size(), &m.tet_volume.batches);
@@ -101,6 +102,7 @@ nlohmann::json run_summary_json(const Scene& scene, const StageTimer& timer, con
                  {"constraints",
                   {{"distance", m.distance.size()},
                    {"bending", m.bending.size()},
+                   {"isometric_bending", m.isometric_bending.size()},
                    {"triangle_strain", m.triangle_strain.size()},
                    {"neo_hookean", m.neo_hookean.size()},
                    {"tet_volume", m.tet_volume.size()},

@@ -8,8 +8,8 @@ void project_attachments(const AttachmentConstraints& c, Vec3* lambda, const Sub
   for (Index k = 0; k < n; ++k) {
     const Index p = c.particle[k];
     const Real w = s.inv_mass[p];
-    const Real alpha_tilde = c.compliance[k] / (s.h * s.h);
-    const Real gamma = c.damping_time[k] / s.h;
+    const Real alpha_tilde = c.compliance[k] * s.inv_h2;
+    const Real gamma = c.damping_time[k] * s.inv_h;
     const Vec3 C = s.x[p] - c.target[k];
     const Real denominator = (1 + gamma) * w + alpha_tilde;
     if (denominator <= 0) continue;

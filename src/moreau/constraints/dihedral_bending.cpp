@@ -18,18 +18,21 @@ void DihedralBendingConstraints::color(const std::vector<Real>& particle_inv_mas
 DihedralValue evaluate_dihedral(const Vec3& e0, const Vec3& e1, const Vec3& o0, const Vec3& o1) {
   DihedralValue v{0, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};
   const Vec3 e = e1 - e0;
-  const Real l = e.norm();
+  const Real l2 = e.squaredNorm();
   const Vec3 nA = e.cross(o0 - e0);
   const Vec3 nB = (o1 - e0).cross(e);
   const Real nA2 = nA.squaredNorm(), nB2 = nB.squaredNorm();
-  if (l <= 0 || nA2 <= 0 || nB2 <= 0) return v;  // degenerate hinge: no bending direction
-  const Vec3 uA = nA / std::sqrt(nA2), uB = nB / std::sqrt(nB2);
-  v.theta = std::atan2(uA.cross(uB).dot(e / l), uA.dot(uB));
-  const Vec3 gA = nA / nA2, gB = nB / nB2;
+  if (l2 <= 0 || nA2 <= 0 || nB2 <= 0) return v;  // degenerate hinge: no bending direction
+  const Real l = std::sqrt(l2), inv_l = 1 / l;
+  // atan2 is invariant to scaling both arguments by |nA||nB| > 0, so the normals need no normalizing.
+  v.theta = std::atan2(nA.cross(nB).dot(e) * inv_l, nA.dot(nB));
+  const Vec3 gA = nA * (1 / nA2), gB = nB * (1 / nB2);
   v.grad[2] = -l * gA;
   v.grad[3] = -l * gB;
-  v.grad[0] = -((o0 - e1).dot(e) / l) * gA - ((o1 - e1).dot(e) / l) * gB;
-  v.grad[1] = ((o0 - e0).dot(e) / l) * gA + ((o1 - e0).dot(e) / l) * gB;
+  // (o - e1).e = (o - e0).e - l^2
+  const Real sA = (o0 - e0).dot(e) * inv_l, sB = (o1 - e0).dot(e) * inv_l;
+  v.grad[0] = (l - sA) * gA + (l - sB) * gB;
+  v.grad[1] = sA * gA + sB * gB;
   return v;
 }
 
@@ -37,7 +40,7 @@ Real hinge_compliance_from_bending_stiffness(const Vec3& e0, const Vec3& e1, con
                                              Real bending_stiffness) {
   const Vec3 e = e1 - e0;
   const Real area_sum = 0.5 * (e.cross(o0 - e0).norm() + (o1 - e0).cross(e).norm());
-  return area_sum / (3.0 * bending_stiffness * e.squaredNorm());
+  return area_sum / (bending_stiffness * e.squaredNorm());
 }
 
 namespace {
@@ -54,15 +57,17 @@ void project_dihedral_bending(const DihedralBendingConstraints& c, Real* lambda,
     const Hinge& h = c.hinges[k];
     const std::array<Index, 4> p{h.e0, h.e1, h.o0, h.o1};
     const DihedralValue v = evaluate_dihedral(s.x[p[0]], s.x[p[1]], s.x[p[2]], s.x[p[3]]);
-    Real w_grad_sq = 0, grad_dot_dx = 0;
-    for (int i = 0; i < 4; ++i) {
-      w_grad_sq += s.inv_mass[p[i]] * v.grad[i].squaredNorm();
-      grad_dot_dx += v.grad[i].dot(s.x[p[i]] - s.x_start[p[i]]);
-    }
+    const std::array<Real, 4> w{s.inv_mass[p[0]], s.inv_mass[p[1]], s.inv_mass[p[2]], s.inv_mass[p[3]]};
+    Real w_grad_sq = 0;
+    for (int i = 0; i < 4; ++i) w_grad_sq += w[i] * v.grad[i].squaredNorm();
+    const Real tau = c.damping_time[k];
+    Real grad_dot_dx = 0;
+    if (tau > 0)
+      for (int i = 0; i < 4; ++i) grad_dot_dx += v.grad[i].dot(s.x[p[i]] - s.x_start[p[i]]);
     const Real C = wrap_angle(v.theta - c.rest_angle[k]);
-    const Real dl = xpbd_delta_lambda(C, lambda[k], c.compliance[k], c.damping_time[k], s.h, w_grad_sq, grad_dot_dx);
+    const Real dl = xpbd_delta_lambda(C, lambda[k], c.compliance[k], tau, s, w_grad_sq, grad_dot_dx);
     lambda[k] += dl;
-    for (int i = 0; i < 4; ++i) s.x[p[i]] += s.inv_mass[p[i]] * dl * v.grad[i];
+    for (int i = 0; i < 4; ++i) s.x[p[i]] += (w[i] * dl) * v.grad[i];
   });
 }
 

@@ -19,7 +19,7 @@ void DistanceConstraints::color(const std::vector<Real>& particle_inv_mass) {
 DistanceValue evaluate_distance(const Vec3& x0, const Vec3& x1, Real rest_length) {
   const Vec3 d = x0 - x1;
   const Real length = d.norm();
-  const Vec3 n = length > 0 ? Vec3(d / length) : Vec3::Zero();
+  const Vec3 n = length > 0 ? Vec3(d * (1 / length)) : Vec3::Zero();
   return {length - rest_length, n};
 }
 
@@ -28,11 +28,12 @@ void project_distance(const DistanceConstraints& c, Real* lambda, const SubstepC
     const auto [a, b] = c.particles[k];
     const Real wa = s.inv_mass[a], wb = s.inv_mass[b];
     const auto [C, n] = evaluate_distance(s.x[a], s.x[b], c.rest_length[k]);
-    const Real grad_dot_dx = n.dot((s.x[a] - s.x_start[a]) - (s.x[b] - s.x_start[b]));
-    const Real dl = xpbd_delta_lambda(C, lambda[k], c.compliance[k], c.damping_time[k], s.h, wa + wb, grad_dot_dx);
+    const Real tau = c.damping_time[k];
+    const Real grad_dot_dx = tau > 0 ? n.dot((s.x[a] - s.x_start[a]) - (s.x[b] - s.x_start[b])) : 0;
+    const Real dl = xpbd_delta_lambda(C, lambda[k], c.compliance[k], tau, s, wa + wb, grad_dot_dx);
     lambda[k] += dl;
-    s.x[a] += wa * dl * n;
-    s.x[b] -= wb * dl * n;
+    s.x[a] += (wa * dl) * n;
+    s.x[b] -= (wb * dl) * n;
   });
 }
 

@@ -32,6 +32,11 @@ void NeoHookeanTetConstraints::color(const std::vector<Real>& particle_inv_mass)
   apply_permutation(lambda, permutation);
   apply_permutation(damping_time, permutation);
   apply_permutation(object, permutation);
+  packed.clear();
+  for (size_t k = 0; k < size(); ++k)
+    packed.push_back({particles[k], rest_inverse[k] * rest_inverse[k].transpose(),
+                      1 / (6 * rest_volume[k]), 1 / (lambda[k] * rest_volume[k]), 1 / (mu[k] * rest_volume[k]),
+                      1 + mu[k] / lambda[k], damping_time[k]});
 }
 
 NeoHookeanValue evaluate_neo_hookean(const std::array<Vec3, 4>& x, const Mat3& rest_inverse, Real gamma) {
@@ -46,35 +51,55 @@ NeoHookeanValue evaluate_neo_hookean(const std::array<Vec3, 4>& x, const Mat3& r
 }
 
 void project_neo_hookean(const NeoHookeanTetConstraints& c, Vec2* lambda, const SubstepContext& s) {
-  const Real inv_h2 = 1.0 / (s.h * s.h);
   for_each_by_color(c.batches, [&](Index k) {
-    const auto& p = c.particles[k];
+    const NeoHookeanElement& e = c.packed[k];
+    const auto& p = e.particles;
     const std::array<Vec3, 4> x{s.x[p[0]], s.x[p[1]], s.x[p[2]], s.x[p[3]]};
-    const Real gamma_snh = 1 + c.mu[k] / c.lambda[k];
-    const NeoHookeanValue v = evaluate_neo_hookean(x, c.rest_inverse[k], gamma_snh);
+    const std::array<Real, 4> w{s.inv_mass[p[0]], s.inv_mass[p[1]], s.inv_mass[p[2]], s.inv_mass[p[3]]};
+    // With D_s = [d1 d2 d3] (d_i = x_i - x0), F = D_s B, B = D_m^-1 and M = B B^T:
+    //   det F = d1 . (d2 x d3) / det D_m,   grad_1 C_H = (d2 x d3) / det D_m (and cyclic),
+    //   |F|^2 = tr(D_s^T D_s M),            [grad_1 C_D grad_2 C_D grad_3 C_D] = D_s M / |F|,
+    // with grad_0 = -(grad_1 + grad_2 + grad_3) for both (translation invariance).
+    const Vec3 d1 = x[1] - x[0], d2 = x[2] - x[0], d3 = x[3] - x[0];
+    const Vec3 c1 = d2.cross(d3), c2 = d3.cross(d1), c3 = d1.cross(d2);
+    const Real C_H = d1.dot(c1) * e.inv_rest_det - e.gamma;
+    const Mat3& M = e.rest_metric;
+    const Vec3 DM1 = M(0, 0) * d1 + M(1, 0) * d2 + M(2, 0) * d3;  // columns of D_s M
+    const Vec3 DM2 = M(0, 1) * d1 + M(1, 1) * d2 + M(2, 1) * d3;
+    const Vec3 DM3 = M(0, 2) * d1 + M(1, 2) * d2 + M(2, 2) * d3;
+    const Real C_D = std::sqrt(d1.dot(DM1) + d2.dot(DM2) + d3.dot(DM3));
+    if (!(C_D > 0)) return;  // collapsed to a point: no direction to restore
+    const Real inv_C_D = 1 / C_D;
+    const std::array<Vec3, 4> gH{-(c1 + c2 + c3) * e.inv_rest_det, c1 * e.inv_rest_det, c2 * e.inv_rest_det,
+                                 c3 * e.inv_rest_det};
+    const std::array<Vec3, 4> gD{-(DM1 + DM2 + DM3) * inv_C_D, DM1 * inv_C_D, DM2 * inv_C_D, DM3 * inv_C_D};
     // Coupled 2x2 XPBD system in (dlambda_H, dlambda_D):
     //   [(1+g) J W J^T + diag(alpha~_H, alpha~_D)] dl = -(C + alpha~ lambda + g J dx)
-    Real hh = 0, hd = 0, dd = 0, Jdx_H = 0, Jdx_D = 0;
+    Real hh = 0, hd = 0, dd = 0;
     for (int i = 0; i < 4; ++i) {
-      const Real w = s.inv_mass[p[i]];
-      hh += w * v.grad_H[i].squaredNorm();
-      hd += w * v.grad_H[i].dot(v.grad_D[i]);
-      dd += w * v.grad_D[i].squaredNorm();
-      const Vec3 dx = x[i] - s.x_start[p[i]];
-      Jdx_H += v.grad_H[i].dot(dx);
-      Jdx_D += v.grad_D[i].dot(dx);
+      hh += w[i] * gH[i].squaredNorm();
+      hd += w[i] * gH[i].dot(gD[i]);
+      dd += w[i] * gD[i].squaredNorm();
     }
-    const Real alpha_H = inv_h2 / (c.lambda[k] * c.rest_volume[k]);
-    const Real alpha_D = inv_h2 / (c.mu[k] * c.rest_volume[k]);
-    const Real g = c.damping_time[k] / s.h;
-    Mat2 A;
-    A << (1 + g) * hh + alpha_H, (1 + g) * hd, (1 + g) * hd, (1 + g) * dd + alpha_D;
-    const Vec2 rhs(-(v.C_H + alpha_H * lambda[k].x() + g * Jdx_H), -(v.C_D + alpha_D * lambda[k].y() + g * Jdx_D));
-    const Real det = A.determinant();
+    const Real alpha_H = e.compliance_H * s.inv_h2, alpha_D = e.compliance_D * s.inv_h2;
+    const Real g = e.damping_time * s.inv_h;
+    Real Jdx_H = 0, Jdx_D = 0;
+    if (g > 0) {
+      for (int i = 0; i < 4; ++i) {
+        const Vec3 dx = x[i] - s.x_start[p[i]];
+        Jdx_H += gH[i].dot(dx);
+        Jdx_D += gD[i].dot(dx);
+      }
+    }
+    const Real a = (1 + g) * hh + alpha_H, b = (1 + g) * hd, d = (1 + g) * dd + alpha_D;
+    const Real rhs_H = -(C_H + alpha_H * lambda[k].x() + g * Jdx_H);
+    const Real rhs_D = -(C_D + alpha_D * lambda[k].y() + g * Jdx_D);
+    const Real det = a * d - b * b;
     if (!(std::abs(det) > 0)) return;  // all four vertices fixed, or a degenerate element
-    const Vec2 dl(( A(1, 1) * rhs.x() - A(0, 1) * rhs.y()) / det, (-A(1, 0) * rhs.x() + A(0, 0) * rhs.y()) / det);
-    lambda[k] += dl;
-    for (int i = 0; i < 4; ++i) s.x[p[i]] += s.inv_mass[p[i]] * (dl.x() * v.grad_H[i] + dl.y() * v.grad_D[i]);
+    const Real inv_det = 1 / det;
+    const Real dl_H = (d * rhs_H - b * rhs_D) * inv_det, dl_D = (a * rhs_D - b * rhs_H) * inv_det;
+    lambda[k] += Vec2(dl_H, dl_D);
+    for (int i = 0; i < 4; ++i) s.x[p[i]] = x[i] + w[i] * (dl_H * gH[i] + dl_D * gD[i]);
   });
 }
 

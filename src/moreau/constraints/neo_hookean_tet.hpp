@@ -21,6 +21,17 @@
 
 namespace moreau {
 
+/// What one element's projection reads, packed into 128 bytes (built by color()).
+struct NeoHookeanElement {
+  std::array<Index, 4> particles;
+  Mat3 rest_metric;                // M = B B^T with B = D_m^-1, 1/m^2
+  Real inv_rest_det;               // 1 / det D_m = 1 / (6 V), 1/m^3
+  Real compliance_H;               // 1/(lambda V), 1/J
+  Real compliance_D;               // 1/(mu V), 1/J
+  Real gamma;                      // 1 + mu/lambda
+  Real damping_time;               // s
+};
+
 struct NeoHookeanTetConstraints {
   std::vector<std::array<Index, 4>> particles;
   std::vector<Mat3> rest_inverse;      // D_m^-1, 1/m
@@ -30,10 +41,12 @@ struct NeoHookeanTetConstraints {
   std::vector<Real> damping_time;      // s
   std::vector<Index> object;
   ColorBatches batches;
+  std::vector<NeoHookeanElement> packed;  // colour-sorted copy of the above for the projection loop
 
   size_t size() const { return particles.size(); }
   void add(const std::array<Index, 4>& tet, const std::array<Vec3, 4>& rest, Real youngs_modulus, Real poisson_ratio,
            Real tau, Index obj);
+  /// Sorts the elements by colour and builds `packed`; call after the last add().
   void color(const std::vector<Real>& particle_inv_mass);
 };
 

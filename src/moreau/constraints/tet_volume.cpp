@@ -42,7 +42,7 @@ void project_tet_volume(const TetVolumeConstraints& c, Real* lambda, const Subst
       w_grad_sq += s.inv_mass[p[i]] * v.grad[i].squaredNorm();
       grad_dot_dx += v.grad[i].dot(s.x[p[i]] - s.x_start[p[i]]);
     }
-    const Real dl = xpbd_delta_lambda(v.C, lambda[k], c.compliance[k], c.damping_time[k], s.h, w_grad_sq, grad_dot_dx);
+    const Real dl = xpbd_delta_lambda(v.C, lambda[k], c.compliance[k], c.damping_time[k], s, w_grad_sq, grad_dot_dx);
     lambda[k] += dl;
     for (int i = 0; i < 4; ++i) s.x[p[i]] += s.inv_mass[p[i]] * dl * v.grad[i];
   });

@@ -64,8 +64,8 @@ void project_triangle_strain(const TriangleStrainConstraints& c, Vec3* lambda, c
       JWJt += s.inv_mass[p[i]] * v.grad[i] * v.grad[i].transpose();
       J_dx += v.grad[i] * (s.x[p[i]] - s.x_start[p[i]]);
     }
-    const Mat3 alpha_tilde = c.compliance[k] / (s.h * s.h);
-    const Real gamma = c.damping_time[k] / s.h;
+    const Mat3 alpha_tilde = c.compliance[k] * s.inv_h2;
+    const Real gamma = c.damping_time[k] * s.inv_h;
     const Mat3 A = (1 + gamma) * JWJt + alpha_tilde;
     const Vec3 rhs = -(v.C + alpha_tilde * lambda[k] + gamma * J_dx);
     const Vec3 dl = A.ldlt().solve(rhs);

@@ -16,13 +16,16 @@ struct SubstepContext {
   const Vec3* x_start;        // positions at the start of the substep, m
   const Real* inv_mass;       // 1/kg (0: the particle does not move)
   Real h;                     // substep, s
+  Real inv_h = 1 / h;         // 1/s
+  Real inv_h2 = inv_h * inv_h;  // 1/s^2
 };
 
-/// Scalar XPBD update. `w_grad_sq` = sum_i w_i |grad_i C|^2; `grad_dot_dx` = sum_i grad_i C . (x_i - x_start_i).
-inline Real xpbd_delta_lambda(Real C, Real lambda, Real compliance, Real damping_time, Real h, Real w_grad_sq,
-                              Real grad_dot_dx) {
-  const Real alpha_tilde = compliance / (h * h);
-  const Real gamma = damping_time / h;
+/// Scalar XPBD update. `w_grad_sq` = sum_i w_i |grad_i C|^2; `grad_dot_dx` = sum_i grad_i C . (x_i - x_start_i)
+/// (only read when damping_time > 0).
+inline Real xpbd_delta_lambda(Real C, Real lambda, Real compliance, Real damping_time, const SubstepContext& s,
+                              Real w_grad_sq, Real grad_dot_dx) {
+  const Real alpha_tilde = compliance * s.inv_h2;
+  const Real gamma = damping_time * s.inv_h;
   const Real denominator = (1 + gamma) * w_grad_sq + alpha_tilde;
   if (denominator <= 0) return 0;
   return (-C - alpha_tilde * lambda - gamma * grad_dot_dx) / denominator;

@@ -29,7 +29,33 @@ TriangleMesh make_grid_sheet(const Vec2& size, const std::array<int, 2>& resolut
   return mesh;
 }
 
-TetMesh make_box_tets(const Vec3& min, const Vec3& max, const std::array<int, 3>& cells) {
+namespace {
+
+// Corners of a cell as bit patterns (x, y, z) -> x + 2y + 4z.
+constexpr int corner(int x, int y, int z) { return x + 2 * y + 4 * z; }
+
+// Six tetrahedra: the six monotone edge paths from corner 000 to 111.
+constexpr int kSixSplit[6][4] = {
+    {corner(0, 0, 0), corner(1, 0, 0), corner(1, 1, 0), corner(1, 1, 1)},
+    {corner(0, 0, 0), corner(1, 0, 0), corner(1, 0, 1), corner(1, 1, 1)},
+    {corner(0, 0, 0), corner(0, 1, 0), corner(1, 1, 0), corner(1, 1, 1)},
+    {corner(0, 0, 0), corner(0, 1, 0), corner(0, 1, 1), corner(1, 1, 1)},
+    {corner(0, 0, 0), corner(0, 0, 1), corner(1, 0, 1), corner(1, 1, 1)},
+    {corner(0, 0, 0), corner(0, 0, 1), corner(0, 1, 1), corner(1, 1, 1)}};
+
+// Five tetrahedra for an "even" cell: the central tetrahedron on the corners with an even number
+// of set bits {000, 110, 101, 011}, and one tetrahedron cutting off each remaining corner. An odd
+// cell uses the mirror image (x -> 1 - x), so every face diagonal matches its neighbour's.
+constexpr int kFiveSplitEven[5][4] = {
+    {corner(0, 0, 0), corner(1, 1, 0), corner(1, 0, 1), corner(0, 1, 1)},
+    {corner(1, 0, 0), corner(0, 0, 0), corner(1, 1, 0), corner(1, 0, 1)},
+    {corner(0, 1, 0), corner(0, 0, 0), corner(1, 1, 0), corner(0, 1, 1)},
+    {corner(0, 0, 1), corner(0, 0, 0), corner(1, 0, 1), corner(0, 1, 1)},
+    {corner(1, 1, 1), corner(1, 1, 0), corner(1, 0, 1), corner(0, 1, 1)}};
+
+}  // namespace
+
+TetMesh make_box_tets(const Vec3& min, const Vec3& max, const std::array<int, 3>& cells, CellSplit split) {
   const int nx = cells[0] + 1, ny = cells[1] + 1, nz = cells[2] + 1;
   TetMesh mesh;
   const Vec3 step = (max - min).cwiseQuotient(Vec3(cells[0], cells[1], cells[2]));
@@ -38,23 +64,26 @@ TetMesh make_box_tets(const Vec3& min, const Vec3& max, const std::array<int, 3>
       for (int k = 0; k < nz; ++k) mesh.vertices.push_back(min + Vec3(i * step.x(), j * step.y(), k * step.z()));
   auto id = [ny, nz](int i, int j, int k) { return static_cast<Index>((i * ny + j) * nz + k); };
 
-  // The six paths from corner 000 to corner 111 along the cube's edges; each is one tetrahedron.
-  static constexpr int kAxisOrder[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  auto add = [&](int i, int j, int k, const int (&corners)[4], bool mirror_x) {
+    std::array<Index, 4> tet{};
+    for (int c = 0; c < 4; ++c) {
+      const int x = corners[c] & 1, y = (corners[c] >> 1) & 1, z = (corners[c] >> 2) & 1;
+      tet[c] = id(i + (mirror_x ? 1 - x : x), j + y, k + z);
+    }
+    const auto& v = mesh.vertices;
+    if (tet_signed_volume(v[tet[0]], v[tet[1]], v[tet[2]], v[tet[3]]) < 0) std::swap(tet[2], tet[3]);
+    mesh.tets.push_back(tet);
+  };
   for (int i = 0; i < cells[0]; ++i)
     for (int j = 0; j < cells[1]; ++j)
-      for (int k = 0; k < cells[2]; ++k)
-        for (const auto& order : kAxisOrder) {
-          std::array<int, 3> c{i, j, k};
-          std::array<Index, 4> tet{};
-          tet[0] = id(c[0], c[1], c[2]);
-          for (int s = 0; s < 3; ++s) {
-            c[order[s]] += 1;
-            tet[s + 1] = id(c[0], c[1], c[2]);
-          }
-          const auto& v = mesh.vertices;
-          if (tet_signed_volume(v[tet[0]], v[tet[1]], v[tet[2]], v[tet[3]]) < 0) std::swap(tet[2], tet[3]);
-          mesh.tets.push_back(tet);
+      for (int k = 0; k < cells[2]; ++k) {
+        if (split == CellSplit::six) {
+          for (const auto& t : kSixSplit) add(i, j, k, t, false);
+        } else {
+          const bool odd = (i + j + k) % 2 != 0;
+          for (const auto& t : kFiveSplitEven) add(i, j, k, t, odd);
         }
+      }
   return mesh;
 }
 

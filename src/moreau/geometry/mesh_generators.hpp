@@ -9,8 +9,15 @@ namespace moreau {
 /// has no preferred shear direction. Normals point to +y.
 TriangleMesh make_grid_sheet(const Vec2& size, const std::array<int, 2>& resolution, const Vec3& center);
 
-/// An axis-aligned box [min, max] split into cells[0] x cells[1] x cells[2] cubes, each cut into
-/// six tetrahedra around its main diagonal (Freudenthal/Kuhn split, conforming across cells).
-TetMesh make_box_tets(const Vec3& min, const Vec3& max, const std::array<int, 3>& cells);
+/// How a box cell is cut into tetrahedra.
+enum class CellSplit {
+  six,   // six tetrahedra around the cell's main diagonal (Freudenthal/Kuhn); uniform, symmetric
+  five,  // one central tetrahedron and four corner ones, mirrored in alternate cells to conform
+};
+
+/// An axis-aligned box [min, max] split into cells[0] x cells[1] x cells[2] cells, each cut into
+/// tetrahedra as `split` says; both splits conform across cell faces.
+TetMesh make_box_tets(const Vec3& min, const Vec3& max, const std::array<int, 3>& cells,
+                      CellSplit split = CellSplit::six);
 
 }  // namespace moreau

@@ -31,6 +31,7 @@ Real potential_energy(const Model& model, const State& state, Index object) {
 Real elastic_energy(const Model& model, const State& state, Index object) {
   const Vec3* x = state.position.data();
   return distance_energy(model.distance, x, object) + dihedral_bending_energy(model.bending, x, object) +
+         isometric_bending_energy(model.isometric_bending, x, object) +
          triangle_strain_energy(model.triangle_strain, x, object) + neo_hookean_energy(model.neo_hookean, x, object) +
          tet_volume_energy(model.tet_volume, x, object) + attachment_energy(model.attachment, x, object);
 }
@@ -63,7 +64,10 @@ Real max_constraint_error(const Model& model, const State& state, Index object, 
   const bool all = family == ConstraintFamily::all;
   Real e = 0;
   if (all || family == ConstraintFamily::distance) e = std::max(e, distance_max_error(model.distance, x, object));
-  if (all || family == ConstraintFamily::bending) e = std::max(e, dihedral_bending_max_error(model.bending, x, object));
+  if (all || family == ConstraintFamily::bending) {
+    e = std::max(e, dihedral_bending_max_error(model.bending, x, object));
+    e = std::max(e, isometric_bending_max_error(model.isometric_bending, x, object));
+  }
   if (all || family == ConstraintFamily::triangle_strain)
     e = std::max(e, triangle_strain_max_error(model.triangle_strain, x, object));
   if (all || family == ConstraintFamily::neo_hookean_volume)

@@ -9,6 +9,7 @@
 #include "moreau/constraints/attachment.hpp"
 #include "moreau/constraints/dihedral_bending.hpp"
 #include "moreau/constraints/distance.hpp"
+#include "moreau/constraints/isometric_bending.hpp"
 #include "moreau/constraints/neo_hookean_tet.hpp"
 #include "moreau/constraints/tet_volume.hpp"
 #include "moreau/constraints/triangle_strain.hpp"
@@ -59,6 +60,7 @@ struct Model {
   // Constraint families, colour-sorted at build time.
   DistanceConstraints distance;
   DihedralBendingConstraints bending;
+  IsometricBendingConstraints isometric_bending;
   TriangleStrainConstraints triangle_strain;
   NeoHookeanTetConstraints neo_hookean;
   TetVolumeConstraints tet_volume;

@@ -11,6 +11,7 @@ State make_rest_state(const Model& model) {
   s.velocity_before.assign(n, Vec3::Zero());
   s.distance_lambda.assign(model.distance.size(), 0);
   s.bending_lambda.assign(model.bending.size(), 0);
+  s.isometric_bending_lambda.assign(model.isometric_bending.size(), Vec3::Zero());
   s.triangle_strain_lambda.assign(model.triangle_strain.size(), Vec3::Zero());
   s.neo_hookean_lambda.assign(model.neo_hookean.size(), Vec2::Zero());
   s.tet_volume_lambda.assign(model.tet_volume.size(), 0);

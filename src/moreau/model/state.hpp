@@ -20,6 +20,7 @@ struct State {
   // Multipliers, reset at every substep and accumulated over its iterations.
   std::vector<Real> distance_lambda;
   std::vector<Real> bending_lambda;
+  std::vector<Vec3> isometric_bending_lambda;
   std::vector<Vec3> triangle_strain_lambda;
   std::vector<Vec2> neo_hookean_lambda;
   std::vector<Real> tet_volume_lambda;

@@ -1,5 +1,7 @@
 #include <fmt/format.h>
 
+#include <cmath>
+
 #include "moreau/geometry/mesh_generators.hpp"
 #include "moreau/geometry/mesh_readers.hpp"
 #include "moreau/scene/object_builders.hpp"
@@ -57,6 +59,7 @@ void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
   bending_stiffness = material.number("bending_stiffness", bending_stiffness, Range::non_negative());
   const bool has_bend_compliance = material.has("bend_compliance");
   const Real bend_compliance = material.number("bend_compliance", 0.0, Range::non_negative());
+  const bool isometric = material.choice("bending_model", "dihedral", {"dihedral", "isometric"}) == "isometric";
   material.finish();
 
   // Lumped masses: a third of each triangle's mass to each of its vertices.
@@ -95,6 +98,18 @@ void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
     for (const Hinge& h : triangle_hinges(mesh.triangles)) {
       const Hinge g{base + h.e0, base + h.e1, base + h.o0, base + h.o1};
       const Real theta0 = evaluate_dihedral(X(h.e0), X(h.e1), X(h.o0), X(h.o1)).theta;
+      if (isometric) {
+        // The isometric model is exact only for a flat rest shape; 1e-3 rad tolerates mesh-file round-off.
+        if (std::abs(theta0) > 1e-3)
+          material.fail("bending_model", fmt::format("isometric bending needs a flat rest shape, but the hinge on "
+                                                     "vertices {} and {} is bent by {:.3g} degrees at rest; use \"dihedral\"",
+                                                     h.e0, h.e1, theta0 * 180 / kPi));
+        const Real alpha = has_bend_compliance ? bend_compliance * (X(h.e1) - X(h.e0)).squaredNorm()
+                                               : isometric_compliance_from_bending_stiffness(X(h.e0), X(h.e1), X(h.o0),
+                                                                                             X(h.o1), bending_stiffness);
+        m.isometric_bending.add(g, X(h.e0), X(h.e1), X(h.o0), X(h.o1), alpha, damping, object_index);
+        continue;
+      }
       const Real alpha = has_bend_compliance
                              ? bend_compliance
                              : hinge_compliance_from_bending_stiffness(X(h.e0), X(h.e1), X(h.o0), X(h.o1), bending_stiffness);

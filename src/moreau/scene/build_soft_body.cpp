@@ -18,7 +18,8 @@ TetMesh read_soft_body_mesh(const JsonObject& mesh, SceneBuildContext& ctx) {
     const Vec3 lo = mesh.vec3("min"), hi = mesh.vec3("max");
     if (!((hi - lo).minCoeff() > 0)) mesh.fail("max", "max must exceed min along every axis");
     const auto cells = mesh.integers("cells", 3, 1);
-    out = make_box_tets(lo, hi, {cells[0], cells[1], cells[2]});
+    const int per_cell = mesh.integer("tets_per_cell", 6, 5, 6);
+    out = make_box_tets(lo, hi, {cells[0], cells[1], cells[2]}, per_cell == 5 ? CellSplit::five : CellSplit::six);
   } else if (type == "msh") {
     source = resolve_path(ctx, mesh.string("file"));
     out = read_gmsh_msh4(source);

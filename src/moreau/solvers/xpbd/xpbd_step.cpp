@@ -34,6 +34,7 @@ void predict(const Model& model, State& state, Real h) {
   };
   clear(state.distance_lambda, Real{0});
   clear(state.bending_lambda, Real{0});
+  clear(state.isometric_bending_lambda, Vec3::Zero().eval());
   clear(state.triangle_strain_lambda, Vec3::Zero().eval());
   clear(state.neo_hookean_lambda, Vec2::Zero().eval());
   clear(state.tet_volume_lambda, Real{0});
@@ -94,6 +95,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
         project_distance(model.distance, state.distance_lambda.data(), ctx);
         lap(Stage::distance);
         project_dihedral_bending(model.bending, state.bending_lambda.data(), ctx);
+        project_isometric_bending(model.isometric_bending, state.isometric_bending_lambda.data(), ctx);
         lap(Stage::bending);
         project_triangle_strain(model.triangle_strain, state.triangle_strain_lambda.data(), ctx);
         lap(Stage::triangle_strain);

@@ -1,0 +1,65 @@
+#pragma once
+// Isometric bending constraints on the hinges of a surface that is flat at rest.
+//
+// Bergou, Wardetzky, Harmon, Zorin, Grinspun 2006, "A quadratic bending model for inextensible
+// surfaces": for isometric (non-stretching) deformations of a flat rest shape the hinge bending
+// energy is quadratic in the positions. We write it as one vector constraint per hinge
+//   C = sum_i K_i x_i                                  (m, a 3-vector; 0 for any planar placement)
+//   grad_{x_i} C = K_i I                               (constant)
+// with the weights K the affine dependency of the four flat rest points (sum K_i = 0,
+// sum K_i X_i = 0), scaled so that |C| = l theta to first order in the dihedral angle theta:
+//   K_o0 = l^2 / (2 A_A),  K_o1 = l^2 / (2 A_B),                (A_A, A_B: rest triangle areas)
+//   K_e1 = -(K_o0 a_0 + K_o1 a_1) / l,  a_j = (O_j - E0) . e / l,   K_e0 = -(K_e1 + K_o0 + K_o1).
+// (Lifting o0 by d out of the plane gives theta = d / h_A and C = K_o0 d = l theta, h_A = 2 A_A / l.)
+// Compliance alpha (m/N): energy |C|^2 / (2 alpha). Matching the dihedral hinge energy
+// (k_B/2) l^2 theta^2 / (A_A + A_B) (calibrated against a rolled cylinder, see dihedral_bending.hpp)
+// gives alpha = (A_A + A_B) / k_B; a per-angle compliance alpha_theta (1/(N m), as for dihedral
+// bending) gives alpha = l^2 alpha_theta. The two models agree to O(theta^2).
+// Because the gradient is constant the XPBD system is diagonal (one scalar for all three
+// components) and the projection needs no square root, division by |n| or arc tangent.
+#include <vector>
+
+#include "moreau/constraints/constraint_batches.hpp"
+#include "moreau/constraints/xpbd_update.hpp"
+#include "moreau/geometry/meshes.hpp"
+
+namespace moreau {
+
+/// One hinge's projection data, packed (built by color()).
+struct IsometricHinge {
+  std::array<Index, 4> particles;  // e0, e1, o0, o1
+  std::array<Real, 4> weight;      // K_i (dimensionless)
+  Real compliance;                 // m/N
+  Real damping_time;               // s
+};
+
+struct IsometricBendingConstraints {
+  std::vector<IsometricHinge> hinges;
+  std::vector<Real> edge_length;  // m, rest length of the hinge edge (reports |C| / l in rad)
+  std::vector<Index> object;
+  ColorBatches batches;
+
+  size_t size() const { return hinges.size(); }
+  /// Adds a hinge whose rest points (E0, E1, O0, O1) lie in one plane.
+  void add(const Hinge& h, const Vec3& E0, const Vec3& E1, const Vec3& O0, const Vec3& O1, Real alpha, Real tau,
+           Index obj);
+  void color(const std::vector<Real>& particle_inv_mass);
+};
+
+/// The weights K of a flat rest hinge (see the header comment).
+std::array<Real, 4> isometric_hinge_weights(const Vec3& E0, const Vec3& E1, const Vec3& O0, const Vec3& O1);
+
+/// Hinge compliance (m/N) for a bending stiffness k_B (N m).
+Real isometric_compliance_from_bending_stiffness(const Vec3& E0, const Vec3& E1, const Vec3& O0, const Vec3& O1,
+                                                 Real bending_stiffness);
+
+/// C = sum_i K_i x_i of hinge k.
+Vec3 isometric_bending_value(const IsometricHinge& h, const Vec3* x);
+
+/// lambda holds one 3-vector per hinge.
+void project_isometric_bending(const IsometricBendingConstraints& c, Vec3* lambda, const SubstepContext& s);
+Real isometric_bending_energy(const IsometricBendingConstraints& c, const Vec3* x, Index object);
+/// max |C| / l (rad, the small-angle dihedral angle) over the hinges of `object`.
+Real isometric_bending_max_error(const IsometricBendingConstraints& c, const Vec3* x, Index object);
+
+}  // namespace moreau
