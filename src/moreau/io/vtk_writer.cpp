@@ -30,7 +30,47 @@ std::vector<double> flatten(const std::vector<Vec3>& v) {
   return out;
 }
 
+void write_file(const std::string& path, const std::string& xml, const AppendedData& data) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path));
+  out << xml;
+  out.write(data.bytes.data(), static_cast<std::streamsize>(data.bytes.size()));
+  out << "\n</AppendedData>\n</VTKFile>\n";
+}
+
 }  // namespace
+
+void write_vtp(const std::string& path, const std::vector<Vec3>& points, const std::vector<VtkPointArray>& vector_arrays,
+               const std::vector<VtkScalarArray>& scalar_arrays) {
+  AppendedData data;
+  std::string xml;
+  xml += "<?xml version=\"1.0\"?>\n";
+  xml += "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
+  xml += "<PolyData>\n";
+  xml += fmt::format("<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+                     "NumberOfPolys=\"0\">\n",
+                     points.size(), points.size());
+  xml += "<PointData>\n";
+  for (const auto& a : vector_arrays)
+    xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n",
+                       a.name, data.add(flatten(a.values)));
+  for (const auto& a : scalar_arrays)
+    xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"1\" format=\"appended\" offset=\"{}\"/>\n",
+                       a.name, data.add(std::vector<double>(a.values.begin(), a.values.end())));
+  xml += "</PointData>\n<Points>\n";
+  xml += fmt::format("<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n",
+                     data.add(flatten(points)));
+  xml += "</Points>\n<Verts>\n";
+  std::vector<std::int64_t> conn(points.size()), offsets(points.size());
+  for (size_t p = 0; p < points.size(); ++p) {
+    conn[p] = static_cast<std::int64_t>(p);
+    offsets[p] = static_cast<std::int64_t>(p + 1);
+  }
+  xml += fmt::format("<DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>\n", data.add(conn));
+  xml += fmt::format("<DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>\n", data.add(offsets));
+  xml += "</Verts>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
+  write_file(path, xml, data);
+}
 
 void write_vtu(const std::string& path, const std::vector<Vec3>& points, const std::vector<Index>& connectivity,
                int nodes_per_cell, VtkCell cell_type, const std::vector<VtkPointArray>& point_arrays) {
@@ -56,12 +96,7 @@ void write_vtu(const std::string& path, const std::vector<Vec3>& points, const s
   xml += fmt::format("<DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>\n", data.add(offsets));
   xml += fmt::format("<DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"{}\"/>\n", data.add(types));
   xml += "</Cells>\n</Piece>\n</UnstructuredGrid>\n<AppendedData encoding=\"raw\">\n_";
-
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path));
-  out << xml;
-  out.write(data.bytes.data(), static_cast<std::streamsize>(data.bytes.size()));
-  out << "\n</AppendedData>\n</VTKFile>\n";
+  write_file(path, xml, data);
 }
 
 void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries) {

@@ -17,9 +17,19 @@ struct VtkPointArray {
   std::vector<Vec3> values;
 };
 
+struct VtkScalarArray {
+  std::string name;
+  std::vector<Real> values;
+};
+
 /// Writes an unstructured grid of one cell type with 3-component point arrays.
 void write_vtu(const std::string& path, const std::vector<Vec3>& points, const std::vector<Index>& connectivity,
                int nodes_per_cell, VtkCell cell_type, const std::vector<VtkPointArray>& point_arrays);
+
+/// Writes particles as a poly-data file (.vtp): one vertex cell per point, so ParaView shows them
+/// without a filter (use "Point Gaussian" with the `radius` array for spheres).
+void write_vtp(const std::string& path, const std::vector<Vec3>& points, const std::vector<VtkPointArray>& vector_arrays,
+               const std::vector<VtkScalarArray>& scalar_arrays);
 
 /// A ParaView collection (.pvd): each entry is (time, part, file relative to the .pvd).
 struct PvdEntry {
