@@ -3,11 +3,13 @@
 // principal curvature 1/R).
 #include <gtest/gtest.h>
 
-#include <random>
+#include <fstream>
 
 #include "moreau/constraints/dihedral_bending.hpp"
 #include "moreau/constraints/isometric_bending.hpp"
+#include "moreau/errors.hpp"
 #include "moreau/geometry/mesh_generators.hpp"
+#include "test_helpers.hpp"
 
 using namespace moreau;
 
@@ -106,4 +108,19 @@ TEST(BendingModels, SheetRolledOntoCylinderHasPlateEnergy) {
   const SheetEnergies d = rolled_sheet(81, 1.0, 2.0, RollAxis::diagonal, 3e-3);
   EXPECT_NEAR(d.dihedral / d.continuum, 1.5, 0.03);
   EXPECT_NEAR(d.isometric / d.dihedral, 1.0, 1e-3);
+}
+
+TEST(BendingModels, IsometricBendingRejectsACurvedRestShape) {
+  const std::string obj = test::temp_dir("folded") + "/folded.obj";
+  std::ofstream(obj) << "v 0 0 0\nv 1 0 0\nv 0.5 0 1\nv 0.5 1 0\nf 1 2 3\nf 2 1 4\n";  // a 90-degree fold
+  try {
+    test::scene_from_json(fmt::format(R"({{"name": "fold", "objects": [{{"name": "sheet", "kind": "cloth",
+      "mesh": {{"type": "obj", "file": "{}"}},
+      "material": {{"area_density": 0.1, "bending_stiffness": 1e-4, "bending_model": "isometric"}}}}]}})", obj));
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("objects[0].material.bending_model"), std::string::npos) << what;
+    EXPECT_NE(what.find("flat rest shape"), std::string::npos) << what;
+  }
 }
