@@ -10,6 +10,7 @@
 #include "moreau/constraints/distance.hpp"
 #include "moreau/constraints/neo_hookean_tet.hpp"
 #include "moreau/constraints/tet_volume.hpp"
+#include "moreau/constraints/triangle_strain.hpp"
 
 using namespace moreau;
 
@@ -52,6 +53,25 @@ TEST(ProjectionByHand, DihedralBending) {
   EXPECT_NEAR(x[2].y(), 0.1 - theta, kTol);
   EXPECT_NEAR(x[2].z(), 1 + 0.1 * theta, kTol);
   EXPECT_NEAR(lambda[0], -1.01 * theta, kTol);
+}
+
+TEST(ProjectionByHand, TriangleStrainMembrane) {
+  // Rest right triangle X0 = 0, X1 = (1,0,0), X2 = (0,1,0): D_m = I, A = 1/2. E = 200 Pa, nu = 0,
+  // t = 1 m: K = diag(E, E, E/2), alpha = (A t K)^-1 = diag(1, 1, 2)/100, alpha~ = diag(1, 1, 2).
+  // x1 stretched to (2,0,0), only x1 free (w 1): f1 = (2,0,0), f2 = (0,1,0), C = (3/2, 0, 0);
+  // grad_x1 rows: E11 -> f1 = (2,0,0), E22 -> 0, 2E12 -> f2 = (0,1,0), so J W J^T = diag(4, 0, 1),
+  // A = diag(5, 1, 3), dlambda = -(3/2, 0, 0)/A = (-0.3, 0, 0), dx1 = J^T dlambda = (-0.6, 0, 0).
+  std::vector<Vec3> x{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0)};
+  std::vector<Real> w{0, 1, 0};
+  std::vector<Vec3> lambda(1, Vec3::Zero());
+  TriangleStrainConstraints c;
+  c.add({0, 1, 2}, x[0], x[1], x[2], 200, 0.0, 1.0, 0.0, 0);
+  c.color(w);
+  x[1].x() = 2;
+  const std::vector<Vec3> start = x;
+  project_triangle_strain(c, lambda.data(), SubstepContext{x.data(), start.data(), w.data(), kH});
+  EXPECT_NEAR((x[1] - Vec3(1.4, 0, 0)).norm(), 0, kTol);
+  EXPECT_NEAR((lambda[0] - Vec3(-0.3, 0, 0)).norm(), 0, kTol);
 }
 
 TEST(ProjectionByHand, TetVolume) {
