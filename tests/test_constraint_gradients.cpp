@@ -91,13 +91,14 @@ TEST(ConstraintGradients, NeoHookeanMatchesFiniteDifferences) {
   NeoHookeanTetConstraints c;
   const std::array<Vec3, 4> X{Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1)};
   c.add({0, 1, 2, 3}, X, 1e5, 0.3, 0, 0);
-  const Real gamma = 1 + c.mu[0] / c.lambda[0];
+  const NeoHookeanElement& e = c.elements[0];
   auto noise = random_points(4, 3, 0.2);
   std::vector<Vec3> x(4);
   for (int i = 0; i < 4; ++i) x[i] = X[i] + noise[i];
-  const auto v = evaluate_neo_hookean({x[0], x[1], x[2], x[3]}, c.rest_inverse[0], gamma);
-  auto CH = [&](const std::vector<Vec3>& y) { return evaluate_neo_hookean({y[0], y[1], y[2], y[3]}, c.rest_inverse[0], gamma).C_H; };
-  auto CD = [&](const std::vector<Vec3>& y) { return evaluate_neo_hookean({y[0], y[1], y[2], y[3]}, c.rest_inverse[0], gamma).C_D; };
+  // The same evaluation the projection uses.
+  const auto v = evaluate_neo_hookean({x[0], x[1], x[2], x[3]}, e);
+  auto CH = [&](const std::vector<Vec3>& y) { return evaluate_neo_hookean({y[0], y[1], y[2], y[3]}, e).C_H; };
+  auto CD = [&](const std::vector<Vec3>& y) { return evaluate_neo_hookean({y[0], y[1], y[2], y[3]}, e).C_D; };
   for (int i = 0; i < 4; ++i)
     for (int d = 0; d < 3; ++d) {
       EXPECT_NEAR(v.grad_H[i][d], central_difference(x, i, d, CH), kTolerance);

@@ -15,17 +15,11 @@ std::array<Real, 4> isometric_hinge_weights(const Vec3& E0, const Vec3& E1, cons
   return {k_e0, k_e1, k_o0, k_o1};
 }
 
-Real isometric_compliance_from_bending_stiffness(const Vec3& E0, const Vec3& E1, const Vec3& O0, const Vec3& O1,
-                                                 Real bending_stiffness) {
-  const Vec3 e = E1 - E0;
-  const Real area_sum = 0.5 * (e.cross(O0 - E0).norm() + (O1 - E0).cross(e).norm());
-  return area_sum / bending_stiffness;
-}
-
 void IsometricBendingConstraints::add(const Hinge& h, const Vec3& E0, const Vec3& E1, const Vec3& O0, const Vec3& O1,
-                                      Real alpha, Real tau, Index obj) {
-  hinges.push_back({{h.e0, h.e1, h.o0, h.o1}, isometric_hinge_weights(E0, E1, O0, O1), alpha, tau});
-  edge_length.push_back((E1 - E0).norm());
+                                      Real angle_compliance, Real tau, Index obj) {
+  const Real l = (E1 - E0).norm();
+  hinges.push_back({{h.e0, h.e1, h.o0, h.o1}, isometric_hinge_weights(E0, E1, O0, O1), l * l * angle_compliance, tau});
+  edge_length.push_back(l);
   object.push_back(obj);
 }
 

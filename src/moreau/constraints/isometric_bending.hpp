@@ -11,10 +11,9 @@
 //   K_o0 = l^2 / (2 A_A),  K_o1 = l^2 / (2 A_B),                (A_A, A_B: rest triangle areas)
 //   K_e1 = -(K_o0 a_0 + K_o1 a_1) / l,  a_j = (O_j - E0) . e / l,   K_e0 = -(K_e1 + K_o0 + K_o1).
 // (Lifting o0 by d out of the plane gives theta = d / h_A and C = K_o0 d = l theta, h_A = 2 A_A / l.)
-// Compliance alpha (m/N): energy |C|^2 / (2 alpha). Matching the dihedral hinge energy
-// (k_B/2) l^2 theta^2 / (A_A + A_B) (calibrated against a rolled cylinder, see dihedral_bending.hpp)
-// gives alpha = (A_A + A_B) / k_B; a per-angle compliance alpha_theta (1/(N m), as for dihedral
-// bending) gives alpha = l^2 alpha_theta. The two models agree to O(theta^2).
+// Compliance alpha (m/N): energy |C|^2 / (2 alpha). A hinge is given the per-angle compliance
+// alpha_theta (1/(N m)) of the dihedral model (dihedral_bending.hpp, from k_B or set directly);
+// since |C| = l theta, alpha = l^2 alpha_theta gives the same energy to O(theta^2).
 // Because the gradient is constant the XPBD system is diagonal (one scalar for all three
 // components) and the projection needs no square root, division by |n| or arc tangent.
 #include <vector>
@@ -40,18 +39,15 @@ struct IsometricBendingConstraints {
   ColorBatches batches;
 
   size_t size() const { return hinges.size(); }
-  /// Adds a hinge whose rest points (E0, E1, O0, O1) lie in one plane.
-  void add(const Hinge& h, const Vec3& E0, const Vec3& E1, const Vec3& O0, const Vec3& O1, Real alpha, Real tau,
-           Index obj);
+  /// Adds a hinge whose rest points (E0, E1, O0, O1) lie in one plane, with the per-angle
+  /// compliance alpha_theta (1/(N m)) a dihedral hinge would have.
+  void add(const Hinge& h, const Vec3& E0, const Vec3& E1, const Vec3& O0, const Vec3& O1, Real angle_compliance,
+           Real tau, Index obj);
   void color(const std::vector<Real>& particle_inv_mass);
 };
 
 /// The weights K of a flat rest hinge (see the header comment).
 std::array<Real, 4> isometric_hinge_weights(const Vec3& E0, const Vec3& E1, const Vec3& O0, const Vec3& O1);
-
-/// Hinge compliance (m/N) for a bending stiffness k_B (N m).
-Real isometric_compliance_from_bending_stiffness(const Vec3& E0, const Vec3& E1, const Vec3& O0, const Vec3& O1,
-                                                 Real bending_stiffness);
 
 /// C = sum_i K_i x_i of hinge k.
 Vec3 isometric_bending_value(const IsometricHinge& h, const Vec3* x);

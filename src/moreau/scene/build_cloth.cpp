@@ -98,22 +98,20 @@ void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
     for (const Hinge& h : triangle_hinges(mesh.triangles)) {
       const Hinge g{base + h.e0, base + h.e1, base + h.o0, base + h.o1};
       const Real theta0 = evaluate_dihedral(X(h.e0), X(h.e1), X(h.o0), X(h.o1)).theta;
-      if (isometric) {
-        // The isometric model is exact only for a flat rest shape; 1e-3 rad tolerates mesh-file round-off.
-        if (std::abs(theta0) > 1e-3)
-          material.fail("bending_model", fmt::format("isometric bending needs a flat rest shape, but the hinge on "
-                                                     "vertices {} and {} is bent by {:.3g} degrees at rest; use \"dihedral\"",
-                                                     h.e0, h.e1, theta0 * 180 / kPi));
-        const Real alpha = has_bend_compliance ? bend_compliance * (X(h.e1) - X(h.e0)).squaredNorm()
-                                               : isometric_compliance_from_bending_stiffness(X(h.e0), X(h.e1), X(h.o0),
-                                                                                             X(h.o1), bending_stiffness);
-        m.isometric_bending.add(g, X(h.e0), X(h.e1), X(h.o0), X(h.o1), alpha, damping, object_index);
+      const Real angle_compliance =
+          has_bend_compliance
+              ? bend_compliance
+              : hinge_compliance_from_bending_stiffness(X(h.e0), X(h.e1), X(h.o0), X(h.o1), bending_stiffness);
+      if (!isometric) {
+        m.bending.add(g, theta0, angle_compliance, damping, object_index);
         continue;
       }
-      const Real alpha = has_bend_compliance
-                             ? bend_compliance
-                             : hinge_compliance_from_bending_stiffness(X(h.e0), X(h.e1), X(h.o0), X(h.o1), bending_stiffness);
-      m.bending.add(g, theta0, alpha, damping, object_index);
+      // The isometric model is exact only for a flat rest shape; 1e-3 rad tolerates mesh-file round-off.
+      if (std::abs(theta0) > 1e-3)
+        material.fail("bending_model", fmt::format("isometric bending needs a flat rest shape, but the hinge on "
+                                                   "vertices {} and {} is bent by {:.3g} degrees at rest; use \"dihedral\"",
+                                                   h.e0, h.e1, theta0 * 180 / kPi));
+      m.isometric_bending.add(g, X(h.e0), X(h.e1), X(h.o0), X(h.o1), angle_compliance, damping, object_index);
     }
   }
   for (Index p = info.particle_begin; p < info.particle_end; ++p) m.contact_particle.push_back(p);
