@@ -22,11 +22,11 @@ std::vector<Vec3> random_cloud(int n, unsigned seed) {
 }  // namespace
 
 TEST(NeighborSearch, MortonKeyInterleavesBits) {
-  EXPECT_EQ(NeighborSearch::morton_key(1, 0, 0), 1u);
-  EXPECT_EQ(NeighborSearch::morton_key(0, 1, 0), 2u);
-  EXPECT_EQ(NeighborSearch::morton_key(0, 0, 1), 4u);
-  EXPECT_EQ(NeighborSearch::morton_key(3, 0, 0), 9u);  // bits 0 and 3
-  EXPECT_EQ(NeighborSearch::morton_key((1u << 21) - 1, 0, 0), 0x1249249249249249ULL);
+  EXPECT_EQ(CellGrid::morton_key(1, 0, 0), 1u);
+  EXPECT_EQ(CellGrid::morton_key(0, 1, 0), 2u);
+  EXPECT_EQ(CellGrid::morton_key(0, 0, 1), 4u);
+  EXPECT_EQ(CellGrid::morton_key(3, 0, 0), 9u);  // bits 0 and 3
+  EXPECT_EQ(CellGrid::morton_key((1u << 21) - 1, 0, 0), 0x1249249249249249ULL);
 }
 
 TEST(NeighborSearch, FindsExactlyThePairsBruteForceFinds) {

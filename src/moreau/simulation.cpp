@@ -54,8 +54,14 @@ std::string Simulation::summary() const {
                               scene_->name, scene_->file, scene_->solver, m.settings.dt, m.settings.substeps,
                               m.settings.iterations, scene_->duration);
   for (const auto& o : m.objects) {
-    static const char* kinds[] = {"collider", "cloth", "soft_body"};
+    static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid"};
     s += fmt::format("  {:<10} {:<16}", kinds[static_cast<int>(o.kind)], o.name);
+    if (o.kind == ObjectKind::fluid) {
+      Index count = 0;
+      for (Index p : m.fluid.initial_phase) count += p == o.fluid_phase;
+      s += fmt::format(" {} particles of radius {} m, rest density {} kg/m^3", count, m.fluid.particle_radius,
+                       m.fluid.phases[o.fluid_phase].rest_density);
+    }
     if (o.has_particles())
       s += fmt::format(" {} particles, {} surface triangles, {} tetrahedra", o.particle_count(), o.surface.size(), o.tets.size());
     s += "\n";
@@ -73,6 +79,8 @@ std::string Simulation::summary() const {
   family("neo_hookean", m.neo_hookean.size(), &m.neo_hookean.batches);
   family("tet_volume", m.tet_volume.size(), &m.tet_volume.batches);
   family("attachment", m.attachment.size(), nullptr);
+  if (!m.fluid.empty())
+    s += fmt::format("  fluid: support h = {} m, {} collider wall samples\n", m.fluid.support(), m.fluid.boundary.size());
   s += fmt::format("  probes: {}\n", scene_->probes.size());
   return s;
 }
@@ -97,6 +105,7 @@ nlohmann::json run_summary_json(const Scene& scene, const StageTimer& timer, con
   j["simulated_time_s"] = state.time;
   j["wall_time_s"] = wall_time;
   j["counts"] = {{"particles", m.particle_count()},
+                 {"fluid_particles", state.fluid.count},
                  {"objects", m.objects.size()},
                  {"colliders", m.colliders.size()},
                  {"constraints",
@@ -111,6 +120,12 @@ nlohmann::json run_summary_json(const Scene& scene, const StageTimer& timer, con
   for (int s = 0; s < static_cast<int>(Stage::count); ++s)
     stages[std::string(kStageNames[s])] = timer.seconds(static_cast<Stage>(s));
   j["stage_time_s"] = stages;
+  if (!m.fluid.empty())
+    j["fluid"] = {{"neighbor_list_builds", state.fluid.list_builds},
+                  {"max_cfl_number", state.fluid.max_cfl},
+                  {"cfl_limit", m.fluid.cfl_limit},
+                  {"steps_over_cfl_limit", state.fluid.cfl_violations},
+                  {"wall_samples", m.fluid.boundary.size()}};
   if (status == "completed") {
     j["final_energy_j"] = {{"kinetic", kinetic_energy(m, state, -1)},
                            {"potential", potential_energy(m, state, -1)},
@@ -174,6 +189,11 @@ RunResult Simulation::run(const RunOptions& options) {
     message = e.what();
   }
   progress.finish();
+  if (state.fluid.cfl_violations > 0)
+    fmt::print(stderr,
+               "warning: the fluid CFL number max|v| h / (2 r) reached {:.2f} (limit {}) in {} steps; the time step is "
+               "too long for the fastest particles: lower settings.dt or raise settings.substeps\n",
+               state.fluid.max_cfl, model.fluid.cfl_limit, state.fluid.cfl_violations);
   result.wall_time_s = wall;
   std::ofstream(dir / "run.json") << run_summary_json(scene, timer, state, result.steps, wall, threads, status, message).dump(2)
                                   << '\n';

@@ -32,7 +32,9 @@ ColliderDistance sphere_distance(const Vec3& center, Real radius, const Vec3& x)
 
 }  // namespace
 
-ColliderDistance collider_distance(const Collider& c, const Vec3& center, const Vec3& x) {
+namespace {
+
+ColliderDistance solid_distance(const Collider& c, const Vec3& center, const Vec3& x) {
   switch (c.shape) {
     case ColliderShape::plane:
       return {c.normal.dot(x - center), c.normal};
@@ -49,6 +51,25 @@ ColliderDistance collider_distance(const Collider& c, const Vec3& center, const 
     }
   }
   return {1e30, Vec3::UnitY()};
+}
+
+}  // namespace
+
+Vec3 keep_clear_of_collider(const Collider& c, const Vec3& center, const Vec3& x, Real gap) {
+  if (c.inside && c.shape == ColliderShape::box) {
+    const Vec3 limit = (c.half_extents.array() - gap).max(0.0);
+    const Vec3 q = c.rotation.transpose() * (x - center);
+    const Vec3 clamped = q.cwiseMax(-limit).cwiseMin(limit);
+    return clamped == q ? x : Vec3(center + c.rotation * clamped);
+  }
+  const ColliderDistance d = collider_distance(c, center, x);
+  return d.distance < gap ? Vec3(x + (gap - d.distance) * d.normal) : x;
+}
+
+ColliderDistance collider_distance(const Collider& c, const Vec3& center, const Vec3& x) {
+  const ColliderDistance d = solid_distance(c, center, x);
+  if (c.inside) return {-d.distance, -d.normal};  // the solid is the complement of the shape
+  return d;
 }
 
 }  // namespace moreau

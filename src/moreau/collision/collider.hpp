@@ -22,6 +22,8 @@ struct Collider {
   Real static_friction = 0.5;         // mu_s
   Real dynamic_friction = 0.5;        // mu_k
   Real restitution = 0;               // e
+  bool inside = false;                // a container: the solid is outside the shape (a tank keeps particles in)
+  bool fluid_walls = true;            // sampled with wall particles for the fluid density
 
   Vec3 position_at(Real time) const { return position + time * velocity; }
 };
@@ -34,5 +36,12 @@ struct ColliderDistance {
 /// Signed distance from x to the collider whose reference point is at `center` (its position at
 /// the time of the query).
 ColliderDistance collider_distance(const Collider& c, const Vec3& center, const Vec3& x);
+
+/// The point nearest to x that is at least `gap` away from the collider's solid (its position at
+/// the time of the query is `center`). A single push along the distance normal is that point for
+/// every solid shape and for round containers; in a box container a point near an edge or corner
+/// is too close to two or three walls at once, so there the local coordinates are clamped to the
+/// box shrunk by `gap`.
+Vec3 keep_clear_of_collider(const Collider& c, const Vec3& center, const Vec3& x, Real gap);
 
 }  // namespace moreau

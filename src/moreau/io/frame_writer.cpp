@@ -23,15 +23,36 @@ FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string sc
     lo = lo.cwiseMin(x);
     hi = hi.cwiseMax(x);
   }
+  for (const auto& x : model.fluid.initial_position) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
   plane_half_size_ = 0.75 * (hi - lo).maxCoeff();
 }
 
 void FrameWriter::write(const State& state) {
   for (size_t o = 0; o < model_.objects.size(); ++o) {
     const ObjectInfo& obj = model_.objects[o];
-    const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(obj.name), frame_);
+    const bool particles_only = obj.kind == ObjectKind::fluid;
+    const std::string file = fmt::format("frames/{}_{:06d}.{}", safe_file_name(obj.name), frame_, particles_only ? "vtp" : "vtu");
     const std::string path = out_dir_ + "/" + file;
-    if (obj.kind == ObjectKind::collider) {
+    if (obj.kind == ObjectKind::fluid) {
+      // Live particles of this fluid: position, velocity, density, pressure, stable id.
+      const FluidState& f = state.fluid;
+      std::vector<Vec3> x, v;
+      std::vector<Real> density, pressure, id;
+      for (Index i = 0; i < f.count; ++i) {
+        if (f.phase[i] != obj.fluid_phase) continue;
+        x.push_back(f.position[i]);
+        v.push_back(f.velocity[i]);
+        density.push_back(f.density[i]);
+        pressure.push_back(f.pressure[i]);
+        id.push_back(f.id[i]);
+      }
+      write_vtp(path, x, {{"velocity", v}},
+                {{"density", density}, {"pressure", pressure}, {"id", id},
+                 {"radius", std::vector<Real>(x.size(), model_.fluid.particle_radius)}});
+    } else if (obj.kind == ObjectKind::collider) {
       const TriangleMesh m = collider_surface(model_.colliders[obj.collider], state.time, plane_half_size_);
       std::vector<Index> conn;
       for (const auto& t : m.triangles) conn.insert(conn.end(), t.begin(), t.end());

@@ -1,5 +1,6 @@
 #include "moreau/io/probes.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace moreau {
@@ -19,6 +20,28 @@ std::vector<std::string> probe_columns(const ProbeSpec& probe) {
   if (!probe.is_vector()) return {probe.name};
   return {probe.name + ".x", probe.name + ".y", probe.name + ".z"};
 }
+
+namespace {
+
+// Live fluid particles of `object` (a fluid), or of every fluid (-1).
+template <class F>
+void for_each_fluid_particle(const Model& model, const State& state, Index object, F&& f) {
+  const Index phase = object >= 0 ? model.objects[object].fluid_phase : -1;
+  if (object >= 0 && phase < 0) return;
+  for (Index i = 0; i < state.fluid.count; ++i)
+    if (phase < 0 || state.fluid.phase[i] == phase) f(i);
+}
+
+// Positions of the object's particles (fluid or not), or of every simulated particle (-1).
+template <class F>
+void for_each_position(const Model& model, const State& state, Index object, F&& f) {
+  const Index begin = object >= 0 ? model.objects[object].particle_begin : 0;
+  const Index end = object >= 0 ? model.objects[object].particle_end : model.particle_count();
+  for (Index p = begin; p < end; ++p) f(state.position[p]);
+  for_each_fluid_particle(model, state, object, [&](Index i) { f(state.fluid.position[i]); });
+}
+
+}  // namespace
 
 void evaluate_probe(const ProbeSpec& probe, const Model& model, const State& state, std::vector<Real>& values) {
   auto push3 = [&](const Vec3& v) { values.insert(values.end(), {v.x(), v.y(), v.z()}); };
@@ -44,11 +67,48 @@ void evaluate_probe(const ProbeSpec& probe, const Model& model, const State& sta
     case ProbeType::extent: {
       const bool want_max = probe.quantity == "max";
       Real e = want_max ? -std::numeric_limits<Real>::infinity() : std::numeric_limits<Real>::infinity();
-      const Index begin = probe.object >= 0 ? model.objects[probe.object].particle_begin : 0;
-      const Index end = probe.object >= 0 ? model.objects[probe.object].particle_end : model.particle_count();
-      for (Index p = begin; p < end; ++p)
-        e = want_max ? std::max(e, state.position[p][probe.axis]) : std::min(e, state.position[p][probe.axis]);
+      for_each_position(model, state, probe.object, [&](const Vec3& x) {
+        e = want_max ? std::max(e, x[probe.axis]) : std::min(e, x[probe.axis]);
+      });
       values.push_back(e);
+      break;
+    }
+    case ProbeType::fluid_height: {
+      // Highest particle top (y + r along -g) within 2r of the vertical line through `at`;
+      // measured from the point `at` itself along the up direction. 0 where no particle is.
+      const Vec3 up = model.settings.gravity.norm() > 0 ? Vec3(-model.settings.gravity.normalized()) : Vec3::UnitY();
+      const Real r = model.fluid.particle_radius, reach2 = 4 * r * r;
+      Real top = 0;
+      for_each_fluid_particle(model, state, probe.object, [&](Index i) {
+        const Vec3 d = state.fluid.position[i] - probe.at;
+        const Real height = d.dot(up);
+        if ((d - height * up).squaredNorm() <= reach2) top = std::max(top, height + r);
+      });
+      values.push_back(top);
+      break;
+    }
+    case ProbeType::density_error: {
+      // Compression error max(rho_i / rho0 - 1, 0) at the last density evaluation: its mean or max.
+      Real sum = 0, worst = 0;
+      Index count = 0;
+      for_each_fluid_particle(model, state, probe.object, [&](Index i) {
+        const Real rho0 = model.fluid.phases[state.fluid.phase[i]].rest_density;
+        const Real e = std::max(state.fluid.density[i] / rho0 - 1, 0.0);
+        sum += e;
+        worst = std::max(worst, e);
+        ++count;
+      });
+      values.push_back(probe.quantity == "max" ? worst : (count ? sum / count : 0.0));
+      break;
+    }
+    case ProbeType::particle_count:
+    case ProbeType::escaped: {
+      Index count = 0;
+      for_each_position(model, state, probe.object, [&](const Vec3& x) {
+        const bool inside = (x.array() >= probe.box_min.array()).all() && (x.array() <= probe.box_max.array()).all();
+        if (probe.type == ProbeType::particle_count || !inside) ++count;
+      });
+      values.push_back(count);
       break;
     }
     case ProbeType::momentum:

@@ -8,18 +8,23 @@
 
 namespace moreau {
 
-enum class ProbeType { point, energy, center_of_mass, extent, momentum, constraint_error };
+enum class ProbeType {
+  point, energy, center_of_mass, extent, momentum, constraint_error,
+  fluid_height, density_error, particle_count, escaped
+};
 
 struct ProbeSpec {
   std::string name;
   ProbeType type = ProbeType::point;
   Index object = -1;                 // -1: every object ("*")
   std::string quantity;              // point: position|displacement|velocity; energy: kinetic|potential|elastic|total;
-                                     // extent: min|max; momentum: linear|angular
+                                     // extent: min|max; momentum: linear|angular; density_error: mean|max
   Index particle = -1;               // point probes: global particle index
   int axis = 1;                      // extent
   Vec3 about = Vec3::Zero();         // angular momentum reference point, m
   ConstraintFamily family = ConstraintFamily::all;
+  Vec3 at = Vec3::Zero();            // fluid_height: a point on the vertical line measured, m
+  Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  // escaped: particles outside this box are counted
 
   bool is_vector() const;
 };

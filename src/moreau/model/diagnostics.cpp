@@ -5,26 +5,33 @@
 namespace moreau {
 
 namespace {
-// Visits the particles of `object` (or all) that move; pinned particles carry no momentum.
+// Visits (mass, position, velocity) of the particles of `object` (or of all objects, -1),
+// including fluid particles. With moving_only, pinned particles (no momentum) are skipped.
 template <class F>
-void for_each_particle(const Model& model, Index object, bool moving_only, F&& f) {
+void for_each_mass_point(const Model& model, const State& state, Index object, bool moving_only, F&& f) {
   const Index begin = object >= 0 ? model.objects[object].particle_begin : 0;
   const Index end = object >= 0 ? model.objects[object].particle_end : model.particle_count();
   for (Index p = begin; p < end; ++p)
-    if (!moving_only || model.particle_inv_mass[p] > 0) f(p);
+    if (!moving_only || model.particle_inv_mass[p] > 0) f(model.particle_mass[p], state.position[p], state.velocity[p]);
+  const Index phase = object >= 0 ? model.objects[object].fluid_phase : -1;
+  if (object >= 0 && phase < 0) return;
+  const FluidState& fluid = state.fluid;
+  for (Index i = 0; i < fluid.count; ++i)
+    if (phase < 0 || fluid.phase[i] == phase)
+      f(model.fluid.phases[fluid.phase[i]].particle_mass, fluid.position[i], fluid.velocity[i]);
 }
 }  // namespace
 
 Real kinetic_energy(const Model& model, const State& state, Index object) {
   Real e = 0;
-  for_each_particle(model, object, true, [&](Index p) { e += 0.5 * model.particle_mass[p] * state.velocity[p].squaredNorm(); });
+  for_each_mass_point(model, state, object, true, [&](Real m, const Vec3&, const Vec3& v) { e += 0.5 * m * v.squaredNorm(); });
   return e;
 }
 
 Real potential_energy(const Model& model, const State& state, Index object) {
   Real e = 0;
-  for_each_particle(model, object, true,
-                    [&](Index p) { e -= model.particle_mass[p] * model.settings.gravity.dot(state.position[p]); });
+  for_each_mass_point(model, state, object, true,
+                      [&](Real m, const Vec3& x, const Vec3&) { e -= m * model.settings.gravity.dot(x); });
   return e;
 }
 
@@ -38,25 +45,25 @@ Real elastic_energy(const Model& model, const State& state, Index object) {
 
 Vec3 linear_momentum(const Model& model, const State& state, Index object) {
   Vec3 p = Vec3::Zero();
-  for_each_particle(model, object, true, [&](Index i) { p += model.particle_mass[i] * state.velocity[i]; });
+  for_each_mass_point(model, state, object, true, [&](Real m, const Vec3&, const Vec3& v) { p += m * v; });
   return p;
 }
 
 Vec3 angular_momentum(const Model& model, const State& state, Index object, const Vec3& about) {
   Vec3 L = Vec3::Zero();
-  for_each_particle(model, object, true,
-                    [&](Index i) { L += model.particle_mass[i] * (state.position[i] - about).cross(state.velocity[i]); });
+  for_each_mass_point(model, state, object, true,
+                      [&](Real m, const Vec3& x, const Vec3& v) { L += m * (x - about).cross(v); });
   return L;
 }
 
 Vec3 center_of_mass(const Model& model, const State& state, Index object) {
   Vec3 c = Vec3::Zero();
-  Real m = 0;
-  for_each_particle(model, object, false, [&](Index i) {
-    c += model.particle_mass[i] * state.position[i];
-    m += model.particle_mass[i];
+  Real mass = 0;
+  for_each_mass_point(model, state, object, false, [&](Real m, const Vec3& x, const Vec3&) {
+    c += m * x;
+    mass += m;
   });
-  return m > 0 ? Vec3(c / m) : c;
+  return mass > 0 ? Vec3(c / mass) : c;
 }
 
 Real max_constraint_error(const Model& model, const State& state, Index object, ConstraintFamily family) {

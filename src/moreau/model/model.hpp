@@ -13,12 +13,14 @@
 #include "moreau/constraints/neo_hookean_tet.hpp"
 #include "moreau/constraints/tet_volume.hpp"
 #include "moreau/constraints/triangle_strain.hpp"
+#include "moreau/fluids/fluid_model.hpp"
 
 namespace moreau {
 
-enum class ObjectKind { collider, cloth, soft_body };
+enum class ObjectKind { collider, cloth, soft_body, fluid };
 
 /// One named scene object. Particles of an object are the contiguous range [particle_begin, particle_end).
+/// Fluid objects have no particles here: theirs live in FluidState (phase `fluid_phase`).
 struct ObjectInfo {
   std::string name;
   ObjectKind kind = ObjectKind::cloth;
@@ -26,11 +28,14 @@ struct ObjectInfo {
   std::vector<std::array<Index, 3>> surface;  // global particle indices: cloth triangles / soft-body boundary
   std::vector<std::array<Index, 4>> tets;     // global particle indices (soft bodies)
   Index collider = -1;                        // index into Model::colliders (colliders only)
+  Index fluid_phase = -1;                     // index into Model::fluid.phases (fluids only)
   bool self_collision = false;                // particle contacts within the object
   Real static_friction = 0.5, dynamic_friction = 0.5, restitution = 0;
 
   Index particle_count() const { return particle_end - particle_begin; }
   bool has_particles() const { return particle_end > particle_begin; }
+  /// Has simulated particles (in the model's particle arrays or, for fluids, in FluidState).
+  bool is_simulated() const { return has_particles() || kind == ObjectKind::fluid; }
 };
 
 struct SolverSettings {
@@ -65,6 +70,8 @@ struct Model {
   NeoHookeanTetConstraints neo_hookean;
   TetVolumeConstraints tet_volume;
   AttachmentConstraints attachment;
+
+  FluidModel fluid;
 
   SolverSettings settings;
 

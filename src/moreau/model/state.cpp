@@ -16,6 +16,7 @@ State make_rest_state(const Model& model) {
   s.neo_hookean_lambda.assign(model.neo_hookean.size(), Vec2::Zero());
   s.tet_volume_lambda.assign(model.tet_volume.size(), 0);
   s.attachment_lambda.assign(model.attachment.size(), Vec3::Zero());
+  s.fluid = make_fluid_state(model.fluid);
   return s;
 }
 

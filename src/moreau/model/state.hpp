@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "moreau/collision/contacts.hpp"
+#include "moreau/fluids/fluid_state.hpp"
 #include "moreau/model/model.hpp"
 
 namespace moreau {
@@ -29,6 +30,8 @@ struct State {
   ColliderContacts collider_contacts;
   ParticleContacts particle_contacts;
   ContactScratch contact_scratch;
+
+  FluidState fluid;
 };
 
 /// A state at rest in the model's rest configuration, with all buffers sized.

@@ -34,6 +34,10 @@ void build_collider(const JsonObject& object, ObjectInfo& info, SceneBuildContex
   }
   shape.finish();
   c.velocity = object.vec3("velocity", Vec3::Zero());
+  c.inside = object.boolean("inside", false);
+  if (c.inside && c.shape == ColliderShape::plane)
+    object.fail("inside", "a plane has no inside; use a box, sphere or capsule as a container");
+  c.fluid_walls = object.boolean("fluid_walls", true);
   read_contact_material(object, c.static_friction, c.dynamic_friction, c.restitution);
   info.kind = ObjectKind::collider;
   info.collider = static_cast<Index>(ctx.model.colliders.size());

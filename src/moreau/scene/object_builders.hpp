@@ -20,6 +20,9 @@ struct SceneBuildContext {
 void build_collider(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
 void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
 void build_soft_body(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
+void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
+/// After all objects: samples collider walls for the fluids and sets the derived fluid constants.
+void finish_fluids(Model& model);
 
 /// Rotation from "rotation_deg": [rx, ry, rz], applied about the world x, then y, then z axes.
 Mat3 rotation_from_degrees(const Vec3& degrees);

@@ -24,6 +24,13 @@ void read_settings(const JsonObject& settings, Scene& scene) {
   s.threads = settings.integer("threads", s.threads, 0, 1024);
   s.particle_contacts = settings.boolean("particle_contacts", s.particle_contacts);
   s.max_speed = settings.number("max_speed", s.max_speed, Range::positive());
+  if (auto fluid = settings.optional_object("fluid")) {
+    FluidModel& fm = scene.model.fluid;
+    fm.neighbor_skin_fraction = fluid->number("neighbor_skin", fm.neighbor_skin_fraction, Range::closed(0, 1));
+    fm.tensile_k = fluid->number("tensile_k", fm.tensile_k, Range::closed(0, 10));
+    fm.cfl_limit = fluid->number("cfl_limit", fm.cfl_limit, Range::positive());
+    fluid->finish();
+  }
   if (auto output = settings.optional_object("output")) {
     scene.output.every = output->integer("every", 1, 1);
     if (output->has("formats")) {
@@ -41,15 +48,24 @@ void read_settings(const JsonObject& settings, Scene& scene) {
   settings.finish();
 }
 
-Index object_index(const JsonObject& probe, const Model& model, bool allow_all) {
+enum class Accepts { any, fluids, solids };
+
+Index object_index(const JsonObject& probe, const Model& model, bool allow_all, Accepts accepts = Accepts::any) {
   const std::string name = probe.string("object");
   if (allow_all && name == "*") return -1;
+  auto acceptable = [&](const ObjectInfo& o) {
+    if (accepts == Accepts::fluids) return o.kind == ObjectKind::fluid;
+    if (accepts == Accepts::solids) return o.has_particles();
+    return o.is_simulated();
+  };
   const Index i = model.find_object(name);
-  if (i < 0 || !model.objects[i].has_particles()) {
+  if (i < 0 || !acceptable(model.objects[i])) {
     std::string names;
     for (const auto& o : model.objects)
-      if (o.has_particles()) names += (names.empty() ? "" : ", ") + o.name;
-    probe.fail("object", fmt::format("no simulated object named '{}'; allowed: {}{}", name, names, allow_all ? ", *" : ""));
+      if (acceptable(o)) names += (names.empty() ? "" : ", ") + o.name;
+    probe.fail("object", fmt::format("no {}object named '{}'; allowed: {}{}",
+                                     accepts == Accepts::fluids ? "fluid " : accepts == Accepts::solids ? "cloth or soft-body " : "simulated ",
+                                     name, names, allow_all ? ", *" : ""));
   }
   return i;
 }
@@ -57,10 +73,11 @@ Index object_index(const JsonObject& probe, const Model& model, bool allow_all) 
 ProbeSpec read_probe(const JsonObject& j, const Model& model) {
   ProbeSpec p;
   p.name = j.string("name");
-  const std::string type = j.choice("type", {"point", "energy", "center_of_mass", "extent", "momentum", "constraint_error"});
+  const std::string type = j.choice("type", {"point", "energy", "center_of_mass", "extent", "momentum", "constraint_error",
+                                             "fluid_height", "density_error", "particle_count", "escaped"});
   if (type == "point") {
     p.type = ProbeType::point;
-    p.object = object_index(j, model, false);
+    p.object = object_index(j, model, false, Accepts::solids);
     const ObjectInfo& o = model.objects[p.object];
     if (j.has("vertex") == j.has("nearest")) j.fail("vertex", "give exactly one of \"vertex\" (index) or \"nearest\" (position, m)");
     if (j.has("vertex")) {
@@ -92,9 +109,27 @@ ProbeSpec read_probe(const JsonObject& j, const Model& model) {
     p.object = object_index(j, model, true);
     p.quantity = j.choice("quantity", "linear", {"linear", "angular"});
     p.about = j.vec3("about", Vec3::Zero());
+  } else if (type == "fluid_height") {
+    p.type = ProbeType::fluid_height;
+    p.object = object_index(j, model, true, Accepts::fluids);
+    p.at = j.vec3("at");
+  } else if (type == "density_error") {
+    p.type = ProbeType::density_error;
+    p.object = object_index(j, model, true, Accepts::fluids);
+    p.quantity = j.choice("quantity", "mean", {"mean", "max"});
+  } else if (type == "particle_count") {
+    p.type = ProbeType::particle_count;
+    p.object = object_index(j, model, true);
+  } else if (type == "escaped") {
+    p.type = ProbeType::escaped;
+    p.object = object_index(j, model, true);
+    const JsonObject box = j.object("box");
+    p.box_min = box.vec3("min");
+    p.box_max = box.vec3("max");
+    box.finish();
   } else {
     p.type = ProbeType::constraint_error;
-    p.object = object_index(j, model, true);
+    p.object = object_index(j, model, true, Accepts::solids);
     const std::string family = j.choice(
         "family", "all", {"all", "distance", "bending", "triangle_strain", "neo_hookean_volume", "tet_volume", "attachment"});
     static const std::vector<std::pair<std::string, ConstraintFamily>> kFamilies{
@@ -135,14 +170,16 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     info.name = object.string("name");
     if (scene.model.find_object(info.name) >= 0)
       object.fail("name", fmt::format("another object is already named '{}'; names must be unique", info.name));
-    const std::string kind = object.choice("kind", {"collider", "cloth", "soft_body"});
+    const std::string kind = object.choice("kind", {"collider", "cloth", "soft_body", "fluid"});
     if (kind == "collider") build_collider(object, info, ctx);
     else if (kind == "cloth") build_cloth(object, info, ctx);
+    else if (kind == "fluid") build_fluid(object, info, ctx);
     else build_soft_body(object, info, ctx);
     object.finish();
     scene.model.objects.push_back(std::move(info));
   }
   scene.model.color_constraints();
+  finish_fluids(scene.model);
 
   for (const JsonObject& probe : top.object_list("probes")) scene.probes.push_back(read_probe(probe, scene.model));
   top.finish();

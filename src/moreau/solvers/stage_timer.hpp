@@ -17,8 +17,11 @@ enum class Stage : int {
   attachments,
   collider_contacts,
   particle_contacts,
+  fluid_neighbors,
+  fluid_density,
   update_velocity,
   velocity_pass,
+  fluid_velocity,
   check_state,
   count
 };
@@ -26,7 +29,8 @@ enum class Stage : int {
 inline constexpr std::array<std::string_view, static_cast<int>(Stage::count)> kStageNames{
     "detect_contacts", "predict",           "distance",          "bending",         "triangle_strain",
     "neo_hookean",     "tet_volume",        "attachments",       "collider_contacts", "particle_contacts",
-    "update_velocity", "velocity_pass",     "check_state"};
+    "fluid_neighbors", "fluid_density",     "update_velocity",   "velocity_pass",     "fluid_velocity",
+    "check_state"};
 
 class StageTimer {
  public:

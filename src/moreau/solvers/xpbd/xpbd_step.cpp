@@ -6,6 +6,10 @@
 #include <cmath>
 
 #include "moreau/errors.hpp"
+#include "moreau/fluids/density_constraint.hpp"
+#include "moreau/fluids/fluid_motion.hpp"
+#include "moreau/fluids/fluid_neighbors.hpp"
+#include "moreau/fluids/fluid_velocity.hpp"
 
 namespace moreau {
 
@@ -52,18 +56,29 @@ void update_velocity(const Model& model, State& state, Real h) {
     if (model.particle_inv_mass[p] > 0) state.velocity[p] = (state.position[p] - state.substep_start[p]) / h;
 }
 
+[[noreturn]] void report_divergence(const State& state, const std::string& object, Index particle, const Vec3& x,
+                                    const Vec3& v, Real limit) {
+  const bool finite = x.allFinite() && v.allFinite();
+  throw NumericalError(fmt::format(
+      "simulation diverged at step {} (t = {:.6g} s) in object '{}': particle {} has {} "
+      "(limit {} m/s, settings.max_speed); try more substeps, a smaller dt or softer materials",
+      state.step, state.time, object, particle,
+      finite ? fmt::format("speed {:.3g} m/s", v.norm()) : std::string("a non-finite position or velocity"), limit));
+}
+
 void check_state(const Model& model, const State& state) {
   const Real limit = model.settings.max_speed;
+  const FluidState& fluid = state.fluid;
+  for (Index i = 0; i < fluid.count; ++i) {
+    if (fluid.position[i].allFinite() && fluid.velocity[i].allFinite() && fluid.velocity[i].norm() <= limit) continue;
+    const FluidPhase& phase = model.fluid.phases[fluid.phase[i]];
+    report_divergence(state, model.objects[phase.object].name, fluid.id[i], fluid.position[i], fluid.velocity[i], limit);
+  }
   for (Index p = 0; p < model.particle_count(); ++p) {
     const bool finite = state.position[p].allFinite() && state.velocity[p].allFinite();
     if (finite && state.velocity[p].norm() <= limit) continue;
     const ObjectInfo& obj = model.objects[model.particle_object[p]];
-    throw NumericalError(fmt::format(
-        "simulation diverged at step {} (t = {:.6g} s) in object '{}': particle {} has {} "
-        "(limit {} m/s, settings.max_speed); try more substeps, a smaller dt or softer materials",
-        state.step, state.time, obj.name, p - obj.particle_begin,
-        finite ? fmt::format("speed {:.3g} m/s", state.velocity[p].norm()) : std::string("a non-finite position or velocity"),
-        limit));
+    report_divergence(state, obj.name, p - obj.particle_begin, state.position[p], state.velocity[p], limit);
   }
 }
 
@@ -80,6 +95,8 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
   const Real h = dt / substeps;
   const SubstepContext ctx{state.position.data(), state.substep_start.data(), model.particle_inv_mass.data(), h};
   const Real start_time = state.time;
+  const bool fluids = !model.fluid.empty();
+  FluidState& fluid = state.fluid;
 
 #pragma omp parallel num_threads(solver_thread_count(model))
   {
@@ -90,7 +107,13 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
     for (int sub = 0; sub < substeps; ++sub) {
       const Real substep_end = start_time + (sub + 1) * h;
       predict(model, state, h);
+      if (fluids) predict_fluid(model, fluid, h);
       lap(Stage::predict);
+      if (fluids) {
+        if (model.fluid.boundary.moving) place_boundary_samples(model, fluid, substep_end);
+        update_fluid_neighbors(model, fluid, substep_end);
+        lap(Stage::fluid_neighbors);
+      }
       for (int it = 0; it < iterations; ++it) {
         project_distance(model.distance, state.distance_lambda.data(), ctx);
         lap(Stage::distance);
@@ -109,15 +132,26 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
         lap(Stage::particle_contacts);
         project_collider_contacts(model, state, ctx, substep_end);
         lap(Stage::collider_contacts);
+        if (fluids) {
+          project_fluid_density(model, fluid, h);
+          apply_fluid_corrections(model, fluid, h, substep_end);
+          lap(Stage::fluid_density);
+        }
       }
       update_velocity(model, state, h);
+      if (fluids) update_fluid_velocity(fluid, h);
       lap(Stage::update_velocity);
       particle_contact_velocities(model, state, h);
       collider_contact_velocities(model, state, h);
 #pragma omp barrier
       lap(Stage::velocity_pass);
     }
+    if (fluids) {
+      apply_fluid_velocity_corrections(model, fluid, dt);
+      lap(Stage::fluid_velocity);
+    }
   }
+  if (fluids) fluid_cfl_number(model, fluid, h);
 
   state.time = start_time + dt;
   state.step += 1;

@@ -1,0 +1,63 @@
+#pragma once
+// What the scene fixes about the fluids: their phases (one per fluid object), the particles they
+// start with, the sampled collider walls, the coupled solid particles and the solver constants.
+//
+// All fluid particles share one radius r (lattice spacing 2 r, rest volume V = (2 r)^3) and one
+// kernel support h = 4 r; phases differ in rest density (mass m = rho0 V), viscosity and
+// vorticity confinement. Fluid particles live in their own arrays (FluidState), which are
+// re-sorted along a z-order curve whenever the neighbour lists are rebuilt.
+#include <string>
+#include <vector>
+
+#include "moreau/fluids/sph_kernel.hpp"
+#include "moreau/math/types.hpp"
+
+namespace moreau {
+
+struct FluidPhase {
+  Index object = -1;               // scene object
+  Real rest_density = 1000;        // rho0, kg/m^3
+  Real particle_mass = 0;          // kg, rho0 V
+  Real xsph = 0;                   // XSPH velocity smoothing c, applied once per step (dimensionless)
+  Real viscosity = 0;              // kinematic viscosity nu, m^2/s
+  Real vorticity = 0;              // vorticity-confinement strength epsilon, m/s (see fluid_velocity.hpp)
+  Real relaxation = 0;             // epsilon of the density constraint, 1/(kg m^2) (scaled, see density_constraint.hpp)
+  Real tensile_scale = 0;          // rho0 g_ref h V, Pa m^3 (scale of s_corr; density_constraint.hpp)
+};
+
+/// Collider walls sampled with particles (Akinci et al. 2012): each sample carries the volume
+/// V_b = 1 / sum_k W(x_b - x_k) over the samples k of its neighbourhood, so a wall contributes
+/// the density of the fluid it replaces and the fluid next to it is not particle-deficient.
+struct FluidBoundarySamples {
+  std::vector<Vec3> local_position;  // m, offset from the collider position (world axes; colliders do not rotate)
+  std::vector<Real> volume;          // m^3
+  std::vector<Index> collider;       // index into Model::colliders
+  bool moving = false;               // some sample belongs to a kinematic collider
+
+  Index size() const { return static_cast<Index>(volume.size()); }
+};
+
+struct FluidModel {
+  Real particle_radius = 0;        // r, m
+  Real particle_volume = 0;        // V = (2 r)^3, m^3
+  CubicSplineKernel kernel;        // support h = 4 r
+  Real neighbor_skin_fraction = 0;    // skin / h (settings.fluid.neighbor_skin); 0: lists per substep, as PBF
+  Real neighbor_skin = 0;          // m: lists hold pairs closer than h + skin; rebuilt when a particle moved skin/2
+  Real tensile_k = 0.1;            // s_corr = -k (W(r)/W(dq h))^4 (Macklin & Mueller 2013, sec. 4)
+  Real tensile_inv_w_dq = 1;       // 1 / W(dq h) with dq = 0.2, m^3
+  Real cfl_limit = 0.4;            // warn when max |v| h / (2 r) exceeds it (Bender's PBD uses 0.4)
+
+  std::vector<FluidPhase> phases;
+  // Initial particles.
+  std::vector<Vec3> initial_position, initial_velocity;  // m, m/s
+  std::vector<Index> initial_phase;
+  Index capacity = 0;              // particles the state reserves (initial + emitted)
+
+  FluidBoundarySamples boundary;
+
+  bool empty() const { return phases.empty(); }
+  Index initial_count() const { return static_cast<Index>(initial_position.size()); }
+  Real support() const { return kernel.h; }
+};
+
+}  // namespace moreau

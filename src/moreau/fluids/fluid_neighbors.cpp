@@ -1,0 +1,140 @@
+#include "moreau/fluids/fluid_neighbors.hpp"
+
+#include <algorithm>
+
+#include "moreau/model/model.hpp"
+
+namespace moreau {
+
+namespace {
+
+// Moves values[k] <- values[order[k]] for the first n entries, through a same-sized scratch buffer.
+template <class T>
+void permute(std::vector<T>& values, std::vector<T>& scratch, const std::vector<Index>& order, Index n) {
+  for (Index k = 0; k < n; ++k) scratch[k] = values[order[k]];
+  values.swap(scratch);
+}
+
+bool moved_past_skin(const Model& model, const FluidState& fluid, Real time) {
+  const FluidModel& fm = model.fluid;
+  const Real limit2 = 0.25 * fm.neighbor_skin * fm.neighbor_skin;
+  for (Index i = 0; i < fluid.count; ++i)
+    if ((fluid.position[i] - fluid.listed_position[i]).squaredNorm() > limit2) return true;
+  if (fm.boundary.moving)
+    for (const Collider& c : model.colliders)
+      if (((time - fluid.listed_time) * c.velocity).squaredNorm() > limit2) return true;
+  return false;
+}
+
+// Sorts the live particles along the z-order curve and carries every per-particle array along.
+void sort_particles(const Model& model, FluidState& fluid) {
+  const Index n = fluid.count;
+  fluid.fluid_grid.build(fluid.position.data(), n, fluid.frame);
+  const std::vector<Index>& order = fluid.fluid_grid.order();
+  permute(fluid.position, fluid.scratch_vec, order, n);
+  permute(fluid.velocity, fluid.scratch_vec, order, n);
+  permute(fluid.substep_start, fluid.scratch_vec, order, n);
+  permute(fluid.phase, fluid.scratch_index, order, n);
+  permute(fluid.id, fluid.scratch_index, order, n);
+  permute(fluid.inv_mass, fluid.scratch_real, order, n);
+  permute(fluid.pressure, fluid.scratch_real, order, n);
+  permute(fluid.density, fluid.scratch_real, order, n);
+  std::copy_n(fluid.position.begin(), n, fluid.listed_position.begin());
+  (void)model;
+}
+
+// Writes row i of `lists` with the points of `ranges` (mapped through `map`, or identity) that lie
+// within sqrt(r2) of x_i, skipping `self`. Returns the true count (may exceed the stride).
+template <class Map>
+Index fill_row(FixedStrideLists& lists, Index i, const Vec3& xi, const Vec3* x, const CellRange* ranges,
+               int range_count, Real r2, Index self, Map&& map) {
+  Index* row = lists.entries.data() + static_cast<std::size_t>(i) * lists.stride;
+  Index count = 0;
+  for (int r = 0; r < range_count; ++r)
+    for (Index k = ranges[r].first; k < ranges[r].second; ++k) {
+      const Index j = map(k);
+      if (j == self || (x[j] - xi).squaredNorm() >= r2) continue;
+      if (count < lists.stride) row[count] = j;
+      ++count;
+    }
+  return count;
+}
+
+void fill_rows(const Model& model, FluidState& fluid) {
+  const FluidModel& fm = model.fluid;
+  const Real radius = fm.support() + fm.neighbor_skin;
+  const Real r2 = radius * radius;
+  const CellGrid& grid = fluid.fluid_grid;
+  const bool walls = fm.boundary.size() > 0;
+  const std::vector<Index>& boundary_order = fluid.boundary_grid.order();
+  const Index cells = grid.cell_count();
+#pragma omp for schedule(static)
+  for (Index c = 0; c < cells; ++c) {
+    CellRange fluid_ranges[27], wall_ranges[27];
+    const int nf = grid.neighbor_ranges(grid.cell_coord(c), fluid_ranges);
+    const int nb = walls ? fluid.boundary_grid.neighbor_ranges(grid.cell_coord(c), wall_ranges) : 0;
+    for (Index i = grid.cell_begin(c); i < grid.cell_begin(c + 1); ++i) {
+      const Vec3 xi = fluid.position[i];
+      fluid.fluid_neighbors.count[i] = fill_row(fluid.fluid_neighbors, i, xi, fluid.position.data(), fluid_ranges, nf,
+                                                r2, i, [](Index k) { return k; });
+      fluid.boundary_neighbors.count[i] =
+          fill_row(fluid.boundary_neighbors, i, xi, fluid.boundary_position.data(), wall_ranges, nb, r2, -1,
+                   [&](Index k) { return boundary_order[k]; });
+    }
+  }
+}
+
+// Grows a list's rows to hold its longest row (plus headroom). Returns true if it grew.
+bool grow_if_overflowed(FixedStrideLists& lists, Index n) {
+  Index longest = 0;
+  for (Index i = 0; i < n; ++i) longest = std::max(longest, lists.count[i]);
+  if (longest <= lists.stride) return false;
+  lists.stride = longest + longest / 4 + 8;
+  lists.entries.resize(lists.count.size() * static_cast<std::size_t>(lists.stride));
+  return true;
+}
+
+}  // namespace
+
+void place_boundary_samples(const Model& model, FluidState& fluid, Real time) {
+  const FluidBoundarySamples& b = model.fluid.boundary;
+  const Index n = b.size();
+#pragma omp for schedule(static)
+  for (Index k = 0; k < n; ++k) {
+    const Collider& c = model.colliders[b.collider[k]];
+    fluid.boundary_position[k] = c.position_at(time) + b.local_position[k];
+  }
+}
+
+bool update_fluid_neighbors(const Model& model, FluidState& fluid, Real time) {
+  const FluidModel& fm = model.fluid;
+  const bool moving_walls = fm.boundary.moving;
+#pragma omp single
+  {
+    fluid.rebuilding = fluid.lists_stale || moved_past_skin(model, fluid, time);
+    if (fluid.rebuilding) {
+      sort_particles(model, fluid);
+      fluid.listed_time = time;
+      fluid.lists_stale = false;
+      ++fluid.list_builds;
+    }
+  }
+  if (!fluid.rebuilding) return false;
+  if (moving_walls || !fluid.boundary_grid_built) {
+    place_boundary_samples(model, fluid, time);
+#pragma omp single
+    {
+      fluid.boundary_grid.build(fluid.boundary_position.data(), fm.boundary.size(), fluid.frame);
+      fluid.boundary_grid_built = true;
+    }
+  }
+  fill_rows(model, fluid);
+#pragma omp single
+  fluid.rebuilding = grow_if_overflowed(fluid.fluid_neighbors, fluid.count) |
+                     grow_if_overflowed(fluid.boundary_neighbors, fluid.count);
+  if (fluid.rebuilding) fill_rows(model, fluid);
+#pragma omp barrier
+  return true;
+}
+
+}  // namespace moreau

@@ -1,0 +1,42 @@
+#include "moreau/fluids/fluid_state.hpp"
+
+namespace moreau {
+
+FluidState make_fluid_state(const FluidModel& fm) {
+  FluidState s;
+  const std::size_t capacity = fm.capacity;
+  s.count = fm.initial_count();
+  s.position.assign(capacity, Vec3::Zero());
+  s.velocity.assign(capacity, Vec3::Zero());
+  s.phase.assign(capacity, 0);
+  s.id.assign(capacity, 0);
+  s.inv_mass.assign(capacity, 0);
+  for (Index i = 0; i < s.count; ++i) {
+    s.position[i] = fm.initial_position[i];
+    s.velocity[i] = fm.initial_velocity[i];
+    s.phase[i] = fm.initial_phase[i];
+    s.id[i] = i;
+    s.inv_mass[i] = 1 / fm.phases[s.phase[i]].particle_mass;
+  }
+  s.substep_start = s.position;
+  s.listed_position = s.position;
+  s.lambda.assign(capacity, 0);
+  s.pressure.assign(capacity, 0);
+  s.density.assign(capacity, 0);
+  s.correction.assign(capacity, Vec3::Zero());
+  s.scratch_vec.assign(capacity, Vec3::Zero());
+  s.scratch_index.assign(capacity, 0);
+  s.scratch_real.assign(capacity, 0);
+  s.boundary_position.assign(fm.boundary.size(), Vec3::Zero());
+  // Rows sized for a compressed neighbourhood; they grow (once) if a row ever overflows.
+  s.fluid_neighbors.stride = 64;
+  s.fluid_neighbors.count.assign(capacity, 0);
+  s.fluid_neighbors.entries.assign(capacity * s.fluid_neighbors.stride, 0);
+  s.boundary_neighbors.stride = 48;
+  s.boundary_neighbors.count.assign(capacity, 0);
+  s.boundary_neighbors.entries.assign(capacity * s.boundary_neighbors.stride, 0);
+  s.frame = GridFrame{Vec3::Zero(), fm.support() + fm.neighbor_skin};
+  return s;
+}
+
+}  // namespace moreau

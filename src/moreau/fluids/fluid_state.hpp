@@ -1,0 +1,60 @@
+#pragma once
+// What a step changes about the fluids. Arrays hold `capacity` entries; the first `count` are live.
+// Whenever the neighbour lists are rebuilt, the live particles are re-sorted along the z-order
+// curve of the neighbour grid (every per-particle array moves together; `id` keeps each
+// particle's original number for output).
+#include <vector>
+
+#include "moreau/fluids/fluid_model.hpp"
+#include "moreau/geometry/cell_grid.hpp"
+
+namespace moreau {
+
+/// Neighbour lists with a fixed row length per particle: row i holds count[i] entries starting at
+/// i * stride. Rows are written by their own particle only (parallel, deterministic, no prefix sum).
+struct FixedStrideLists {
+  Index stride = 0;
+  std::vector<Index> count;
+  std::vector<Index> entries;
+
+  const Index* row(Index i) const { return entries.data() + static_cast<std::size_t>(i) * stride; }
+};
+
+struct FluidState {
+  Index count = 0;
+  std::vector<Vec3> position, velocity;  // m, m/s
+  std::vector<Vec3> substep_start;       // m
+  std::vector<Vec3> listed_position;     // m, positions when the lists were built
+  std::vector<Index> phase, id;
+  std::vector<Real> inv_mass;            // 1/kg (a copy of the phase's, sorted with the particles)
+  std::vector<Real> lambda;              // density multiplier of the current iteration, kg m^2
+  std::vector<Real> pressure;            // Pa, -sum over the substep's iterations of lambda / (V h^2)
+  std::vector<Real> density;             // kg/m^3 at the last evaluation
+  std::vector<Vec3> correction;          // m, Jacobi position correction of the current iteration
+  std::vector<Vec3> scratch_vec;         // m or m/s, reorder and velocity-pass scratch
+  std::vector<Index> scratch_index;
+  std::vector<Real> scratch_real;
+
+  // Collider wall samples in world space at the time of the current substep.
+  std::vector<Vec3> boundary_position;
+
+  // Neighbour search.
+  GridFrame frame;
+  CellGrid fluid_grid, boundary_grid;
+  bool boundary_grid_built = false;
+  FixedStrideLists fluid_neighbors;     // fluid j of fluid i, |x_i - x_j| < h + skin at the build
+  FixedStrideLists boundary_neighbors;  // wall sample b of fluid i
+  bool lists_stale = true;              // forces a rebuild (start, emitted particles)
+  bool rebuilding = false;              // shared decision of the current update
+  Real listed_time = 0;                 // s, time of the last build
+  long list_builds = 0;
+
+  // Time-step monitor.
+  Real max_cfl = 0;                     // max over the run of max|v| h_sub / (2 r)
+  long cfl_violations = 0;              // steps whose CFL number exceeded the limit
+};
+
+/// Sizes every buffer for the model's capacity and places the initial particles.
+FluidState make_fluid_state(const FluidModel& fluid);
+
+}  // namespace moreau

@@ -1,0 +1,130 @@
+// Fluid objects: particles on a lattice of spacing 2 r filling blocks or a closed mesh, and the
+// phase constants; finish_fluids() then samples the collider walls and scales the solver constants.
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "moreau/fluids/boundary_sampling.hpp"
+#include "moreau/fluids/density_constraint.hpp"
+#include "moreau/geometry/mesh_readers.hpp"
+#include "moreau/geometry/point_in_mesh.hpp"
+#include "moreau/scene/object_builders.hpp"
+
+namespace moreau {
+
+namespace {
+
+// Lattice points (spacing d) centred in [lo, hi]: floor(L / d) points per axis, each the centre of
+// a cube of volume d^3 inside the box, so the particles represent the box volume.
+void fill_block(const Vec3& lo, const Vec3& hi, Real d, std::vector<Vec3>& out) {
+  int n[3];
+  Vec3 first;
+  for (int a = 0; a < 3; ++a) {
+    const Real length = hi[a] - lo[a];
+    n[a] = static_cast<int>(std::floor(length / d + 1e-9));
+    first[a] = lo[a] + 0.5 * (length - n[a] * d) + 0.5 * d;
+  }
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i) out.push_back(first + d * Vec3(i, j, k));
+}
+
+void read_block(const JsonObject& block, Real d, std::vector<Vec3>& out) {
+  const Vec3 lo = block.vec3("min"), hi = block.vec3("max");
+  if ((hi - lo).minCoeff() < d)
+    block.fail("max", fmt::format("the block must be at least one particle spacing 2r = {} m wide along every axis", d));
+  block.finish();
+  fill_block(lo, hi, d, out);
+}
+
+}  // namespace
+
+void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx) {
+  Model& model = ctx.model;
+  FluidModel& fm = model.fluid;
+  info.kind = ObjectKind::fluid;
+
+  const Real r = object.number("particle_radius", Range::positive());
+  if (fm.empty()) {
+    fm.particle_radius = r;
+    fm.particle_volume = 8 * r * r * r;
+    fm.kernel = CubicSplineKernel(4 * r);
+  } else if (std::abs(r - fm.particle_radius) > 1e-12 * fm.particle_radius) {
+    object.fail("particle_radius", fmt::format("all fluids share one particle radius; an earlier fluid uses {} m",
+                                               fm.particle_radius));
+  }
+  const Real d = 2 * r;
+
+  FluidPhase phase;
+  phase.object = static_cast<Index>(model.objects.size());
+  phase.rest_density = object.number("density", 1000.0, Range::positive());
+  phase.particle_mass = phase.rest_density * fm.particle_volume;
+  phase.viscosity = object.number("viscosity", 1.0e-6, Range::non_negative());
+  phase.xsph = object.number("xsph", 0.01, Range::closed(0, 1));
+  phase.vorticity = object.number("vorticity", 0.0, Range::non_negative());
+  const Real relaxation = object.number("relaxation", 0.01, Range::closed(0, 1e6));
+  const Real rest_denominator = fluid_rest_denominator(fm.kernel, d, phase.particle_mass);
+  phase.relaxation = relaxation * rest_denominator;
+  constexpr Real kReferenceGravity = 9.81;  // m/s^2
+  phase.tensile_scale = phase.rest_density * kReferenceGravity * fm.kernel.h * fm.particle_volume;
+
+  // Explicit viscosity is stable for dt <= 0.125 h^2 / nu (Monaghan 2005, sec. 6.4).
+  const Real viscous_limit = 0.125 * fm.kernel.h2 / std::max(phase.viscosity, 1e-300);
+  if (model.settings.dt > viscous_limit)
+    object.fail("viscosity", fmt::format("explicit viscosity needs dt <= 0.125 h^2 / nu = {:.3g} s with h = 4 r = {} m; "
+                                         "settings.dt is {} s: lower the viscosity or dt",
+                                         viscous_limit, fm.kernel.h, model.settings.dt));
+
+  std::vector<Vec3> points;
+  const int sources = object.has("block") + object.has("blocks") + object.has("mesh");
+  if (sources != 1) object.fail("block", "give exactly one of \"block\", \"blocks\" or \"mesh\" for the fluid's initial volume");
+  if (object.has("block")) read_block(object.object("block"), d, points);
+  for (const JsonObject& block : object.object_list("blocks")) read_block(block, d, points);
+  if (object.has("mesh")) {
+    // Lattice points inside a closed OBJ surface.
+    const std::string path = resolve_path(ctx, object.string("mesh"));
+    TriangleMesh mesh;
+    try {
+      mesh = read_obj_triangles(path);
+    } catch (const std::exception& e) {
+      object.fail("mesh", e.what());
+    }
+    Vec3 lo = mesh.vertices.front(), hi = lo;
+    for (const Vec3& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    std::vector<Vec3> lattice;
+    fill_block(lo, hi, d, lattice);
+    for (const Vec3& p : lattice)
+      if (point_in_closed_mesh(mesh, p)) points.push_back(p);
+  }
+  if (points.empty()) object.fail(object.has("mesh") ? "mesh" : "block", "the fluid volume holds no particle of spacing 2r");
+
+  const Vec3 velocity = object.vec3("velocity", Vec3::Zero());
+  info.fluid_phase = static_cast<Index>(fm.phases.size());
+  for (const Vec3& p : points) {
+    fm.initial_position.push_back(p);
+    fm.initial_velocity.push_back(velocity);
+    fm.initial_phase.push_back(info.fluid_phase);
+  }
+  fm.phases.push_back(phase);
+}
+
+void finish_fluids(Model& model) {
+  FluidModel& fm = model.fluid;
+  if (fm.empty()) return;
+  const Real d = 2 * fm.particle_radius;
+  fm.tensile_inv_w_dq = 1 / fm.kernel.value(0.2 * fm.kernel.h);
+  fm.neighbor_skin = fm.neighbor_skin_fraction * fm.kernel.h;
+  fm.capacity = fm.initial_count();
+
+  // Planes are sampled on a patch around the fluid, a few fluid extents wide.
+  Vec3 lo = fm.initial_position.front(), hi = lo;
+  for (const Vec3& p : fm.initial_position) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  for (const Vec3& p : model.particle_rest_position) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  const Real plane_half_size = std::max(1.0, 1.5 * (hi - lo).maxCoeff());
+  std::vector<Index> sampled;
+  for (Index c = 0; c < static_cast<Index>(model.colliders.size()); ++c)
+    if (model.colliders[c].fluid_walls) sampled.push_back(c);
+  fm.boundary = sample_fluid_walls(model.colliders, sampled, d, fm.kernel, 0.5 * (lo + hi), plane_half_size);
+}
+
+}  // namespace moreau
