@@ -1,5 +1,6 @@
 #include "moreau/fluids/density_constraint.hpp"
 
+#include "moreau/fluids/pair_chunks.hpp"
 #include "moreau/model/model.hpp"
 
 namespace moreau {
@@ -34,51 +35,60 @@ Real fluid_density_constraint(const Model& model, const FluidState& fluid, Index
   return fm.particle_volume * fluid_sum + wall_sum - 1;
 }
 
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void project_fluid_density(const Model& model, FluidState& fluid, Real h) {
   const FluidModel& fm = model.fluid;
   const CubicSplineKernel kernel = fm.kernel;
-  const Real V = fm.particle_volume;
+  const Real V = fm.particle_volume, pad = 2 * kernel.h;
   const Index n = fluid.count;
   const Vec3* x = fluid.position.data();
   const Vec3* xb = fluid.boundary_position.data();
   const Real* wall_volume = fm.boundary.volume.data();
   const Real* w = fluid.inv_mass.data();
+  const Real* mass = fluid.mass.data();
   const Index* phase = fluid.phase.data();
 
   // Multipliers.
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
     const Vec3 xi = x[i];
-    Real sum_w = kernel.sigma;  // W(0): the particle's own contribution
-    Vec3 grad_i = Vec3::Zero();
-    Real neighbor_term = 0;     // sum_j w_j |grad W_ij|^2
+    PairChunk chunk;
+    alignas(64) Real sum_w[kPairChunk] = {}, gx[kPairChunk] = {}, gy[kPairChunk] = {}, gz[kPairChunk] = {},
+                     w_grad2[kPairChunk] = {};
     const Index* row = fluid.fluid_neighbors.row(i);
     const Index count = fluid.fluid_neighbors.count[i];
-    for (Index k = 0; k < count; ++k) {
-      const Index j = row[k];
-      const Vec3 r = xi - x[j];
-      const Real r2 = r.squaredNorm();
-      if (r2 >= kernel.h2) continue;  // in the list's skin
-      Real wij, g;
-      kernel.evaluate(r2, wij, g);
-      sum_w += wij;
-      const Vec3 grad = g * r;
-      grad_i += grad;
-      neighbor_term += w[j] * grad.squaredNorm();
+    for (Index begin = 0; begin < count; begin += kPairChunk) {
+      chunk.load(xi, x, row, begin, count, pad, w);
+      chunk.evaluate(kernel);
+      #pragma omp simd
+      for (int k = 0; k < kPairChunk; ++k) {
+        const Real Gx = chunk.g[k] * chunk.rx[k], Gy = chunk.g[k] * chunk.ry[k], Gz = chunk.g[k] * chunk.rz[k];
+        sum_w[k] += chunk.w[k];
+        gx[k] += Gx, gy[k] += Gy, gz[k] += Gz;
+        w_grad2[k] += chunk.a[k] * (Gx * Gx + Gy * Gy + Gz * Gz);  // w_j |grad W_ij|^2
+      }
     }
-    Real C = V * sum_w - 1;
-    grad_i *= V;
+    Real C = V * (kernel.sigma + sum_lanes(sum_w)) - 1;  // sigma = W(0): the particle itself
+    Vec3 grad_i = V * Vec3(sum_lanes(gx), sum_lanes(gy), sum_lanes(gz));
+    const Real neighbor_term = sum_lanes(w_grad2);
+
+    // Walls: C += sum_b V_b W_ib, grad_i += sum_b V_b grad W_ib.
     const Index* walls = fluid.boundary_neighbors.row(i);
     const Index wall_count = fluid.boundary_neighbors.count[i];
-    for (Index k = 0; k < wall_count; ++k) {
-      const Index b = walls[k];
-      const Vec3 r = xi - xb[b];
-      const Real r2 = r.squaredNorm();
-      if (r2 >= kernel.h2) continue;  // in the list's skin
-      Real wib, g;
-      kernel.evaluate(r2, wib, g);
-      C += wall_volume[b] * wib;
-      grad_i += (wall_volume[b] * g) * r;
+    if (wall_count > 0) {
+      alignas(64) Real wall_w[kPairChunk] = {}, wx[kPairChunk] = {}, wy[kPairChunk] = {}, wz[kPairChunk] = {};
+      for (Index begin = 0; begin < wall_count; begin += kPairChunk) {
+        chunk.load(xi, xb, walls, begin, wall_count, pad, wall_volume);
+        chunk.evaluate(kernel);
+        #pragma omp simd
+        for (int k = 0; k < kPairChunk; ++k) {
+          const Real vg = chunk.a[k] * chunk.g[k];
+          wall_w[k] += chunk.a[k] * chunk.w[k];
+          wx[k] += vg * chunk.rx[k], wy[k] += vg * chunk.ry[k], wz[k] += vg * chunk.rz[k];
+        }
+      }
+      C += sum_lanes(wall_w);
+      grad_i += Vec3(sum_lanes(wx), sum_lanes(wy), sum_lanes(wz));
     }
     const FluidPhase& ph = fm.phases[phase[i]];
     fluid.density[i] = ph.rest_density * (1 + C);
@@ -87,42 +97,45 @@ void project_fluid_density(const Model& model, FluidState& fluid, Real h) {
   }
 
   // Corrections (positions are only read here, so a second array keeps this Jacobi).
-  const Real k_tensile = fm.tensile_k * h * h, inv_w_dq = fm.tensile_inv_w_dq;
+  // s_ij = -k (W_ij / W(dq h))^4 g_ref h (m_i + m_j) / 2 h_sub^2.
+  const Real tensile = fm.tensile_k * fm.tensile_reference * h * h * 0.5, inv_w_dq = fm.tensile_inv_w_dq;
   const Real* lambda = fluid.lambda.data();
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
     const Vec3 xi = x[i];
-    const Real lambda_i = lambda[i];
-    const Real half_scale_i = 0.5 * fm.phases[phase[i]].tensile_scale;
-    Vec3 dx = Vec3::Zero();
+    const Real lambda_i = lambda[i], m_i = mass[i];
+    PairChunk chunk;
+    alignas(64) Real dx[kPairChunk] = {}, dy[kPairChunk] = {}, dz[kPairChunk] = {};
     const Index* row = fluid.fluid_neighbors.row(i);
     const Index count = fluid.fluid_neighbors.count[i];
-    for (Index k = 0; k < count; ++k) {
-      const Index j = row[k];
-      const Vec3 r = xi - x[j];
-      const Real r2 = r.squaredNorm();
-      if (r2 >= kernel.h2) continue;  // in the list's skin
-      Real wij, g;
-      kernel.evaluate(r2, wij, g);
-      const Real t = wij * inv_w_dq, t2 = t * t;
-      const Real s_corr = -k_tensile * t2 * t2 * (half_scale_i + 0.5 * fm.phases[phase[j]].tensile_scale);
-      dx += ((lambda_i + lambda[j] + s_corr) * g) * r;
-    }
-    dx *= V;
-    if (lambda_i != 0) {
-      const Index* walls = fluid.boundary_neighbors.row(i);
-      const Index wall_count = fluid.boundary_neighbors.count[i];
-      for (Index k = 0; k < wall_count; ++k) {
-        const Index b = walls[k];
-        const Vec3 r = xi - xb[b];
-        const Real r2 = r.squaredNorm();
-        if (r2 >= kernel.h2) continue;
-        Real wib, g;
-        kernel.evaluate(r2, wib, g);
-        dx += (lambda_i * wall_volume[b] * g) * r;
+    for (Index begin = 0; begin < count; begin += kPairChunk) {
+      chunk.load(xi, x, row, begin, count, pad, lambda, mass);
+      chunk.evaluate(kernel);
+      #pragma omp simd
+      for (int k = 0; k < kPairChunk; ++k) {
+        const Real t = chunk.w[k] * inv_w_dq, t2 = t * t;
+        const Real s_corr = -tensile * t2 * t2 * (m_i + chunk.b[k]);
+        const Real coefficient = (lambda_i + chunk.a[k] + s_corr) * chunk.g[k];
+        dx[k] += coefficient * chunk.rx[k], dy[k] += coefficient * chunk.ry[k], dz[k] += coefficient * chunk.rz[k];
       }
     }
-    fluid.correction[i] = w[i] * dx;
+    Vec3 correction = V * Vec3(sum_lanes(dx), sum_lanes(dy), sum_lanes(dz));
+    const Index wall_count = fluid.boundary_neighbors.count[i];
+    if (lambda_i != 0 && wall_count > 0) {
+      const Index* walls = fluid.boundary_neighbors.row(i);
+      alignas(64) Real wx[kPairChunk] = {}, wy[kPairChunk] = {}, wz[kPairChunk] = {};
+      for (Index begin = 0; begin < wall_count; begin += kPairChunk) {
+        chunk.load(xi, xb, walls, begin, wall_count, pad, wall_volume);
+        chunk.evaluate(kernel);
+        #pragma omp simd
+        for (int k = 0; k < kPairChunk; ++k) {
+          const Real vg = chunk.a[k] * chunk.g[k];
+          wx[k] += vg * chunk.rx[k], wy[k] += vg * chunk.ry[k], wz[k] += vg * chunk.rz[k];
+        }
+      }
+      correction += lambda_i * Vec3(sum_lanes(wx), sum_lanes(wy), sum_lanes(wz));
+    }
+    fluid.correction[i] = w[i] * correction;
   }
 }
 

@@ -21,7 +21,7 @@
 // would grow with the number of substeps; here it is an artificial pressure
 //   p_s = k (W_ij / W(dq h))^4 rho0 g_ref h,     g_ref = 9.81 m/s^2 (10 % of the hydrostatic
 // pressure one kernel radius deep at k = 0.1), entering like a multiplier: lambda = -p V h_sub^2.
-// S_i = rho0_i g_ref h V is stored per phase (FluidPhase::tensile_scale, Pa m^3).
+// S_i = rho0_i g_ref h V = m_i g_ref h (FluidModel::tensile_reference = g_ref h).
 //
 // Units: C is dimensionless, lambda in kg m^2, w = 1/m in 1/kg. epsilon_i is scaled by
 // D_rest = (V^2 / m) sum_j |grad W_ij|^2, the denominator of a particle inside a rest lattice:

@@ -22,7 +22,6 @@ struct FluidPhase {
   Real viscosity = 0;              // kinematic viscosity nu, m^2/s
   Real vorticity = 0;              // vorticity-confinement strength epsilon, m/s (see fluid_velocity.hpp)
   Real relaxation = 0;             // epsilon of the density constraint, 1/(kg m^2) (scaled, see density_constraint.hpp)
-  Real tensile_scale = 0;          // rho0 g_ref h V, Pa m^3 (scale of s_corr; density_constraint.hpp)
 };
 
 /// Collider walls sampled with particles (Akinci et al. 2012): each sample carries the volume
@@ -45,6 +44,7 @@ struct FluidModel {
   Real neighbor_skin = 0;          // m: lists hold pairs closer than h + skin; rebuilt when a particle moved skin/2
   Real tensile_k = 0.1;            // s_corr = -k (W(r)/W(dq h))^4 (Macklin & Mueller 2013, sec. 4)
   Real tensile_inv_w_dq = 1;       // 1 / W(dq h) with dq = 0.2, m^3
+  Real tensile_reference = 0;      // g_ref h, m^2/s^2: s_corr's pressure scale per unit mass
   Real cfl_limit = 0.4;            // warn when max |v| h / (2 r) exceeds it (Bender's PBD uses 0.4)
 
   std::vector<FluidPhase> phases;

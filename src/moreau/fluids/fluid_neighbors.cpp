@@ -37,6 +37,7 @@ void sort_particles(const Model& model, FluidState& fluid) {
   permute(fluid.phase, fluid.scratch_index, order, n);
   permute(fluid.id, fluid.scratch_index, order, n);
   permute(fluid.inv_mass, fluid.scratch_real, order, n);
+  permute(fluid.mass, fluid.scratch_real, order, n);
   permute(fluid.pressure, fluid.scratch_real, order, n);
   permute(fluid.density, fluid.scratch_real, order, n);
   std::copy_n(fluid.position.begin(), n, fluid.listed_position.begin());

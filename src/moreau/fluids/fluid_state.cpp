@@ -11,12 +11,14 @@ FluidState make_fluid_state(const FluidModel& fm) {
   s.phase.assign(capacity, 0);
   s.id.assign(capacity, 0);
   s.inv_mass.assign(capacity, 0);
+  s.mass.assign(capacity, 0);
   for (Index i = 0; i < s.count; ++i) {
     s.position[i] = fm.initial_position[i];
     s.velocity[i] = fm.initial_velocity[i];
     s.phase[i] = fm.initial_phase[i];
     s.id[i] = i;
-    s.inv_mass[i] = 1 / fm.phases[s.phase[i]].particle_mass;
+    s.mass[i] = fm.phases[s.phase[i]].particle_mass;
+    s.inv_mass[i] = 1 / s.mass[i];
   }
   s.substep_start = s.position;
   s.listed_position = s.position;

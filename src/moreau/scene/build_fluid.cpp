@@ -65,8 +65,6 @@ void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
   const Real relaxation = object.number("relaxation", 0.01, Range::closed(0, 1e6));
   const Real rest_denominator = fluid_rest_denominator(fm.kernel, d, phase.particle_mass);
   phase.relaxation = relaxation * rest_denominator;
-  constexpr Real kReferenceGravity = 9.81;  // m/s^2
-  phase.tensile_scale = phase.rest_density * kReferenceGravity * fm.kernel.h * fm.particle_volume;
 
   // Explicit viscosity is stable for dt <= 0.125 h^2 / nu (Monaghan 2005, sec. 6.4).
   const Real viscous_limit = 0.125 * fm.kernel.h2 / std::max(phase.viscosity, 1e-300);
@@ -113,6 +111,8 @@ void finish_fluids(Model& model) {
   if (fm.empty()) return;
   const Real d = 2 * fm.particle_radius;
   fm.tensile_inv_w_dq = 1 / fm.kernel.value(0.2 * fm.kernel.h);
+  constexpr Real kReferenceGravity = 9.81;  // m/s^2 (density_constraint.hpp: s_corr)
+  fm.tensile_reference = kReferenceGravity * fm.kernel.h;
   fm.neighbor_skin = fm.neighbor_skin_fraction * fm.kernel.h;
   fm.capacity = fm.initial_count();
 
