@@ -1,9 +1,12 @@
-// Step-time benchmarks for the XPBD solver on the two reference scenes of issue 2:
+// Step-time benchmarks for the XPBD solver on the reference scenes of issues 2 and 3:
 //   cloth_50x50     a 50 x 50 particle cloth, 10 m x 10 m, two corners pinned, unit masses,
 //                   stretch + dihedral bending, dt 0.005 s, 5 substeps x 1 iteration
 //                   (and the same with isometric bending);
 //   fem_bar_30x5x5  a 30 x 5 x 5 node Neo-Hookean bar (2,320 tetrahedra), one end clamped,
-//                   same dt and substeps.
+//                   same dt and substeps;
+//   dam_break_30k / dam_break_120k  SPlisHSPlasH's stock dam break (1 m water cube in a
+//                   4 x 3 x 1.5 m tank), 29,791 / 117,649 particles, dt 1 ms, 1 substep x 3
+//                   Jacobi iterations (issue 3's targets; also reports ms per density iteration).
 // Each benchmark loads its scene from bench/scenes/, runs 10 warm-up steps, then times every
 // step of a fixed-length run. Besides Google Benchmark's mean time it reports the median and the
 // slowest step (ms), the 99th percentile over the median, and the share of each solver stage, so
@@ -66,6 +69,13 @@ void run_steps(benchmark::State& bench, const std::string& scene_file, bool unit
     const double share = timer.seconds(static_cast<moreau::Stage>(s)) / total;
     if (share >= 0.01) bench.counters[std::string(moreau::kStageNames[s]) + "_%"] = 100 * share;
   }
+  if (!scene.model.fluid.empty()) {
+    // Per Jacobi iteration of the density constraint (lambda pass + correction pass + apply), and
+    // throughput in particle-steps per second (the issue's unit).
+    const double iterations = static_cast<double>(step_ms.size()) * scene.model.settings.substeps * scene.model.settings.iterations;
+    bench.counters["ms_per_density_iteration"] = 1e3 * timer.seconds(moreau::Stage::fluid_density) / iterations;
+    bench.counters["Mparticle_steps_per_s"] = scene.state.fluid.count / (median * 1e3);
+  }
 }
 
 void BM_Cloth50x50(benchmark::State& bench) { run_steps(bench, "cloth_50x50.json", true); }
@@ -73,11 +83,16 @@ void BM_Cloth50x50Isometric(benchmark::State& bench) {
   run_steps(bench, "cloth_50x50.json", true, {"objects.cloth.material.bending_model=\"isometric\""});
 }
 void BM_FemBar30x5x5(benchmark::State& bench) { run_steps(bench, "fem_bar_30x5x5.json", false); }
+void BM_DamBreak30k(benchmark::State& bench) { run_steps(bench, "dam_break_30k.json", false); }
+void BM_DamBreak120k(benchmark::State& bench) { run_steps(bench, "dam_break_120k.json", false); }
 
 // 2,000 steps = 10 s of simulated time: the cloth falls, swings and settles; the bar sags and rings.
 BENCHMARK(BM_Cloth50x50)->Arg(1)->Arg(2)->Iterations(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_Cloth50x50Isometric)->Arg(1)->Arg(2)->Iterations(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_FemBar30x5x5)->Arg(1)->Arg(2)->Iterations(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
+// Issue 3's dam break (SPlisHSPlasH's stock scene): 490 timed steps after 10 warm-up = 0.5 s.
+BENCHMARK(BM_DamBreak30k)->Arg(1)->Arg(2)->Iterations(490)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DamBreak120k)->Arg(1)->Arg(2)->Iterations(490)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 

@@ -97,6 +97,56 @@ TEST(CommandLine, ExplosionExitsWithCodeThreeNamingStepTimeAndObject) {
   EXPECT_NE(r.output.find("step"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("'sheet'"), std::string::npos) << r.output;
 }
+TEST(CommandLine, FluidInputErrorsNameTheirKey) {
+  const std::string tank = R"({"name": "tank", "kind": "collider", "inside": true,
+      "shape": {"type": "box", "center": [0, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}})";
+  auto scene = [&](const std::string& fluids) {
+    return R"({"name": "f", "settings": {"dt": 0.005}, "objects": [)" + tank + ", " + fluids + "]}";
+  };
+  const std::string water = R"({"name": "w", "kind": "fluid", "particle_radius": 0.05,
+      "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})";
+  expect_bad_input("radii", scene(water + R"(, {"name": "oil", "kind": "fluid", "particle_radius": 0.04, "density": 800,
+      "block": {"min": [0, 0, 0], "max": [0.5, 0.5, 0.5]}})"),
+                   {"objects[2].particle_radius", "share one particle radius"});
+  expect_bad_input("no_volume", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05})"),
+                   {"objects[1].block", "exactly one of"});
+  expect_bad_input("viscous", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "viscosity": 10,
+      "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})"),
+                   {"objects[1].viscosity", "0.125 h^2 / nu"});
+  expect_bad_input("inside_plane", R"({"name": "f", "objects": [{"name": "p", "kind": "collider", "inside": true,
+      "shape": {"type": "plane"}}]})",
+                   {"objects[0].inside", "plane has no inside"});
+  expect_bad_input("probe_kind", scene(water).replace(scene(water).size() - 1, 1,
+                                                      R"(, "probes": [{"name": "h", "type": "fluid_height", "object": "tank", "at": [0, 0, 0]}]})"),
+                   {"probes[0].object", "fluid object"});
+}
+
+TEST(CommandLine, FluidRunWritesParticlesAndWarnsAboutCfl) {
+  // dt = 20 ms with 1 substep: water falling 0.4 m reaches ~2.8 m/s, CFL = 2.8 * 0.02 / 0.1 > 0.4.
+  const std::string scene = write_scene("fluid_ok", R"({"name": "drop", "settings": {"dt": 0.02, "substeps": 1, "duration": 0.4},
+    "objects": [{"name": "tank", "kind": "collider", "inside": true,
+                 "shape": {"type": "box", "center": [0, 0.5, 0], "half_extents": [0.3, 0.5, 0.3]}},
+                {"name": "water", "kind": "fluid", "particle_radius": 0.05,
+                 "block": {"min": [-0.2, 0.4, -0.2], "max": [0.2, 0.8, 0.2]}}],
+    "probes": [{"name": "n", "type": "particle_count", "object": "water"},
+               {"name": "out", "type": "escaped", "object": "water", "box": {"min": [-0.3, 0, -0.3], "max": [0.3, 1, 0.3]}}]})");
+  const std::string out = fs::path(scene).parent_path() / "out";
+  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", scene, out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("CFL number"), std::string::npos) << r.output;
+  EXPECT_TRUE(fs::exists(fs::path(out) / "frames/water_000000.vtp"));
+  std::ifstream run(fs::path(out) / "run.json");
+  const auto j = nlohmann::json::parse(run);
+  EXPECT_EQ(j["counts"]["fluid_particles"], 64);
+  EXPECT_GT(j["fluid"]["steps_over_cfl_limit"].get<int>(), 0);
+  EXPECT_GT(j["fluid"]["max_cfl_number"].get<double>(), 0.4);
+  std::ifstream csv(fs::path(out) / "probes.csv");
+  std::string header, line, last;
+  std::getline(csv, header);
+  while (std::getline(csv, line)) last = line;
+  EXPECT_EQ(header, "time,n,out");
+  EXPECT_EQ(last.substr(last.find(',')), ",64,0");
+}
 
 TEST(CommandLine, VersionHelpAndOutputDirectory) {
   EXPECT_EQ(test::run_moreau("--version").exit_code, 0);
