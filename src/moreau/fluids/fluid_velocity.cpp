@@ -1,5 +1,6 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 
+#include "moreau/fluids/pair_chunks.hpp"
 #include "moreau/model/model.hpp"
 
 namespace moreau {
@@ -20,6 +21,7 @@ Vec3 fluid_vorticity(const Model& model, const FluidState& fluid, Index i) {
   return fm.particle_volume * omega;
 }
 
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Real dt) {
   const FluidModel& fm = model.fluid;
   bool any_viscosity = false, any_xsph = false, any_vorticity = false;
@@ -31,44 +33,68 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Rea
   if (!any_viscosity && !any_xsph && !any_vorticity) return;
 
   const CubicSplineKernel kernel = fm.kernel;
-  const Real V = fm.particle_volume;
+  const Real V = fm.particle_volume, pad = 2 * kernel.h;
   const Real eta2 = 0.01 * kernel.h2;
   const Index n = fluid.count;
   const Vec3* x = fluid.position.data();
   const Vec3* v = fluid.velocity.data();
-  std::vector<Vec3>& omega = fluid.correction;  // free between steps: holds the vorticity here
+  std::vector<Vec3>& omega = fluid.correction;        // free between steps: the vorticity here
+  std::vector<Real>& omega_norm = fluid.scratch_real;  // and its magnitude
   if (any_vorticity) {
 #pragma omp for schedule(static)
-    for (Index i = 0; i < n; ++i) omega[i] = fluid_vorticity(model, fluid, i);
+    for (Index i = 0; i < n; ++i) {
+      omega[i] = fluid_vorticity(model, fluid, i);
+      omega_norm[i] = omega[i].norm();
+    }
   }
 
   std::vector<Vec3>& v_new = fluid.scratch_vec;
+  const Real* w = fluid.inv_mass.data();
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
     const FluidPhase& pi = fm.phases[fluid.phase[i]];
     const Vec3 xi = x[i], vi = v[i];
-    const Real w_i = fluid.inv_mass[i];
-    const Real omega_i = any_vorticity ? omega[i].norm() : 0;
-    Vec3 viscous = Vec3::Zero(), smoothing = Vec3::Zero(), eta = Vec3::Zero();
+    const Real w_i = w[i];
+    const Real omega_i = any_vorticity ? omega_norm[i] : 0;
+    // nu_ij is the mean of the two phases' viscosities; XSPH uses particle i's coefficient.
+    PairChunk chunk;
+    alignas(64) Real vx[kPairChunk], vy[kPairChunk], vz[kPairChunk], nu[kPairChunk];
+    alignas(64) Real visc_x[kPairChunk] = {}, visc_y[kPairChunk] = {}, visc_z[kPairChunk] = {};
+    alignas(64) Real smooth_x[kPairChunk] = {}, smooth_y[kPairChunk] = {}, smooth_z[kPairChunk] = {};
+    alignas(64) Real eta_x[kPairChunk] = {}, eta_y[kPairChunk] = {}, eta_z[kPairChunk] = {};
     const Index* row = fluid.fluid_neighbors.row(i);
     const Index count = fluid.fluid_neighbors.count[i];
-    for (Index k = 0; k < count; ++k) {
-      const Index j = row[k];
-      const Vec3 r = xi - x[j];
-      const Real r2 = r.squaredNorm();
-      if (r2 >= kernel.h2) continue;
-      Real wij, g;
-      kernel.evaluate(r2, wij, g);
-      const Vec3 vij = vi - v[j];
-      const Real mu = 2 * w_i / (w_i + fluid.inv_mass[j]);
-      const Real nu = 0.5 * (pi.viscosity + fm.phases[fluid.phase[j]].viscosity);
-      viscous += (mu * nu * vij.dot(r) / (r2 + eta2) * g) * r;
-      smoothing -= (mu * wij) * vij;
-      if (any_vorticity) eta += ((omega[j].norm() - omega_i) * g) * r;
+    for (Index begin = 0; begin < count; begin += kPairChunk) {
+      chunk.load(xi, x, row, begin, count, pad, w, any_vorticity ? omega_norm.data() : nullptr);
+      for (int k = 0; k < kPairChunk; ++k) {
+        const bool live = begin + k < count;
+        const Index j = live ? row[begin + k] : i;
+        vx[k] = v[j].x(), vy[k] = v[j].y(), vz[k] = v[j].z();
+        nu[k] = 0.5 * (pi.viscosity + fm.phases[fluid.phase[j]].viscosity);
+      }
+      chunk.evaluate(kernel);
+#pragma omp simd
+      for (int k = 0; k < kPairChunk; ++k) {
+        // Pad lanes have w = g = 0 and inverse mass 0 (mu = 2): every term vanishes.
+        const Real dvx = vi.x() - vx[k], dvy = vi.y() - vy[k], dvz = vi.z() - vz[k];
+        const Real mu = 2 * w_i / (w_i + chunk.a[k]);
+        const Real r2 = chunk.rx[k] * chunk.rx[k] + chunk.ry[k] * chunk.ry[k] + chunk.rz[k] * chunk.rz[k];
+        const Real visc = mu * nu[k] * (dvx * chunk.rx[k] + dvy * chunk.ry[k] + dvz * chunk.rz[k]) / (r2 + eta2) * chunk.g[k];
+        visc_x[k] += visc * chunk.rx[k], visc_y[k] += visc * chunk.ry[k], visc_z[k] += visc * chunk.rz[k];
+        const Real smooth = mu * chunk.w[k];
+        smooth_x[k] -= smooth * dvx, smooth_y[k] -= smooth * dvy, smooth_z[k] -= smooth * dvz;
+        const Real e = (chunk.b[k] - omega_i) * chunk.g[k];
+        eta_x[k] += e * chunk.rx[k], eta_y[k] += e * chunk.ry[k], eta_z[k] += e * chunk.rz[k];
+      }
     }
+    const Vec3 viscous(sum_lanes(visc_x), sum_lanes(visc_y), sum_lanes(visc_z));
+    const Vec3 smoothing(sum_lanes(smooth_x), sum_lanes(smooth_y), sum_lanes(smooth_z));
     Vec3 vi_new = vi + (dt * 10 * V) * viscous + (pi.xsph * V) * smoothing;
-    const Real eta_norm = eta.norm();
-    if (pi.vorticity > 0 && eta_norm > 0) vi_new += dt * pi.vorticity * (eta / eta_norm).cross(omega[i]);
+    if (pi.vorticity > 0) {
+      const Vec3 eta(sum_lanes(eta_x), sum_lanes(eta_y), sum_lanes(eta_z));
+      const Real eta_norm = eta.norm();
+      if (eta_norm > 0) vi_new += dt * pi.vorticity * (eta / eta_norm).cross(omega[i]);
+    }
     v_new[i] = vi_new;
   }
 #pragma omp for schedule(static)
