@@ -8,10 +8,13 @@ namespace moreau {
 
 namespace {
 
-// Moves values[k] <- values[order[k]] for the first n entries, through a same-sized scratch buffer.
+// Moves values[k] <- values[order[k]] for the first n entries, through a same-sized scratch
+// buffer. Every thread calls it (orphaned omp for, then one thread swaps the buffers).
 template <class T>
 void permute(std::vector<T>& values, std::vector<T>& scratch, const std::vector<Index>& order, Index n) {
+#pragma omp for schedule(static)
   for (Index k = 0; k < n; ++k) scratch[k] = values[order[k]];
+#pragma omp single
   values.swap(scratch);
 }
 
@@ -26,10 +29,9 @@ bool moved_past_skin(const Model& model, const FluidState& fluid, Real time) {
   return false;
 }
 
-// Sorts the live particles along the z-order curve and carries every per-particle array along.
-void sort_particles(const Model& model, FluidState& fluid) {
+// Carries every per-particle array along the grid's z-order sort (every thread).
+void permute_particles(FluidState& fluid) {
   const Index n = fluid.count;
-  fluid.fluid_grid.build(fluid.position.data(), n, fluid.frame);
   const std::vector<Index>& order = fluid.fluid_grid.order();
   permute(fluid.position, fluid.scratch_vec, order, n);
   permute(fluid.velocity, fluid.scratch_vec, order, n);
@@ -40,23 +42,28 @@ void sort_particles(const Model& model, FluidState& fluid) {
   permute(fluid.mass, fluid.scratch_real, order, n);
   permute(fluid.pressure, fluid.scratch_real, order, n);
   permute(fluid.density, fluid.scratch_real, order, n);
-  std::copy_n(fluid.position.begin(), n, fluid.listed_position.begin());
-  (void)model;
+#pragma omp for schedule(static)
+  for (Index i = 0; i < n; ++i) fluid.listed_position[i] = fluid.position[i];
 }
 
 // Writes row i of `lists` with the points of `ranges` (mapped through `map`, or identity) that lie
-// within sqrt(r2) of x_i, skipping `self`. Returns the true count (may exceed the stride).
+// within sqrt(r2) of x_i, skipping `self`. Returns the true count (may exceed the row's capacity,
+// stride - 1). Branch-free: every candidate is written at the current end of the row and the end
+// advances only if it is a neighbour (about one candidate in six is), so no branch mispredicts;
+// the row's last slot takes the writes once it is full.
 template <class Map>
 Index fill_row(FixedStrideLists& lists, Index i, const Vec3& xi, const Vec3* x, const CellRange* ranges,
                int range_count, Real r2, Index self, Map&& map) {
   Index* row = lists.entries.data() + static_cast<std::size_t>(i) * lists.stride;
+  const Index last = lists.stride - 1;
   Index count = 0;
   for (int r = 0; r < range_count; ++r)
     for (Index k = ranges[r].first; k < ranges[r].second; ++k) {
       const Index j = map(k);
-      if (j == self || (x[j] - xi).squaredNorm() >= r2) continue;
-      if (count < lists.stride) row[count] = j;
-      ++count;
+      const Vec3 d = x[j] - xi;
+      const bool take = (j != self) & (d.x() * d.x() + d.y() * d.y() + d.z() * d.z() < r2);
+      row[count < last ? count : last] = j;
+      count += take;
     }
   return count;
 }
@@ -85,11 +92,12 @@ void fill_rows(const Model& model, FluidState& fluid) {
   }
 }
 
-// Grows a list's rows to hold its longest row (plus headroom). Returns true if it grew.
+// Grows a list's rows to hold its longest row (plus headroom and the spare slot fill_row writes
+// into). Returns true if it grew.
 bool grow_if_overflowed(FixedStrideLists& lists, Index n) {
   Index longest = 0;
   for (Index i = 0; i < n; ++i) longest = std::max(longest, lists.count[i]);
-  if (longest <= lists.stride) return false;
+  if (longest <= lists.stride - 1) return false;
   lists.stride = longest + longest / 4 + 8;
   lists.entries.resize(lists.count.size() * static_cast<std::size_t>(lists.stride));
   return true;
@@ -114,13 +122,14 @@ bool update_fluid_neighbors(const Model& model, FluidState& fluid, Real time) {
   {
     fluid.rebuilding = fluid.lists_stale || moved_past_skin(model, fluid, time);
     if (fluid.rebuilding) {
-      sort_particles(model, fluid);
+      fluid.fluid_grid.build(fluid.position.data(), fluid.count, fluid.frame);
       fluid.listed_time = time;
       fluid.lists_stale = false;
       ++fluid.list_builds;
     }
   }
   if (!fluid.rebuilding) return false;
+  permute_particles(fluid);
   if (moving_walls || !fluid.boundary_grid_built) {
     place_boundary_samples(model, fluid, time);
 #pragma omp single

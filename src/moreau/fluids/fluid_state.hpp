@@ -11,7 +11,8 @@
 namespace moreau {
 
 /// Neighbour lists with a fixed row length per particle: row i holds count[i] entries starting at
-/// i * stride. Rows are written by their own particle only (parallel, deterministic, no prefix sum).
+/// i * stride (at most stride - 1: the last slot is the fill's spare). Rows are written by their
+/// own particle only (parallel, deterministic, no prefix sum).
 struct FixedStrideLists {
   Index stride = 0;
   std::vector<Index> count;
