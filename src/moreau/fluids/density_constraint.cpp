@@ -22,19 +22,6 @@ Real fluid_rest_denominator(const CubicSplineKernel& kernel, Real spacing, Real 
   return volume * volume / mass * sum;
 }
 
-Real fluid_density_constraint(const Model& model, const FluidState& fluid, Index i) {
-  const FluidModel& fm = model.fluid;
-  const CubicSplineKernel& kernel = fm.kernel;
-  const Vec3 xi = fluid.position[i];
-  Real fluid_sum = kernel.value(0), wall_sum = 0;
-  const Index* row = fluid.fluid_neighbors.row(i);
-  for (Index k = 0; k < fluid.fluid_neighbors.count[i]; ++k) fluid_sum += kernel.value((xi - fluid.position[row[k]]).norm());
-  const Index* walls = fluid.boundary_neighbors.row(i);
-  for (Index k = 0; k < fluid.boundary_neighbors.count[i]; ++k)
-    wall_sum += fm.boundary.volume[walls[k]] * kernel.value((xi - fluid.boundary_position[walls[k]]).norm());
-  return fm.particle_volume * fluid_sum + wall_sum - 1;
-}
-
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 void project_fluid_density(const Model& model, FluidState& fluid, Real h) {
   const FluidModel& fm = model.fluid;
@@ -72,9 +59,11 @@ void project_fluid_density(const Model& model, FluidState& fluid, Real h) {
     Vec3 grad_i = V * Vec3(sum_lanes(gx), sum_lanes(gy), sum_lanes(gz));
     const Real neighbor_term = sum_lanes(w_grad2);
 
-    // Walls: C += sum_b V_b W_ib, grad_i += sum_b V_b grad W_ib.
+    // Walls: C += sum_b V_b W_ib, grad_i += sum_b V_b grad W_ib (kept for the correction pass:
+    // positions do not change between the two passes).
     const Index* walls = fluid.boundary_neighbors.row(i);
     const Index wall_count = fluid.boundary_neighbors.count[i];
+    Vec3 wall_gradient = Vec3::Zero();
     if (wall_count > 0) {
       alignas(64) Real wall_w[kPairChunk] = {}, wx[kPairChunk] = {}, wy[kPairChunk] = {}, wz[kPairChunk] = {};
       for (Index begin = 0; begin < wall_count; begin += kPairChunk) {
@@ -88,8 +77,10 @@ void project_fluid_density(const Model& model, FluidState& fluid, Real h) {
         }
       }
       C += sum_lanes(wall_w);
-      grad_i += Vec3(sum_lanes(wx), sum_lanes(wy), sum_lanes(wz));
+      wall_gradient = Vec3(sum_lanes(wx), sum_lanes(wy), sum_lanes(wz));
+      grad_i += wall_gradient;
     }
+    fluid.wall_gradient[i] = wall_gradient;
     const FluidPhase& ph = fm.phases[phase[i]];
     fluid.density[i] = ph.rest_density * (1 + C);
     const Real denominator = w[i] * grad_i.squaredNorm() + V * V * neighbor_term + ph.relaxation;
@@ -120,21 +111,7 @@ void project_fluid_density(const Model& model, FluidState& fluid, Real h) {
       }
     }
     Vec3 correction = V * Vec3(sum_lanes(dx), sum_lanes(dy), sum_lanes(dz));
-    const Index wall_count = fluid.boundary_neighbors.count[i];
-    if (lambda_i != 0 && wall_count > 0) {
-      const Index* walls = fluid.boundary_neighbors.row(i);
-      alignas(64) Real wx[kPairChunk] = {}, wy[kPairChunk] = {}, wz[kPairChunk] = {};
-      for (Index begin = 0; begin < wall_count; begin += kPairChunk) {
-        chunk.load(xi, xb, walls, begin, wall_count, pad, wall_volume);
-        chunk.evaluate(kernel);
-        #pragma omp simd
-        for (int k = 0; k < kPairChunk; ++k) {
-          const Real vg = chunk.a[k] * chunk.g[k];
-          wx[k] += vg * chunk.rx[k], wy[k] += vg * chunk.ry[k], wz[k] += vg * chunk.rz[k];
-        }
-      }
-      correction += lambda_i * Vec3(sum_lanes(wx), sum_lanes(wy), sum_lanes(wz));
-    }
+    correction += lambda_i * fluid.wall_gradient[i];
     fluid.correction[i] = w[i] * correction;
   }
 }

@@ -43,7 +43,4 @@ void project_fluid_density(const Model& model, FluidState& fluid, Real h);
 /// scene builder to scale the relaxation.
 Real fluid_rest_denominator(const CubicSplineKernel& kernel, Real spacing, Real mass);
 
-/// Density of particle i (kg/m^3) from the current positions, and the constraint value C_i.
-Real fluid_density_constraint(const Model& model, const FluidState& fluid, Index i);
-
 }  // namespace moreau

@@ -20,6 +20,7 @@ void permute(std::vector<T>& values, std::vector<T>& scratch, const std::vector<
 
 bool moved_past_skin(const Model& model, const FluidState& fluid, Real time) {
   const FluidModel& fm = model.fluid;
+  if (fm.neighbor_skin <= 0) return true;  // lists hold no spare distance: rebuild every substep
   const Real limit2 = 0.25 * fm.neighbor_skin * fm.neighbor_skin;
   for (Index i = 0; i < fluid.count; ++i)
     if ((fluid.position[i] - fluid.listed_position[i]).squaredNorm() > limit2) return true;
@@ -131,7 +132,8 @@ bool update_fluid_neighbors(const Model& model, FluidState& fluid, Real time) {
   if (!fluid.rebuilding) return false;
   permute_particles(fluid);
   if (moving_walls || !fluid.boundary_grid_built) {
-    place_boundary_samples(model, fluid, time);
+    // Moving walls were placed by the step at the start of this substep; static ones once, here.
+    if (!moving_walls) place_boundary_samples(model, fluid, time);
 #pragma omp single
     {
       fluid.boundary_grid.build(fluid.boundary_position.data(), fm.boundary.size(), fluid.frame);

@@ -15,7 +15,8 @@ namespace moreau {
 struct Model;
 
 /// Rebuilds the lists if needed. Call inside an OpenMP parallel region (every thread), after the
-/// substep's prediction. `time` places kinematic colliders. Returns true if it rebuilt.
+/// substep's prediction and, when walls move, after place_boundary_samples for `time`.
+/// Returns true if it rebuilt.
 bool update_fluid_neighbors(const Model& model, FluidState& fluid, Real time);
 
 /// Places the wall samples of kinematic colliders at `time` (every thread; orphaned omp for).

@@ -26,6 +26,7 @@ FluidState make_fluid_state(const FluidModel& fm) {
   s.pressure.assign(capacity, 0);
   s.density.assign(capacity, 0);
   s.correction.assign(capacity, Vec3::Zero());
+  s.wall_gradient.assign(capacity, Vec3::Zero());
   s.scratch_vec.assign(capacity, Vec3::Zero());
   s.scratch_index.assign(capacity, 0);
   s.scratch_real.assign(capacity, 0);

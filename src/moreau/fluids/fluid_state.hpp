@@ -32,6 +32,7 @@ struct FluidState {
   std::vector<Real> pressure;            // Pa, -sum over the substep's iterations of lambda / (V h^2)
   std::vector<Real> density;             // kg/m^3 at the last evaluation
   std::vector<Vec3> correction;          // m, Jacobi position correction of the current iteration
+  std::vector<Vec3> wall_gradient;       // 1/m, sum_b V_b grad W_ib of the current iteration
   std::vector<Vec3> scratch_vec;         // m or m/s, reorder and velocity-pass scratch
   std::vector<Index> scratch_index;
   std::vector<Real> scratch_real;

@@ -40,7 +40,10 @@ struct PairChunk {
     }
   }
 
-  /// w and g of every lane (branch-free cubic spline; see sph_kernel.hpp).
+  /// w and g of every lane: the cubic spline of sph_kernel.hpp in branch-free form, with
+  /// a = max(1 - q, 0), b = max(1/2 - q, 0):
+  ///   W = sigma (2 a^3 - 8 b^3),   (dW/dr) / r = sigma / h (24 b^2 - 6 a^2) / r
+  /// (zero for q >= 1 without a test, so pad lanes and list entries in the skin cost no branch).
   void evaluate(const CubicSplineKernel& kernel) {
     const Real sigma = kernel.sigma, inv_h = kernel.inv_h, floor2 = 1e-12 * kernel.h2;
     #pragma omp simd

@@ -7,14 +7,12 @@
 //   dW/dr = sigma / h (18 q^2 - 12 q)   0 <= q <= 1/2
 //         = sigma / h (-6 (1 - q)^2)    1/2 < q <= 1
 //   grad W(r_vec) = dW/dr r_vec / |r_vec|   (gradient with respect to its argument r_vec = x_i - x_j)
-// Branch-free form used in the hot loops (same polynomial; a = max(1 - q, 0), b = max(1/2 - q, 0)):
-//   W = sigma (2 a^3 - 8 b^3),   dW/dr = sigma / h (-6 a^2 + 24 b^2)
-// It is zero for q >= 1 without a test, so list entries beyond h (the Verlet skin) cost no branch.
+// The solver's pair loops evaluate the same polynomial branch-free, several pairs at once
+// (pair_chunks.hpp); this scalar form is the reference (set-up, vorticity, tests).
 // The same kernel serves density and its gradient, so the density constraint's gradient is the
 // exact derivative of its value (PBF's poly6/spiky pair is not). With h = 4 r (r the particle
 // radius, lattice spacing 2 r) a particle of a regular lattice sees about 30 neighbours and
 // sum_j V_j W_ij = 1 to within 1 % (tests/test_fluids.cpp measures it).
-#include <algorithm>
 #include <cmath>
 
 #include "moreau/math/types.hpp"
@@ -44,16 +42,6 @@ struct CubicSplineKernel {
     if (q <= 0.5) return scale * (18 * q - 12);
     const Real a = 1 - q;
     return scale * (-6 * a * a / q);
-  }
-
-  /// Both at once from the squared distance, without branches (the hot loops' form). Any r2 >= 0;
-  /// r2 below 1e-12 h^2 is treated as that (coincident points get a finite, tiny gradient).
-  void evaluate(Real r2, Real& w, Real& grad_factor) const {
-    const Real r = std::sqrt(std::max(r2, 1e-12 * h2));
-    const Real q = r * inv_h;
-    const Real a = std::max(1 - q, 0.0), b = std::max(0.5 - q, 0.0);
-    w = sigma * (2 * a * a * a - 8 * b * b * b);
-    grad_factor = sigma * inv_h * (24 * b * b - 6 * a * a) / r;
   }
 };
 

@@ -23,15 +23,6 @@ std::vector<std::string> probe_columns(const ProbeSpec& probe) {
 
 namespace {
 
-// Live fluid particles of `object` (a fluid), or of every fluid (-1).
-template <class F>
-void for_each_fluid_particle(const Model& model, const State& state, Index object, F&& f) {
-  const Index phase = object >= 0 ? model.objects[object].fluid_phase : -1;
-  if (object >= 0 && phase < 0) return;
-  for (Index i = 0; i < state.fluid.count; ++i)
-    if (phase < 0 || state.fluid.phase[i] == phase) f(i);
-}
-
 // Positions of the object's particles (fluid or not), or of every simulated particle (-1).
 template <class F>
 void for_each_position(const Model& model, const State& state, Index object, F&& f) {

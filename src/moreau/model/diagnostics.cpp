@@ -13,12 +13,8 @@ void for_each_mass_point(const Model& model, const State& state, Index object, b
   const Index end = object >= 0 ? model.objects[object].particle_end : model.particle_count();
   for (Index p = begin; p < end; ++p)
     if (!moving_only || model.particle_inv_mass[p] > 0) f(model.particle_mass[p], state.position[p], state.velocity[p]);
-  const Index phase = object >= 0 ? model.objects[object].fluid_phase : -1;
-  if (object >= 0 && phase < 0) return;
   const FluidState& fluid = state.fluid;
-  for (Index i = 0; i < fluid.count; ++i)
-    if (phase < 0 || fluid.phase[i] == phase)
-      f(model.fluid.phases[fluid.phase[i]].particle_mass, fluid.position[i], fluid.velocity[i]);
+  for_each_fluid_particle(model, state, object, [&](Index i) { f(fluid.mass[i], fluid.position[i], fluid.velocity[i]); });
 }
 }  // namespace
 

@@ -5,6 +5,16 @@
 
 namespace moreau {
 
+/// Calls f(i) for the live fluid particles of `object` (a fluid), of every fluid (-1), or of none
+/// (an object that is not a fluid).
+template <class F>
+void for_each_fluid_particle(const Model& model, const State& state, Index object, F&& f) {
+  const Index phase = object >= 0 ? model.objects[object].fluid_phase : -1;
+  if (object >= 0 && phase < 0) return;
+  for (Index i = 0; i < state.fluid.count; ++i)
+    if (phase < 0 || state.fluid.phase[i] == phase) f(i);
+}
+
 Real kinetic_energy(const Model& model, const State& state, Index object);
 /// Gravitational potential energy -sum m g.x (zero at the origin), J.
 Real potential_energy(const Model& model, const State& state, Index object);
