@@ -95,6 +95,24 @@ std::vector<Vec3> sample_collider_surface(const Collider& c, Real spacing, Real 
   return {};
 }
 
+std::vector<Real> akinci_volumes(const std::vector<Vec3>& world, Real spacing, const CubicSplineKernel& kernel) {
+  // S_flat: the sum over a flat square layer at the fluid spacing (the sample itself included).
+  Real flat_sum = 0;
+  const int reach = static_cast<int>(std::ceil(kernel.h / spacing));
+  for (int a = -reach; a <= reach; ++a)
+    for (int b = -reach; b <= reach; ++b) flat_sum += kernel.value(spacing * std::hypot(a, b));
+  const Real fluid_volume = spacing * spacing * spacing;
+  NeighborSearch search;
+  search.build(world, kernel.h);
+  std::vector<Real> volume(world.size());
+  for (Index b = 0; b < static_cast<Index>(world.size()); ++b) {
+    Real sum = kernel.value(0);
+    for (Index k = 0; k < search.count(b); ++k) sum += kernel.value((world[b] - world[search.neighbors(b)[k]]).norm());
+    volume[b] = fluid_volume * flat_sum / sum;
+  }
+  return volume;
+}
+
 FluidBoundarySamples sample_fluid_walls(const std::vector<Collider>& colliders, const std::vector<Index>& sampled,
                                         Real spacing, const CubicSplineKernel& kernel, const Vec3& plane_center,
                                         Real plane_half_size) {
@@ -109,21 +127,8 @@ FluidBoundarySamples sample_fluid_walls(const std::vector<Collider>& colliders, 
     }
     samples.moving |= collider.velocity.squaredNorm() > 0;
   }
-  // S_flat: the sum over a flat square layer at the fluid spacing (the sample itself included).
-  Real flat_sum = 0;
-  const int reach = static_cast<int>(std::ceil(kernel.h / spacing));
-  for (int a = -reach; a <= reach; ++a)
-    for (int b = -reach; b <= reach; ++b) flat_sum += kernel.value(spacing * std::hypot(a, b));
-  const Real fluid_volume = spacing * spacing * spacing;
   // Volumes over all samples together, so walls that meet count each other.
-  NeighborSearch search;
-  search.build(world, kernel.h);
-  samples.volume.resize(world.size());
-  for (Index b = 0; b < static_cast<Index>(world.size()); ++b) {
-    Real sum = kernel.value(0);
-    for (Index k = 0; k < search.count(b); ++k) sum += kernel.value((world[b] - world[search.neighbors(b)[k]]).norm());
-    samples.volume[b] = fluid_volume * flat_sum / sum;
-  }
+  samples.volume = akinci_volumes(world, spacing, kernel);
   return samples;
 }
 

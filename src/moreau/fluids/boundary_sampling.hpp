@@ -28,6 +28,10 @@ namespace moreau {
 std::vector<Vec3> sample_collider_surface(const Collider& collider, Real spacing, Real depth, const Vec3& plane_center,
                                           Real plane_half_size);
 
+/// Akinci volumes V_b = V S_flat / sum_k W(x_b - x_k) of samples at `world` positions (all of
+/// them count each other), for a fluid lattice of the given spacing (V = spacing^3).
+std::vector<Real> akinci_volumes(const std::vector<Vec3>& world, Real spacing, const CubicSplineKernel& kernel);
+
 /// Samples the given colliders r = spacing / 2 inside their solid and computes the volumes.
 FluidBoundarySamples sample_fluid_walls(const std::vector<Collider>& colliders, const std::vector<Index>& sampled,
                                         Real spacing, const CubicSplineKernel& kernel, const Vec3& plane_center,

@@ -31,6 +31,9 @@ void project_fluid_density(const Model& model, FluidState& fluid, Real h) {
   const Vec3* x = fluid.position.data();
   const Vec3* xb = fluid.boundary_position.data();
   const Real* wall_volume = fm.boundary.volume.data();
+  const Vec3* xs = fluid.solid_position.data();
+  const Real* solid_volume = fm.solid.volume.data();
+  const Real* solid_inv_mass = fluid.solid_inv_mass.data();
   const Real* w = fluid.inv_mass.data();
   const Real* mass = fluid.mass.data();
   const Index* phase = fluid.phase.data();
@@ -80,10 +83,36 @@ void project_fluid_density(const Model& model, FluidState& fluid, Real h) {
       wall_gradient = Vec3(sum_lanes(wx), sum_lanes(wy), sum_lanes(wz));
       grad_i += wall_gradient;
     }
+    // Cloth and soft-body samples (solid_coupling.hpp): like walls, and they move, so each adds
+    // w_s V_s^2 |grad W_is|^2 to the denominator.
+    Real solid_term = 0;
+    const Index solid_count = fluid.solid_neighbors.count[i];
+    if (solid_count > 0) {
+      const Index* solids = fluid.solid_neighbors.row(i);
+      alignas(64) Real solid_w[kPairChunk] = {}, sx[kPairChunk] = {}, sy[kPairChunk] = {}, sz[kPairChunk] = {},
+                       s_grad2[kPairChunk] = {};
+      for (Index begin = 0; begin < solid_count; begin += kPairChunk) {
+        chunk.load(xi, xs, solids, begin, solid_count, pad, solid_volume, solid_inv_mass);
+        chunk.evaluate(kernel);
+        #pragma omp simd
+        for (int k = 0; k < kPairChunk; ++k) {
+          const Real vg = chunk.a[k] * chunk.g[k];
+          const Real Gx = vg * chunk.rx[k], Gy = vg * chunk.ry[k], Gz = vg * chunk.rz[k];
+          solid_w[k] += chunk.a[k] * chunk.w[k];
+          sx[k] += Gx, sy[k] += Gy, sz[k] += Gz;
+          s_grad2[k] += chunk.b[k] * (Gx * Gx + Gy * Gy + Gz * Gz);
+        }
+      }
+      C += sum_lanes(solid_w);
+      const Vec3 solid_gradient(sum_lanes(sx), sum_lanes(sy), sum_lanes(sz));
+      wall_gradient += solid_gradient;
+      grad_i += solid_gradient;
+      solid_term = sum_lanes(s_grad2);
+    }
     fluid.wall_gradient[i] = wall_gradient;
     const FluidPhase& ph = fm.phases[phase[i]];
     fluid.density[i] = ph.rest_density * (1 + C);
-    const Real denominator = w[i] * grad_i.squaredNorm() + V * V * neighbor_term + ph.relaxation;
+    const Real denominator = w[i] * grad_i.squaredNorm() + V * V * neighbor_term + solid_term + ph.relaxation;
     fluid.lambda[i] = C > 0 ? -C / denominator : 0;
   }
 

@@ -1,11 +1,13 @@
 #pragma once
 // What the scene fixes about the fluids: their phases (one per fluid object), the particles they
-// start with, the sampled collider walls, the coupled solid particles and the solver constants.
+// start with, the sampled collider walls, the sampled cloth and soft-body surfaces and the solver
+// constants.
 //
 // All fluid particles share one radius r (lattice spacing 2 r, rest volume V = (2 r)^3) and one
 // kernel support h = 4 r; phases differ in rest density (mass m = rho0 V), viscosity and
 // vorticity confinement. Fluid particles live in their own arrays (FluidState), which are
 // re-sorted along a z-order curve whenever the neighbour lists are rebuilt.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -36,6 +38,25 @@ struct FluidBoundarySamples {
   Index size() const { return static_cast<Index>(volume.size()); }
 };
 
+/// Cloth and soft-body surfaces sampled for the fluid (two-way coupling, solid_coupling.hpp). Each
+/// sample is a fixed barycentric combination of up to four particles of the model (a cloth
+/// triangle, or the soft-body tetrahedron that holds a point r inside the surface), so it moves
+/// with the solid and passes the fluid's push back to those particles.
+struct FluidSolidSamples {
+  std::vector<std::array<Index, 4>> particle;  // model particle indices (unused slots: weight 0)
+  std::vector<std::array<Real, 4>> weight;     // barycentric weights, summing to 1
+  std::vector<Real> volume;                    // m^3, Akinci volume (boundary_sampling.hpp)
+  std::vector<Real> inv_mass;                  // 1/kg, generalised: sum_k weight_k^2 w_k
+  std::vector<Index> object;                   // owning scene object
+  // Particle -> samples (CSR over `coupled_particle`), so each particle gathers its reaction.
+  std::vector<Index> coupled_particle;         // model particles touched by some sample
+  std::vector<Index> coupled_begin;            // coupled_particle.size() + 1 offsets
+  std::vector<Index> coupled_sample;
+  std::vector<Real> coupled_weight;
+
+  Index size() const { return static_cast<Index>(volume.size()); }
+};
+
 struct FluidModel {
   Real particle_radius = 0;        // r, m
   Real particle_volume = 0;        // V = (2 r)^3, m^3
@@ -45,6 +66,7 @@ struct FluidModel {
   Real tensile_k = 0.1;            // s_corr = -k (W(r)/W(dq h))^4 (Macklin & Mueller 2013, sec. 4)
   Real tensile_inv_w_dq = 1;       // 1 / W(dq h) with dq = 0.2, m^3
   Real tensile_reference = 0;      // g_ref h, m^2/s^2: s_corr's pressure scale per unit mass
+  Real solid_contact_distance = 0;  // m, 1.5 r: closest approach of a fluid particle to a solid sample
   Real cfl_limit = 0.4;            // warn when max |v| h / (2 r) exceeds it (Bender's PBD uses 0.4)
 
   std::vector<FluidPhase> phases;
@@ -54,6 +76,7 @@ struct FluidModel {
   Index capacity = 0;              // particles the state reserves (initial + emitted)
 
   FluidBoundarySamples boundary;
+  FluidSolidSamples solid;
 
   bool empty() const { return phases.empty(); }
   Index initial_count() const { return static_cast<Index>(initial_position.size()); }

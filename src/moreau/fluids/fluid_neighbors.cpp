@@ -74,14 +74,16 @@ void fill_rows(const Model& model, FluidState& fluid) {
   const Real radius = fm.support() + fm.neighbor_skin;
   const Real r2 = radius * radius;
   const CellGrid& grid = fluid.fluid_grid;
-  const bool walls = fm.boundary.size() > 0;
+  const bool walls = fm.boundary.size() > 0, solids = fm.solid.size() > 0;
   const std::vector<Index>& boundary_order = fluid.boundary_grid.order();
+  const std::vector<Index>& solid_order = fluid.solid_grid.order();
   const Index cells = grid.cell_count();
 #pragma omp for schedule(static)
   for (Index c = 0; c < cells; ++c) {
-    CellRange fluid_ranges[27], wall_ranges[27];
+    CellRange fluid_ranges[27], wall_ranges[27], solid_ranges[27];
     const int nf = grid.neighbor_ranges(grid.cell_coord(c), fluid_ranges);
     const int nb = walls ? fluid.boundary_grid.neighbor_ranges(grid.cell_coord(c), wall_ranges) : 0;
+    const int ns = solids ? fluid.solid_grid.neighbor_ranges(grid.cell_coord(c), solid_ranges) : 0;
     for (Index i = grid.cell_begin(c); i < grid.cell_begin(c + 1); ++i) {
       const Vec3 xi = fluid.position[i];
       fluid.fluid_neighbors.count[i] = fill_row(fluid.fluid_neighbors, i, xi, fluid.position.data(), fluid_ranges, nf,
@@ -89,6 +91,21 @@ void fill_rows(const Model& model, FluidState& fluid) {
       fluid.boundary_neighbors.count[i] =
           fill_row(fluid.boundary_neighbors, i, xi, fluid.boundary_position.data(), wall_ranges, nb, r2, -1,
                    [&](Index k) { return boundary_order[k]; });
+      fluid.solid_neighbors.count[i] = fill_row(fluid.solid_neighbors, i, xi, fluid.solid_position.data(),
+                                                solid_ranges, ns, r2, -1, [&](Index k) { return solid_order[k]; });
+    }
+  }
+  // The reverse lists: the fluid particles of each solid sample (the fluid is in grid order).
+  const CellGrid& solid_grid = fluid.solid_grid;
+  const Index solid_cells = solids ? solid_grid.cell_count() : 0;
+#pragma omp for schedule(static)
+  for (Index c = 0; c < solid_cells; ++c) {
+    CellRange fluid_ranges[27];
+    const int nf = grid.neighbor_ranges(solid_grid.cell_coord(c), fluid_ranges);
+    for (Index k = solid_grid.cell_begin(c); k < solid_grid.cell_begin(c + 1); ++k) {
+      const Index s = solid_order[k];
+      fluid.solid_fluids.count[s] = fill_row(fluid.solid_fluids, s, fluid.solid_position[s], fluid.position.data(),
+                                             fluid_ranges, nf, r2, -1, [](Index j) { return j; });
     }
   }
 }
@@ -121,7 +138,9 @@ bool update_fluid_neighbors(const Model& model, FluidState& fluid, Real time) {
   const bool moving_walls = fm.boundary.moving;
 #pragma omp single
   {
-    fluid.rebuilding = fluid.lists_stale || moved_past_skin(model, fluid, time);
+    // Solid samples move with cloth and soft bodies: their lists are rebuilt every substep, and
+    // the reverse lists need the fluid grid of the current positions, so the fluid's too.
+    fluid.rebuilding = fluid.lists_stale || fm.solid.size() > 0 || moved_past_skin(model, fluid, time);
     if (fluid.rebuilding) {
       fluid.fluid_grid.build(fluid.position.data(), fluid.count, fluid.frame);
       fluid.listed_time = time;
@@ -140,10 +159,16 @@ bool update_fluid_neighbors(const Model& model, FluidState& fluid, Real time) {
       fluid.boundary_grid_built = true;
     }
   }
+  if (fm.solid.size() > 0) {
+#pragma omp single
+    fluid.solid_grid.build(fluid.solid_position.data(), fm.solid.size(), fluid.frame);
+  }
   fill_rows(model, fluid);
 #pragma omp single
   fluid.rebuilding = grow_if_overflowed(fluid.fluid_neighbors, fluid.count) |
-                     grow_if_overflowed(fluid.boundary_neighbors, fluid.count);
+                     grow_if_overflowed(fluid.boundary_neighbors, fluid.count) |
+                     grow_if_overflowed(fluid.solid_neighbors, fluid.count) |
+                     grow_if_overflowed(fluid.solid_fluids, fm.solid.size());
   if (fluid.rebuilding) fill_rows(model, fluid);
 #pragma omp barrier
   return true;

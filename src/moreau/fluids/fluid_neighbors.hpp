@@ -6,7 +6,10 @@
 // A rebuild (1) sorts the live particles along the grid's z-order curve and permutes every fluid
 // array with that order, so the particles of one cell, and of nearby cells, are adjacent in memory;
 // (2) places the collider wall samples and (re)builds their grid when they move; (3) writes, for
-// each particle, its fluid neighbours and its wall-sample neighbours into fixed-length rows.
+// each particle, its fluid neighbours, its wall-sample and its solid-sample neighbours into
+// fixed-length rows, and for each cloth/soft-body sample its fluid particles (the reverse lists
+// the reaction is gathered over). Solid samples move every substep, so a scene with coupled
+// solids rebuilds every substep whatever the skin.
 // Rows are owned by their particle, so the parallel fill does not depend on the thread count.
 #include "moreau/fluids/fluid_state.hpp"
 
@@ -15,7 +18,8 @@ namespace moreau {
 struct Model;
 
 /// Rebuilds the lists if needed. Call inside an OpenMP parallel region (every thread), after the
-/// substep's prediction and, when walls move, after place_boundary_samples for `time`.
+/// substep's prediction, after place_solid_samples and, when walls move, after
+/// place_boundary_samples for `time`.
 /// Returns true if it rebuilt.
 bool update_fluid_neighbors(const Model& model, FluidState& fluid, Real time);
 

@@ -38,6 +38,17 @@ FluidState make_fluid_state(const FluidModel& fm) {
   s.boundary_neighbors.stride = 48;
   s.boundary_neighbors.count.assign(capacity, 0);
   s.boundary_neighbors.entries.assign(capacity * s.boundary_neighbors.stride, 0);
+  s.solid_position.assign(fm.solid.size(), Vec3::Zero());
+  s.solid_reaction.assign(fm.solid.size(), Vec3::Zero());
+  s.solid_contacts.assign(capacity, 0);
+  s.solid_inv_mass = fm.solid.inv_mass;
+  s.solid_share.assign(fm.solid.coupled_particle.empty() ? 0 : fm.solid.coupled_particle.back() + 1, 1.0);
+  s.solid_neighbors.stride = fm.solid.size() > 0 ? 48 : 1;
+  s.solid_neighbors.count.assign(capacity, 0);
+  s.solid_neighbors.entries.assign(capacity * s.solid_neighbors.stride, 0);
+  s.solid_fluids.stride = 64;
+  s.solid_fluids.count.assign(fm.solid.size(), 0);
+  s.solid_fluids.entries.assign(fm.solid.size() * s.solid_fluids.stride, 0);
   s.frame = GridFrame{Vec3::Zero(), fm.support() + fm.neighbor_skin};
   return s;
 }

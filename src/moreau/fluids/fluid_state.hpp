@@ -32,20 +32,29 @@ struct FluidState {
   std::vector<Real> pressure;            // Pa, -sum over the substep's iterations of lambda / (V h^2)
   std::vector<Real> density;             // kg/m^3 at the last evaluation
   std::vector<Vec3> correction;          // m, Jacobi position correction of the current iteration
-  std::vector<Vec3> wall_gradient;       // 1/m, sum_b V_b grad W_ib of the current iteration
+  std::vector<Vec3> wall_gradient;       // 1/m, sum_b V_b grad W_ib over wall and solid samples, current iteration
   std::vector<Vec3> scratch_vec;         // m or m/s, reorder and velocity-pass scratch
   std::vector<Index> scratch_index;
   std::vector<Real> scratch_real;
 
   // Collider wall samples in world space at the time of the current substep.
   std::vector<Vec3> boundary_position;
+  // Cloth and soft-body samples in world space (from the solid's current particle positions), and
+  // their reaction of the current iteration: -V_s sum_i lambda_i grad W(x_i - x_s), kg m (see solid_coupling.hpp).
+  std::vector<Vec3> solid_position;
+  std::vector<Vec3> solid_reaction;
+  std::vector<Real> solid_inv_mass;      // 1/kg per solid sample, this substep's split (split_solid_masses)
+  std::vector<Real> solid_share;         // per model particle: 1 / c_k of the split (coupled particles only)
+  std::vector<Index> solid_contacts;     // per fluid particle: solid samples it touches (project_solid_contacts)
 
   // Neighbour search.
   GridFrame frame;
-  CellGrid fluid_grid, boundary_grid;
+  CellGrid fluid_grid, boundary_grid, solid_grid;
   bool boundary_grid_built = false;
   FixedStrideLists fluid_neighbors;     // fluid j of fluid i, |x_i - x_j| < h + skin at the build
   FixedStrideLists boundary_neighbors;  // wall sample b of fluid i
+  FixedStrideLists solid_neighbors;     // solid sample s of fluid i
+  FixedStrideLists solid_fluids;        // fluid i of solid sample s (the reverse lists, for the reaction)
   bool lists_stale = true;              // forces a rebuild (start, emitted particles)
   bool rebuilding = false;              // shared decision of the current update
   Real listed_time = 0;                 // s, time of the last build

@@ -30,6 +30,7 @@ struct ObjectInfo {
   Index collider = -1;                        // index into Model::colliders (colliders only)
   Index fluid_phase = -1;                     // index into Model::fluid.phases (fluids only)
   bool self_collision = false;                // particle contacts within the object
+  bool fluid_coupling = true;                 // cloth / soft body: sampled as a two-way boundary of the fluids
   Real static_friction = 0.5, dynamic_friction = 0.5, restitution = 0;
 
   Index particle_count() const { return particle_end - particle_begin; }

@@ -79,6 +79,7 @@ void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
   add_particles(ctx, info, mesh.vertices, masses, radius, gap, object.vec3("velocity", Vec3::Zero()));
   info.kind = ObjectKind::cloth;
   info.self_collision = object.boolean("self_collision", true);
+  info.fluid_coupling = object.boolean("fluid_coupling", true);
   read_contact_material(object, info.static_friction, info.dynamic_friction, info.restitution);
   read_pins(object, info, ctx);
 

@@ -6,6 +6,7 @@
 
 #include "moreau/fluids/boundary_sampling.hpp"
 #include "moreau/fluids/density_constraint.hpp"
+#include "moreau/fluids/solid_sampling.hpp"
 #include "moreau/geometry/mesh_readers.hpp"
 #include "moreau/geometry/point_in_mesh.hpp"
 #include "moreau/scene/object_builders.hpp"
@@ -114,6 +115,7 @@ void finish_fluids(Model& model) {
   constexpr Real kReferenceGravity = 9.81;  // m/s^2 (density_constraint.hpp: s_corr)
   fm.tensile_reference = kReferenceGravity * fm.kernel.h;
   fm.neighbor_skin = fm.neighbor_skin_fraction * fm.kernel.h;
+  fm.solid_contact_distance = 1.5 * fm.particle_radius;  // solid_coupling.hpp
   fm.capacity = fm.initial_count();
 
   // Planes are sampled on a patch around the fluid, a few fluid extents wide.
@@ -125,6 +127,7 @@ void finish_fluids(Model& model) {
   for (Index c = 0; c < static_cast<Index>(model.colliders.size()); ++c)
     if (model.colliders[c].fluid_walls) sampled.push_back(c);
   fm.boundary = sample_fluid_walls(model.colliders, sampled, d, fm.kernel, 0.5 * (lo + hi), plane_half_size);
+  fm.solid = sample_fluid_solids(model, fm.particle_radius, fm.kernel);
 }
 
 }  // namespace moreau

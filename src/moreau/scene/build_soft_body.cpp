@@ -88,6 +88,7 @@ void build_soft_body(const JsonObject& object, ObjectInfo& info, SceneBuildConte
 
   info.kind = ObjectKind::soft_body;
   info.self_collision = object.boolean("self_collision", false);
+  info.fluid_coupling = object.boolean("fluid_coupling", true);
   read_contact_material(object, info.static_friction, info.dynamic_friction, info.restitution);
   read_pins(object, info, ctx);
 

@@ -10,6 +10,7 @@
 #include "moreau/fluids/fluid_motion.hpp"
 #include "moreau/fluids/fluid_neighbors.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
+#include "moreau/fluids/solid_coupling.hpp"
 
 namespace moreau {
 
@@ -95,7 +96,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
   const Real h = dt / substeps;
   const SubstepContext ctx{state.position.data(), state.substep_start.data(), model.particle_inv_mass.data(), h};
   const Real start_time = state.time;
-  const bool fluids = !model.fluid.empty();
+  const bool fluids = !model.fluid.empty(), coupled_solids = model.fluid.solid.size() > 0;
   FluidState& fluid = state.fluid;
 
 #pragma omp parallel num_threads(solver_thread_count(model))
@@ -111,7 +112,9 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
       lap(Stage::predict);
       if (fluids) {
         if (model.fluid.boundary.moving) place_boundary_samples(model, fluid, substep_end);
+        if (coupled_solids) place_solid_samples(model, fluid, state.position.data());
         update_fluid_neighbors(model, fluid, substep_end);
+        if (coupled_solids) split_solid_masses(model, fluid);
         lap(Stage::fluid_neighbors);
       }
       for (int it = 0; it < iterations; ++it) {
@@ -133,8 +136,14 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
         project_collider_contacts(model, state, ctx, substep_end);
         lap(Stage::collider_contacts);
         if (fluids) {
+          if (coupled_solids) place_solid_samples(model, fluid, state.position.data());
           project_fluid_density(model, fluid, h);
+          if (coupled_solids) apply_solid_reactions(model, fluid, state.position.data());
           apply_fluid_corrections(model, fluid, h, substep_end);
+          if (coupled_solids) {
+            place_solid_samples(model, fluid, state.position.data());
+            project_solid_contacts(model, fluid, state.position.data());
+          }
           lap(Stage::fluid_density);
         }
       }

@@ -1,0 +1,143 @@
+#include "moreau/fluids/solid_coupling.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "moreau/fluids/pair_chunks.hpp"
+#include "moreau/model/model.hpp"
+
+namespace moreau {
+
+namespace {
+
+// dx_p = w_p sum_s b_ps R_s for every particle of a coupled solid (the table lists each
+// particle's samples in a fixed order). Every thread; orphaned omp for.
+void move_solid_particles(const Model& model, const FluidState& fluid, Vec3* x) {
+  const FluidSolidSamples& s = model.fluid.solid;
+  const Index particles = static_cast<Index>(s.coupled_particle.size());
+#pragma omp for schedule(static)
+  for (Index q = 0; q < particles; ++q) {
+    const Index p = s.coupled_particle[q];
+    const Real w = model.particle_inv_mass[p];
+    if (w <= 0) continue;
+    Vec3 dx = Vec3::Zero();
+    for (Index e = s.coupled_begin[q]; e < s.coupled_begin[q + 1]; ++e)
+      dx += s.coupled_weight[e] * fluid.solid_reaction[s.coupled_sample[e]];
+    x[p] += w * dx;
+  }
+}
+
+}  // namespace
+
+void place_solid_samples(const Model& model, FluidState& fluid, const Vec3* x) {
+  const FluidSolidSamples& s = model.fluid.solid;
+  const Index n = s.size();
+#pragma omp for schedule(static)
+  for (Index k = 0; k < n; ++k) {
+    const auto& p = s.particle[k];
+    const auto& b = s.weight[k];
+    fluid.solid_position[k] = b[0] * x[p[0]] + b[1] * x[p[1]] + b[2] * x[p[2]] + b[3] * x[p[3]];
+  }
+}
+
+void split_solid_masses(const Model& model, FluidState& fluid) {
+  const FluidSolidSamples& s = model.fluid.solid;
+  const Index particles = static_cast<Index>(s.coupled_particle.size()), samples = s.size();
+  // c_k = max(1, sum_s b_sk n_s), n_s the fluid particles within h of sample s.
+#pragma omp for schedule(static)
+  for (Index q = 0; q < particles; ++q) {
+    Real pairs = 0;
+    for (Index e = s.coupled_begin[q]; e < s.coupled_begin[q + 1]; ++e)
+      pairs += s.coupled_weight[e] * fluid.solid_fluids.count[s.coupled_sample[e]];
+    fluid.solid_share[s.coupled_particle[q]] = 1 / std::max<Real>(1, pairs);
+  }
+  // w_s = sum_k b_k^2 w_k / c_k.
+#pragma omp for schedule(static)
+  for (Index k = 0; k < samples; ++k) {
+    Real w = 0;
+    for (int slot = 0; slot < 4; ++slot) {
+      const Index p = s.particle[k][slot];
+      const Real b = s.weight[k][slot];
+      if (b != 0) w += b * b * model.particle_inv_mass[p] * fluid.solid_share[p];
+    }
+    fluid.solid_inv_mass[k] = w;
+  }
+}
+
+void apply_solid_reactions(const Model& model, FluidState& fluid, Vec3* x) {
+  const FluidSolidSamples& s = model.fluid.solid;
+  const CubicSplineKernel kernel = model.fluid.kernel;
+  const Real pad = 2 * kernel.h;
+  const Index n = s.size();
+  const Vec3* xf = fluid.position.data();
+  const Real* lambda = fluid.lambda.data();
+  // R_s = -V_s sum_i lambda_i grad W(x_i - x_s), with grad W(r) = g(|r|) r.
+#pragma omp for schedule(static)
+  for (Index k = 0; k < n; ++k) {
+    const Index* row = fluid.solid_fluids.row(k);
+    const Index count = fluid.solid_fluids.count[k];
+    const Vec3 xs = fluid.solid_position[k];
+    PairChunk chunk;
+    alignas(64) Real rx[kPairChunk] = {}, ry[kPairChunk] = {}, rz[kPairChunk] = {};
+    for (Index begin = 0; begin < count; begin += kPairChunk) {
+      chunk.load(xs, xf, row, begin, count, pad, lambda);
+      chunk.evaluate(kernel);
+      #pragma omp simd
+      for (int l = 0; l < kPairChunk; ++l) {
+        // chunk.r = x_s - x_i = -(x_i - x_s)
+        const Real c = chunk.a[l] * chunk.g[l];
+        rx[l] += c * chunk.rx[l], ry[l] += c * chunk.ry[l], rz[l] += c * chunk.rz[l];
+      }
+    }
+    fluid.solid_reaction[k] = s.volume[k] * Vec3(sum_lanes(rx), sum_lanes(ry), sum_lanes(rz));
+  }
+  move_solid_particles(model, fluid, x);
+}
+
+void project_solid_contacts(const Model& model, FluidState& fluid, Vec3* x) {
+  const FluidModel& fm = model.fluid;
+  const FluidSolidSamples& s = fm.solid;
+  const Real reach = fm.solid_contact_distance, reach2 = reach * reach;
+  const Index n = fluid.count, samples = s.size();
+  const Real* w = fluid.inv_mass.data();
+  // The pair (i, s) in contact: p_is = (d_c - d) / (w_i + w_s) n_is / n_i, n_is = (x_i - x_s) / d.
+  auto pair_share = [&](Index i, Index k, const Vec3& xi, Vec3& p) {
+    const Vec3 r = xi - fluid.solid_position[k];
+    const Real d2 = r.squaredNorm();
+    if (d2 >= reach2) return false;
+    const Real d = std::sqrt(d2);
+    const Vec3 normal = d > 1e-9 * reach ? Vec3(r / d) : Vec3(model.settings.gravity.normalized() * -1.0);
+    p = (reach - d) / (w[i] + fluid.solid_inv_mass[k]) * normal;
+    return true;
+  };
+  // Fluid side: dx_i = w_i sum_s p_is (the contact count n_i kept for the solid side).
+#pragma omp for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    const Index* row = fluid.solid_neighbors.row(i);
+    const Index count = fluid.solid_neighbors.count[i];
+    const Vec3 xi = fluid.position[i];
+    Vec3 sum = Vec3::Zero(), p;
+    Index contacts = 0;
+    for (Index e = 0; e < count; ++e)
+      if (pair_share(i, row[e], xi, p)) sum += p, ++contacts;
+    fluid.solid_contacts[i] = contacts;
+    fluid.correction[i] = contacts > 0 ? Vec3(w[i] / contacts * sum) : Vec3::Zero();
+  }
+  // Solid side: R_s = -sum_i p_is.
+#pragma omp for schedule(static)
+  for (Index k = 0; k < samples; ++k) {
+    const Index* row = fluid.solid_fluids.row(k);
+    const Index count = fluid.solid_fluids.count[k];
+    Vec3 sum = Vec3::Zero(), p;
+    for (Index e = 0; e < count; ++e) {
+      const Index i = row[e];
+      if (pair_share(i, k, fluid.position[i], p)) sum -= p / fluid.solid_contacts[i];
+    }
+    fluid.solid_reaction[k] = sum;
+  }
+  move_solid_particles(model, fluid, x);
+#pragma omp for schedule(static)
+  for (Index i = 0; i < n; ++i) fluid.position[i] += fluid.correction[i];
+}
+
+}  // namespace moreau

@@ -1,0 +1,169 @@
+#include "moreau/fluids/solid_sampling.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "moreau/fluids/boundary_sampling.hpp"
+#include "moreau/model/model.hpp"
+
+namespace moreau {
+
+namespace {
+
+// Barycentric coordinates (u, v, w) of the centroids of the n^2 sub-triangles of a triangle
+// split n times along each edge: "upward" ones at ((i + 1/3) / n, (j + 1/3) / n), "downward" ones
+// at ((i + 2/3) / n, (j + 2/3) / n).
+std::vector<Vec3> sub_triangle_centroids(int n) {
+  std::vector<Vec3> out;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; i + j < n; ++j) {
+      const Real u = (i + 1.0 / 3) / n, v = (j + 1.0 / 3) / n;
+      out.emplace_back(1 - u - v, u, v);
+      if (i + j + 1 < n) {
+        const Real a = (i + 2.0 / 3) / n, b = (j + 2.0 / 3) / n;
+        out.emplace_back(1 - a - b, a, b);
+      }
+    }
+  return out;
+}
+
+// Barycentric coordinates of q in the tetrahedron (a, b, c, d).
+std::array<Real, 4> tet_barycentric(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d, const Vec3& q) {
+  Mat3 edges;
+  edges << b - a, c - a, d - a;
+  const Vec3 l = edges.partialPivLu().solve(q - a);
+  return {1 - l.sum(), l.x(), l.y(), l.z()};
+}
+
+using Face = std::array<Index, 3>;
+
+Face sorted_face(Index a, Index b, Index c) {
+  Face f{a, b, c};
+  std::sort(f.begin(), f.end());
+  return f;
+}
+
+struct Sampler {
+  const Model& model;
+  Real r;
+  FluidSolidSamples out;
+  std::vector<Vec3> rest;  // rest positions of the current object's samples
+
+  void add(Index object, const std::array<Index, 4>& particle, const std::array<Real, 4>& weight) {
+    Vec3 x = Vec3::Zero();
+    Real inv_mass = 0;
+    for (int k = 0; k < 4; ++k) {
+      x += weight[k] * model.particle_rest_position[particle[k]];
+      inv_mass += weight[k] * weight[k] * model.particle_inv_mass[particle[k]];
+    }
+    out.particle.push_back(particle);
+    out.weight.push_back(weight);
+    out.inv_mass.push_back(inv_mass);
+    out.object.push_back(object);
+    rest.push_back(x);
+  }
+
+  int subdivisions(const Vec3& a, const Vec3& b, const Vec3& c) const {
+    const Real area = 0.5 * (b - a).cross(c - a).norm();
+    return std::max(1, static_cast<int>(std::ceil(std::sqrt(2 * area) / (2 * r))));
+  }
+
+  void sample_cloth(Index object, const ObjectInfo& info) {
+    const auto& X = model.particle_rest_position;
+    for (const Face& t : info.surface) {
+      for (const Vec3& b : sub_triangle_centroids(subdivisions(X[t[0]], X[t[1]], X[t[2]])))
+        add(object, {t[0], t[1], t[2], t[0]}, {b[0], b[1], b[2], 0.0});
+    }
+  }
+
+  void sample_soft_body(Index object, const ObjectInfo& info) {
+    const auto& X = model.particle_rest_position;
+    std::map<Face, Index> face_tet;                    // each face -> a tetrahedron that has it
+    std::map<Index, std::vector<Index>> vertex_tets;  // vertex -> tetrahedra around it
+    for (Index t = 0; t < static_cast<Index>(info.tets.size()); ++t) {
+      const auto& v = info.tets[t];
+      for (int skip = 0; skip < 4; ++skip) {
+        Face f{};
+        for (int k = 0, m = 0; k < 4; ++k)
+          if (k != skip) f[m++] = v[k];
+        face_tet[sorted_face(f[0], f[1], f[2])] = t;
+      }
+      for (Index p : v) vertex_tets[p].push_back(t);
+    }
+    for (const Face& f : info.surface) {
+      const auto& owner = info.tets[face_tet.at(sorted_face(f[0], f[1], f[2]))];
+      Index apex = owner[0];
+      for (Index p : owner)
+        if (p != f[0] && p != f[1] && p != f[2]) apex = p;
+      Vec3 inward = (X[f[1]] - X[f[0]]).cross(X[f[2]] - X[f[0]]).normalized();
+      if (inward.dot(X[apex] - X[f[0]]) < 0) inward = -inward;
+      // Candidate tetrahedra: those around the face's vertices (a point r inside is in one of
+      // them unless the body is thinner than r there; then the nearest is clamped onto it).
+      std::vector<Index> candidates;
+      for (Index p : f) candidates.insert(candidates.end(), vertex_tets[p].begin(), vertex_tets[p].end());
+      std::sort(candidates.begin(), candidates.end());
+      candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+      for (const Vec3& b : sub_triangle_centroids(subdivisions(X[f[0]], X[f[1]], X[f[2]]))) {
+        const Vec3 q = b[0] * X[f[0]] + b[1] * X[f[1]] + b[2] * X[f[2]] + r * inward;
+        std::array<Real, 4> best{};
+        Index best_tet = -1;
+        Real best_min = -1e300;
+        for (Index t : candidates) {
+          const auto& v = info.tets[t];
+          const auto l = tet_barycentric(X[v[0]], X[v[1]], X[v[2]], X[v[3]], q);
+          const Real lowest = *std::min_element(l.begin(), l.end());
+          if (lowest > best_min) best_min = lowest, best = l, best_tet = t;
+        }
+        if (best_min < 0) {  // outside every candidate: clamp onto the nearest one
+          Real sum = 0;
+          for (Real& l : best) sum += (l = std::max(l, 0.0));
+          for (Real& l : best) l /= sum;
+        }
+        add(object, info.tets[best_tet], best);
+      }
+    }
+  }
+
+  void finish_object(Real spacing, const CubicSplineKernel& kernel) {
+    const std::vector<Real> volume = akinci_volumes(rest, spacing, kernel);
+    out.volume.insert(out.volume.end(), volume.begin(), volume.end());
+    rest.clear();
+  }
+};
+
+}  // namespace
+
+FluidSolidSamples sample_fluid_solids(const Model& model, Real particle_radius, const CubicSplineKernel& kernel) {
+  Sampler sampler{model, particle_radius, {}, {}};
+  for (Index o = 0; o < static_cast<Index>(model.objects.size()); ++o) {
+    const ObjectInfo& info = model.objects[o];
+    if (!info.fluid_coupling) continue;
+    if (info.kind == ObjectKind::cloth) sampler.sample_cloth(o, info);
+    else if (info.kind == ObjectKind::soft_body) sampler.sample_soft_body(o, info);
+    else continue;
+    sampler.finish_object(2 * particle_radius, kernel);
+  }
+  FluidSolidSamples& s = sampler.out;
+
+  // Particle -> (sample, weight), ordered by particle, then sample: each particle gathers its
+  // reaction in a fixed order.
+  std::vector<std::array<Index, 3>> entries;  // particle, sample, slot
+  for (Index k = 0; k < s.size(); ++k)
+    for (int slot = 0; slot < 4; ++slot)
+      if (s.weight[k][slot] != 0) entries.push_back({s.particle[k][slot], k, slot});
+  std::sort(entries.begin(), entries.end());
+  s.coupled_begin.push_back(0);
+  for (std::size_t e = 0; e < entries.size(); ++e) {
+    const auto [p, k, slot] = entries[e];
+    if (e > 0 && entries[e - 1][0] != p) s.coupled_begin.push_back(static_cast<Index>(e));
+    if (e == 0 || entries[e - 1][0] != p) s.coupled_particle.push_back(p);
+    s.coupled_sample.push_back(k);
+    s.coupled_weight.push_back(s.weight[k][slot]);
+  }
+  s.coupled_begin.push_back(static_cast<Index>(entries.size()));
+  if (entries.empty()) s.coupled_begin = {0};
+  return s;
+}
+
+}  // namespace moreau
