@@ -109,10 +109,19 @@ TEST(CommandLine, FluidInputErrorsNameTheirKey) {
       "block": {"min": [0, 0, 0], "max": [0.5, 0.5, 0.5]}})"),
                    {"objects[2].particle_radius", "share one particle radius"});
   expect_bad_input("no_volume", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05})"),
-                   {"objects[1].block", "exactly one of"});
+                   {"objects[1].block", "exactly one of", "emitter"});
   expect_bad_input("viscous", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "viscosity": 10,
       "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})"),
                    {"objects[1].viscosity", "0.125 h^2 / nu"});
+  const std::string jet = R"({"name": "jet", "kind": "fluid", "particle_radius": 0.05, "emitter": )";
+  expect_bad_input("emitter_both", scene(jet + R"({"shape": "disc", "center": [0, 0.5, 0], "direction": [0, -1, 0],
+      "radius": 0.1, "speed": 1, "flow_rate": 0.01}})"),
+                   {"objects[1].emitter.speed", "exactly one of \"speed\""});
+  expect_bad_input("emitter_direction", scene(jet + R"({"shape": "rectangle", "center": [0, 0.5, 0], "direction": [0, 0, 0],
+      "size": [0.2, 0.2], "speed": 1}})"),
+                   {"objects[1].emitter.direction", "non-zero"});
+  expect_bad_input("emitter_shape", scene(jet + R"({"shape": "star", "center": [0, 0.5, 0], "direction": [0, -1, 0]}})"),
+                   {"objects[1].emitter.shape", "disc"});
   expect_bad_input("inside_plane", R"({"name": "f", "objects": [{"name": "p", "kind": "collider", "inside": true,
       "shape": {"type": "plane"}}]})",
                    {"objects[0].inside", "plane has no inside"});

@@ -278,3 +278,45 @@ TEST(FluidVorticity, RigidRotationHasCurlTwiceTheAngularVelocity) {
 
 }  // namespace
 }  // namespace moreau
+
+namespace moreau {
+namespace {
+
+TEST(FluidEmitter, ReleasesItsVolumeAndTheTankFillsToIt) {
+  // A disc of radius 2 cm on the 1 cm lattice has 13 points (|(i, j)| <= 2); at 1 m/s a layer is
+  // born every 10 ms, so by the stop time 0.8 s it has released 81 layers = 1,053 particles, each
+  // carrying (2r)^3 = 1e-6 m^3: 1.053e-3 m^3, a 26.3 mm layer in the 0.2 x 0.2 m tank.
+  Scene scene = test::scene_from_json(R"({"name": "pour", "settings": {"dt": 0.004, "substeps": 4, "iterations": 2},
+    "objects": [
+      {"name": "tank", "kind": "collider", "inside": true,
+       "shape": {"type": "box", "center": [0, 0.25, 0], "half_extents": [0.1, 0.25, 0.1]}},
+      {"name": "water", "kind": "fluid", "particle_radius": 0.005,
+       "emitter": {"shape": "disc", "center": [0, 0.3, 0], "direction": [0, -1, 0], "radius": 0.02,
+                   "speed": 1.0, "stop": 0.8}}]})");
+  const FluidState& f = scene.state.fluid;
+  EXPECT_EQ(f.count, 0);
+  EXPECT_EQ(scene.model.fluid.capacity, 1053);
+  test::run_steps(scene, 100);  // steps start at 0 ... 0.396 s: layers born at 0, 0.01, ..., 0.39
+  EXPECT_EQ(f.count, 40 * 13);
+  test::run_steps(scene, 400);  // 2 s: all released, settled
+  ASSERT_EQ(f.count, 1053);
+  std::vector<Index> ids(f.id.begin(), f.id.begin() + f.count);
+  std::sort(ids.begin(), ids.end());
+  for (Index k = 0; k < f.count; ++k) ASSERT_EQ(ids[k], k) << "ids must be unique and dense";
+  // Settled depth: the median column top, as in the resting tank; volume / area = 26.3 mm, and the
+  // free surface sits about r/2 low (resting-tank test), so the tolerance is r = 5 mm.
+  const Real r = 0.005, d = 2 * r;
+  std::vector<Real> top(400, 0.0);
+  for (Index i = 0; i < f.count; ++i) {
+    const Vec3& x = f.position[i];
+    const int cx = std::clamp(static_cast<int>((x.x() + 0.1) / d), 0, 19);
+    const int cz = std::clamp(static_cast<int>((x.z() + 0.1) / d), 0, 19);
+    top[cz * 20 + cx] = std::max(top[cz * 20 + cx], x.y() + r);
+  }
+  std::nth_element(top.begin(), top.begin() + 200, top.end());
+  std::printf("settled depth %.4f m (volume / area = 0.0263 m)\n", top[200]);
+  EXPECT_NEAR(top[200], 1.053e-3 / 0.04, r);
+}
+
+}  // namespace
+}  // namespace moreau

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "moreau/fluids/fluid_emitter.hpp"
 #include "moreau/fluids/sph_kernel.hpp"
 #include "moreau/math/types.hpp"
 
@@ -74,6 +75,7 @@ struct FluidModel {
   std::vector<Vec3> initial_position, initial_velocity;  // m, m/s
   std::vector<Index> initial_phase;
   Index capacity = 0;              // particles the state reserves (initial + emitted)
+  std::vector<FluidEmitter> emitters;
 
   FluidBoundarySamples boundary;
   FluidSolidSamples solid;

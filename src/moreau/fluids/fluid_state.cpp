@@ -20,6 +20,8 @@ FluidState make_fluid_state(const FluidModel& fm) {
     s.mass[i] = fm.phases[s.phase[i]].particle_mass;
     s.inv_mass[i] = 1 / s.mass[i];
   }
+  s.next_id = s.count;
+  s.emitted_layers.assign(fm.emitters.size(), 0);
   s.substep_start = s.position;
   s.listed_position = s.position;
   s.lambda.assign(capacity, 0);

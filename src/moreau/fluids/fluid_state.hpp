@@ -27,6 +27,8 @@ struct FluidState {
   std::vector<Vec3> substep_start;       // m
   std::vector<Vec3> listed_position;     // m, positions when the lists were built
   std::vector<Index> phase, id;
+  Index next_id = 0;                     // id of the next emitted particle
+  std::vector<Index> emitted_layers;     // per emitter: layers released so far
   std::vector<Real> inv_mass, mass;      // 1/kg, kg (copies of the phase's, sorted with the particles)
   std::vector<Real> lambda;              // density multiplier of the current iteration, kg m^2
   std::vector<Real> pressure;            // Pa, -sum over the substep's iterations of lambda / (V h^2)

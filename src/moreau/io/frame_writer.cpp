@@ -27,6 +27,10 @@ FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string sc
     lo = lo.cwiseMin(x);
     hi = hi.cwiseMax(x);
   }
+  for (const auto& e : model.fluid.emitters) {
+    lo = lo.cwiseMin(e.center);
+    hi = hi.cwiseMax(e.center);
+  }
   plane_half_size_ = 0.75 * (hi - lo).maxCoeff();
 }
 

@@ -38,6 +38,41 @@ void read_block(const JsonObject& block, Real d, std::vector<Vec3>& out) {
   fill_block(lo, hi, d, out);
 }
 
+// "emitter": {"shape": "disc" | "rectangle", "center", "direction", "radius" | "size" (+ "tangent"),
+//             "speed" | "flow_rate", "start", "stop"}.
+FluidEmitter read_emitter(const JsonObject& e, Real d, Index phase, Real scene_duration) {
+  FluidEmitter emitter;
+  emitter.phase = phase;
+  emitter.center = e.vec3("center");
+  const Vec3 direction = e.vec3("direction");
+  if (!(direction.norm() > 0)) e.fail("direction", "the flow direction must be a non-zero vector");
+  emitter.normal = direction.normalized();
+  if (e.choice("shape", {"disc", "rectangle"}) == "disc") {
+    const Real radius = e.number("radius", Range::positive());
+    if (radius < 0.5 * d) e.fail("radius", fmt::format("the disc must be at least r = {} m wide to hold a particle", 0.5 * d));
+    emitter.opening = disc_opening(emitter.normal, radius, d);
+  } else {
+    const Vec2 size = e.vec2("size", Range::positive());
+    if (size.minCoeff() < d) e.fail("size", fmt::format("each side must be at least one particle spacing 2r = {} m", d));
+    emitter.opening = rectangle_opening(emitter.normal, e.vec3("tangent", Vec3::Zero()), size.x(), size.y(), d);
+  }
+  const Real area = emitter.opening.size() * d * d;  // what the lattice opening carries
+  const bool by_speed = e.has("speed"), by_rate = e.has("flow_rate");
+  if (by_speed == by_rate) e.fail("speed", "give exactly one of \"speed\" (m/s) or \"flow_rate\" (m^3/s)");
+  emitter.speed = by_speed ? e.number("speed", Range::positive()) : e.number("flow_rate", Range::positive()) / area;
+  emitter.start = e.number("start", 0.0, Range::non_negative());
+  emitter.stop = e.number("stop", scene_duration, Range::non_negative());
+  if (emitter.stop < emitter.start) e.fail("stop", fmt::format("stop must not precede start ({} s)", emitter.start));
+  e.finish();
+  emitter.layers = static_cast<Index>(std::floor((emitter.stop - emitter.start) * emitter.speed / d + 1e-9)) + 1;
+  constexpr Real kMaxEmitted = 5e7;
+  if (static_cast<Real>(emitter.layers) * emitter.opening.size() > kMaxEmitted)
+    e.fail("stop", fmt::format("the emitter would release {:.3g} particles by t = {} s (limit {:.0g}); lower the rate "
+                               "or the stop time", static_cast<Real>(emitter.layers) * emitter.opening.size(),
+                               emitter.stop, kMaxEmitted));
+  return emitter;
+}
+
 }  // namespace
 
 void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx) {
@@ -76,7 +111,10 @@ void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
 
   std::vector<Vec3> points;
   const int sources = object.has("block") + object.has("blocks") + object.has("mesh");
-  if (sources != 1) object.fail("block", "give exactly one of \"block\", \"blocks\" or \"mesh\" for the fluid's initial volume");
+  const bool emits = object.has("emitter");
+  if (sources > 1 || (sources == 0 && !emits))
+    object.fail("block", "give exactly one of \"block\", \"blocks\" or \"mesh\" for the fluid's initial volume, "
+                         "or an \"emitter\" (or both)");
   if (object.has("block")) read_block(object.object("block"), d, points);
   for (const JsonObject& block : object.object_list("blocks")) read_block(block, d, points);
   if (object.has("mesh")) {
@@ -95,10 +133,11 @@ void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
     for (const Vec3& p : lattice)
       if (point_in_closed_mesh(mesh, p)) points.push_back(p);
   }
-  if (points.empty()) object.fail(object.has("mesh") ? "mesh" : "block", "the fluid volume holds no particle of spacing 2r");
+  if (points.empty() && sources > 0) object.fail(object.has("mesh") ? "mesh" : "block", "the fluid volume holds no particle of spacing 2r");
 
   const Vec3 velocity = object.vec3("velocity", Vec3::Zero());
   info.fluid_phase = static_cast<Index>(fm.phases.size());
+  if (emits) fm.emitters.push_back(read_emitter(object.object("emitter"), d, info.fluid_phase, ctx.duration));
   for (const Vec3& p : points) {
     fm.initial_position.push_back(p);
     fm.initial_velocity.push_back(velocity);
@@ -117,10 +156,13 @@ void finish_fluids(Model& model) {
   fm.neighbor_skin = fm.neighbor_skin_fraction * fm.kernel.h;
   fm.solid_contact_distance = 1.5 * fm.particle_radius;  // solid_coupling.hpp
   fm.capacity = fm.initial_count();
+  for (const FluidEmitter& e : fm.emitters) fm.capacity += e.capacity();
 
   // Planes are sampled on a patch around the fluid, a few fluid extents wide.
-  Vec3 lo = fm.initial_position.front(), hi = lo;
-  for (const Vec3& p : fm.initial_position) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  std::vector<Vec3> fluid_points = fm.initial_position;
+  for (const FluidEmitter& e : fm.emitters) fluid_points.push_back(e.center);
+  Vec3 lo = fluid_points.front(), hi = lo;
+  for (const Vec3& p : fluid_points) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   for (const Vec3& p : model.particle_rest_position) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
   const Real plane_half_size = std::max(1.0, 1.5 * (hi - lo).maxCoeff());
   std::vector<Index> sampled;

@@ -15,6 +15,7 @@ struct SceneBuildContext {
   Model& model;
   std::vector<Vec3>& initial_velocity;
   std::filesystem::path scene_directory;
+  Real duration = 0;  // s, settings.duration of the scene file (emitters stop there by default)
 };
 
 void build_collider(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);

@@ -162,7 +162,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   if (auto settings = top.optional_object("settings")) read_settings(*settings, scene);
 
   std::vector<Vec3> initial_velocity;
-  SceneBuildContext ctx{scene.model, initial_velocity, std::filesystem::absolute(path).parent_path()};
+  SceneBuildContext ctx{scene.model, initial_velocity, std::filesystem::absolute(path).parent_path(), scene.duration};
   const auto objects = top.object_list("objects");
   if (objects.empty()) top.fail("objects", "a scene needs at least one object");
   for (const JsonObject& object : objects) {

@@ -7,6 +7,7 @@
 
 #include "moreau/errors.hpp"
 #include "moreau/fluids/density_constraint.hpp"
+#include "moreau/fluids/fluid_emitter.hpp"
 #include "moreau/fluids/fluid_motion.hpp"
 #include "moreau/fluids/fluid_neighbors.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
@@ -98,6 +99,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
   const Real start_time = state.time;
   const bool fluids = !model.fluid.empty(), coupled_solids = model.fluid.solid.size() > 0;
   FluidState& fluid = state.fluid;
+  if (!model.fluid.emitters.empty()) emit_fluid(model, fluid, start_time);
 
 #pragma omp parallel num_threads(solver_thread_count(model))
   {
