@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "moreau/collision/collider.hpp"
 #include "moreau/fluids/pair_chunks.hpp"
 #include "moreau/model/model.hpp"
 
@@ -94,7 +95,7 @@ void apply_solid_reactions(const Model& model, FluidState& fluid, Vec3* x) {
   move_solid_particles(model, fluid, x);
 }
 
-void project_solid_contacts(const Model& model, FluidState& fluid, Vec3* x) {
+void project_solid_contacts(const Model& model, FluidState& fluid, Vec3* x, Real time) {
   const FluidModel& fm = model.fluid;
   const FluidSolidSamples& s = fm.solid;
   const Real reach = fm.solid_contact_distance, reach2 = reach * reach;
@@ -136,8 +137,14 @@ void project_solid_contacts(const Model& model, FluidState& fluid, Vec3* x) {
     fluid.solid_reaction[k] = sum;
   }
   move_solid_particles(model, fluid, x);
+  const Real r = fm.particle_radius;
 #pragma omp for schedule(static)
-  for (Index i = 0; i < n; ++i) fluid.position[i] += fluid.correction[i];
+  for (Index i = 0; i < n; ++i) {
+    if (fluid.solid_contacts[i] == 0) continue;
+    Vec3 xi = fluid.position[i] + fluid.correction[i];
+    for (const Collider& c : model.colliders) xi = keep_clear_of_collider(c, c.position_at(time), xi, r);
+    fluid.position[i] = xi;
+  }
 }
 
 }  // namespace moreau

@@ -51,7 +51,8 @@ void apply_solid_reactions(const Model& model, FluidState& fluid, Vec3* x);
 /// own kernel value V W(0) = 1/pi is far from 1, so a single layer of samples only pushes once the
 /// particle is nearly through it); the contact is what keeps such particles out. At rest the fluid
 /// sits 2r from the samples, beyond d_c = 1.5 r, so the contact does not touch the hydrostatics.
-/// Moves fluid and solid particles. Call inside a parallel region, after the density projection.
-void project_solid_contacts(const Model& model, FluidState& fluid, Vec3* x);
+/// Moves fluid and solid particles (fluid particles stay clear of the colliders at `time`). Call
+/// inside a parallel region, after the density projection.
+void project_solid_contacts(const Model& model, FluidState& fluid, Vec3* x, Real time);
 
 }  // namespace moreau

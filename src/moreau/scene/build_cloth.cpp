@@ -16,7 +16,12 @@ TriangleMesh read_cloth_mesh(const JsonObject& mesh, SceneBuildContext& ctx) {
   if (type == "grid") {
     const Vec2 size = mesh.vec2("size", Range::positive());
     const auto res = mesh.integers("resolution", 2, 2);
-    out = make_grid_sheet(size, {res[0], res[1]}, mesh.vec3("center", Vec3::Zero()));
+    const Vec3 center = mesh.vec3("center", Vec3::Zero());
+    out = make_grid_sheet(size, {res[0], res[1]}, center);
+    // Optional rotation about the sheet's centre (world x, then y, then z): a curtain is
+    // "rotation_deg": [90, 0, 0].
+    const Mat3 rotation = rotation_from_degrees(mesh.vec3("rotation_deg", Vec3::Zero()));
+    for (auto& v : out.vertices) v = center + rotation * (v - center);
   } else {
     out = read_obj_triangles(resolve_path(ctx, mesh.string("file")));
     const Real scale = mesh.number("scale", 1.0, Range::positive());

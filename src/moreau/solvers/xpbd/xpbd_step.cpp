@@ -133,10 +133,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
         lap(Stage::tet_volume);
         project_attachments(model.attachment, state.attachment_lambda.data(), ctx);
         lap(Stage::attachments);
-        project_particle_contacts(model, state, ctx);
-        lap(Stage::particle_contacts);
-        project_collider_contacts(model, state, ctx, substep_end);
-        lap(Stage::collider_contacts);
+        // The fluid before the contacts: what it pushes into a collider, the contacts push out.
         if (fluids) {
           if (coupled_solids) place_solid_samples(model, fluid, state.position.data());
           project_fluid_density(model, fluid, h);
@@ -144,10 +141,14 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
           apply_fluid_corrections(model, fluid, h, substep_end);
           if (coupled_solids) {
             place_solid_samples(model, fluid, state.position.data());
-            project_solid_contacts(model, fluid, state.position.data());
+            project_solid_contacts(model, fluid, state.position.data(), substep_end);
           }
           lap(Stage::fluid_density);
         }
+        project_particle_contacts(model, state, ctx);
+        lap(Stage::particle_contacts);
+        project_collider_contacts(model, state, ctx, substep_end);
+        lap(Stage::collider_contacts);
       }
       update_velocity(model, state, h);
       if (fluids) update_fluid_velocity(fluid, h);
