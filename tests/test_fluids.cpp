@@ -392,3 +392,47 @@ TEST(FluidDamBreak, DepthProfileApproachesRittersShallowWaterSolution) {
 
 }  // namespace
 }  // namespace moreau
+
+namespace moreau {
+namespace {
+
+// Radii of gyration (sqrt of the eigenvalues of the gyration tensor) of the live fluid particles,
+// largest over smallest: sqrt((20^2 - 1) / (5^2 - 1)) = 4.077 for the 20 x 5 x 5 lattice block
+// below, 1 for a sphere.
+Real gyration_ratio(const FluidState& f) {
+  Vec3 c = Vec3::Zero();
+  for (Index i = 0; i < f.count; ++i) c += f.position[i];
+  c /= f.count;
+  Mat3 g = Mat3::Zero();
+  for (Index i = 0; i < f.count; ++i) g += (f.position[i] - c) * (f.position[i] - c).transpose();
+  const Vec3 eig = Eigen::SelfAdjointEigenSolver<Mat3>(g).eigenvalues();
+  return std::sqrt(eig.maxCoeff() / eig.minCoeff());
+}
+
+Scene weightless_bar(Real surface_tension) {
+  return test::scene_from_json(fmt::format(R"({{"name": "bar", "settings": {{"dt": 0.002, "substeps": 2, "iterations": 2, "gravity": [0, 0, 0]}},
+    "objects": [{{"name": "water", "kind": "fluid", "particle_radius": 0.005, "surface_tension": {},
+      "block": {{"min": [-0.1, -0.025, -0.025], "max": [0.1, 0.025, 0.025]}}}}]}})",
+                                           surface_tension));
+}
+
+TEST(FluidSurfaceTension, WeightlessBarOfWaterPullsItselfIntoASphere) {
+  // Zero gravity: a 0.2 x 0.05 x 0.05 m bar (500 particles) has nothing to change its shape but
+  // surface tension, which minimises the surface: the bar must round up into a ball (gyration
+  // ratio 4.08 -> 1), without surface tension it must keep its shape, and the pair forces are equal
+  // and opposite, so the momentum stays zero.
+  Scene plain = weightless_bar(0), tense = weightless_bar(2);
+  EXPECT_NEAR(gyration_ratio(tense.state.fluid), std::sqrt(399.0 / 24), 1e-9);
+  run_steps(plain, 500);
+  run_steps(tense, 500);  // 1 s: about two capillary oscillation periods at gamma = 2
+  const Real ratio_plain = gyration_ratio(plain.state.fluid), ratio_tense = gyration_ratio(tense.state.fluid);
+  const Vec3 p = linear_momentum(tense.model, tense.state, -1);
+  std::printf("gyration ratio after 1 s: %.3f without, %.3f with surface tension; momentum %.2e kg m/s\n", ratio_plain,
+              ratio_tense, p.norm());
+  EXPECT_GT(ratio_plain, 3.5);   // measured 3.69: the unilateral constraint only relaxes edges and corners
+  EXPECT_LT(ratio_tense, 1.15);  // a ball up to the remaining capillary oscillation (measured 1.07)
+  EXPECT_LT(p.norm(), 1e-12);    // round-off of 500 particles' sums (momentum scale 0.5 kg * 0.1 m/s)
+}
+
+}  // namespace
+}  // namespace moreau

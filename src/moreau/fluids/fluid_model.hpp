@@ -23,6 +23,7 @@ struct FluidPhase {
   Real particle_mass = 0;          // kg, rho0 V
   Real xsph = 0;                   // XSPH velocity smoothing c, applied once per step (dimensionless)
   Real viscosity = 0;              // kinematic viscosity nu, m^2/s
+  Real surface_tension = 0;        // gamma of Akinci et al. 2013, m/s^2 (see surface_tension.hpp)
   Real vorticity = 0;              // vorticity-confinement strength epsilon, m/s (see fluid_velocity.hpp)
   Real relaxation = 0;             // epsilon of the density constraint, 1/(kg m^2) (scaled, see density_constraint.hpp)
 };

@@ -98,6 +98,7 @@ void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
   phase.viscosity = object.number("viscosity", 1.0e-6, Range::non_negative());
   phase.xsph = object.number("xsph", 0.01, Range::closed(0, 1));
   phase.vorticity = object.number("vorticity", 0.0, Range::non_negative());
+  phase.surface_tension = object.number("surface_tension", 0.0, Range::non_negative());
   const Real relaxation = object.number("relaxation", 0.01, Range::closed(0, 1e6));
   const Real rest_denominator = fluid_rest_denominator(fm.kernel, d, phase.particle_mass);
   phase.relaxation = relaxation * rest_denominator;

@@ -12,6 +12,7 @@
 #include "moreau/fluids/fluid_neighbors.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
+#include "moreau/fluids/surface_tension.hpp"
 
 namespace moreau {
 
@@ -160,6 +161,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
     }
     if (fluids) {
       apply_fluid_velocity_corrections(model, fluid, dt);
+      apply_fluid_surface_tension(model, fluid, dt);
       lap(Stage::fluid_velocity);
     }
   }

@@ -1,0 +1,68 @@
+#include "moreau/fluids/surface_tension.hpp"
+
+#include <cmath>
+
+#include "moreau/model/model.hpp"
+
+namespace moreau {
+
+Real cohesion_spline(Real r, Real h) {
+  if (r <= 0 || r > h) return 0;
+  const Real scale = 32 / (kPi * std::pow(h, 9)), a = (h - r) * (h - r) * (h - r) * r * r * r;
+  return 2 * r > h ? scale * a : scale * (2 * a - std::pow(h, 6) / 64);
+}
+
+void apply_fluid_surface_tension(const Model& model, FluidState& fluid, Real dt) {
+  const FluidModel& fm = model.fluid;
+  bool any = false;
+  for (const FluidPhase& p : fm.phases) any |= p.surface_tension > 0;
+  if (!any) return;
+  const CubicSplineKernel& kernel = fm.kernel;
+  const Real h = kernel.h, V = fm.particle_volume;
+  const Index n = fluid.count;
+  std::vector<Vec3>& normal = fluid.correction;  // free between steps
+  std::vector<Vec3>& v_new = fluid.scratch_vec;
+
+  // n_i = h V sum_j grad W(x_i - x_j) over the same phase (Akinci's sign; see the header).
+#pragma omp for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    Vec3 sum = Vec3::Zero();
+    const Index* row = fluid.fluid_neighbors.row(i);
+    for (Index k = 0; k < fluid.fluid_neighbors.count[i]; ++k) {
+      const Index j = row[k];
+      if (fluid.phase[j] != fluid.phase[i]) continue;
+      const Vec3 r = fluid.position[i] - fluid.position[j];
+      const Real d = r.norm();
+      if (d < h) sum += kernel.gradient_factor(d) * r;
+    }
+    normal[i] = h * V * sum;
+  }
+
+#pragma omp for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    const FluidPhase& phase = fm.phases[fluid.phase[i]];
+    v_new[i] = fluid.velocity[i];
+    if (phase.surface_tension <= 0) continue;
+    const Real gamma = phase.surface_tension, rho0 = phase.rest_density, m_i = fluid.mass[i];
+    // (rho0 only enters the symmetrisation K_ij.)
+    Vec3 force = Vec3::Zero();
+    const Index* row = fluid.fluid_neighbors.row(i);
+    for (Index k = 0; k < fluid.fluid_neighbors.count[i]; ++k) {
+      const Index j = row[k];
+      if (fluid.phase[j] != fluid.phase[i]) continue;
+      const Vec3 r = fluid.position[i] - fluid.position[j];
+      const Real d = r.norm();
+      if (d >= h || d <= 0) continue;
+      const Real m_j = fluid.mass[j];
+      const Real symmetry = 2 * rho0 / (fluid.density[i] + fluid.density[j]);
+      const Vec3 cohesion = -gamma * m_i * m_j * cohesion_spline(d, h) / d * r;
+      const Vec3 curvature = -gamma * 0.5 * (m_i + m_j) * (normal[i] - normal[j]);
+      force += symmetry * (cohesion + curvature);
+    }
+    v_new[i] += dt / m_i * force;
+  }
+#pragma omp for schedule(static)
+  for (Index i = 0; i < n; ++i) fluid.velocity[i] = v_new[i];
+}
+
+}  // namespace moreau
