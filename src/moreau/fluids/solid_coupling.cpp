@@ -107,7 +107,10 @@ void project_solid_contacts(const Model& model, FluidState& fluid, Vec3* x, Real
     const Real d2 = r.squaredNorm();
     if (d2 >= reach2) return false;
     const Real d = std::sqrt(d2);
-    const Vec3 normal = d > 1e-9 * reach ? Vec3(r / d) : Vec3(model.settings.gravity.normalized() * -1.0);
+    // A particle exactly on a sample (d ~ 0) has no direction of its own: push it "up" (against
+    // gravity, or +y without gravity).
+    const Vec3 up = model.settings.gravity.norm() > 0 ? Vec3(-model.settings.gravity.normalized()) : Vec3::UnitY();
+    const Vec3 normal = d > 1e-9 * reach ? Vec3(r / d) : up;
     p = (reach - d) / (w[i] + fluid.solid_inv_mass[k]) * normal;
     return true;
   };

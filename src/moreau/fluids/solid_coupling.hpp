@@ -10,7 +10,9 @@
 //   grad_{x_k} C_i = -b_k V_s grad W(x_i - x_s)              (chain rule through x_s)
 // and, unlike a wall, it moves: the multiplier's denominator gains
 //   sum_k w_k |grad_{x_k} C_i|^2 = w_s V_s^2 |grad W_is|^2,   w_s = sum_k b_k^2 w_k
-// (with the mass split of split_solid_masses below),
+// (with the mass split of split_solid_masses below; treating each (fluid particle, sample) pair as
+// its own constraint, the cross terms between samples that share particles are left out, as the
+// split assumes),
 // and the solid particles receive the PBD correction of every such constraint,
 //   dx_k = w_k sum_i lambda_i grad_{x_k} C_i = w_k sum_s b_k R_s,   R_s = -V_s sum_i lambda_i grad W(x_i - x_s).
 // The fluid particle gets w_i lambda_i V_s grad W_is =: w_i F_is, the solid particles -b_k F_is.

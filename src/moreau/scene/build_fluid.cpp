@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdint>
 
 #include "moreau/fluids/boundary_sampling.hpp"
 #include "moreau/fluids/density_constraint.hpp"
@@ -64,12 +65,14 @@ FluidEmitter read_emitter(const JsonObject& e, Real d, Index phase, Real scene_d
   emitter.stop = e.number("stop", scene_duration, Range::non_negative());
   if (emitter.stop < emitter.start) e.fail("stop", fmt::format("stop must not precede start ({} s)", emitter.start));
   e.finish();
-  emitter.layers = static_cast<Index>(std::floor((emitter.stop - emitter.start) * emitter.speed / d + 1e-9)) + 1;
+  // Checked as a real number before the cast to Index (32 bits).
+  const Real layers = std::floor((emitter.stop - emitter.start) * emitter.speed / d + 1e-9) + 1;
   constexpr Real kMaxEmitted = 5e7;
-  if (static_cast<Real>(emitter.layers) * emitter.opening.size() > kMaxEmitted)
+  if (layers * emitter.opening.size() > kMaxEmitted)
     e.fail("stop", fmt::format("the emitter would release {:.3g} particles by t = {} s (limit {:.0g}); lower the rate "
-                               "or the stop time", static_cast<Real>(emitter.layers) * emitter.opening.size(),
+                               "or the stop time", layers * emitter.opening.size(),
                                emitter.stop, kMaxEmitted));
+  emitter.layers = static_cast<Index>(layers);
   return emitter;
 }
 
@@ -139,6 +142,14 @@ void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
   const Vec3 velocity = object.vec3("velocity", Vec3::Zero());
   info.fluid_phase = static_cast<Index>(fm.phases.size());
   if (emits) fm.emitters.push_back(read_emitter(object.object("emitter"), d, info.fluid_phase, ctx.duration));
+  // Particle indices are 32-bit: the scene's initial plus emitted particles, summed in 64 bits.
+  std::int64_t total = static_cast<std::int64_t>(fm.initial_position.size()) + static_cast<std::int64_t>(points.size());
+  for (const FluidEmitter& e : fm.emitters) total += e.capacity();
+  constexpr std::int64_t kMaxFluidParticles = 1'000'000'000;
+  if (total > kMaxFluidParticles)
+    object.fail(emits ? "emitter" : "particle_radius",
+                fmt::format("the scene's fluids would hold {} particles (initial plus emitted); the limit is {}", total,
+                            kMaxFluidParticles));
   for (const Vec3& p : points) {
     fm.initial_position.push_back(p);
     fm.initial_velocity.push_back(velocity);
@@ -156,7 +167,7 @@ void finish_fluids(Model& model) {
   fm.tensile_reference = kReferenceGravity * fm.kernel.h;
   fm.neighbor_skin = fm.neighbor_skin_fraction * fm.kernel.h;
   fm.solid_contact_distance = 1.5 * fm.particle_radius;  // solid_coupling.hpp
-  fm.capacity = fm.initial_count();
+  fm.capacity = fm.initial_count();  // build_fluid checked that the total fits
   for (const FluidEmitter& e : fm.emitters) fm.capacity += e.capacity();
 
   // Planes are sampled on a patch around the fluid, a few fluid extents wide.
