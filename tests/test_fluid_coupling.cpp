@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "moreau/model/diagnostics.hpp"
+#include "fluid_test_helpers.hpp"
 #include "test_helpers.hpp"
 
 namespace moreau {
@@ -42,25 +43,11 @@ Real slab_bottom(const Scene& s) {
   return sum / count;
 }
 
-// The free surface away from the slab: for each 2r column of the outer ring (|x| or |z| beyond
-// 0.09 m, 3 cm clear of the slab), its highest particle centre + r; the median over the columns.
+// The free surface away from the slab: the median column top over the outer ring of the tank
+// (|x| or |z| beyond 0.09 m, 3 cm clear of the slab).
 Real open_water_surface(const Scene& s) {
-  const FluidState& f = s.state.fluid;
-  const Real r = 0.00625, d = 2 * r;
-  const int columns = 19;
-  std::vector<Real> top(columns * columns, -1.0);
-  for (Index i = 0; i < f.count; ++i) {
-    const Vec3& x = f.position[i];
-    if (std::max(std::abs(x.x()), std::abs(x.z())) < 0.09) continue;
-    const int cx = std::clamp(static_cast<int>((x.x() + 0.12) / d), 0, columns - 1);
-    const int cz = std::clamp(static_cast<int>((x.z() + 0.12) / d), 0, columns - 1);
-    top[cz * columns + cx] = std::max(top[cz * columns + cx], x.y() + r);
-  }
-  std::vector<Real> ring;
-  for (Real t : top)
-    if (t > 0) ring.push_back(t);
-  std::nth_element(ring.begin(), ring.begin() + ring.size() / 2, ring.end());
-  return ring[ring.size() / 2];
+  return test::median_column_top(s.state.fluid, 0.12, 0.00625,
+                                 [](const Vec3& x) { return std::max(std::abs(x.x()), std::abs(x.z())) >= 0.09; });
 }
 
 TEST(FluidSolidCoupling, LightSlabFloatsAtTheArchimedesDraft) {

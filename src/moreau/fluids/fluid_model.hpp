@@ -48,7 +48,6 @@ struct FluidSolidSamples {
   std::vector<std::array<Index, 4>> particle;  // model particle indices (unused slots: weight 0)
   std::vector<std::array<Real, 4>> weight;     // barycentric weights, summing to 1
   std::vector<Real> volume;                    // m^3, Akinci volume (boundary_sampling.hpp)
-  std::vector<Real> inv_mass;                  // 1/kg, generalised: sum_k weight_k^2 w_k
   std::vector<Index> object;                   // owning scene object
   // Particle -> samples (CSR over `coupled_particle`), so each particle gathers its reaction.
   std::vector<Index> coupled_particle;         // model particles touched by some sample

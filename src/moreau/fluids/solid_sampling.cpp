@@ -52,14 +52,9 @@ struct Sampler {
 
   void add(Index object, const std::array<Index, 4>& particle, const std::array<Real, 4>& weight) {
     Vec3 x = Vec3::Zero();
-    Real inv_mass = 0;
-    for (int k = 0; k < 4; ++k) {
-      x += weight[k] * model.particle_rest_position[particle[k]];
-      inv_mass += weight[k] * weight[k] * model.particle_inv_mass[particle[k]];
-    }
+    for (int k = 0; k < 4; ++k) x += weight[k] * model.particle_rest_position[particle[k]];
     out.particle.push_back(particle);
     out.weight.push_back(weight);
-    out.inv_mass.push_back(inv_mass);
     out.object.push_back(object);
     rest.push_back(x);
   }

@@ -21,8 +21,8 @@ namespace moreau {
 struct Model;
 
 /// Samples every cloth and soft body whose ObjectInfo::fluid_coupling is set, for a fluid of
-/// particle radius r (spacing 2r) and kernel `kernel`. The model's particles, objects and
-/// pins must be final (generalised inverse masses use particle_inv_mass).
+/// particle radius r (spacing 2r) and kernel `kernel`. The model's particles and objects must be
+/// final.
 FluidSolidSamples sample_fluid_solids(const Model& model, Real particle_radius, const CubicSplineKernel& kernel);
 
 }  // namespace moreau

@@ -22,19 +22,23 @@ void apply_fluid_surface_tension(const Model& model, FluidState& fluid, Real dt)
   const Index n = fluid.count;
   std::vector<Vec3>& normal = fluid.correction;  // free between steps
   std::vector<Vec3>& v_new = fluid.scratch_vec;
-
-  // n_i = h V sum_j grad W(x_i - x_j) over the same phase (Akinci's sign; see the header).
-#pragma omp for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    Vec3 sum = Vec3::Zero();
+  // Calls pair(j, r, d) for the neighbours j of i in i's phase with 0 < d = |r| < h, r = x_i - x_j.
+  auto for_each_same_phase_pair = [&](Index i, auto&& pair) {
     const Index* row = fluid.fluid_neighbors.row(i);
     for (Index k = 0; k < fluid.fluid_neighbors.count[i]; ++k) {
       const Index j = row[k];
       if (fluid.phase[j] != fluid.phase[i]) continue;
       const Vec3 r = fluid.position[i] - fluid.position[j];
       const Real d = r.norm();
-      if (d < h) sum += kernel.gradient_factor(d) * r;
+      if (d < h && d > 0) pair(j, r, d);
     }
+  };
+
+  // n_i = h V sum_j grad W(x_i - x_j) over the same phase (Akinci's sign; see the header).
+#pragma omp for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    Vec3 sum = Vec3::Zero();
+    for_each_same_phase_pair(i, [&](Index, const Vec3& r, Real d) { sum += kernel.gradient_factor(d) * r; });
     normal[i] = h * V * sum;
   }
 
@@ -44,21 +48,14 @@ void apply_fluid_surface_tension(const Model& model, FluidState& fluid, Real dt)
     v_new[i] = fluid.velocity[i];
     if (phase.surface_tension <= 0) continue;
     const Real gamma = phase.surface_tension, rho0 = phase.rest_density, m_i = fluid.mass[i];
-    // (rho0 only enters the symmetrisation K_ij.)
     Vec3 force = Vec3::Zero();
-    const Index* row = fluid.fluid_neighbors.row(i);
-    for (Index k = 0; k < fluid.fluid_neighbors.count[i]; ++k) {
-      const Index j = row[k];
-      if (fluid.phase[j] != fluid.phase[i]) continue;
-      const Vec3 r = fluid.position[i] - fluid.position[j];
-      const Real d = r.norm();
-      if (d >= h || d <= 0) continue;
+    for_each_same_phase_pair(i, [&](Index j, const Vec3& r, Real d) {
       const Real m_j = fluid.mass[j];
       const Real symmetry = 2 * rho0 / (fluid.density[i] + fluid.density[j]);
       const Vec3 cohesion = -gamma * m_i * m_j * cohesion_spline(d, h) / d * r;
       const Vec3 curvature = -gamma * 0.5 * (m_i + m_j) * (normal[i] - normal[j]);
       force += symmetry * (cohesion + curvature);
-    }
+    });
     v_new[i] += dt / m_i * force;
   }
 #pragma omp for schedule(static)

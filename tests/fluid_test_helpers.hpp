@@ -1,0 +1,35 @@
+#pragma once
+// Measurements of particle fluids shared by the fluid tests.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "moreau/fluids/fluid_state.hpp"
+
+namespace moreau::test {
+
+/// The free surface of fluid in a square tank |x|, |z| <= half: the top (centre + r) of the highest
+/// particle of each 2r-wide lattice column, then the median over the columns holding particles
+/// that `keep(x)` accepts. The median ignores a stray particle hopping on the surface.
+template <class Keep>
+Real median_column_top(const FluidState& f, Real half, Real r, Keep&& keep) {
+  const Real d = 2 * r;
+  const int columns = static_cast<int>(std::floor(2 * half / d + 1e-9));
+  std::vector<Real> top(columns * columns, -1.0);
+  for (Index i = 0; i < f.count; ++i) {
+    const Vec3& x = f.position[i];
+    if (!keep(x)) continue;
+    const int cx = std::clamp(static_cast<int>((x.x() + half) / d), 0, columns - 1);
+    const int cz = std::clamp(static_cast<int>((x.z() + half) / d), 0, columns - 1);
+    top[cz * columns + cx] = std::max(top[cz * columns + cx], x.y() + r);
+  }
+  top.erase(std::remove(top.begin(), top.end(), -1.0), top.end());
+  std::nth_element(top.begin(), top.begin() + top.size() / 2, top.end());
+  return top[top.size() / 2];
+}
+
+inline Real median_column_top(const FluidState& f, Real half, Real r) {
+  return median_column_top(f, half, r, [](const Vec3&) { return true; });
+}
+
+}  // namespace moreau::test
