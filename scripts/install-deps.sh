@@ -13,6 +13,8 @@ packages=(
   libmuparser-dev      # time functions in boundary conditions
   libtinyobjloader-dev # OBJ meshes
   tetgen               # tetrahedralizing OBJ surfaces for soft bodies
+  libqhull-dev         # convex hulls of rigid bodies
+  libccd-dev           # convex-convex contacts (Minkowski portal refinement)
   libgtest-dev libgmock-dev libbenchmark-dev
 )
 

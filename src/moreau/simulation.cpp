@@ -1,5 +1,6 @@
 // The run loop behind moreau::Simulation: step, sample probes, write frames, time the stages,
 // draw progress, and write run.json.
+#include <algorithm>
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -54,13 +55,22 @@ std::string Simulation::summary() const {
                               scene_->name, scene_->file, scene_->solver, m.settings.dt, m.settings.substeps,
                               m.settings.iterations, scene_->duration);
   for (const auto& o : m.objects) {
-    static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid"};
+    static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid", "rigid_body"};
     s += fmt::format("  {:<10} {:<16}", kinds[static_cast<int>(o.kind)], o.name);
     if (o.kind == ObjectKind::fluid) {
       Index count = 0;
       for (Index p : m.fluid.initial_phase) count += p == o.fluid_phase;
       s += fmt::format(" {} particles of radius {} m, rest density {} kg/m^3", count, m.fluid.particle_radius,
                        m.fluid.phases[o.fluid_phase].rest_density);
+    }
+    if (o.kind == ObjectKind::rigid_body) {
+      static const char* shapes[] = {"sphere", "box", "capsule", "cylinder", "convex hull", "plane"};
+      static const char* motions[] = {"dynamic", "fixed", "kinematic"};
+      const RigidBodyModel& r = m.rigid;
+      s += fmt::format(" {} {}, mass {:.6g} kg, principal inertia ({:.4g}, {:.4g}, {:.4g}) kg m^2",
+                       motions[static_cast<int>(r.body_motion[o.body])], shapes[static_cast<int>(r.body_shape[o.body].type)],
+                       r.body_mass[o.body], r.body_inertia[o.body].x(), r.body_inertia[o.body].y(),
+                       r.body_inertia[o.body].z());
     }
     if (o.has_particles())
       s += fmt::format(" {} particles, {} surface triangles, {} tetrahedra", o.particle_count(), o.surface.size(), o.tets.size());
@@ -79,6 +89,7 @@ std::string Simulation::summary() const {
   family("neo_hookean", m.neo_hookean.size(), &m.neo_hookean.batches);
   family("tet_volume", m.tet_volume.size(), &m.tet_volume.batches);
   family("attachment", m.attachment.size(), nullptr);
+  if (!m.joints.empty()) s += fmt::format("  joints: {}\n", m.joints.size());
   if (!m.fluid.empty())
     s += fmt::format("  fluid: support h = {} m, {} collider wall samples\n", m.fluid.support(), m.fluid.boundary.size());
   s += fmt::format("  probes: {}\n", scene_->probes.size());
@@ -108,6 +119,9 @@ nlohmann::json run_summary_json(const Scene& scene, const StageTimer& timer, con
                  {"fluid_particles", state.fluid.count},
                  {"objects", m.objects.size()},
                  {"colliders", m.colliders.size()},
+                 {"rigid_bodies", std::count_if(m.objects.begin(), m.objects.end(),
+                                                [](const ObjectInfo& o) { return o.kind == ObjectKind::rigid_body; })},
+                 {"joints", m.joints.size()},
                  {"constraints",
                   {{"distance", m.distance.size()},
                    {"bending", m.bending.size()},

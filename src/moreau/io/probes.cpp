@@ -1,6 +1,7 @@
 #include "moreau/io/probes.hpp"
 
 #include <cmath>
+#include <algorithm>
 #include <limits>
 
 namespace moreau {
@@ -10,13 +11,25 @@ bool ProbeSpec::is_vector() const {
     case ProbeType::point:
     case ProbeType::center_of_mass:
     case ProbeType::momentum:
+    case ProbeType::body_position:
+    case ProbeType::body_velocity:
+    case ProbeType::body_angular_velocity:
       return true;
     default:
       return false;
   }
 }
 
+int ProbeSpec::width() const {
+  if (type == ProbeType::body_orientation) return 4;
+  if (type == ProbeType::joint_error) return 2;
+  return is_vector() ? 3 : 1;
+}
+
 std::vector<std::string> probe_columns(const ProbeSpec& probe) {
+  if (probe.type == ProbeType::body_orientation)
+    return {probe.name + ".w", probe.name + ".x", probe.name + ".y", probe.name + ".z"};
+  if (probe.type == ProbeType::joint_error) return {probe.name + ".position", probe.name + ".angle"};
   if (!probe.is_vector()) return {probe.name};
   return {probe.name + ".x", probe.name + ".y", probe.name + ".z"};
 }
@@ -109,6 +122,48 @@ void evaluate_probe(const ProbeSpec& probe, const Model& model, const State& sta
     case ProbeType::constraint_error:
       values.push_back(max_constraint_error(model, state, probe.object, probe.family));
       break;
+    case ProbeType::body_position: {
+      // The origin of the shape's own frame (the scene's "position"), not the centre of mass.
+      const Index b = model.objects[probe.object].body;
+      const Quat shape_frame = state.rigid.orientation[b] * model.rigid.body_frame_in_shape[b].conjugate();
+      push3(state.rigid.position[b] - shape_frame * model.rigid.body_center_in_shape[b]);
+      break;
+    }
+    case ProbeType::body_orientation: {
+      const Index b = model.objects[probe.object].body;
+      const Quat q = (state.rigid.orientation[b] * model.rigid.body_frame_in_shape[b].conjugate()).normalized();
+      values.insert(values.end(), {q.w(), q.x(), q.y(), q.z()});
+      break;
+    }
+    case ProbeType::body_velocity: push3(state.rigid.velocity[model.objects[probe.object].body]); break;
+    case ProbeType::body_angular_velocity: push3(state.rigid.angular_velocity[model.objects[probe.object].body]); break;
+    case ProbeType::joint_error: {
+      JointError worst;
+      for (Index j = 0; j < static_cast<Index>(model.joints.size()); ++j) {
+        if (probe.joint >= 0 && j != probe.joint) continue;
+        const JointError e = joint_error(model, state, j);
+        worst.position = std::max(worst.position, e.position);
+        worst.angle = std::max(worst.angle, e.angle);
+      }
+      values.insert(values.end(), {worst.position, worst.angle});
+      break;
+    }
+    case ProbeType::contact_count: {
+      values.push_back(touching_contact_count(model, state, probe.object));
+      break;
+    }
+    case ProbeType::max_displacement: {
+      Real worst = 0;
+      for_each_dynamic_body(model, probe.object, [&](Index b) {
+        worst = std::max(worst, (state.rigid.position[b] - model.rigid.initial_position[b]).norm());
+      });
+      const Index begin = probe.object >= 0 ? model.objects[probe.object].particle_begin : 0;
+      const Index end = probe.object >= 0 ? model.objects[probe.object].particle_end : model.particle_count();
+      for (Index p = begin; p < end; ++p)
+        worst = std::max(worst, (state.position[p] - model.particle_rest_position[p]).norm());
+      values.push_back(worst);
+      break;
+    }
   }
 }
 

@@ -10,7 +10,9 @@ namespace moreau {
 
 enum class ProbeType {
   point, energy, center_of_mass, extent, momentum, constraint_error,
-  fluid_height, density_error, particle_count, escaped
+  fluid_height, density_error, particle_count, escaped,
+  body_position, body_orientation, body_velocity, body_angular_velocity,  // one rigid body
+  joint_error, contact_count, max_displacement
 };
 
 struct ProbeSpec {
@@ -25,8 +27,11 @@ struct ProbeSpec {
   ConstraintFamily family = ConstraintFamily::all;
   Vec3 at = Vec3::Zero();            // fluid_height: a point on the vertical line measured, m
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  // escaped: particles outside this box are counted
+  Index joint = -1;                  // joint_error: one joint, or -1 for every joint
 
   bool is_vector() const;
+  /// Number of columns the probe writes.
+  int width() const;
 };
 
 /// Column headers of one probe.

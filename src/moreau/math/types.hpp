@@ -13,6 +13,7 @@ using Vec3 = Eigen::Vector3d;
 using Mat2 = Eigen::Matrix2d;
 using Mat3 = Eigen::Matrix3d;
 using Mat32 = Eigen::Matrix<double, 3, 2>;
+using Quat = Eigen::Quaterniond;  // Hamilton convention, (w, x, y, z)
 using Index = std::int32_t;
 
 inline constexpr Real kPi = 3.14159265358979323846;

@@ -15,12 +15,23 @@ void for_each_mass_point(const Model& model, const State& state, Index object, b
     if (!moving_only || model.particle_inv_mass[p] > 0) f(model.particle_mass[p], state.position[p], state.velocity[p]);
   const FluidState& fluid = state.fluid;
   for_each_fluid_particle(model, state, object, [&](Index i) { f(fluid.mass[i], fluid.position[i], fluid.velocity[i]); });
+  for_each_dynamic_body(model, object, [&](Index b) {
+    f(model.rigid.body_mass[b], state.rigid.position[b], state.rigid.velocity[b]);
+  });
+}
+
+// Spin angular momentum I w of body b (world frame), kg m^2/s.
+Vec3 body_spin(const Model& model, const State& state, Index b) {
+  const Quat& q = state.rigid.orientation[b];
+  return q * Vec3(model.rigid.body_inertia[b].cwiseProduct(q.conjugate() * state.rigid.angular_velocity[b]));
 }
 }  // namespace
 
 Real kinetic_energy(const Model& model, const State& state, Index object) {
   Real e = 0;
   for_each_mass_point(model, state, object, true, [&](Real m, const Vec3&, const Vec3& v) { e += 0.5 * m * v.squaredNorm(); });
+  for_each_dynamic_body(model, object,
+                        [&](Index b) { e += 0.5 * state.rigid.angular_velocity[b].dot(body_spin(model, state, b)); });
   return e;
 }
 
@@ -49,6 +60,7 @@ Vec3 angular_momentum(const Model& model, const State& state, Index object, cons
   Vec3 L = Vec3::Zero();
   for_each_mass_point(model, state, object, true,
                       [&](Real m, const Vec3& x, const Vec3& v) { L += m * (x - about).cross(v); });
+  for_each_dynamic_body(model, object, [&](Index b) { L += body_spin(model, state, b); });
   return L;
 }
 

@@ -15,6 +15,14 @@ void for_each_fluid_particle(const Model& model, const State& state, Index objec
     if (phase < 0 || state.fluid.phase[i] == phase) f(i);
 }
 
+/// Calls f(b) for the dynamic rigid bodies of `object` (or of every object, -1).
+template <class F>
+void for_each_dynamic_body(const Model& model, Index object, F&& f) {
+  for (Index b = 0; b < model.rigid.count(); ++b)
+    if (model.rigid.is_dynamic(b) && (object < 0 || model.rigid.body_object[b] == object)) f(b);
+}
+
+/// Translational plus rotational kinetic energy, J.
 Real kinetic_energy(const Model& model, const State& state, Index object);
 /// Gravitational potential energy -sum m g.x (zero at the origin), J.
 Real potential_energy(const Model& model, const State& state, Index object);

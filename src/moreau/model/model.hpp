@@ -14,10 +14,12 @@
 #include "moreau/constraints/tet_volume.hpp"
 #include "moreau/constraints/triangle_strain.hpp"
 #include "moreau/fluids/fluid_model.hpp"
+#include "moreau/rigid/joints.hpp"
+#include "moreau/rigid/rigid_bodies.hpp"
 
 namespace moreau {
 
-enum class ObjectKind { collider, cloth, soft_body, fluid };
+enum class ObjectKind { collider, cloth, soft_body, fluid, rigid_body };
 
 /// One named scene object. Particles of an object are the contiguous range [particle_begin, particle_end).
 /// Fluid objects have no particles here: theirs live in FluidState (phase `fluid_phase`).
@@ -29,6 +31,7 @@ struct ObjectInfo {
   std::vector<std::array<Index, 4>> tets;     // global particle indices (soft bodies)
   Index collider = -1;                        // index into Model::colliders (colliders only)
   Index fluid_phase = -1;                     // index into Model::fluid.phases (fluids only)
+  Index body = -1;                            // index into Model::rigid (rigid bodies; colliders that rigid bodies touch)
   bool self_collision = false;                // particle contacts within the object
   bool fluid_coupling = true;                 // cloth / soft body: sampled as a two-way boundary of the fluids
   Real static_friction = 0.5, dynamic_friction = 0.5, restitution = 0;
@@ -36,7 +39,7 @@ struct ObjectInfo {
   Index particle_count() const { return particle_end - particle_begin; }
   bool has_particles() const { return particle_end > particle_begin; }
   /// Has simulated particles (in the model's particle arrays or, for fluids, in FluidState).
-  bool is_simulated() const { return has_particles() || kind == ObjectKind::fluid; }
+  bool is_simulated() const { return has_particles() || kind == ObjectKind::fluid || kind == ObjectKind::rigid_body; }
 };
 
 struct SolverSettings {
@@ -73,6 +76,9 @@ struct Model {
   AttachmentConstraints attachment;
 
   FluidModel fluid;
+
+  RigidBodyModel rigid;        // rigid bodies, then colliders as kinematic bodies
+  std::vector<Joint> joints;
 
   SolverSettings settings;
 

@@ -17,6 +17,16 @@ State make_rest_state(const Model& model) {
   s.tet_volume_lambda.assign(model.tet_volume.size(), 0);
   s.attachment_lambda.assign(model.attachment.size(), Vec3::Zero());
   s.fluid = make_fluid_state(model.fluid);
+  const RigidBodyModel& rb = model.rigid;
+  s.rigid.resize(rb.count());
+  s.rigid.position = rb.initial_position;
+  s.rigid.orientation = rb.initial_orientation;
+  s.rigid.velocity = rb.initial_velocity;
+  s.rigid.angular_velocity = rb.initial_angular_velocity;
+  s.rigid.start_position = s.rigid.position;
+  s.rigid.start_orientation = s.rigid.orientation;
+  s.joint_lambda.assign(model.joints.size(), JointLambdas{});
+  s.joint_drive_start.assign(model.joints.size(), 0);
   return s;
 }
 

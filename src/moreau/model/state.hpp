@@ -6,6 +6,7 @@
 #include "moreau/collision/contacts.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 #include "moreau/model/model.hpp"
+#include "moreau/rigid/rigid_contacts.hpp"
 
 namespace moreau {
 
@@ -32,6 +33,11 @@ struct State {
   ContactScratch contact_scratch;
 
   FluidState fluid;
+
+  RigidBodyState rigid;
+  RigidContacts rigid_contacts;
+  std::vector<JointLambdas> joint_lambda;
+  std::vector<Real> joint_drive_start;  // hinge angle (rad) or slide (m) at the substep start
 };
 
 /// A state at rest in the model's rest configuration, with all buffers sized.

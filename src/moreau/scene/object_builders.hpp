@@ -22,6 +22,11 @@ void build_collider(const JsonObject& object, ObjectInfo& info, SceneBuildContex
 void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
 void build_soft_body(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
 void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
+void build_rigid_body(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
+/// After all objects: colliders become kinematic bodies for the rigid bodies to collide with.
+void add_colliders_as_bodies(Model& model);
+/// The scene's "joints" list.
+void build_joints(const std::vector<JsonObject>& joints, Model& model);
 /// After all objects: samples collider walls for the fluids and sets the derived fluid constants.
 void finish_fluids(Model& model);
 

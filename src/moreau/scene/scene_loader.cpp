@@ -48,7 +48,7 @@ void read_settings(const JsonObject& settings, Scene& scene) {
   settings.finish();
 }
 
-enum class Accepts { any, fluids, solids };
+enum class Accepts { any, fluids, solids, bodies };
 
 Index object_index(const JsonObject& probe, const Model& model, bool allow_all, Accepts accepts = Accepts::any) {
   const std::string name = probe.string("object");
@@ -56,6 +56,7 @@ Index object_index(const JsonObject& probe, const Model& model, bool allow_all, 
   auto acceptable = [&](const ObjectInfo& o) {
     if (accepts == Accepts::fluids) return o.kind == ObjectKind::fluid;
     if (accepts == Accepts::solids) return o.has_particles();
+    if (accepts == Accepts::bodies) return o.kind == ObjectKind::rigid_body;
     return o.is_simulated();
   };
   const Index i = model.find_object(name);
@@ -64,7 +65,10 @@ Index object_index(const JsonObject& probe, const Model& model, bool allow_all, 
     for (const auto& o : model.objects)
       if (acceptable(o)) names += (names.empty() ? "" : ", ") + o.name;
     probe.fail("object", fmt::format("no {}object named '{}'; allowed: {}{}",
-                                     accepts == Accepts::fluids ? "fluid " : accepts == Accepts::solids ? "cloth or soft-body " : "simulated ",
+                                     accepts == Accepts::fluids   ? "fluid "
+                                     : accepts == Accepts::solids ? "cloth or soft-body "
+                                     : accepts == Accepts::bodies ? "rigid-body "
+                                                                  : "simulated ",
                                      name, names, allow_all ? ", *" : ""));
   }
   return i;
@@ -74,7 +78,9 @@ ProbeSpec read_probe(const JsonObject& j, const Model& model) {
   ProbeSpec p;
   p.name = j.string("name");
   const std::string type = j.choice("type", {"point", "energy", "center_of_mass", "extent", "momentum", "constraint_error",
-                                             "fluid_height", "density_error", "particle_count", "escaped"});
+                                             "fluid_height", "density_error", "particle_count", "escaped",
+                                             "position", "orientation", "velocity", "angular_velocity", "joint_error",
+                                             "contact_count", "max_displacement"});
   if (type == "point") {
     p.type = ProbeType::point;
     p.object = object_index(j, model, false, Accepts::solids);
@@ -119,6 +125,26 @@ ProbeSpec read_probe(const JsonObject& j, const Model& model) {
     p.quantity = j.choice("quantity", "mean", {"mean", "max"});
   } else if (type == "particle_count") {
     p.type = ProbeType::particle_count;
+    p.object = object_index(j, model, true);
+  } else if (type == "position" || type == "orientation" || type == "velocity" || type == "angular_velocity") {
+    p.type = type == "position"      ? ProbeType::body_position
+             : type == "orientation" ? ProbeType::body_orientation
+             : type == "velocity"    ? ProbeType::body_velocity
+                                     : ProbeType::body_angular_velocity;
+    p.object = object_index(j, model, false, Accepts::bodies);
+  } else if (type == "joint_error") {
+    p.type = ProbeType::joint_error;
+    const std::string name = j.string("joint");
+    if (name != "*") {
+      for (Index k = 0; k < static_cast<Index>(model.joints.size()); ++k)
+        if (model.joints[k].name == name) p.joint = k;
+      if (p.joint < 0) j.fail("joint", fmt::format("no joint is named '{}'; give a joint's name or \"*\"", name));
+    }
+  } else if (type == "contact_count") {
+    p.type = ProbeType::contact_count;
+    p.object = object_index(j, model, true);
+  } else if (type == "max_displacement") {
+    p.type = ProbeType::max_displacement;
     p.object = object_index(j, model, true);
   } else if (type == "escaped") {
     p.type = ProbeType::escaped;
@@ -170,8 +196,9 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
     info.name = object.string("name");
     if (scene.model.find_object(info.name) >= 0)
       object.fail("name", fmt::format("another object is already named '{}'; names must be unique", info.name));
-    const std::string kind = object.choice("kind", {"collider", "cloth", "soft_body", "fluid"});
+    const std::string kind = object.choice("kind", {"collider", "cloth", "soft_body", "fluid", "rigid_body"});
     if (kind == "collider") build_collider(object, info, ctx);
+    else if (kind == "rigid_body") build_rigid_body(object, info, ctx);
     else if (kind == "cloth") build_cloth(object, info, ctx);
     else if (kind == "fluid") build_fluid(object, info, ctx);
     else build_soft_body(object, info, ctx);
@@ -180,6 +207,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   }
   scene.model.color_constraints();
   finish_fluids(scene.model);
+  if (top.has("joints")) build_joints(top.object_list("joints"), scene.model);
+  add_colliders_as_bodies(scene.model);
 
   for (const JsonObject& probe : top.object_list("probes")) scene.probes.push_back(read_probe(probe, scene.model));
   top.finish();

@@ -17,6 +17,8 @@ enum class Stage : int {
   attachments,
   collider_contacts,
   particle_contacts,
+  joints,
+  rigid_contacts,
   fluid_neighbors,
   fluid_density,
   update_velocity,
@@ -28,7 +30,7 @@ enum class Stage : int {
 
 inline constexpr std::array<std::string_view, static_cast<int>(Stage::count)> kStageNames{
     "detect_contacts", "predict",           "distance",          "bending",         "triangle_strain",
-    "neo_hookean",     "tet_volume",        "attachments",       "collider_contacts", "particle_contacts",
+    "neo_hookean",     "tet_volume",        "attachments",       "collider_contacts", "particle_contacts", "joints", "rigid_contacts",
     "fluid_neighbors", "fluid_density",     "update_velocity",   "velocity_pass",     "fluid_velocity",
     "check_state"};
 

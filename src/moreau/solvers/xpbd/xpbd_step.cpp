@@ -13,6 +13,7 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
+#include "moreau/rigid/rigid_motion.hpp"
 
 namespace moreau {
 
@@ -77,6 +78,19 @@ void check_state(const Model& model, const State& state) {
     const FluidPhase& phase = model.fluid.phases[fluid.phase[i]];
     report_divergence(state, model.objects[phase.object].name, fluid.id[i], fluid.position[i], fluid.velocity[i], limit);
   }
+  const RigidBodyState& rb = state.rigid;
+  for (Index b = 0; b < model.rigid.count(); ++b) {
+    const bool finite = rb.position[b].allFinite() && rb.velocity[b].allFinite() && rb.angular_velocity[b].allFinite() &&
+                        rb.orientation[b].coeffs().allFinite();
+    if (finite && rb.velocity[b].norm() <= limit) continue;
+    const ObjectInfo& obj = model.objects[model.rigid.body_object[b]];
+    throw NumericalError(fmt::format(
+        "simulation diverged at step {} (t = {:.6g} s) in rigid body '{}': {} (limit {} m/s, settings.max_speed); "
+        "try more substeps, a smaller dt or stiffer joints with compliance",
+        state.step, state.time, obj.name,
+        finite ? fmt::format("speed {:.3g} m/s", rb.velocity[b].norm()) : std::string("a non-finite pose or velocity"),
+        limit));
+  }
   for (Index p = 0; p < model.particle_count(); ++p) {
     const bool finite = state.position[p].allFinite() && state.velocity[p].allFinite();
     if (finite && state.velocity[p].norm() <= limit) continue;
@@ -91,6 +105,8 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
   timer.start();
   detect_collider_contacts(model, state);
   detect_particle_contacts(model, state);
+  const bool rigid = !model.rigid.empty();
+  if (rigid) detect_rigid_contacts(model, state);
   timer.lap(Stage::detect_contacts);
 
   const Real dt = model.settings.dt;
@@ -110,7 +126,15 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
     };
     for (int sub = 0; sub < substeps; ++sub) {
       const Real substep_end = start_time + (sub + 1) * h;
+      if (rigid) {
+#pragma omp single
+        {
+          reset_joints(model, state);
+          reset_rigid_contacts(state);
+        }
+      }
       predict(model, state, h);
+      if (rigid) predict_rigid_bodies(model, state.rigid, h);
       if (fluids) predict_fluid(model, fluid, h);
       lap(Stage::predict);
       if (fluids) {
@@ -150,12 +174,29 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
         lap(Stage::particle_contacts);
         project_collider_contacts(model, state, ctx, substep_end);
         lap(Stage::collider_contacts);
+        if (rigid) {
+#pragma omp single
+          {
+            project_joints(model, state, h);
+            timer.lap(Stage::joints);
+            project_rigid_contacts(model, state);
+            timer.lap(Stage::rigid_contacts);
+          }
+        }
       }
       update_velocity(model, state, h);
+      if (rigid) update_rigid_body_velocities(model, state.rigid, h);
       if (fluids) update_fluid_velocity(fluid, h);
       lap(Stage::update_velocity);
       particle_contact_velocities(model, state, h);
       collider_contact_velocities(model, state, h);
+      if (rigid) {
+#pragma omp single
+        {
+          rigid_contact_velocities(model, state, h);
+          damp_joints(model, state, h);
+        }
+      }
 #pragma omp barrier
       lap(Stage::velocity_pass);
     }

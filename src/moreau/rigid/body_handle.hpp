@@ -1,0 +1,145 @@
+#pragma once
+// One end of a contact or joint: a rigid body, a particle (a body without rotation, Mueller et al.
+// 2020 sec. 3.7: "soft and rigid bodies couple directly"), or the world. The position-level
+// corrections of Mueller 2020 sec. 3.3 are written once against this handle.
+//
+// Positional correction of size c along unit n at world offsets r1, r2 from the centres:
+//   w_k = 1/m_k + (r_k x n)^T I_k^-1 (r_k x n)                                   (eq. 2-3)
+//   dlambda = (-c - alpha~ lambda) / (w1 + w2 + alpha~),  alpha~ = alpha / h^2    (eq. 4)
+//   p = dlambda n:  x1 += p/m1,  q1 += 1/2 [I1^-1 (r1 x p), 0] q1,  body 2 with -p  (eq. 6-9)
+// Angular correction by theta about unit n: w_k = n^T I_k^-1 n, q1 += 1/2 [I1^-1 p, 0] q1 (eq. 11-15).
+// I^-1 is applied in the body frame, where it is diagonal.
+#include "moreau/math/types.hpp"
+
+namespace moreau {
+
+struct BodyHandle {
+  Vec3* position = nullptr;           // centre (nullptr: the world)
+  Quat* orientation = nullptr;        // nullptr for particles and the world
+  Real inv_mass = 0;                  // 1/kg
+  Vec3 inv_inertia = Vec3::Zero();    // principal, 1/(kg m^2)
+
+  bool is_world() const { return position == nullptr; }
+  bool rotates() const { return orientation != nullptr && inv_inertia != Vec3::Zero(); }
+
+  /// I^-1 v for a world-space v.
+  Vec3 apply_inv_inertia(const Vec3& v) const {
+    if (!rotates()) return Vec3::Zero();
+    const Vec3 local = orientation->conjugate() * v;
+    return *orientation * Vec3(inv_inertia.cwiseProduct(local));
+  }
+  /// Generalised inverse mass for a push along unit n at world offset r.
+  Real positional_weight(const Vec3& r, const Vec3& n) const {
+    if (is_world()) return 0;
+    const Vec3 rn = r.cross(n);
+    return inv_mass + (rotates() ? rn.dot(apply_inv_inertia(rn)) : 0);
+  }
+  /// Generalised inverse mass for a rotation about unit n.
+  Real angular_weight(const Vec3& n) const { return rotates() ? n.dot(apply_inv_inertia(n)) : 0; }
+
+  /// Applies positional impulse p at world offset r (position level).
+  void apply_position_impulse(const Vec3& p, const Vec3& r) const {
+    if (is_world()) return;
+    *position += inv_mass * p;
+    if (rotates()) rotate_by(apply_inv_inertia(r.cross(p)));
+  }
+  /// Applies an angular position-level impulse (a rotation vector before I^-1).
+  void apply_angular_impulse(const Vec3& p) const {
+    if (rotates()) rotate_by(apply_inv_inertia(p));
+  }
+  /// q += 1/2 [phi, 0] q, normalised.
+  void rotate_by(const Vec3& phi) const {
+    Quat& q = *orientation;
+    const Quat dq = Quat(0, phi.x(), phi.y(), phi.z()) * q;
+    q.coeffs() += 0.5 * dq.coeffs();
+    q.normalize();
+  }
+};
+
+/// One XPBD positional correction C = c along n between two handles (see the file comment);
+/// returns dlambda. `lambda` accumulates over the substep's iterations.
+inline Real apply_positional_correction(const BodyHandle& a, const BodyHandle& b, const Vec3& n, Real c,
+                                        const Vec3& ra, const Vec3& rb, Real alpha_tilde, Real& lambda) {
+  const Real w = a.positional_weight(ra, n) + b.positional_weight(rb, n);
+  if (w + alpha_tilde <= 0) return 0;
+  const Real dlambda = (-c - alpha_tilde * lambda) / (w + alpha_tilde);
+  lambda += dlambda;
+  const Vec3 p = dlambda * n;
+  a.apply_position_impulse(p, ra);
+  b.apply_position_impulse(-p, rb);
+  return dlambda;
+}
+
+/// One XPBD angular correction by angle theta about unit n (a's rotation minus b's).
+inline Real apply_angular_correction(const BodyHandle& a, const BodyHandle& b, const Vec3& n, Real theta,
+                                     Real alpha_tilde, Real& lambda) {
+  const Real w = a.angular_weight(n) + b.angular_weight(n);
+  if (w + alpha_tilde <= 0) return 0;
+  const Real dlambda = (-theta - alpha_tilde * lambda) / (w + alpha_tilde);
+  lambda += dlambda;
+  const Vec3 p = dlambda * n;
+  a.apply_angular_impulse(p);
+  b.apply_angular_impulse(-p);
+  return dlambda;
+}
+
+/// Velocity-level handle: the same body seen through its velocities (the velocity pass).
+struct BodyVelocityHandle {
+  Vec3* velocity = nullptr;
+  Vec3* angular_velocity = nullptr;   // nullptr for particles and the world
+  const Quat* orientation = nullptr;
+  Real inv_mass = 0;
+  Vec3 inv_inertia = Vec3::Zero();
+
+  bool rotates() const { return angular_velocity != nullptr && inv_inertia != Vec3::Zero(); }
+  Vec3 apply_inv_inertia(const Vec3& v) const {
+    if (!rotates()) return Vec3::Zero();
+    const Vec3 local = orientation->conjugate() * v;
+    return *orientation * Vec3(inv_inertia.cwiseProduct(local));
+  }
+  Real weight(const Vec3& r, const Vec3& n) const {
+    if (velocity == nullptr) return 0;
+    const Vec3 rn = r.cross(n);
+    return inv_mass + (rotates() ? rn.dot(apply_inv_inertia(rn)) : 0);
+  }
+  /// Velocity of the material point at world offset r.
+  Vec3 point_velocity(const Vec3& r) const {
+    if (velocity == nullptr) return Vec3::Zero();
+    return angular_velocity ? Vec3(*velocity + angular_velocity->cross(r)) : *velocity;
+  }
+  void apply_impulse(const Vec3& p, const Vec3& r) const {
+    if (velocity == nullptr) return;
+    *velocity += inv_mass * p;
+    if (rotates()) *angular_velocity += apply_inv_inertia(r.cross(p));
+  }
+};
+
+/// Applies velocity change dv of the relative velocity (a minus b) at offsets ra, rb as the impulse
+/// p = dv / (w_a + w_b) (Mueller 2020, eq. 33).
+inline void apply_relative_velocity_change(const BodyVelocityHandle& a, const BodyVelocityHandle& b, const Vec3& dv,
+                                           const Vec3& ra, const Vec3& rb) {
+  const Real len = dv.norm();
+  if (len <= 0) return;
+  const Vec3 n = dv / len;
+  const Real w = a.weight(ra, n) + b.weight(rb, n);
+  if (w <= 0) return;
+  const Vec3 p = dv / w;
+  a.apply_impulse(p, ra);
+  b.apply_impulse(-p, rb);
+}
+
+}  // namespace moreau
+
+#include "moreau/rigid/rigid_bodies.hpp"
+
+namespace moreau {
+
+inline BodyHandle rigid_body_handle(const RigidBodyModel& m, RigidBodyState& s, Index b) {
+  return {&s.position[b], &s.orientation[b], m.body_inv_mass[b], m.body_inv_inertia[b]};
+}
+
+inline BodyVelocityHandle rigid_body_velocity_handle(const RigidBodyModel& m, RigidBodyState& s, Index b) {
+  return {&s.velocity[b], &s.angular_velocity[b], &s.orientation[b], m.body_inv_mass[b], m.body_inv_inertia[b]};
+}
+
+}  // namespace moreau

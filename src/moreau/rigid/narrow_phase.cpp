@@ -1,0 +1,231 @@
+#include "moreau/rigid/narrow_phase.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "moreau/rigid/narrow_phase_parts.hpp"
+
+namespace moreau {
+
+namespace narrow {
+
+void closest_points_of_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Vec3& on_p,
+                                Vec3& on_q) {
+  // Minimise |p0 + s d1 - q0 - t d2|^2 over s, t in [0, 1] (Ericson, Real-Time Collision
+  // Detection, sec. 5.1.9).
+  const Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  const Real a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  constexpr Real tiny = 1e-24;
+  Real s = 0, t = 0;
+  if (a <= tiny && e <= tiny) {
+  } else if (a <= tiny) {
+    t = std::clamp(f / e, Real(0), Real(1));
+  } else {
+    const Real c = d1.dot(r);
+    if (e <= tiny) {
+      s = std::clamp(-c / a, Real(0), Real(1));
+    } else {
+      const Real b = d1.dot(d2), denom = a * e - b * b;
+      s = denom > tiny * a * e ? std::clamp((b * f - c * e) / denom, Real(0), Real(1)) : 0;
+      t = (b * s + f) / e;
+      if (t < 0) {
+        t = 0;
+        s = std::clamp(-c / a, Real(0), Real(1));
+      } else if (t > 1) {
+        t = 1;
+        s = std::clamp((b - c) / a, Real(0), Real(1));
+      }
+    }
+  }
+  on_p = p0 + s * d1;
+  on_q = q0 + t * d2;
+}
+
+ContactManifold reduce_to_manifold(const Candidates& c, const Pose& pa, const Pose& pb) {
+  ContactManifold m;
+  m.frame = c.frame;
+  if (c.count == 0) return m;
+  std::array<int, 4> keep{};
+  int kept = 0;
+  if (c.count <= 4) {
+    for (int i = 0; i < c.count; ++i) keep[kept++] = i;
+  } else {
+    // Deepest point; the point furthest from it; the one making the largest triangle; the one
+    // adding the most area outside that triangle.
+    auto position = [&](int i) { return c.items[i].core_b; };
+    int first = 0;
+    for (int i = 1; i < c.count; ++i)
+      if (c.items[i].separation < c.items[first].separation) first = i;
+    int second = first;
+    Real best = -1;
+    for (int i = 0; i < c.count; ++i) {
+      const Real d = (position(i) - position(first)).squaredNorm();
+      if (d > best) best = d, second = i;
+    }
+    int third = first;
+    best = -1;
+    for (int i = 0; i < c.count; ++i) {
+      const Real area = (position(i) - position(first)).cross(position(i) - position(second)).dot(c.normal);
+      if (std::abs(area) > best) best = std::abs(area), third = i;
+    }
+    const Real orientation = (position(second) - position(first)).cross(position(third) - position(first)).dot(c.normal);
+    int fourth = first;
+    best = 0;
+    for (int i = 0; i < c.count; ++i) {
+      // Area added outside each edge of the triangle (negative signed area relative to its winding).
+      const std::array<int, 3> tri{first, second, third};
+      for (int k = 0; k < 3; ++k) {
+        const Vec3 u = position(tri[(k + 1) % 3]) - position(tri[k]), v = position(i) - position(tri[k]);
+        const Real outside = -u.cross(v).dot(c.normal) * (orientation >= 0 ? 1 : -1);
+        if (outside > best) best = outside, fourth = i;
+      }
+    }
+    keep = {first, second, third, fourth};
+    kept = 4;
+    std::sort(keep.begin(), keep.end());
+    kept = static_cast<int>(std::unique(keep.begin(), keep.end()) - keep.begin());
+  }
+  const Vec3 n_local = c.frame == NormalFrame::body_a   ? Vec3(pa.orientation.conjugate() * c.normal)
+                       : c.frame == NormalFrame::body_b ? Vec3(pb.orientation.conjugate() * c.normal)
+                                                        : c.normal;
+  for (int k = 0; k < kept; ++k) {
+    const Candidate& cand = c.items[keep[k]];
+    ContactGeometry& g = m.points[m.count++];
+    g.core_a = pa.to_local(cand.core_a);
+    g.core_b = pb.to_local(cand.core_b);
+    g.radius_a = cand.radius_a;
+    g.radius_b = cand.radius_b;
+    g.normal = n_local;
+  }
+  return m;
+}
+
+namespace {
+
+// The core of a round shape: a point (sphere) or a segment (capsule), in world space.
+struct Core {
+  Vec3 p0, p1;
+  Real radius;
+};
+
+Core round_core(const RigidShape& s, const Pose& pose) {
+  const Vec3 axis = pose.orientation * Vec3(0, s.half_height, 0);
+  return {pose.position - axis, pose.position + axis, s.radius};
+}
+
+void collide_round(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+                   Candidates& out) {
+  const Core ca = round_core(a, pa), cb = round_core(b, pb);
+  Vec3 on_a, on_b;
+  closest_points_of_segments(ca.p0, ca.p1, cb.p0, cb.p1, on_a, on_b);
+  const Vec3 d = on_a - on_b;
+  const Real dist = d.norm();
+  const Real separation = dist - ca.radius - cb.radius;
+  if (separation > margin) return;
+  out.normal = dist > 1e-12 ? Vec3(d / dist) : Vec3(pa.orientation * Vec3::UnitY());
+  out.frame = NormalFrame::cores;
+  out.add({on_a, on_b, ca.radius, cb.radius, separation});
+  // Two parallel capsules lie along each other: add the other end of the overlap so they do not
+  // pivot about one point.
+  const Vec3 da = ca.p1 - ca.p0, db = cb.p1 - cb.p0;
+  if (da.squaredNorm() > 0 && db.squaredNorm() > 0 && std::abs(da.normalized().dot(db.normalized())) > 0.995) {
+    for (const Vec3& end : {ca.p0, ca.p1}) {
+      Vec3 e_a, e_b;
+      closest_points_of_segments(end, end, cb.p0, cb.p1, e_a, e_b);
+      if ((e_a - on_a).norm() < 1e-6 * (1 + da.norm())) continue;
+      const Real s = (e_a - e_b).dot(out.normal) - ca.radius - cb.radius;
+      if (s <= margin && ((e_a - e_b) - (e_a - e_b).dot(out.normal) * out.normal).norm() < 1e-6 + 1e-3 * da.norm())
+        out.add({e_a, e_b, ca.radius, cb.radius, s});
+    }
+  }
+}
+
+// A shape against the half-space y <= 0 of the plane's frame (B is the plane).
+void collide_plane(const RigidShape& a, const Pose& pa, const Pose& plane, Real margin, Candidates& out) {
+  const Vec3 n = plane.orientation * Vec3::UnitY();
+  const Real offset = n.dot(plane.position);
+  out.normal = n;
+  out.frame = NormalFrame::body_b;
+  auto add_point = [&](const Vec3& core, Real radius) {
+    const Real s = n.dot(core) - offset - radius;
+    if (s <= margin) out.add({core, core - (s + radius) * n, radius, 0, s});
+  };
+  switch (a.type) {
+    case ShapeType::sphere: add_point(pa.position, a.radius); break;
+    case ShapeType::capsule: {
+      const Core c = round_core(a, pa);
+      add_point(c.p0, c.radius);
+      add_point(c.p1, c.radius);
+      break;
+    }
+    case ShapeType::box:
+    case ShapeType::convex_hull:
+      for (const Vec3& v : a.polyhedron.vertices) add_point(pa.to_world(v), 0);
+      break;
+    case ShapeType::cylinder: {
+      const narrow::Feature f = support_feature(a, pa, -n);
+      for (int k = 0; k < f.count; ++k) add_point(f.points[k], 0);
+      break;
+    }
+    case ShapeType::plane: break;
+  }
+}
+
+}  // namespace
+}  // namespace narrow
+
+ContactManifold collide_shapes(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin) {
+  using namespace narrow;
+  // Put the plane, the polyhedron or the non-round shape second; remember to swap back.
+  auto rank = [](const RigidShape& s) {
+    switch (s.type) {
+      case ShapeType::sphere: return 0;
+      case ShapeType::capsule: return 1;
+      case ShapeType::cylinder: return 2;
+      case ShapeType::box:
+      case ShapeType::convex_hull: return 3;
+      case ShapeType::plane: return 4;
+    }
+    return 0;
+  };
+  if (rank(a) > rank(b)) {
+    ContactManifold m = collide_shapes(b, pb, a, pa, margin);
+    for (int k = 0; k < m.count; ++k) {
+      ContactGeometry& g = m.points[k];
+      std::swap(g.core_a, g.core_b);
+      std::swap(g.radius_a, g.radius_b);
+      g.normal = -g.normal;
+    }
+    if (m.frame == NormalFrame::body_a) m.frame = NormalFrame::body_b;
+    else if (m.frame == NormalFrame::body_b) m.frame = NormalFrame::body_a;
+    return m;
+  }
+  Candidates c;
+  if (b.type == ShapeType::plane) {
+    if (a.type != ShapeType::plane) collide_plane(a, pa, pb, margin, c);
+  } else if (a.is_round() && b.is_round()) {
+    collide_round(a, pa, b, pb, margin, c);
+  } else if (a.is_polyhedron() && b.is_polyhedron()) {
+    collide_polyhedra(a, pa, b, pb, margin, c);
+  } else if (a.type == ShapeType::sphere && b.is_polyhedron()) {
+    collide_sphere_polyhedron(a, pa, b, pb, margin, c);
+  } else {
+    collide_convex_mpr(a, pa, b, pb, margin, c);
+  }
+  return reduce_to_manifold(c, pa, pb);
+}
+
+Vec3 contact_normal(NormalFrame frame, const ContactGeometry& c, const Pose& pa, const Pose& pb) {
+  switch (frame) {
+    case NormalFrame::body_a: return pa.orientation * c.normal;
+    case NormalFrame::body_b: return pb.orientation * c.normal;
+    case NormalFrame::cores: {
+      const Vec3 d = pa.to_world(c.core_a) - pb.to_world(c.core_b);
+      const Real len = d.norm();
+      return len > 1e-12 ? Vec3(d / len) : c.normal;
+    }
+  }
+  return c.normal;
+}
+
+}  // namespace moreau

@@ -1,0 +1,58 @@
+#pragma once
+// Narrow phase: the contact manifold (up to four points) between two posed shapes, found once per
+// step with a margin and re-evaluated every substep from body-frame points (Mueller et al. 2020,
+// sec. 3.5: "contact pairs are collected once per time step and re-evaluated in each substep").
+//
+// Convention: the normal points from B to A. Each point pair is stored as a "core" point per body
+// (body frame) plus a radius: the surface point of A is x_a + q_a core_a - radius_a n and that of
+// B is x_b + q_b core_b + radius_b n, so a sphere or capsule that rolls keeps touching with its
+// current lowest point. The separation (p_a - p_b) . n is negative in penetration.
+//
+// Pairs and methods:
+//   sphere/capsule with sphere/capsule  closest points of the cores (points or segments); the
+//                                       normal follows the cores every substep
+//   anything with a plane               the shape's points below the plane (vertices, segment ends,
+//                                       the rim of a cylinder)
+//   box/hull with box/hull              separating axes (face normals and edge-edge cross
+//                                       products), then the incident face clipped against the
+//                                       reference face's side planes (Gregorius, GDC 2013/2015)
+//   sphere with box/hull                closest point of the polyhedron to the centre
+//   other pairs (capsule or cylinder    Minkowski portal refinement (libccd, Snethen 2008) for the
+//   with box/hull, cylinder pairs)      normal, then the same feature clipping
+#include <array>
+
+#include "moreau/rigid/rigid_shape.hpp"
+
+namespace moreau {
+
+struct Pose {
+  Vec3 position = Vec3::Zero();
+  Quat orientation = Quat::Identity();
+  Vec3 to_world(const Vec3& local) const { return position + orientation * local; }
+  Vec3 to_local(const Vec3& world) const { return orientation.conjugate() * (world - position); }
+};
+
+/// Which frame a contact normal is stored in (it turns with that body between substeps), or
+/// whether it is recomputed from the cores each substep (round against round).
+enum class NormalFrame : std::uint8_t { body_a, body_b, cores };
+
+struct ContactGeometry {
+  Vec3 core_a = Vec3::Zero(), core_b = Vec3::Zero();  // body frames
+  Real radius_a = 0, radius_b = 0;                    // m
+  Vec3 normal = Vec3::UnitY();                        // unit, in the frame `frame` names (B to A)
+};
+
+struct ContactManifold {
+  std::array<ContactGeometry, 4> points;
+  int count = 0;
+  NormalFrame frame = NormalFrame::body_b;
+};
+
+/// Contacts between A and B whose separation is below `margin` (m); count = 0 if none.
+ContactManifold collide_shapes(const RigidShape& a, const Pose& pose_a, const RigidShape& b, const Pose& pose_b,
+                               Real margin);
+
+/// World-space unit normal (B to A) of a contact in the current poses.
+Vec3 contact_normal(NormalFrame frame, const ContactGeometry& c, const Pose& pose_a, const Pose& pose_b);
+
+}  // namespace moreau

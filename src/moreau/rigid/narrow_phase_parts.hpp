@@ -1,0 +1,69 @@
+#pragma once
+// Internal pieces of the narrow phase, shared by its source files (not part of the engine's API).
+#include <array>
+
+#include "moreau/rigid/narrow_phase.hpp"
+
+namespace moreau::narrow {
+
+/// A candidate contact in world space: cores, radii and the separation along the manifold normal.
+struct Candidate {
+  Vec3 core_a, core_b;
+  Real radius_a = 0, radius_b = 0;
+  Real separation = 0;
+};
+
+/// Up to 64 candidates with one world normal (B to A), reduced to four at the end.
+struct Candidates {
+  static constexpr int capacity = 64;
+  std::array<Candidate, capacity> items;
+  int count = 0;
+  Vec3 normal = Vec3::UnitY();
+  NormalFrame frame = NormalFrame::body_b;
+
+  void add(const Candidate& c) {
+    if (count < capacity) items[count++] = c;
+  }
+};
+
+/// The extreme feature of a shape in a direction: a face polygon, an edge, or a point, with the
+/// shape's rounding radius (sphere and capsule features are points of their cores).
+struct Feature {
+  static constexpr int capacity = 32;
+  std::array<Vec3, capacity> points;
+  int count = 0;
+  bool is_face = false;
+  Vec3 face_normal = Vec3::Zero();  // outward, when is_face
+  Real radius = 0;
+};
+
+/// The feature of `shape` (posed) furthest along world direction `direction`.
+Feature support_feature(const RigidShape& shape, const Pose& pose, const Vec3& direction);
+
+enum class Reference { automatic, a, b };
+
+/// Builds contacts from features along normal n (B to A): the reference is the feature whose face
+/// is better aligned with n (or the one named); the other is clipped against its side planes;
+/// points with separation below `margin` are kept. Without a face on either side, the closest
+/// points of the two features make one contact.
+void contacts_from_features(const Feature& fa, const Feature& fb, const Vec3& n, Real margin, Candidates& out,
+                            Reference reference = Reference::automatic);
+
+/// Reduces the candidates to at most four that keep the deepest point and span the largest area.
+ContactManifold reduce_to_manifold(const Candidates& c, const Pose& pose_a, const Pose& pose_b);
+
+/// Closest points of segments [p0, p1] and [q0, q1] (a segment may be a point).
+void closest_points_of_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Vec3& on_p,
+                                Vec3& on_q);
+
+/// Box/hull against box/hull by separating axes.
+void collide_polyhedra(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+                       Candidates& out);
+/// Sphere A against box/hull B.
+void collide_sphere_polyhedron(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+                               Candidates& out);
+/// Any convex pair by Minkowski portal refinement (libccd) for the normal, then feature clipping.
+void collide_convex_mpr(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+                        Candidates& out);
+
+}  // namespace moreau::narrow

@@ -1,0 +1,171 @@
+// Box/hull pairs by separating axes, and a sphere against a box/hull by its closest point.
+#include <cmath>
+#include <limits>
+
+#include "moreau/rigid/narrow_phase_parts.hpp"
+
+namespace moreau::narrow {
+
+namespace {
+
+Vec3 world_support(const RigidShape& s, const Pose& p, const Vec3& direction) {
+  return p.to_world(s.polyhedron.vertices[s.polyhedron.support_vertex(p.orientation.conjugate() * direction)]);
+}
+
+struct FaceAxis {
+  Real separation = -std::numeric_limits<Real>::infinity();
+  Index face = -1;
+};
+
+// Deepest separation of `other` from each face plane of `self` (both posed).
+FaceAxis best_face_axis(const RigidShape& self, const Pose& ps, const RigidShape& other, const Pose& po) {
+  FaceAxis best;
+  const ConvexPolyhedron& poly = self.polyhedron;
+  for (Index f = 0; f < static_cast<Index>(poly.faces.size()); ++f) {
+    const Vec3 n = ps.orientation * poly.face_normals[f];
+    const Real offset = poly.face_offsets[f] + n.dot(ps.position);
+    const Real s = n.dot(world_support(other, po, -n)) - offset;
+    if (s > best.separation) best = {s, f};
+  }
+  return best;
+}
+
+Feature face_feature(const RigidShape& s, const Pose& p, Index f) {
+  Feature out;
+  const auto& face = s.polyhedron.faces[f];
+  for (Index v : face)
+    if (out.count < Feature::capacity) out.points[out.count++] = p.to_world(s.polyhedron.vertices[v]);
+  out.is_face = true;
+  out.face_normal = p.orientation * s.polyhedron.face_normals[f];
+  return out;
+}
+
+// The face of `s` whose normal is most opposite to world direction n.
+Index incident_face(const RigidShape& s, const Pose& p, const Vec3& n) {
+  const Vec3 local = p.orientation.conjugate() * n;
+  Index best = 0;
+  Real best_dot = std::numeric_limits<Real>::infinity();
+  const auto& normals = s.polyhedron.face_normals;
+  for (Index f = 0; f < static_cast<Index>(normals.size()); ++f)
+    if (normals[f].dot(local) < best_dot) best_dot = normals[f].dot(local), best = f;
+  return best;
+}
+
+// The edge of `s` parallel to world direction d that is furthest along `axis`.
+void support_edge(const RigidShape& s, const Pose& p, const Vec3& d, const Vec3& axis, Vec3& e0, Vec3& e1) {
+  const Vec3 dl = p.orientation.conjugate() * d, al = p.orientation.conjugate() * axis;
+  const ConvexPolyhedron& poly = s.polyhedron;
+  Real best = -std::numeric_limits<Real>::infinity();
+  for (const auto& e : poly.edges) {
+    const Vec3 a = poly.vertices[e[0]], b = poly.vertices[e[1]];
+    const Vec3 dir = (b - a).normalized();
+    if (std::abs(dir.dot(dl)) < 1 - 1e-6) continue;
+    const Real along = 0.5 * (a + b).dot(al);
+    if (along > best) best = along, e0 = p.to_world(a), e1 = p.to_world(b);
+  }
+}
+
+}  // namespace
+
+void collide_polyhedra(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+                       Candidates& out) {
+  const FaceAxis face_a = best_face_axis(a, pa, b, pb);
+  if (face_a.separation > margin) return;
+  const FaceAxis face_b = best_face_axis(b, pb, a, pa);
+  if (face_b.separation > margin) return;
+
+  // Edge-edge axes, oriented from A to B.
+  Real edge_separation = -std::numeric_limits<Real>::infinity();
+  Vec3 edge_axis, edge_dir_a, edge_dir_b;
+  const Vec3 ab = pb.position - pa.position;
+  for (const Vec3& da_local : a.polyhedron.edge_directions) {
+    const Vec3 da = pa.orientation * da_local;
+    for (const Vec3& db_local : b.polyhedron.edge_directions) {
+      const Vec3 db = pb.orientation * db_local;
+      Vec3 axis = da.cross(db);
+      const Real len = axis.norm();
+      if (len < 1e-6) continue;
+      axis /= len;
+      if (axis.dot(ab) < 0) axis = -axis;
+      const Real s = axis.dot(world_support(b, pb, -axis)) - axis.dot(world_support(a, pa, axis));
+      if (s > margin) return;
+      if (s > edge_separation) edge_separation = s, edge_axis = axis, edge_dir_a = da, edge_dir_b = db;
+    }
+  }
+
+  // Prefer faces (stable manifolds) unless an edge axis separates clearly more.
+  const Real scale = std::min(a.bounding_radius(), b.bounding_radius());
+  const Real face_separation = std::max(face_a.separation, face_b.separation);
+  if (edge_separation > face_separation + 1e-3 * scale) {
+    Vec3 a0, a1, b0, b1, on_a, on_b;
+    support_edge(a, pa, edge_dir_a, edge_axis, a0, a1);
+    support_edge(b, pb, edge_dir_b, -edge_axis, b0, b1);
+    closest_points_of_segments(a0, a1, b0, b1, on_a, on_b);
+    out.normal = -edge_axis;
+    out.frame = NormalFrame::body_b;
+    out.add({on_a, on_b, 0, 0, (on_a - on_b).dot(out.normal)});
+    return;
+  }
+  // Between nearly equal face axes take B's: pairs are ordered by body index and colliders come
+  // last, so a box on the ground keeps the ground's normal.
+  if (face_a.separation > face_b.separation + 1e-3 * scale) {
+    const Feature reference = face_feature(a, pa, face_a.face);
+    const Feature incident = face_feature(b, pb, incident_face(b, pb, reference.face_normal));
+    contacts_from_features(reference, incident, -reference.face_normal, margin, out, Reference::a);
+  } else {
+    const Feature reference = face_feature(b, pb, face_b.face);
+    const Feature incident = face_feature(a, pa, incident_face(a, pa, reference.face_normal));
+    contacts_from_features(incident, reference, reference.face_normal, margin, out, Reference::b);
+  }
+}
+
+void collide_sphere_polyhedron(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+                               Candidates& out) {
+  const ConvexPolyhedron& poly = b.polyhedron;
+  const Vec3 c = pb.to_local(pa.position);
+  const Index faces = static_cast<Index>(poly.faces.size());
+  // Signed distances to the face planes; inside when all are <= 0.
+  Real max_distance = -std::numeric_limits<Real>::infinity();
+  Index max_face = 0;
+  for (Index f = 0; f < faces; ++f) {
+    const Real d = poly.face_normals[f].dot(c) - poly.face_offsets[f];
+    if (d > max_distance) max_distance = d, max_face = f;
+  }
+  Vec3 closest, normal;
+  Real distance;
+  if (max_distance <= 0) {
+    normal = poly.face_normals[max_face];
+    closest = c - max_distance * normal;
+    distance = max_distance;
+  } else {
+    // Outside: the nearest point is inside a face with positive distance, or on an edge.
+    distance = std::numeric_limits<Real>::infinity();
+    for (Index f = 0; f < faces; ++f) {
+      const Vec3& n = poly.face_normals[f];
+      const Real d = n.dot(c) - poly.face_offsets[f];
+      if (d <= 0 || d >= distance) continue;
+      const Vec3 p = c - d * n;
+      const auto& face = poly.faces[f];
+      bool inside = true;
+      for (size_t k = 0; k < face.size() && inside; ++k) {
+        const Vec3& v0 = poly.vertices[face[k]];
+        const Vec3& v1 = poly.vertices[face[(k + 1) % face.size()]];
+        inside = (v1 - v0).cross(p - v0).dot(n) >= 0;
+      }
+      if (inside) distance = d, closest = p, normal = n;
+    }
+    for (const auto& e : poly.edges) {
+      Vec3 on_edge, on_c;
+      closest_points_of_segments(poly.vertices[e[0]], poly.vertices[e[1]], c, c, on_edge, on_c);
+      const Real d = (c - on_edge).norm();
+      if (d < distance && d > 0) distance = d, closest = on_edge, normal = (c - on_edge) / d;
+    }
+  }
+  const Real separation = distance - a.radius;
+  if (separation > margin) return;
+  out.normal = pb.orientation * normal;
+  out.frame = NormalFrame::body_b;
+  out.add({pa.position, pb.to_world(closest), a.radius, 0, separation});
+}
+
+}  // namespace moreau::narrow

@@ -1,0 +1,52 @@
+#pragma once
+// Rigid bodies of the constraint engine (Mueller et al. 2020, "Detailed Rigid Body Simulation with
+// Extended Position Based Dynamics"). A body's pose is its centre of mass x and the orientation q
+// of its principal frame: a body-frame point r is at x + q r in the world. Inertia is diagonal in
+// that frame. Colliders take part as kinematic bodies with infinite mass.
+#include <vector>
+
+#include "moreau/rigid/rigid_shape.hpp"
+
+namespace moreau {
+
+enum class BodyMotion {
+  dynamic,    // integrated under gravity and constraints
+  fixed,      // never moves
+  kinematic,  // moves with its prescribed velocity and angular velocity; infinite mass
+};
+
+struct RigidBodyModel {
+  std::vector<RigidShape> body_shape;
+  std::vector<Index> body_object;            // owning scene object
+  std::vector<BodyMotion> body_motion;
+  std::vector<Real> body_mass;               // kg (0 for colliders)
+  std::vector<Real> body_inv_mass;           // 1/kg, 0 unless dynamic
+  std::vector<Vec3> body_inv_inertia;        // 1/(kg m^2), principal, 0 unless dynamic
+  std::vector<Vec3> body_inertia;            // kg m^2, principal
+  std::vector<Quat> body_frame_in_shape;     // principal frame -> the frame the shape was given in
+  std::vector<Vec3> body_center_in_shape;    // m, centre of mass in the frame the shape was given in
+  std::vector<Real> body_static_friction, body_dynamic_friction, body_restitution;
+  std::vector<std::array<Index, 2>> pairs_without_contact;  // sorted (a < b): joined bodies
+  // Initial conditions (the state at t = 0).
+  std::vector<Vec3> initial_position, initial_velocity, initial_angular_velocity;
+  std::vector<Quat> initial_orientation;
+
+  Index count() const { return static_cast<Index>(body_shape.size()); }
+  bool empty() const { return body_shape.empty(); }
+  bool is_dynamic(Index b) const { return body_motion[b] == BodyMotion::dynamic; }
+};
+
+struct RigidBodyState {
+  std::vector<Vec3> position;                 // m, centre of mass
+  std::vector<Quat> orientation;              // principal frame -> world
+  std::vector<Vec3> velocity;                 // m/s
+  std::vector<Vec3> angular_velocity;         // rad/s, world frame
+  std::vector<Vec3> start_position;           // at the start of the substep
+  std::vector<Quat> start_orientation;
+  std::vector<Vec3> velocity_before;          // after prediction, before the solve (restitution)
+  std::vector<Vec3> angular_velocity_before;
+
+  void resize(Index n);
+};
+
+}  // namespace moreau

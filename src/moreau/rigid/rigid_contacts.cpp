@@ -1,0 +1,322 @@
+#include "moreau/rigid/rigid_contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "moreau/model/state.hpp"
+#include "moreau/rigid/body_handle.hpp"
+
+namespace moreau {
+
+namespace {
+
+constexpr int kMaxPoints = 4;
+// Projected Gauss-Seidel sweeps of one manifold's block (at most 12 x 12).
+constexpr int kBlockSweeps = 8;
+
+Pose body_pose(const RigidBodyState& s, Index b) { return {s.position[b], s.orientation[b]}; }
+Pose start_pose(const RigidBodyState& s, Index b) { return {s.start_position[b], s.start_orientation[b]}; }
+
+// World bounds of body b grown by its margin; planes are unbounded.
+void body_bounds(const RigidBodyModel& m, const RigidBodyState& s, Index b, Real margin, Vec3& lo, Vec3& hi) {
+  const RigidShape& shape = m.body_shape[b];
+  if (shape.type == ShapeType::plane) {
+    lo = Vec3::Constant(-1e300);
+    hi = Vec3::Constant(1e300);
+    return;
+  }
+  const Mat3 R = s.orientation[b].toRotationMatrix();
+  const Vec3 e = R.cwiseAbs() * shape.local_half_extents() + Vec3::Constant(margin);
+  lo = s.position[b] - e;
+  hi = s.position[b] + e;
+}
+
+bool joined(const RigidBodyModel& m, Index a, Index b) {
+  const std::array<Index, 2> key{std::min(a, b), std::max(a, b)};
+  return std::binary_search(m.pairs_without_contact.begin(), m.pairs_without_contact.end(), key);
+}
+
+// One manifold's block: per point a normal row (C = d >= 0) and two tangent rows (C = slip . t =
+// 0, static friction), solved together by projected Gauss-Seidel on the linearised system
+//   e + K x = 0 (rows at rest),  x_n >= 0 complementary to d + (K x)_n,
+//   |x_t| <= mu_s x_n, else x_t = 0 (the point slides: the velocity pass applies dynamic friction)
+// with K_rs = dir_r.dir_s (1/m_a + 1/m_b) + (r_a x dir_r).I_a^-1 (r_a x dir_s) + (same for b),
+// then applied as position impulses.
+void solve_manifold_block(RigidManifold& mf, RigidContactPoint* points, const BodyHandle& ha, const BodyHandle& hb,
+                          const RigidBodyState& s) {
+  const Index a = mf.body_a, b = mf.body_b;
+  const Pose pa = body_pose(s, a), pb = body_pose(s, b);
+  const Pose sa = start_pose(s, a), sb = start_pose(s, b);
+  const int k = mf.count, rows = 3 * k;
+  std::array<Real, 3 * kMaxPoints> e{}, x{};
+  std::array<Vec3, 3 * kMaxPoints> dir, ua, ub, Iua, Iub;
+  std::array<Vec3, kMaxPoints> ra, rb;
+  bool any_penetrating = false;
+  for (int i = 0; i < k; ++i) {
+    RigidContactPoint& c = points[i];
+    const Vec3 n = contact_normal(mf.frame, c.geometry, pa, pb);
+    const Vec3 p_a = pa.to_world(c.geometry.core_a) - c.geometry.radius_a * n;
+    const Vec3 p_b = pb.to_world(c.geometry.core_b) + c.geometry.radius_b * n;
+    ra[i] = p_a - pa.position;
+    rb[i] = p_b - pb.position;
+    c.material_a = pa.orientation.conjugate() * ra[i];
+    c.material_b = pb.orientation.conjugate() * rb[i];
+    // Slip of the two material points over the substep.
+    const Vec3 slip = (p_a - sa.to_world(c.material_a)) - (p_b - sb.to_world(c.material_b));
+    const Vec3 t1 = (std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+    const Vec3 t2 = n.cross(t1);
+    dir[3 * i] = n;
+    dir[3 * i + 1] = t1;
+    dir[3 * i + 2] = t2;
+    e[3 * i] = (p_a - p_b).dot(n);
+    e[3 * i + 1] = slip.dot(t1);
+    e[3 * i + 2] = slip.dot(t2);
+    c.normal = n;
+    c.offset_a = ra[i];
+    c.offset_b = rb[i];
+    any_penetrating |= e[3 * i] < 0;
+  }
+  if (!any_penetrating) return;
+  for (int r = 0; r < rows; ++r) {
+    ua[r] = ra[r / 3].cross(dir[r]);
+    ub[r] = rb[r / 3].cross(dir[r]);
+    Iua[r] = ha.apply_inv_inertia(ua[r]);
+    Iub[r] = hb.apply_inv_inertia(ub[r]);
+  }
+  const Real linear = ha.inv_mass + hb.inv_mass;
+  std::array<std::array<Real, 3 * kMaxPoints>, 3 * kMaxPoints> K{};
+  for (int r = 0; r < rows; ++r)
+    for (int q = r; q < rows; ++q)
+      K[r][q] = K[q][r] = dir[r].dot(dir[q]) * linear + ua[r].dot(Iua[q]) + ub[r].dot(Iub[q]);
+  auto residual = [&](int r) {
+    Real v = e[r];
+    for (int q = 0; q < rows; ++q) v += K[r][q] * x[q];
+    return v;
+  };
+  auto sweeps = [&](bool friction) {
+    for (int sweep = 0; sweep < kBlockSweeps; ++sweep)
+      for (int i = 0; i < k; ++i) {
+        const int rn = 3 * i;
+        if (K[rn][rn] > 0) x[rn] = std::max(Real(0), x[rn] - residual(rn) / K[rn][rn]);
+        if (!friction) continue;
+        for (int r = rn + 1; r < rn + 3; ++r)
+          if (K[r][r] > 0) x[r] -= residual(r) / K[r][r];
+        // Project onto the friction cone |x_t| <= mu_s x_n.
+        const Real ft = std::hypot(x[rn + 1], x[rn + 2]), bound = mf.static_friction * x[rn];
+        if (ft > bound) {
+          x[rn + 1] *= bound / ft;
+          x[rn + 2] *= bound / ft;
+        }
+      }
+  };
+  sweeps(true);
+  // Static friction holds only inside the cone (Mueller 2020, eq. 27), judged for the manifold as
+  // a whole: when every pushing point's friction sits on its cone, the manifold slides, the
+  // friction rows are dropped and the velocity pass applies dynamic friction instead. (Single
+  // corners on the cone while others hold is a box that sticks.)
+  bool sliding = false;
+  for (int i = 0; i < k; ++i) {
+    if (x[3 * i] <= 0) continue;
+    const Real ft = std::hypot(x[3 * i + 1], x[3 * i + 2]);
+    sliding = ft >= (1 - 1e-9) * mf.static_friction * x[3 * i];
+    if (!sliding) break;
+  }
+  if (sliding) {
+    for (int i = 0; i < k; ++i) x[3 * i + 1] = x[3 * i + 2] = 0;
+    sweeps(false);
+  }
+  for (int i = 0; i < k; ++i) {
+    RigidContactPoint& c = points[i];
+    if (x[3 * i] <= 0) continue;
+    c.lambda_normal += x[3 * i];
+    c.touching = true;
+  }
+  for (int r = 0; r < rows; ++r)
+    if (x[r] != 0) {
+      ha.apply_position_impulse(x[r] * dir[r], ra[r / 3]);
+      hb.apply_position_impulse(-x[r] * dir[r], rb[r / 3]);
+    }
+}
+
+}  // namespace
+
+void detect_rigid_contacts(const Model& model, State& state) {
+  const RigidBodyModel& m = model.rigid;
+  RigidBodyState& s = state.rigid;
+  RigidContacts& contacts = state.rigid_contacts;
+  RigidBroadPhaseScratch& bp = contacts.scratch;
+  contacts.points.clear();
+  contacts.manifolds.clear();
+  const Index n = m.count();
+  if (n == 0) return;
+  const Real dt = model.settings.dt, k = model.settings.contact_margin_factor;
+  const Real fall = dt * dt * model.settings.gravity.norm();
+
+  // Margin: how far a body may travel in the step (k dt |v| plus the fall under gravity, so resting
+  // contacts are never missed) plus a slop of 1 % of its size.
+  bp.lower.resize(n);
+  bp.upper.resize(n);
+  bp.margin.resize(n);
+  for (Index b = 0; b < n; ++b) {
+    const Real radius = m.body_shape[b].bounding_radius();
+    const Real size = std::isfinite(radius) ? radius : 0;
+    bp.margin[b] = k * dt * (s.velocity[b].norm() + s.angular_velocity[b].norm() * size) + k * fall + 0.01 * size;
+    body_bounds(m, s, b, bp.margin[b], bp.lower[b], bp.upper[b]);
+  }
+
+  // Sweep and prune along x (a fixed order: determinism).
+  bp.order.resize(n);
+  for (Index b = 0; b < n; ++b) bp.order[b] = b;
+  std::sort(bp.order.begin(), bp.order.end(), [&](Index a, Index b) {
+    return bp.lower[a].x() < bp.lower[b].x() || (bp.lower[a].x() == bp.lower[b].x() && a < b);
+  });
+  bp.pairs.clear();
+  for (Index i = 0; i < n; ++i) {
+    const Index a = bp.order[i];
+    for (Index j = i + 1; j < n; ++j) {
+      const Index b = bp.order[j];
+      if (bp.lower[b].x() > bp.upper[a].x()) break;
+      if (!m.is_dynamic(a) && !m.is_dynamic(b)) continue;
+      if ((bp.lower[a].array() > bp.upper[b].array()).any() || (bp.lower[b].array() > bp.upper[a].array()).any())
+        continue;
+      if (joined(m, a, b)) continue;
+      bp.pairs.push_back({std::min(a, b), std::max(a, b)});
+    }
+  }
+  std::sort(bp.pairs.begin(), bp.pairs.end());
+  contacts.pair_count = static_cast<Index>(bp.pairs.size());
+
+  // Narrow phase per pair (parallel), gathered in pair order.
+  const Index pairs = static_cast<Index>(bp.pairs.size());
+  bp.pair_manifold.resize(pairs);
+#pragma omp parallel for schedule(dynamic, 16) num_threads(model.settings.threads > 0 ? model.settings.threads : 0)
+  for (Index p = 0; p < pairs; ++p) {
+    const Index a = bp.pairs[p][0], b = bp.pairs[p][1];
+    bp.pair_manifold[p] =
+        collide_shapes(m.body_shape[a], body_pose(s, a), m.body_shape[b], body_pose(s, b), bp.margin[a] + bp.margin[b]);
+  }
+  for (Index p = 0; p < pairs; ++p) {
+    const ContactManifold& cm = bp.pair_manifold[p];
+    if (cm.count == 0) continue;
+    const Index a = bp.pairs[p][0], b = bp.pairs[p][1];
+    RigidManifold mf;
+    mf.body_a = a;
+    mf.body_b = b;
+    mf.first = static_cast<Index>(contacts.points.size());
+    mf.count = cm.count;
+    mf.frame = cm.frame;
+    mf.static_friction = 0.5 * (m.body_static_friction[a] + m.body_static_friction[b]);
+    mf.dynamic_friction = 0.5 * (m.body_dynamic_friction[a] + m.body_dynamic_friction[b]);
+    mf.restitution = 0.5 * (m.body_restitution[a] + m.body_restitution[b]);
+    contacts.manifolds.push_back(mf);
+    for (int c = 0; c < cm.count; ++c) {
+      RigidContactPoint point;
+      point.geometry = cm.points[c];
+      contacts.points.push_back(point);
+    }
+  }
+}
+
+void reset_rigid_contacts(State& state) {
+  for (RigidManifold& mf : state.rigid_contacts.manifolds) mf.touching = false;
+  for (RigidContactPoint& c : state.rigid_contacts.points) {
+    c.lambda_normal = 0;
+    c.touching = false;
+  }
+}
+
+void project_rigid_contacts(const Model& model, State& state) {
+  const RigidBodyModel& m = model.rigid;
+  RigidBodyState& s = state.rigid;
+  RigidContacts& contacts = state.rigid_contacts;
+  for (RigidManifold& mf : contacts.manifolds) {
+    const BodyHandle ha = rigid_body_handle(m, s, mf.body_a), hb = rigid_body_handle(m, s, mf.body_b);
+    RigidContactPoint* points = contacts.points.data() + mf.first;
+    solve_manifold_block(mf, points, ha, hb, s);
+    for (Index i = 0; i < mf.count; ++i) mf.touching |= points[i].touching;
+  }
+}
+
+void rigid_contact_velocities(const Model& model, State& state, Real h) {
+  const RigidBodyModel& m = model.rigid;
+  RigidBodyState& s = state.rigid;
+  RigidContacts& contacts = state.rigid_contacts;
+  const Real resting_speed = 2 * model.settings.gravity.norm() * h;
+  for (RigidManifold& mf : contacts.manifolds) {
+    if (!mf.touching) continue;
+    const Index a = mf.body_a, b = mf.body_b;
+    const BodyVelocityHandle va = rigid_body_velocity_handle(m, s, a), vb = rigid_body_velocity_handle(m, s, b);
+    // Rows of the touching points: normal (restitution) and two tangents (dynamic friction).
+    std::array<Real, 3 * kMaxPoints> target{}, bound{}, x{};
+    std::array<Vec3, 3 * kMaxPoints> dir, ra, rb;
+    int rows = 0;
+    for (Index i = mf.first; i < mf.first + mf.count; ++i) {
+      const RigidContactPoint& c = contacts.points[i];
+      if (!c.touching) continue;
+      const Vec3& n = c.normal;
+      const Vec3 v = va.point_velocity(c.offset_a) - vb.point_velocity(c.offset_b);
+      const Vec3 before = (s.velocity_before[a] + s.angular_velocity_before[a].cross(c.offset_a)) -
+                          (s.velocity_before[b] + s.angular_velocity_before[b].cross(c.offset_b));
+      const Real restitution = std::abs(n.dot(v)) <= resting_speed ? 0 : mf.restitution;
+      const Vec3 t1 = (std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+      dir[rows] = n;
+      dir[rows + 1] = t1;
+      dir[rows + 2] = n.cross(t1);
+      target[rows] = std::max(-restitution * n.dot(before), Real(0));
+      bound[rows] = mf.dynamic_friction * c.lambda_normal / h;  // friction impulse limit of this point
+      for (int r = rows; r < rows + 3; ++r) {
+        ra[r] = c.offset_a;
+        rb[r] = c.offset_b;
+      }
+      rows += 3;
+    }
+    // Effective masses and the projected Gauss-Seidel solve of
+    //   v_n -> target (restitution, Mueller 2020 eq. 34), v_t -> 0 with |p_t| <= mu_k lambda_n / h.
+    std::array<Vec3, 3 * kMaxPoints> ua, ub, Iua, Iub;
+    for (int r = 0; r < rows; ++r) {
+      ua[r] = ra[r].cross(dir[r]);
+      ub[r] = rb[r].cross(dir[r]);
+      Iua[r] = va.apply_inv_inertia(ua[r]);
+      Iub[r] = vb.apply_inv_inertia(ub[r]);
+    }
+    const Real linear = va.inv_mass + vb.inv_mass;
+    std::array<std::array<Real, 3 * kMaxPoints>, 3 * kMaxPoints> K{};
+    for (int r = 0; r < rows; ++r)
+      for (int q = r; q < rows; ++q)
+        K[r][q] = K[q][r] = dir[r].dot(dir[q]) * linear + ua[r].dot(Iua[q]) + ub[r].dot(Iub[q]);
+    std::array<Real, 3 * kMaxPoints> v0{};
+    for (int r = 0; r < rows; ++r) v0[r] = dir[r].dot(va.point_velocity(ra[r]) - vb.point_velocity(rb[r]));
+    for (int sweep = 0; sweep < kBlockSweeps; ++sweep)
+      for (int r = 0; r < rows; r += 3) {
+        for (int q = r; q < r + 3; ++q) {
+          if (K[q][q] <= 0) continue;
+          Real v = v0[q] - (q == r ? target[r] : 0);
+          for (int p = 0; p < rows; ++p) v += K[q][p] * x[p];
+          x[q] -= v / K[q][q];
+        }
+        const Real ft = std::hypot(x[r + 1], x[r + 2]);
+        if (ft > bound[r]) {
+          x[r + 1] *= bound[r] / ft;
+          x[r + 2] *= bound[r] / ft;
+        }
+      }
+    for (int r = 0; r < rows; ++r)
+      if (x[r] != 0) {
+        va.apply_impulse(x[r] * dir[r], ra[r]);
+        vb.apply_impulse(-x[r] * dir[r], rb[r]);
+      }
+  }
+}
+
+Index touching_contact_count(const Model& model, const State& state, Index object) {
+  Index count = 0;
+  const RigidContacts& contacts = state.rigid_contacts;
+  for (const RigidManifold& mf : contacts.manifolds) {
+    if (object >= 0 && model.rigid.body_object[mf.body_a] != object && model.rigid.body_object[mf.body_b] != object)
+      continue;
+    for (Index i = mf.first; i < mf.first + mf.count; ++i) count += contacts.points[i].touching ? 1 : 0;
+  }
+  return count;
+}
+
+}  // namespace moreau

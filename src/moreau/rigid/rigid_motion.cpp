@@ -1,0 +1,63 @@
+#include "moreau/rigid/rigid_motion.hpp"
+
+#include <cmath>
+
+#include "moreau/model/model.hpp"
+#include "moreau/rigid/rigid_bodies.hpp"
+
+namespace moreau {
+
+Quat rotate_by_angular_velocity(const Quat& q, const Vec3& w, Real h) {
+  const Real angle = w.norm() * h;
+  if (angle <= 0) return q;
+  return (Quat(Eigen::AngleAxisd(angle, w.normalized())) * q).normalized();
+}
+
+void predict_rigid_bodies(const Model& model, RigidBodyState& s, Real h) {
+  const RigidBodyModel& m = model.rigid;
+  const Vec3 dv = h * model.settings.gravity;
+#pragma omp for schedule(static)
+  for (Index b = 0; b < m.count(); ++b) {
+    s.start_position[b] = s.position[b];
+    s.start_orientation[b] = s.orientation[b];
+    s.velocity_before[b] = s.velocity[b];
+    s.angular_velocity_before[b] = s.angular_velocity[b];
+    switch (m.body_motion[b]) {
+      case BodyMotion::fixed: break;
+      case BodyMotion::kinematic:
+        s.position[b] += h * s.velocity[b];
+        s.orientation[b] = rotate_by_angular_velocity(s.orientation[b], s.angular_velocity[b], h);
+        break;
+      case BodyMotion::dynamic: {
+        s.velocity[b] += dv;
+        // Gyroscopic term in the principal frame: I dw/dt = -w x (I w).
+        const Quat& q = s.orientation[b];
+        const Vec3 w = q.conjugate() * s.angular_velocity[b];
+        const Vec3 Iw = m.body_inertia[b].cwiseProduct(w);
+        s.angular_velocity[b] += q * Vec3(h * m.body_inv_inertia[b].cwiseProduct(-w.cross(Iw)));
+        s.velocity_before[b] = s.velocity[b];
+        s.angular_velocity_before[b] = s.angular_velocity[b];
+        s.position[b] += h * s.velocity[b];
+        const Vec3& wn = s.angular_velocity[b];
+        Quat& qn = s.orientation[b];
+        qn.coeffs() += 0.5 * h * (Quat(0, wn.x(), wn.y(), wn.z()) * qn).coeffs();
+        qn.normalize();
+        break;
+      }
+    }
+  }
+}
+
+void update_rigid_body_velocities(const Model& model, RigidBodyState& s, Real h) {
+  const RigidBodyModel& m = model.rigid;
+#pragma omp for schedule(static)
+  for (Index b = 0; b < m.count(); ++b) {
+    if (!m.is_dynamic(b)) continue;
+    s.velocity[b] = (s.position[b] - s.start_position[b]) / h;
+    const Quat dq = s.orientation[b] * s.start_orientation[b].conjugate();
+    const Vec3 w = 2.0 / h * dq.vec();
+    s.angular_velocity[b] = dq.w() >= 0 ? w : Vec3(-w);
+  }
+}
+
+}  // namespace moreau

@@ -1,0 +1,21 @@
+#pragma once
+// Substep integration of rigid bodies (Mueller et al. 2020, Algorithm 2):
+//   before the solve:  x_prev = x;  v += h f_ext/m;  x += h v
+//                      q_prev = q;  w += h I^-1 (tau_ext - w x (I w));  q += h/2 [w, 0] q, normalised
+//   after the solve:   v = (x - x_prev)/h;  dq = q q_prev^-1;  w = 2 dq_xyz / h (negated if dq_w < 0)
+// The gyroscopic term is evaluated in the principal frame, where I is diagonal. Kinematic bodies
+// move with their prescribed velocities; fixed bodies stay.
+#include "moreau/math/types.hpp"
+
+namespace moreau {
+
+struct Model;
+struct RigidBodyState;
+
+void predict_rigid_bodies(const Model& model, RigidBodyState& bodies, Real h);
+void update_rigid_body_velocities(const Model& model, RigidBodyState& bodies, Real h);
+
+/// Exact rotation of q by the world angular velocity w over time h (kinematic bodies).
+Quat rotate_by_angular_velocity(const Quat& q, const Vec3& w, Real h);
+
+}  // namespace moreau
