@@ -3,10 +3,33 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <fstream>
 
 #include "moreau/collision/collider_surface.hpp"
+#include "moreau/rigid/shape_surface.hpp"
 
 namespace moreau {
+
+void FrameWriter::write_rigid_poses(const State& state) {
+  const bool any = std::any_of(model_.objects.begin(), model_.objects.end(),
+                               [](const ObjectInfo& o) { return o.kind == ObjectKind::rigid_body; });
+  if (!any) return;
+  std::ofstream out(out_dir_ + "/rigid_poses.csv", frame_ == 0 ? std::ios::trunc : std::ios::app);
+  if (frame_ == 0) out << "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+  out.precision(17);
+  for (const ObjectInfo& o : model_.objects) {
+    if (o.kind != ObjectKind::rigid_body) continue;
+    // The pose of the shape's own frame (the scene's position and orientation).
+    const Index b = o.body;
+    const Quat q = (state.rigid.orientation[b] * model_.rigid.body_frame_in_shape[b].conjugate()).normalized();
+    const Vec3 x = state.rigid.position[b] - q * model_.rigid.body_center_in_shape[b];
+    const Vec3& v = state.rigid.velocity[b];
+    const Vec3& w = state.rigid.angular_velocity[b];
+    out << state.time << ',' << o.name << ',' << x.x() << ',' << x.y() << ',' << x.z() << ',' << q.w() << ',' << q.x()
+        << ',' << q.y() << ',' << q.z() << ',' << v.x() << ',' << v.y() << ',' << v.z() << ',' << w.x() << ','
+        << w.y() << ',' << w.z() << '\n';
+  }
+}
 
 std::string safe_file_name(const std::string& name) {
   std::string s = name;
@@ -27,6 +50,11 @@ FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string sc
     lo = lo.cwiseMin(x);
     hi = hi.cwiseMax(x);
   }
+  for (const ObjectInfo& o : model.objects)
+    if (o.kind == ObjectKind::rigid_body) {
+      lo = lo.cwiseMin(model.rigid.initial_position[o.body]);
+      hi = hi.cwiseMax(model.rigid.initial_position[o.body]);
+    }
   for (const auto& e : model.fluid.emitters) {
     lo = lo.cwiseMin(e.center);
     hi = hi.cwiseMax(e.center);
@@ -56,6 +84,21 @@ void FrameWriter::write(const State& state) {
       write_vtp(path, x, {{"velocity", v}},
                 {{"density", density}, {"pressure", pressure}, {"id", id},
                  {"radius", std::vector<Real>(x.size(), model_.fluid.particle_radius)}});
+    } else if (obj.kind == ObjectKind::rigid_body) {
+      // The body's surface in the world, with the velocity of each surface point.
+      const Index b = obj.body;
+      const TriangleMesh m = shape_surface(model_.rigid.body_shape[b]);
+      const Quat& q = state.rigid.orientation[b];
+      const Vec3& x = state.rigid.position[b];
+      std::vector<Vec3> points(m.vertices.size()), velocity(m.vertices.size());
+      for (size_t i = 0; i < points.size(); ++i) {
+        const Vec3 r = q * m.vertices[i];
+        points[i] = x + r;
+        velocity[i] = state.rigid.velocity[b] + state.rigid.angular_velocity[b].cross(r);
+      }
+      std::vector<Index> conn;
+      for (const auto& t : m.triangles) conn.insert(conn.end(), t.begin(), t.end());
+      write_vtu(path, points, conn, 3, VtkCell::triangle, {{"velocity", velocity}});
     } else if (obj.kind == ObjectKind::collider) {
       const TriangleMesh m = collider_surface(model_.colliders[obj.collider], state.time, plane_half_size_);
       std::vector<Index> conn;
@@ -82,6 +125,7 @@ void FrameWriter::write(const State& state) {
     entries_.push_back({state.time, static_cast<int>(o), file});
   }
   write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", entries_);
+  write_rigid_poses(state);
   ++frame_;
 }
 

@@ -17,6 +17,10 @@ class FrameWriter {
   int frames_written() const { return frame_; }
 
  private:
+  /// Appends every rigid body's pose (shape frame), velocity and angular velocity to
+  /// DIR/rigid_poses.csv: one row per body and output step.
+  void write_rigid_poses(const State& state);
+
   const Model& model_;
   std::string out_dir_, scene_name_;
   Real plane_half_size_ = 1;
