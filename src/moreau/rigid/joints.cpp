@@ -147,10 +147,14 @@ void project_joints(const Model& model, State& state, Real h) {
     switch (j.type) {
       case JointType::fixed:
       case JointType::prismatic:
-        correct_rotation(a, b, orientation_error(a.frame(), b.frame()), alpha_angular, L.orientation);
+        apply_rotation_correction<3>(a.handle, b.handle, orientation_error(a.frame(), b.frame()), Mat3::Identity(),
+                                     alpha_angular, L.orientation);
         break;
       case JointType::hinge: {
-        correct_rotation(a, b, a.axis(0).cross(b.axis(0)) * -1.0, alpha_angular, L.orientation);
+        Eigen::Matrix<Real, 3, 2> across;
+        across << a.axis(1), a.axis(2);
+        apply_rotation_correction<2>(a.handle, b.handle, b.axis(0).cross(a.axis(0)), across, alpha_angular,
+                                     L.orientation);
         const Vec3 axis = a.axis(0);
         const Real phi = hinge_angle(axis, a.axis(1), b.axis(1));
         if (j.limited && (phi < j.lower || phi > j.upper)) {
@@ -199,14 +203,17 @@ void project_joints(const Model& model, State& state, Real h) {
     switch (j.type) {
       case JointType::fixed:
       case JointType::hinge:
-      case JointType::spherical: correct_position(a, b, d, alpha, L.position); break;
+      case JointType::spherical:
+        apply_point_correction(a.handle, b.handle, d, a.anchor() - a.center(), b.anchor() - b.center(), alpha,
+                               L.position);
+        break;
       case JointType::prismatic: {
         const Vec3 x = a.axis(0);
         const Real along = d.dot(x);
         Vec3 e = d - along * x;
         const Real slide = -along;
         if (j.limited && (slide < j.lower || slide > j.upper)) e += x * (along + std::clamp(slide, j.lower, j.upper));
-        correct_position(a, b, e, alpha, L.position);
+        correct_position(a, b, e, alpha, L.distance);
         if (j.drive != DriveMode::none) {
           Real target = j.drive == DriveMode::position ? j.drive_target
                                                        : state.joint_drive_start[k] + h * j.drive_target;
@@ -220,7 +227,7 @@ void project_joints(const Model& model, State& state, Real h) {
         const Real len = d.norm();
         if (len <= 0) break;
         const Real target = std::clamp(len, j.lower, j.upper);
-        if (len != target) correct_position(a, b, d / len * (len - target), alpha, L.position);
+        if (len != target) correct_position(a, b, d / len * (len - target), alpha, L.distance);
         break;
       }
     }

@@ -5,9 +5,9 @@
 // Every end carries an anchor r and a frame [x y z] (x: the hinge/twist/slide axis) in its body
 // frame; for the world both are world-space; a particle has an anchor at its centre and no frame.
 // With d = p_a - p_b the anchor offset (p = x + q r) and u_a, u_b the frames' axes in the world:
-//   attachment (all but distance)  C = d = 0                      compliance alpha [m/N]
-//   fixed orientation              C = 2 vec(q_fa q_fb^-1) = 0    alpha_angular [rad/(N m)]
-//   hinge alignment                C = x_b x x_a = 0
+//   attachment (all but distance)  C = d = 0 (3 rows, one block)  compliance alpha [m/N]
+//   fixed orientation              C = 2 vec(q_fa q_fb^-1) = 0    alpha_angular [rad/(N m)], 3 rows
+//   hinge alignment                C = x_b x x_a = 0              2 rows, perpendicular to x_a
 //   hinge angle  phi = atan2((y_a x y_b) . x_a, y_a . y_b)        (b relative to a about x_a)
 //     limits     phi in [lower, upper]; drive  C = phi - phi_target, phi_target = phi_start + h
 //                omega_target for a velocity drive; |lambda| / h^2 <= max torque
@@ -61,7 +61,8 @@ struct Joint {
 
 /// Multipliers of one joint within a substep.
 struct JointLambdas {
-  Real position = 0, orientation = 0, limit = 0, swing = 0, twist = 0, drive = 0;
+  Vec3 position = Vec3::Zero(), orientation = Vec3::Zero();
+  Real distance = 0, limit = 0, swing = 0, twist = 0, drive = 0;
 };
 
 /// Fills `lambdas` with zeros (start of a substep) and records each drive's starting angle/slide.

@@ -262,7 +262,10 @@ void rigid_contact_velocities(const Model& model, State& state, Real h) {
       dir[rows] = n;
       dir[rows + 1] = t1;
       dir[rows + 2] = n.cross(t1);
-      target[rows] = std::max(-restitution * n.dot(before), Real(0));
+      // The approach speed is the larger of the one before the solve (Mueller 2020) and the one now:
+      // in a row of touching balls the inner contacts were at rest before the solve and are
+      // approached only once the manifolds before them in this pass have bounced (Newton's cradle).
+      target[rows] = std::max(-restitution * std::min(n.dot(before), n.dot(v)), Real(0));
       bound[rows] = mf.dynamic_friction * c.lambda_normal / h;  // friction impulse limit of this point
       for (int r = rows; r < rows + 3; ++r) {
         ra[r] = c.offset_a;

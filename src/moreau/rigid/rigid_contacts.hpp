@@ -18,7 +18,9 @@
 // Velocity pass, once per substep, per point in contact (Mueller 2020, sec. 3.6):
 //   dynamic friction  dv = -v_t/|v_t| min(mu_k lambda_n/h (w_a + w_b), |v_t|)   (the friction
 //                     impulse mu_k lambda_n/h: the dimensionally consistent reading of eq. 30)
-//   restitution       dv = n (-v_n + max(-e vbar_n, 0)), e = 0 when |v_n| <= 2 |g| h
+//   restitution       dv = n (-v_n + max(-e min(vbar_n, v_n), 0)), e = 0 when |v_n| <= 2 |g| h
+//                     (vbar_n before the solve; the current v_n too, so a pulse passes down a
+//                     row of touching balls; rows of a manifold solved together, see the .cpp)
 // Coefficients combine as the mean of the two bodies' (Mueller 2020).
 #include <vector>
 
