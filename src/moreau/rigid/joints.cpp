@@ -209,11 +209,13 @@ void project_joints(const Model& model, State& state, Real h) {
         break;
       case JointType::prismatic: {
         const Vec3 x = a.axis(0);
-        const Real along = d.dot(x);
-        Vec3 e = d - along * x;
-        const Real slide = -along;
-        if (j.limited && (slide < j.lower || slide > j.upper)) e += x * (along + std::clamp(slide, j.lower, j.upper));
-        correct_position(a, b, e, alpha, L.distance);
+        Eigen::Matrix<Real, 3, 2> across;
+        across << a.axis(1), a.axis(2);
+        apply_point_correction<2>(a.handle, b.handle, d, a.anchor() - a.center(), b.anchor() - b.center(), alpha,
+                                  L.position, across);
+        const Real along = (a.anchor() - b.anchor()).dot(x), slide = -along;
+        if (j.limited && (slide < j.lower || slide > j.upper))
+          correct_position(a, b, x * (along + std::clamp(slide, j.lower, j.upper)), alpha, L.distance);
         if (j.drive != DriveMode::none) {
           Real target = j.drive == DriveMode::position ? j.drive_target
                                                        : state.joint_drive_start[k] + h * j.drive_target;
