@@ -10,6 +10,7 @@
 // Angular correction by theta about unit n: w_k = n^T I_k^-1 n, q1 += 1/2 [I1^-1 p, 0] q1 (eq. 11-15).
 // I^-1 is applied in the body frame, where it is diagonal.
 #include "moreau/math/types.hpp"
+#include "moreau/rigid/rigid_bodies.hpp"
 
 namespace moreau {
 
@@ -180,8 +181,6 @@ inline void apply_relative_velocity_change(const BodyVelocityHandle& a, const Bo
 }
 
 }  // namespace moreau
-
-#include "moreau/rigid/rigid_bodies.hpp"
 
 namespace moreau {
 

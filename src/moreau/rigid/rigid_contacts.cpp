@@ -14,6 +14,30 @@ constexpr int kMaxPoints = 4;
 // Projected Gauss-Seidel sweeps of one manifold's block (at most 12 x 12).
 constexpr int kBlockSweeps = 8;
 
+using RowVectors = std::array<Vec3, 3 * kMaxPoints>;
+using BlockMatrix = std::array<std::array<Real, 3 * kMaxPoints>, 3 * kMaxPoints>;
+
+// Effective-mass matrix of `rows` contact rows (direction dir_r at offsets ra_r, rb_r), shared by
+// the position and velocity blocks:
+//   K_rs = dir_r.dir_s (1/m_a + 1/m_b) + (ra_r x dir_r).I_a^-1 (ra_s x dir_s) + (same for b).
+template <class Handle>
+BlockMatrix effective_mass_block(const Handle& a, const Handle& b, const RowVectors& dir, const RowVectors& ra,
+                                 const RowVectors& rb, int rows) {
+  RowVectors ua, ub, Iua, Iub;
+  for (int r = 0; r < rows; ++r) {
+    ua[r] = ra[r].cross(dir[r]);
+    ub[r] = rb[r].cross(dir[r]);
+    Iua[r] = a.apply_inv_inertia(ua[r]);
+    Iub[r] = b.apply_inv_inertia(ub[r]);
+  }
+  const Real linear = a.inv_mass + b.inv_mass;
+  BlockMatrix K{};
+  for (int r = 0; r < rows; ++r)
+    for (int q = r; q < rows; ++q)
+      K[r][q] = K[q][r] = dir[r].dot(dir[q]) * linear + ua[r].dot(Iua[q]) + ub[r].dot(Iub[q]);
+  return K;
+}
+
 Pose body_pose(const RigidBodyState& s, Index b) { return {s.position[b], s.orientation[b]}; }
 Pose start_pose(const RigidBodyState& s, Index b) { return {s.start_position[b], s.start_orientation[b]}; }
 
@@ -49,20 +73,21 @@ void solve_manifold_block(RigidManifold& mf, RigidContactPoint* points, const Bo
   const Pose sa = start_pose(s, a), sb = start_pose(s, b);
   const int k = mf.count, rows = 3 * k;
   std::array<Real, 3 * kMaxPoints> e{}, x{};
-  std::array<Vec3, 3 * kMaxPoints> dir, ua, ub, Iua, Iub;
-  std::array<Vec3, kMaxPoints> ra, rb;
+  RowVectors dir, ra, rb;  // per row; the three rows of a point share its offsets
   bool any_penetrating = false;
   for (int i = 0; i < k; ++i) {
     RigidContactPoint& c = points[i];
     const Vec3 n = contact_normal(mf.frame, c.geometry, pa, pb);
     const Vec3 p_a = pa.to_world(c.geometry.core_a) - c.geometry.radius_a * n;
     const Vec3 p_b = pb.to_world(c.geometry.core_b) + c.geometry.radius_b * n;
-    ra[i] = p_a - pa.position;
-    rb[i] = p_b - pb.position;
-    c.material_a = pa.orientation.conjugate() * ra[i];
-    c.material_b = pb.orientation.conjugate() * rb[i];
-    // Slip of the two material points over the substep.
-    const Vec3 slip = (p_a - sa.to_world(c.material_a)) - (p_b - sb.to_world(c.material_b));
+    for (int r = 3 * i; r < 3 * i + 3; ++r) {
+      ra[r] = p_a - pa.position;
+      rb[r] = p_b - pb.position;
+    }
+    // Slip of the two material points (body-frame points) over the substep.
+    const Vec3 material_a = pa.orientation.conjugate() * ra[3 * i];
+    const Vec3 material_b = pb.orientation.conjugate() * rb[3 * i];
+    const Vec3 slip = (p_a - sa.to_world(material_a)) - (p_b - sb.to_world(material_b));
     const Vec3 t1 = (std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
     const Vec3 t2 = n.cross(t1);
     dir[3 * i] = n;
@@ -72,22 +97,12 @@ void solve_manifold_block(RigidManifold& mf, RigidContactPoint* points, const Bo
     e[3 * i + 1] = slip.dot(t1);
     e[3 * i + 2] = slip.dot(t2);
     c.normal = n;
-    c.offset_a = ra[i];
-    c.offset_b = rb[i];
+    c.offset_a = ra[3 * i];
+    c.offset_b = rb[3 * i];
     any_penetrating |= e[3 * i] < 0;
   }
   if (!any_penetrating) return;
-  for (int r = 0; r < rows; ++r) {
-    ua[r] = ra[r / 3].cross(dir[r]);
-    ub[r] = rb[r / 3].cross(dir[r]);
-    Iua[r] = ha.apply_inv_inertia(ua[r]);
-    Iub[r] = hb.apply_inv_inertia(ub[r]);
-  }
-  const Real linear = ha.inv_mass + hb.inv_mass;
-  std::array<std::array<Real, 3 * kMaxPoints>, 3 * kMaxPoints> K{};
-  for (int r = 0; r < rows; ++r)
-    for (int q = r; q < rows; ++q)
-      K[r][q] = K[q][r] = dir[r].dot(dir[q]) * linear + ua[r].dot(Iua[q]) + ub[r].dot(Iub[q]);
+  const BlockMatrix K = effective_mass_block(ha, hb, dir, ra, rb, rows);
   auto residual = [&](int r) {
     Real v = e[r];
     for (int q = 0; q < rows; ++q) v += K[r][q] * x[q];
@@ -133,8 +148,8 @@ void solve_manifold_block(RigidManifold& mf, RigidContactPoint* points, const Bo
   }
   for (int r = 0; r < rows; ++r)
     if (x[r] != 0) {
-      ha.apply_position_impulse(x[r] * dir[r], ra[r / 3]);
-      hb.apply_position_impulse(-x[r] * dir[r], rb[r / 3]);
+      ha.apply_position_impulse(x[r] * dir[r], ra[r]);
+      hb.apply_position_impulse(-x[r] * dir[r], rb[r]);
     }
 }
 
@@ -184,7 +199,6 @@ void detect_rigid_contacts(const Model& model, State& state) {
     }
   }
   std::sort(bp.pairs.begin(), bp.pairs.end());
-  contacts.pair_count = static_cast<Index>(bp.pairs.size());
 
   // Narrow phase per pair (parallel), gathered in pair order.
   const Index pairs = static_cast<Index>(bp.pairs.size());
@@ -248,7 +262,7 @@ void rigid_contact_velocities(const Model& model, State& state, Real h) {
     const BodyVelocityHandle va = rigid_body_velocity_handle(m, s, a), vb = rigid_body_velocity_handle(m, s, b);
     // Rows of the touching points: normal (restitution) and two tangents (dynamic friction).
     std::array<Real, 3 * kMaxPoints> target{}, bound{}, x{};
-    std::array<Vec3, 3 * kMaxPoints> dir, ra, rb;
+    RowVectors dir, ra, rb;
     int rows = 0;
     for (Index i = mf.first; i < mf.first + mf.count; ++i) {
       const RigidContactPoint& c = contacts.points[i];
@@ -275,18 +289,7 @@ void rigid_contact_velocities(const Model& model, State& state, Real h) {
     }
     // Effective masses and the projected Gauss-Seidel solve of
     //   v_n -> target (restitution, Mueller 2020 eq. 34), v_t -> 0 with |p_t| <= mu_k lambda_n / h.
-    std::array<Vec3, 3 * kMaxPoints> ua, ub, Iua, Iub;
-    for (int r = 0; r < rows; ++r) {
-      ua[r] = ra[r].cross(dir[r]);
-      ub[r] = rb[r].cross(dir[r]);
-      Iua[r] = va.apply_inv_inertia(ua[r]);
-      Iub[r] = vb.apply_inv_inertia(ub[r]);
-    }
-    const Real linear = va.inv_mass + vb.inv_mass;
-    std::array<std::array<Real, 3 * kMaxPoints>, 3 * kMaxPoints> K{};
-    for (int r = 0; r < rows; ++r)
-      for (int q = r; q < rows; ++q)
-        K[r][q] = K[q][r] = dir[r].dot(dir[q]) * linear + ua[r].dot(Iua[q]) + ub[r].dot(Iub[q]);
+    const BlockMatrix K = effective_mass_block(va, vb, dir, ra, rb, rows);
     std::array<Real, 3 * kMaxPoints> v0{};
     for (int r = 0; r < rows; ++r) v0[r] = dir[r].dot(va.point_velocity(ra[r]) - vb.point_velocity(rb[r]));
     for (int sweep = 0; sweep < kBlockSweeps; ++sweep)

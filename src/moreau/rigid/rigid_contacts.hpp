@@ -36,7 +36,6 @@ struct RigidContactPoint {
   Real lambda_normal = 0;                // kg m, this substep
   Vec3 normal = Vec3::UnitY();           // world, at the last projection
   Vec3 offset_a = Vec3::Zero(), offset_b = Vec3::Zero();  // world, contact points minus centres
-  Vec3 material_a = Vec3::Zero(), material_b = Vec3::Zero();  // body-frame contact points
   bool touching = false;
 };
 
@@ -62,7 +61,6 @@ struct RigidContacts {
   std::vector<RigidManifold> manifolds;
   std::vector<RigidContactPoint> points;
   RigidBroadPhaseScratch scratch;
-  Index pair_count = 0;                      // candidate pairs of the last detection
 };
 
 /// Broad and narrow phase for the coming step.

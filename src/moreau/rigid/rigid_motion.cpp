@@ -20,8 +20,6 @@ void predict_rigid_bodies(const Model& model, RigidBodyState& s, Real h) {
   for (Index b = 0; b < m.count(); ++b) {
     s.start_position[b] = s.position[b];
     s.start_orientation[b] = s.orientation[b];
-    s.velocity_before[b] = s.velocity[b];
-    s.angular_velocity_before[b] = s.angular_velocity[b];
     switch (m.body_motion[b]) {
       case BodyMotion::fixed: break;
       case BodyMotion::kinematic:
@@ -35,8 +33,6 @@ void predict_rigid_bodies(const Model& model, RigidBodyState& s, Real h) {
         const Vec3 w = q.conjugate() * s.angular_velocity[b];
         const Vec3 Iw = m.body_inertia[b].cwiseProduct(w);
         s.angular_velocity[b] += q * Vec3(h * m.body_inv_inertia[b].cwiseProduct(-w.cross(Iw)));
-        s.velocity_before[b] = s.velocity[b];
-        s.angular_velocity_before[b] = s.angular_velocity[b];
         s.position[b] += h * s.velocity[b];
         const Vec3& wn = s.angular_velocity[b];
         Quat& qn = s.orientation[b];
@@ -45,6 +41,9 @@ void predict_rigid_bodies(const Model& model, RigidBodyState& s, Real h) {
         break;
       }
     }
+    // The velocities after prediction, before the solve (restitution's vbar).
+    s.velocity_before[b] = s.velocity[b];
+    s.angular_velocity_before[b] = s.angular_velocity[b];
   }
 }
 
