@@ -14,20 +14,23 @@ using test::run_steps;
 using test::scene_from_json;
 
 // Two boxes joined at (0.5, 0, 0) by a joint of the given JSON; gravity off.
-Scene two_boxes(const std::string& joint) {
-  return scene_from_json(R"({"name": "joint", "settings": {"gravity": [0, 0, 0]},
+Scene two_boxes(const std::string& joint, const std::string& joint_solver = "direct") {
+  return scene_from_json(R"({"name": "joint", "settings": {"gravity": [0, 0, 0], "joint_solver": ")" + joint_solver + R"("},
     "objects": [{"name": "a", "kind": "rigid_body", "shape": {"type": "box", "half_extents": [0.5, 0.2, 0.3]}, "position": [0, 0, 0]},
                 {"name": "b", "kind": "rigid_body", "shape": {"type": "box", "half_extents": [0.4, 0.3, 0.2]}, "position": [1, 0, 0], "density": 500}],
     "joints": [)" + joint + "]}");
 }
 
 TEST(RigidJoints, ProjectionsRemoveAViolationOfEveryJointType) {
-  // Perturb the pose of body b by ~1e-3 (m and rad) and project. A joint's parts are corrected one
-  // after another (orientation, then the anchors, whose lever arms turn the bodies again), so one
-  // projection more than halves the violation and twenty cut it by 50 or more (geometric
-  // convergence; slowest, factor 0.79 per pass, for a hinge to the world with its anchor half a
-  // box away from the centre); a wrong sign, lever
-  // arm or effective mass does neither.
+  // Perturb the pose of body b by ~1e-3 (m and rad) and project.
+  // Gauss-Seidel: a joint's parts are corrected one after another (orientation, then the anchors,
+  // whose lever arms turn the bodies again), so one projection more than halves the violation and
+  // twenty cut it by 50 or more (geometric convergence; slowest, factor 0.79 per pass, for a hinge
+  // to the world with its anchor half a box away from the centre); a wrong sign, lever arm or
+  // effective mass does neither.
+  // Direct (joint_tree.hpp): one call re-linearises until |C| < 1e-9, i.e. Newton's method, which
+  // from 1e-3 reaches it in two or three solves; a wrong Jacobian would stall at its first-order
+  // error (~1e-6) and hit the pass limit. Prismatic joints are not in the tree and keep Gauss-Seidel.
   const std::vector<std::string> joints = {
       R"({"name": "j", "type": "fixed", "bodies": ["a", "b"], "anchor": [0.5, 0, 0]})",
       R"({"name": "j", "type": "spherical", "bodies": ["a", "b"], "anchor": [0.5, 0, 0]})",
@@ -35,21 +38,33 @@ TEST(RigidJoints, ProjectionsRemoveAViolationOfEveryJointType) {
       R"({"name": "j", "type": "prismatic", "bodies": ["a", "b"], "anchor": [0.5, 0, 0], "axis": [1, 1, 0]})",
       R"({"name": "j", "type": "distance", "bodies": ["a", "b"], "anchors": [[0.3, 0.1, 0], [0.8, 0, 0.1]]})",
       R"({"name": "j", "type": "hinge", "bodies": ["world", "b"], "anchor": [0.5, 0, 0], "axis": [0, 0, 1]})"};
-  for (const std::string& j : joints) {
-    Scene s = two_boxes(j);
-    const Index b = s.model.objects[s.model.find_object("b")].body;
-    s.state.rigid.position[b] += Vec3(1e-3, -0.7e-3, 0.5e-3);
-    s.state.rigid.orientation[b] =
-        (Quat(Eigen::AngleAxisd(1.2e-3, Vec3(0.3, -1, 0.4).normalized())) * s.state.rigid.orientation[b]).normalized();
-    const JointError before = joint_error(s.model, s.state, 0);
-    reset_joints(s.model, s.state);
-    project_joints(s.model, s.state, 1.0 / 1200);
-    const JointError once = joint_error(s.model, s.state, 0);
-    for (int k = 0; k < 19; ++k) project_joints(s.model, s.state, 1.0 / 1200);
-    const JointError after = joint_error(s.model, s.state, 0);
-    EXPECT_GT(before.position + before.angle, 5e-4) << j;
-    EXPECT_LT(once.position + once.angle, 0.5 * (before.position + before.angle)) << j;
-    EXPECT_LT(after.position + after.angle, 0.02 * (before.position + before.angle)) << j;
+  for (const bool direct : {false, true}) {
+    for (const std::string& j : joints) {
+      Scene s = two_boxes(j, direct ? "direct" : "gauss_seidel");
+      const Index b = s.model.objects[s.model.find_object("b")].body;
+      s.state.rigid.position[b] += Vec3(1e-3, -0.7e-3, 0.5e-3);
+      s.state.rigid.orientation[b] =
+          (Quat(Eigen::AngleAxisd(1.2e-3, Vec3(0.3, -1, 0.4).normalized())) * s.state.rigid.orientation[b]).normalized();
+      const JointError before = joint_error(s.model, s.state, 0);
+      const Real h = 1.0 / 1200;
+      reset_joints(s.model, s.state);
+      const int solves = solve_joint_forest(s.model, s.state, h);
+      project_joints(s.model, s.state, h);
+      const JointError once = joint_error(s.model, s.state, 0);
+      for (int k = 0; k < 19; ++k) project_joints(s.model, s.state, h);
+      const JointError after = joint_error(s.model, s.state, 0);
+      const std::string what = j + (direct ? " direct" : " gauss_seidel");
+      EXPECT_GT(before.position + before.angle, 5e-4) << what;
+      if (s.model.joint_forest.in_tree(0)) {
+        EXPECT_LE(solves, 3) << what;
+        EXPECT_LT(once.position + once.angle, 1e-8) << what;
+      } else {
+        EXPECT_EQ(solves, 0) << what;
+        EXPECT_LT(once.position + once.angle, 0.5 * (before.position + before.angle)) << what;
+        EXPECT_LT(after.position + after.angle, 0.02 * (before.position + before.angle)) << what;
+      }
+      EXPECT_EQ(s.model.joint_forest.in_tree(0), direct && j.find("prismatic") == std::string::npos) << what;
+    }
   }
 }
 

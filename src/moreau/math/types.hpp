@@ -18,4 +18,11 @@ using Index = std::int32_t;
 
 inline constexpr Real kPi = 3.14159265358979323846;
 
+/// [r]x, the matrix with [r]x v = r x v.
+inline Mat3 cross_matrix(const Vec3& r) {
+  Mat3 m;
+  m << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+  return m;
+}
+
 }  // namespace moreau

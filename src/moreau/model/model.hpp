@@ -14,6 +14,7 @@
 #include "moreau/constraints/tet_volume.hpp"
 #include "moreau/constraints/triangle_strain.hpp"
 #include "moreau/fluids/fluid_model.hpp"
+#include "moreau/rigid/joint_tree.hpp"
 #include "moreau/rigid/joints.hpp"
 #include "moreau/rigid/rigid_bodies.hpp"
 
@@ -42,6 +43,10 @@ struct ObjectInfo {
   bool is_simulated() const { return has_particles() || kind == ObjectKind::fluid || kind == ObjectKind::rigid_body; }
 };
 
+// How the joints' equality rows are solved each iteration: the direct tree solver of Deul et al.
+// 2018 (joint_tree.hpp) where the joint graph is a tree, or Gauss-Seidel over the joints.
+enum class JointSolver { direct, gauss_seidel };
+
 struct SolverSettings {
   Real dt = 1.0 / 60;                       // s, output-independent step
   int substeps = 20;
@@ -51,6 +56,7 @@ struct SolverSettings {
   bool particle_contacts = true;            // contacts between objects and cloth self-collision
   Real contact_margin_factor = 2.0;         // contact candidates within r_i + r_j + k dt |v_rel| (Mueller 2020: k = 2)
   Real max_speed = 1e3;                     // m/s; faster particles are reported as a numerical failure
+  JointSolver joint_solver = JointSolver::direct;
 };
 
 struct Model {
@@ -79,6 +85,7 @@ struct Model {
 
   RigidBodyModel rigid;        // rigid bodies, then colliders as kinematic bodies
   std::vector<Joint> joints;
+  JointForest joint_forest;                   // joints solved directly (empty for Gauss-Seidel)
 
   SolverSettings settings;
 

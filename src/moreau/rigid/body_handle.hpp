@@ -44,8 +44,7 @@ struct BodyHandle {
   /// Effective inverse mass of a point at world offset r: 1/m I - [r]x I^-1 [r]x (3 x 3).
   Mat3 point_inverse_mass(const Vec3& r) const {
     if (is_world()) return Mat3::Zero();
-    Mat3 rx;
-    rx << 0, -r.z(), r.y(), r.z(), 0, -r.x(), -r.y(), r.x(), 0;
+    const Mat3 rx = cross_matrix(r);
     return inv_mass * Mat3::Identity() - rx * world_inv_inertia() * rx;
   }
   /// Generalised inverse mass for a rotation about unit n.

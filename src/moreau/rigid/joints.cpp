@@ -5,6 +5,7 @@
 
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/body_handle.hpp"
+#include "moreau/rigid/joint_frames.hpp"
 
 namespace moreau {
 
@@ -22,16 +23,6 @@ struct EndView {
   Vec3 axis(int k) const { return frame() * Vec3::Unit(k); }
 };
 
-// Read-only counterpart for probes (positions from a const state).
-struct ConstEndView {
-  Vec3 center = Vec3::Zero();
-  Quat orientation = Quat::Identity();
-  const JointEnd* end;
-  Vec3 anchor() const { return center + orientation * end->anchor; }
-  Quat frame() const { return orientation * end->frame; }
-  Vec3 axis(int k) const { return frame() * Vec3::Unit(k); }
-};
-
 EndView end_view(const Model& model, State& state, const JointEnd& e) {
   switch (e.kind) {
     case JointEndKind::world: return {BodyHandle{}, &e};
@@ -40,17 +31,6 @@ EndView end_view(const Model& model, State& state, const JointEnd& e) {
       return {BodyHandle{&state.position[e.index], nullptr, model.particle_inv_mass[e.index], Vec3::Zero()}, &e};
   }
   return {BodyHandle{}, &e};
-}
-
-ConstEndView const_end_view(const State& state, const JointEnd& e) {
-  ConstEndView v{Vec3::Zero(), Quat::Identity(), &e};
-  if (e.kind == JointEndKind::body) {
-    v.center = state.rigid.position[e.index];
-    v.orientation = state.rigid.orientation[e.index];
-  } else if (e.kind == JointEndKind::particle) {
-    v.center = state.position[e.index];
-  }
-  return v;
 }
 
 BodyVelocityHandle velocity_view(const Model& model, State& state, const JointEnd& e) {
@@ -79,13 +59,6 @@ void correct_rotation(const EndView& a, const EndView& b, const Vec3& e, Real al
   const Real c = e.norm();
   if (c <= 0) return;
   apply_angular_correction(a.handle, b.handle, e / c, c, alpha_tilde, lambda);
-}
-
-// Rotation vector of frame a relative to frame b (zero when they coincide).
-Vec3 orientation_error(const Quat& fa, const Quat& fb) {
-  const Quat dq = fa * fb.conjugate();
-  const Vec3 e = 2 * dq.vec();
-  return dq.w() >= 0 ? e : Vec3(-e);
 }
 
 // Clamps the accumulated multiplier so that |lambda| / h^2 stays below max (0 = no limit), undoing
@@ -142,19 +115,22 @@ void project_joints(const Model& model, State& state, Real h) {
     JointLambdas& L = state.joint_lambda[k];
     const EndView a = end_view(model, state, j.ends[0]), b = end_view(model, state, j.ends[1]);
     const Real alpha = j.compliance * inv_h2, alpha_angular = j.angular_compliance * inv_h2;
+    const bool direct = model.joint_forest.in_tree(k);  // equality rows already solved (joint_tree.hpp)
 
     // Orientation parts first (they move the anchors), then the positional part.
     switch (j.type) {
       case JointType::fixed:
       case JointType::prismatic:
+        if (direct) break;
         apply_rotation_correction<3>(a.handle, b.handle, orientation_error(a.frame(), b.frame()), Mat3::Identity(),
                                      alpha_angular, L.orientation);
         break;
       case JointType::hinge: {
         Eigen::Matrix<Real, 3, 2> across;
         across << a.axis(1), a.axis(2);
-        apply_rotation_correction<2>(a.handle, b.handle, b.axis(0).cross(a.axis(0)), across, alpha_angular,
-                                     L.orientation);
+        if (!direct)
+          apply_rotation_correction<2>(a.handle, b.handle, b.axis(0).cross(a.axis(0)), across, alpha_angular,
+                                       L.orientation);
         const Vec3 axis = a.axis(0);
         const Real phi = hinge_angle(axis, a.axis(1), b.axis(1));
         if (j.limited && (phi < j.lower || phi > j.upper)) {
@@ -204,6 +180,7 @@ void project_joints(const Model& model, State& state, Real h) {
       case JointType::fixed:
       case JointType::hinge:
       case JointType::spherical:
+        if (direct) break;
         apply_point_correction(a.handle, b.handle, d, a.anchor() - a.center(), b.anchor() - b.center(), alpha,
                                L.position);
         break;
@@ -227,7 +204,7 @@ void project_joints(const Model& model, State& state, Real h) {
       }
       case JointType::distance: {
         const Real len = d.norm();
-        if (len <= 0) break;
+        if (len <= 0 || direct) break;
         const Real target = std::clamp(len, j.lower, j.upper);
         if (len != target) correct_position(a, b, d / len * (len - target), alpha, L.distance);
         break;

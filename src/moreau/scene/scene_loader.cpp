@@ -24,6 +24,9 @@ void read_settings(const JsonObject& settings, Scene& scene) {
   s.threads = settings.integer("threads", s.threads, 0, 1024);
   s.particle_contacts = settings.boolean("particle_contacts", s.particle_contacts);
   s.max_speed = settings.number("max_speed", s.max_speed, Range::positive());
+  s.joint_solver = settings.choice("joint_solver", "direct", {"direct", "gauss_seidel"}) == "direct"
+                       ? JointSolver::direct
+                       : JointSolver::gauss_seidel;
   if (auto fluid = settings.optional_object("fluid")) {
     FluidModel& fm = scene.model.fluid;
     fm.neighbor_skin_fraction = fluid->number("neighbor_skin", fm.neighbor_skin_fraction, Range::closed(0, 1));
@@ -209,6 +212,8 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   finish_fluids(scene.model);
   if (top.has("joints")) build_joints(top.object_list("joints"), scene.model);
   add_colliders_as_bodies(scene.model);
+  if (scene.model.settings.joint_solver == JointSolver::direct)
+    scene.model.joint_forest = build_joint_forest(scene.model.rigid, scene.model.joints);
 
   for (const JsonObject& probe : top.object_list("probes")) scene.probes.push_back(read_probe(probe, scene.model));
   top.finish();

@@ -177,6 +177,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
         if (rigid) {
 #pragma omp single
           {
+            solve_joint_forest(model, state, h);
             project_joints(model, state, h);
             timer.lap(Stage::joints);
             project_rigid_contacts(model, state);
