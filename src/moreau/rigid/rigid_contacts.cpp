@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <utility>
 
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/body_handle.hpp"
@@ -55,6 +57,55 @@ void body_bounds(const RigidBodyModel& m, const RigidBodyState& s, Index b, Real
   hi = s.position[b] + e;
 }
 
+// Carries stuck slip over from last step's point of the same pair with the same body-frame cores
+// (within 5 % of the smaller body's size: the same corner or face point, not a neighbour).
+void carry_stuck_slip(const RigidBodyModel& m, RigidContacts& contacts) {
+  const RigidBroadPhaseScratch& bp = contacts.scratch;
+  size_t old = 0;
+  for (RigidManifold& mf : contacts.manifolds) {
+    while (old < bp.previous_manifolds.size() &&
+           std::make_pair(bp.previous_manifolds[old].body_a, bp.previous_manifolds[old].body_b) <
+               std::make_pair(mf.body_a, mf.body_b))
+      ++old;
+    if (old == bp.previous_manifolds.size()) return;
+    const RigidManifold& before = bp.previous_manifolds[old];
+    if (before.body_a != mf.body_a || before.body_b != mf.body_b || before.sliding) continue;
+    Real size = std::numeric_limits<Real>::infinity();
+    for (Index body : {mf.body_a, mf.body_b}) size = std::min(size, m.body_shape[body].bounding_radius());
+    const Real tolerance = 0.05 * size;
+    for (Index i = mf.first; i < mf.first + mf.count; ++i) {
+      RigidContactPoint& c = contacts.points[i];
+      for (Index j = before.first; j < before.first + before.count; ++j) {
+        const RigidContactPoint& p = bp.previous_points[j];
+        if ((p.geometry.core_a - c.geometry.core_a).norm() + (p.geometry.core_b - c.geometry.core_b).norm() <
+            tolerance) {
+          c.stuck_slip = p.stuck_slip;
+          break;
+        }
+      }
+    }
+  }
+}
+
+// End of a substep: the slip each point kept (the friction rows' residual) is added to its stuck
+// slip while the manifold sticks and the point touches; sliding or separation clears it.
+void accumulate_stuck_slip(const RigidBodyState& s, RigidContacts& contacts) {
+  for (RigidManifold& mf : contacts.manifolds) {
+    const Pose pa = body_pose(s, mf.body_a), pb = body_pose(s, mf.body_b);
+    const Pose sa = start_pose(s, mf.body_a), sb = start_pose(s, mf.body_b);
+    for (Index i = mf.first; i < mf.first + mf.count; ++i) {
+      RigidContactPoint& c = contacts.points[i];
+      if (mf.sliding || !c.touching) {
+        c.stuck_slip = Vec3::Zero();
+        continue;
+      }
+      const Vec3 slip = (pa.to_world(c.material_a) - sa.to_world(c.material_a)) -
+                        (pb.to_world(c.material_b) - sb.to_world(c.material_b)) + c.stuck_slip;
+      c.stuck_slip = slip - slip.dot(c.normal) * c.normal;
+    }
+  }
+}
+
 bool joined(const RigidBodyModel& m, Index a, Index b) {
   const std::array<Index, 2> key{std::min(a, b), std::max(a, b)};
   return std::binary_search(m.pairs_without_contact.begin(), m.pairs_without_contact.end(), key);
@@ -84,10 +135,11 @@ void solve_manifold_block(RigidManifold& mf, RigidContactPoint* points, const Bo
       ra[r] = p_a - pa.position;
       rb[r] = p_b - pb.position;
     }
-    // Slip of the two material points (body-frame points) over the substep.
-    const Vec3 material_a = pa.orientation.conjugate() * ra[3 * i];
-    const Vec3 material_b = pb.orientation.conjugate() * rb[3 * i];
-    const Vec3 slip = (p_a - sa.to_world(material_a)) - (p_b - sb.to_world(material_b));
+    // Slip of the two material points (body-frame points) over the substep, plus what the point
+    // has slipped since it began to stick.
+    c.material_a = pa.orientation.conjugate() * ra[3 * i];
+    c.material_b = pb.orientation.conjugate() * rb[3 * i];
+    const Vec3 slip = (p_a - sa.to_world(c.material_a)) - (p_b - sb.to_world(c.material_b)) + c.stuck_slip;
     const Vec3 t1 = (std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
     const Vec3 t2 = n.cross(t1);
     dir[3 * i] = n;
@@ -136,6 +188,7 @@ void solve_manifold_block(RigidManifold& mf, RigidContactPoint* points, const Bo
     sliding = ft >= (1 - 1e-9) * mf.static_friction * x[3 * i];
     if (!sliding) break;
   }
+  mf.sliding = sliding;
   if (sliding) {
     for (int i = 0; i < k; ++i) x[3 * i + 1] = x[3 * i + 2] = 0;
     sweeps(false);
@@ -160,6 +213,8 @@ void detect_rigid_contacts(const Model& model, State& state) {
   RigidBodyState& s = state.rigid;
   RigidContacts& contacts = state.rigid_contacts;
   RigidBroadPhaseScratch& bp = contacts.scratch;
+  std::swap(bp.previous_manifolds, contacts.manifolds);
+  std::swap(bp.previous_points, contacts.points);
   contacts.points.clear();
   contacts.manifolds.clear();
   const Index n = m.count();
@@ -229,6 +284,7 @@ void detect_rigid_contacts(const Model& model, State& state) {
       contacts.points.push_back(point);
     }
   }
+  carry_stuck_slip(m, contacts);
 }
 
 void reset_rigid_contacts(State& state) {
@@ -256,6 +312,7 @@ void rigid_contact_velocities(const Model& model, State& state, Real h) {
   RigidBodyState& s = state.rigid;
   RigidContacts& contacts = state.rigid_contacts;
   const Real resting_speed = 2 * model.settings.gravity.norm() * h;
+  accumulate_stuck_slip(s, contacts);
   for (RigidManifold& mf : contacts.manifolds) {
     if (!mf.touching) continue;
     const Index a = mf.body_a, b = mf.body_b;

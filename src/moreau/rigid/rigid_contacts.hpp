@@ -8,8 +8,15 @@
 // up to four points stored as body-frame cores. Every substep and iteration, per manifold:
 //   point i  p_a = x_a + q_a core_a - r_a n,  p_b = x_b + q_b core_b + r_b n
 //   normal   C_i = d_i = (p_a - p_b) . n_i >= 0, compliance 0
-//   static   C = dp . t = 0 for two tangents t, dp = (p_a - pbar_a) - (p_b - pbar_b) the slip of
-//   friction the two material points over the substep; it holds while |lambda_t| < mu_s lambda_n
+//   static   C = dp . t = 0 for two tangents t, dp = (p_a - pbar_a) - (p_b - pbar_b) + s the slip of
+//   friction the two material points over the substep plus s, the slip left over since the point
+//            began to stick; it holds while |lambda_t| < mu_s lambda_n
+// Mueller 2020 counts slip per substep only. What one Gauss-Seidel pass leaves unsolved then
+// becomes permanent, and a column of eight unit boxes with mu = 0.5 rocked itself over within a
+// second (energy rising) while a 2D pyramid crept sideways. Carrying s over the substeps, and over
+// steps for the same point of the same pair (matched by its body-frame cores), makes static
+// friction a position constraint that holds; s is cleared when the manifold slides or the point
+// separates.
 // The rows of one manifold (up to 12) are solved together by projected Gauss-Seidel on their
 // effective-mass matrix (rigid_contacts.cpp). Mueller 2020 projects point by point; for a box
 // resting on four corners that lifts the far corner each time the near one is pushed, the box
@@ -36,6 +43,8 @@ struct RigidContactPoint {
   Real lambda_normal = 0;                // kg m, this substep
   Vec3 normal = Vec3::UnitY();           // world, at the last projection
   Vec3 offset_a = Vec3::Zero(), offset_b = Vec3::Zero();  // world, contact points minus centres
+  Vec3 material_a = Vec3::Zero(), material_b = Vec3::Zero();  // body frames, the points at the last projection
+  Vec3 stuck_slip = Vec3::Zero();        // world, tangential slip since the point began to stick
   bool touching = false;
 };
 
@@ -46,6 +55,7 @@ struct RigidManifold {
   Real static_friction = 0, dynamic_friction = 0, restitution = 0;
   // Per substep.
   bool touching = false;                 // a point pushed this substep
+  bool sliding = false;                  // friction rows dropped at the last projection
 };
 
 /// Reused buffers of the broad phase.
@@ -55,6 +65,8 @@ struct RigidBroadPhaseScratch {
   std::vector<Real> margin;                  // per body, m
   std::vector<std::array<Index, 2>> pairs;
   std::vector<ContactManifold> pair_manifold;
+  std::vector<RigidManifold> previous_manifolds;  // last step's, to carry stuck slip over
+  std::vector<RigidContactPoint> previous_points;
 };
 
 struct RigidContacts {
