@@ -71,7 +71,7 @@ def pyramid():
     return {"name": "pyramid_210",
             "description": "A 2D pyramid of 210 unit cubes (base 20) on the ground, friction 0.5, 10 s at 60 Hz; "
                            "the largest drift of any box from its start is the stability measure.",
-            "settings": {"dt": 1 / 60, "substeps": 20, "duration": 10.0, "output": {"every": 60}},
+            "settings": {"dt": 1 / 60, "substeps": 8, "duration": 10.0, "output": {"every": 60}},
             "objects": objects,
             "probes": [{"name": "drift", "type": "max_displacement", "object": "*"},
                        {"name": "contacts", "type": "contact_count", "object": "*"}]}
