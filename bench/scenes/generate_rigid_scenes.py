@@ -87,7 +87,7 @@ def boxes():
                                 "position": [0.6 * i - 2.7, 0.3 + 0.6 * j, 0.6 * k - 2.7], "density": 1000})
     return {"name": "boxes_1000",
             "description": "1000 cubes of 0.5 m in a 10 x 10 x 10 grid (0.1 m apart) dropped on the ground.",
-            "settings": {"dt": 1 / 60, "substeps": 20, "duration": 5.0, "output": {"every": 30}},
+            "settings": {"dt": 1 / 60, "substeps": 8, "duration": 5.0, "output": {"every": 30}},
             "objects": objects,
             "probes": [{"name": "contacts", "type": "contact_count", "object": "*"}]}
 
