@@ -6,7 +6,9 @@
 //                   same dt and substeps;
 //   dam_break_30k / dam_break_120k  SPlisHSPlasH's stock dam break (1 m water cube in a
 //                   4 x 3 x 1.5 m tank), 29,791 / 117,649 particles, dt 1 ms, 1 substep x 3
-//                   Jacobi iterations (issue 3's targets; also reports ms per density iteration).
+//                   Jacobi iterations (issue 3's targets; also reports ms per density iteration);
+//   pyramid_210 / boxes_1000 / chain_100_released  issue 4's rigid-body scenes (60 Hz; 8, 8 and
+//                   20 substeps; bench/scenes/generate_rigid_scenes.py).
 // Each benchmark loads its scene from bench/scenes/, runs 10 warm-up steps, then times every
 // step of a fixed-length run. Besides Google Benchmark's mean time it reports the median and the
 // slowest step (ms), the 99th percentile over the median, and the share of each solver stage, so
@@ -85,6 +87,9 @@ void BM_Cloth50x50Isometric(benchmark::State& bench) {
 void BM_FemBar30x5x5(benchmark::State& bench) { run_steps(bench, "fem_bar_30x5x5.json", false); }
 void BM_DamBreak30k(benchmark::State& bench) { run_steps(bench, "dam_break_30k.json", false); }
 void BM_DamBreak120k(benchmark::State& bench) { run_steps(bench, "dam_break_120k.json", false); }
+void BM_Pyramid210(benchmark::State& bench) { run_steps(bench, "pyramid_210.json", false); }
+void BM_Boxes1000(benchmark::State& bench) { run_steps(bench, "boxes_1000.json", false); }
+void BM_ChainReleased(benchmark::State& bench) { run_steps(bench, "chain_100_released.json", false); }
 
 // 2,000 steps = 10 s of simulated time: the cloth falls, swings and settles; the bar sags and rings.
 BENCHMARK(BM_Cloth50x50)->Arg(1)->Arg(2)->Iterations(2000)->Unit(benchmark::kMillisecond)->UseRealTime();
@@ -93,6 +98,10 @@ BENCHMARK(BM_FemBar30x5x5)->Arg(1)->Arg(2)->Iterations(2000)->Unit(benchmark::kM
 // Issue 3's dam break (SPlisHSPlasH's stock scene): 490 timed steps after 10 warm-up = 0.5 s.
 BENCHMARK(BM_DamBreak30k)->Arg(1)->Arg(2)->Iterations(490)->Unit(benchmark::kMillisecond)->UseRealTime();
 BENCHMARK(BM_DamBreak120k)->Arg(1)->Arg(2)->Iterations(490)->Unit(benchmark::kMillisecond)->UseRealTime();
+// Issue 4: the pyramid's 10 s, the boxes' and the chain's first 5 s (600 / 300 steps with warm-up).
+BENCHMARK(BM_Pyramid210)->Arg(1)->Arg(2)->Iterations(590)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_Boxes1000)->Arg(1)->Arg(2)->Iterations(290)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_ChainReleased)->Arg(1)->Iterations(290)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 
