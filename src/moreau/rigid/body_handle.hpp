@@ -14,6 +14,17 @@
 
 namespace moreau {
 
+/// I^-1 v for a world-space v, with I diagonal (`inv_inertia`) in the frame q maps to the world.
+inline Vec3 apply_principal_inverse_inertia(const Quat& q, const Vec3& inv_inertia, const Vec3& v) {
+  return q * Vec3(inv_inertia.cwiseProduct(q.conjugate() * v));
+}
+
+/// World inverse inertia R diag(I^-1) R^T.
+inline Mat3 world_inverse_inertia(const Quat& q, const Vec3& inv_inertia) {
+  const Mat3 R = q.toRotationMatrix();
+  return R * inv_inertia.asDiagonal() * R.transpose();
+}
+
 struct BodyHandle {
   Vec3* position = nullptr;           // centre (nullptr: the world)
   Quat* orientation = nullptr;        // nullptr for particles and the world
@@ -25,9 +36,7 @@ struct BodyHandle {
 
   /// I^-1 v for a world-space v.
   Vec3 apply_inv_inertia(const Vec3& v) const {
-    if (!rotates()) return Vec3::Zero();
-    const Vec3 local = orientation->conjugate() * v;
-    return *orientation * Vec3(inv_inertia.cwiseProduct(local));
+    return rotates() ? apply_principal_inverse_inertia(*orientation, inv_inertia, v) : Vec3::Zero();
   }
   /// Generalised inverse mass for a push along unit n at world offset r.
   Real positional_weight(const Vec3& r, const Vec3& n) const {
@@ -37,9 +46,7 @@ struct BodyHandle {
   }
   /// World inverse inertia R diag(I^-1) R^T (zero for particles and the world).
   Mat3 world_inv_inertia() const {
-    if (!rotates()) return Mat3::Zero();
-    const Mat3 R = orientation->toRotationMatrix();
-    return R * inv_inertia.asDiagonal() * R.transpose();
+    return rotates() ? world_inverse_inertia(*orientation, inv_inertia) : Mat3::Zero();
   }
   /// Effective inverse mass of a point at world offset r: 1/m I - [r]x I^-1 [r]x (3 x 3).
   Mat3 point_inverse_mass(const Vec3& r) const {
@@ -144,9 +151,10 @@ struct BodyVelocityHandle {
 
   bool rotates() const { return angular_velocity != nullptr && inv_inertia != Vec3::Zero(); }
   Vec3 apply_inv_inertia(const Vec3& v) const {
-    if (!rotates()) return Vec3::Zero();
-    const Vec3 local = orientation->conjugate() * v;
-    return *orientation * Vec3(inv_inertia.cwiseProduct(local));
+    return rotates() ? apply_principal_inverse_inertia(*orientation, inv_inertia, v) : Vec3::Zero();
+  }
+  Mat3 world_inv_inertia() const {
+    return rotates() ? world_inverse_inertia(*orientation, inv_inertia) : Mat3::Zero();
   }
   Real weight(const Vec3& r, const Vec3& n) const {
     if (velocity == nullptr) return 0;

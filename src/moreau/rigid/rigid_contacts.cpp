@@ -32,12 +32,7 @@ struct InverseMass {
 
 template <class Handle>
 InverseMass inverse_mass(const Handle& h) {
-  InverseMass m{h.inv_mass, Mat3::Zero()};
-  if (h.rotates()) {
-    const Mat3 R = h.orientation->toRotationMatrix();
-    m.angular = R * h.inv_inertia.asDiagonal() * R.transpose();
-  }
-  return m;
+  return {h.inv_mass, h.world_inv_inertia()};
 }
 
 // Effective-mass matrix of `rows` contact rows (direction dir_r at offsets ra_r, rb_r), shared by
@@ -116,9 +111,11 @@ void carry_stuck_slip(const RigidBodyModel& m, RigidContacts& contacts) {
   }
 }
 
-// End of a substep: the slip each point kept (the friction rows' residual) is added to its stuck
-// slip while the manifold sticks and the point touches; sliding or separation clears it.
-void accumulate_stuck_slip(const RigidBodyState& s, RigidContacts& contacts) {
+}  // namespace
+
+void accumulate_stuck_slip(State& state) {
+  const RigidBodyState& s = state.rigid;
+  RigidContacts& contacts = state.rigid_contacts;
   for (RigidManifold& mf : contacts.manifolds) {
     const Pose pa = body_pose(s, mf.body_a), pb = body_pose(s, mf.body_b);
     const Pose sa = start_pose(s, mf.body_a), sb = start_pose(s, mf.body_b);
@@ -134,6 +131,8 @@ void accumulate_stuck_slip(const RigidBodyState& s, RigidContacts& contacts) {
     }
   }
 }
+
+namespace {
 
 bool joined(const RigidBodyModel& m, Index a, Index b) {
   const std::array<Index, 2> key{std::min(a, b), std::max(a, b)};
@@ -165,10 +164,10 @@ void solve_manifold_block(RigidManifold& mf, RigidContactPoint* points, const Bo
     c.normal = n;
     c.offset_a = p_a - pa.position;
     c.offset_b = p_b - pb.position;
-    c.material_a = pa.orientation.conjugate() * c.offset_a;
-    c.material_b = pb.orientation.conjugate() * c.offset_b;
     const Real depth = (p_a - p_b).dot(n);
     if (depth >= 0) continue;
+    c.material_a = pa.orientation.conjugate() * c.offset_a;
+    c.material_b = pb.orientation.conjugate() * c.offset_b;
     // Slip of the two material points (body-frame points) over the substep, plus what the point
     // has slipped since it began to stick.
     const Vec3 slip = (p_a - sa.to_world(c.material_a)) - (p_b - sb.to_world(c.material_b)) + c.stuck_slip;
@@ -362,7 +361,6 @@ void rigid_contact_velocities(const Model& model, State& state, Real h) {
   RigidBodyState& s = state.rigid;
   RigidContacts& contacts = state.rigid_contacts;
   const Real resting_speed = 2 * model.settings.gravity.norm() * h;
-  accumulate_stuck_slip(s, contacts);
   for (RigidManifold& mf : contacts.manifolds) {
     if (!mf.touching) continue;
     const Index a = mf.body_a, b = mf.body_b;

@@ -17,8 +17,8 @@
 // steps for the same point of the same pair (matched by its body-frame cores), makes static
 // friction a position constraint that holds; s is cleared when the manifold slides or the point
 // separates.
-// The rows of one manifold (up to 12) are solved together by projected Gauss-Seidel on their
-// effective-mass matrix (rigid_contacts.cpp). Mueller 2020 projects point by point; for a box
+// The rows of one manifold's penetrating points (up to 12) are solved together by projected
+// Gauss-Seidel on their effective-mass matrix (rigid_contacts.cpp). Mueller 2020 projects point by point; for a box
 // resting on four corners that lifts the far corner each time the near one is pushed, the box
 // rocks, and the first corner's static friction must hold the whole box on a quarter of the load:
 // a box on a 30 degree incline with mu = 0.7 then crept 12 mm in 2 s. Solved as a block it holds.
@@ -83,6 +83,10 @@ void reset_rigid_contacts(State& state);
 
 /// Projection of all manifolds (Gauss-Seidel over manifolds, in a fixed order); one thread.
 void project_rigid_contacts(const Model& model, State& state);
+
+/// End of a substep (after the projections): the slip each touching point kept is added to its
+/// stuck slip while its manifold sticks; sliding or separation clears it.
+void accumulate_stuck_slip(State& state);
 
 /// Velocity pass of the manifolds in contact this substep; one thread.
 void rigid_contact_velocities(const Model& model, State& state, Real h);

@@ -120,21 +120,20 @@ RigidShape make_box(const Vec3& e) {
   return s;
 }
 
-RigidShape make_capsule(Real radius, Real half_height) {
+namespace {
+// A round shape along its local y axis (capsule or cylinder).
+RigidShape make_round(ShapeType type, Real radius, Real half_height) {
   RigidShape s;
-  s.type = ShapeType::capsule;
+  s.type = type;
   s.radius = radius;
   s.half_height = half_height;
   return s;
 }
+}  // namespace
 
-RigidShape make_cylinder(Real radius, Real half_height) {
-  RigidShape s;
-  s.type = ShapeType::cylinder;
-  s.radius = radius;
-  s.half_height = half_height;
-  return s;
-}
+RigidShape make_capsule(Real radius, Real half_height) { return make_round(ShapeType::capsule, radius, half_height); }
+
+RigidShape make_cylinder(Real radius, Real half_height) { return make_round(ShapeType::cylinder, radius, half_height); }
 
 RigidShape make_plane() {
   RigidShape s;

@@ -194,6 +194,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
       if (rigid) {
 #pragma omp single
         {
+          accumulate_stuck_slip(state);
           rigid_contact_velocities(model, state, h);
           damp_joints(model, state, h);
         }
