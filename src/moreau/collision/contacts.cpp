@@ -215,9 +215,6 @@ void project_particle_contacts(const Model& model, State& state, const SubstepCo
   });
 }
 
-namespace {
-
-/// Relative-velocity change dv for one active contact (see the header for the two laws).
 Vec3 contact_velocity_change(const Vec3& v_rel, const Vec3& v_rel_before, const Vec3& n, Real lambda_n, Real w,
                              Real mu_k, Real e, Real h, Real g) {
   const Real vn = n.dot(v_rel);
@@ -230,8 +227,6 @@ Vec3 contact_velocity_change(const Vec3& v_rel, const Vec3& v_rel_before, const 
   dv += n * (-vn + std::max(-e * vn_before, 0.0));
   return dv;
 }
-
-}  // namespace
 
 void collider_contact_velocities(const Model& model, State& state, Real h) {
   ColliderContacts& c = state.collider_contacts;

@@ -73,6 +73,12 @@ void detect_particle_contacts(const Model& model, State& state);
 void project_collider_contacts(const Model& model, State& state, const SubstepContext& s, Real substep_end_time);
 void project_particle_contacts(const Model& model, State& state, const SubstepContext& s);
 
+/// Relative-velocity change dv of one contact that pushed this substep (the two laws above): v_rel
+/// and v_rel_before now and after prediction, n the normal, lambda_n the substep's normal
+/// multiplier, w the summed inverse masses along n, g = |gravity| (the resting-speed cut-off).
+Vec3 contact_velocity_change(const Vec3& v_rel, const Vec3& v_rel_before, const Vec3& n, Real lambda_n, Real w,
+                             Real mu_k, Real e, Real h, Real g);
+
 /// Velocity pass: dynamic friction and restitution of the contacts active in this substep.
 void collider_contact_velocities(const Model& model, State& state, Real h);
 void particle_contact_velocities(const Model& model, State& state, Real h);

@@ -149,7 +149,8 @@ void evaluate_probe(const ProbeSpec& probe, const Model& model, const State& sta
       break;
     }
     case ProbeType::contact_count: {
-      values.push_back(touching_contact_count(model, state, probe.object));
+      values.push_back(touching_contact_count(model, state, probe.object) +
+                       touching_particle_body_count(model, state, probe.object));
       break;
     }
     case ProbeType::max_displacement: {

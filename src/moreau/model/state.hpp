@@ -6,6 +6,7 @@
 #include "moreau/collision/contacts.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 #include "moreau/model/model.hpp"
+#include "moreau/rigid/particle_body_contacts.hpp"
 #include "moreau/rigid/rigid_contacts.hpp"
 
 namespace moreau {
@@ -36,6 +37,7 @@ struct State {
 
   RigidBodyState rigid;
   RigidContacts rigid_contacts;
+  ParticleBodyContacts particle_body_contacts;
   std::vector<JointLambdas> joint_lambda;
   std::vector<Real> joint_drive_start;  // hinge angle (rad) or slide (m) at the substep start
 };

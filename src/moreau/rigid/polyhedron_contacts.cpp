@@ -3,6 +3,7 @@
 #include <limits>
 
 #include "moreau/rigid/narrow_phase_parts.hpp"
+#include "moreau/rigid/point_query.hpp"
 
 namespace moreau::narrow {
 
@@ -121,51 +122,12 @@ void collide_polyhedra(const RigidShape& a, const Pose& pa, const RigidShape& b,
 
 void collide_sphere_polyhedron(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
                                Candidates& out) {
-  const ConvexPolyhedron& poly = b.polyhedron;
-  const Vec3 c = pb.to_local(pa.position);
-  const Index faces = static_cast<Index>(poly.faces.size());
-  // Signed distances to the face planes; inside when all are <= 0.
-  Real max_distance = -std::numeric_limits<Real>::infinity();
-  Index max_face = 0;
-  for (Index f = 0; f < faces; ++f) {
-    const Real d = poly.face_normals[f].dot(c) - poly.face_offsets[f];
-    if (d > max_distance) max_distance = d, max_face = f;
-  }
-  Vec3 closest, normal;
-  Real distance;
-  if (max_distance <= 0) {
-    normal = poly.face_normals[max_face];
-    closest = c - max_distance * normal;
-    distance = max_distance;
-  } else {
-    // Outside: the nearest point is inside a face with positive distance, or on an edge.
-    distance = std::numeric_limits<Real>::infinity();
-    for (Index f = 0; f < faces; ++f) {
-      const Vec3& n = poly.face_normals[f];
-      const Real d = n.dot(c) - poly.face_offsets[f];
-      if (d <= 0 || d >= distance) continue;
-      const Vec3 p = c - d * n;
-      const auto& face = poly.faces[f];
-      bool inside = true;
-      for (size_t k = 0; k < face.size() && inside; ++k) {
-        const Vec3& v0 = poly.vertices[face[k]];
-        const Vec3& v1 = poly.vertices[face[(k + 1) % face.size()]];
-        inside = (v1 - v0).cross(p - v0).dot(n) >= 0;
-      }
-      if (inside) distance = d, closest = p, normal = n;
-    }
-    for (const auto& e : poly.edges) {
-      Vec3 on_edge, on_c;
-      closest_points_of_segments(poly.vertices[e[0]], poly.vertices[e[1]], c, c, on_edge, on_c);
-      const Real d = (c - on_edge).norm();
-      if (d < distance && d > 0) distance = d, closest = on_edge, normal = (c - on_edge) / d;
-    }
-  }
-  const Real separation = distance - a.radius;
+  const SurfacePoint near = nearest_polyhedron_point(b.polyhedron, pb.to_local(pa.position));
+  const Real separation = near.distance - a.radius;
   if (separation > margin) return;
-  out.normal = pb.orientation * normal;
+  out.normal = pb.orientation * near.normal;
   out.frame = NormalFrame::body_b;
-  out.add({pa.position, pb.to_world(closest), a.radius, 0, separation});
+  out.add({pa.position, pb.to_world(near.point), a.radius, 0, separation});
 }
 
 }  // namespace moreau::narrow

@@ -13,6 +13,7 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
+#include "moreau/rigid/particle_body_contacts.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
 
 namespace moreau {
@@ -106,7 +107,10 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
   detect_collider_contacts(model, state);
   detect_particle_contacts(model, state);
   const bool rigid = !model.rigid.empty();
-  if (rigid) detect_rigid_contacts(model, state);
+  if (rigid) {
+    detect_rigid_contacts(model, state);
+    detect_particle_body_contacts(model, state);
+  }
   timer.lap(Stage::detect_contacts);
 
   const Real dt = model.settings.dt;
@@ -131,6 +135,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
         {
           reset_joints(model, state);
           reset_rigid_contacts(state);
+          reset_particle_body_contacts(state);
         }
       }
       predict(model, state, h);
@@ -181,6 +186,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
             project_joints(model, state, h);
             timer.lap(Stage::joints);
             project_rigid_contacts(model, state);
+            project_particle_body_contacts(model, state);
             timer.lap(Stage::rigid_contacts);
           }
         }
@@ -196,6 +202,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
         {
           accumulate_stuck_slip(state);
           rigid_contact_velocities(model, state, h);
+          particle_body_contact_velocities(model, state, h);
           damp_joints(model, state, h);
         }
       }

@@ -1,0 +1,174 @@
+#include "moreau/rigid/particle_body_contacts.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "moreau/collision/contacts.hpp"
+#include "moreau/model/state.hpp"
+#include "moreau/rigid/body_handle.hpp"
+#include "moreau/rigid/narrow_phase.hpp"
+#include "moreau/rigid/point_query.hpp"
+
+namespace moreau {
+
+namespace {
+
+bool takes_part(const Model& model, Index body) {
+  return model.objects[model.rigid.body_object[body]].kind == ObjectKind::rigid_body;
+}
+
+Pose body_pose(const RigidBodyState& s, Index b) { return {s.position[b], s.orientation[b]}; }
+
+BodyHandle particle_handle(const Model& model, State& state, Index p) {
+  return {&state.position[p], nullptr, model.particle_inv_mass[p], Vec3::Zero()};
+}
+
+// The nearest surface point of body b to world point x: body-frame point and normal, world normal
+// and offset r = q s, and the gap d - g.
+struct BodyPointContact {
+  SurfacePoint surface;
+  Vec3 normal, offset;
+};
+
+BodyPointContact nearest_on_body(const Model& model, const State& state, Index b, const Vec3& x) {
+  const Pose pose = body_pose(state.rigid, b);
+  const SurfacePoint sp = nearest_surface_point(model.rigid.body_shape[b], pose.to_local(x));
+  return {sp, pose.orientation * sp.normal, pose.orientation * sp.point};
+}
+
+}  // namespace
+
+void detect_particle_body_contacts(const Model& model, State& state) {
+  ParticleBodyContacts& c = state.particle_body_contacts;
+  c.particle.clear();
+  c.body.clear();
+  c.found.clear();
+  const RigidBodyModel& m = model.rigid;
+  const RigidBodyState& s = state.rigid;
+  const Index particles = model.particle_count();
+  if (particles == 0 || m.empty()) return;
+  const Real dt = model.settings.dt, k = model.settings.contact_margin_factor;
+  const Real fall = dt * model.settings.gravity.norm();
+
+  // Particles sorted by x (ties by index), with the largest gap and speed for the bounds.
+  c.by_x.resize(particles);
+  Real max_gap = 0, max_speed = 0;
+  for (Index p = 0; p < particles; ++p) {
+    c.by_x[p] = p;
+    max_gap = std::max(max_gap, model.particle_collider_gap[p]);
+    max_speed = std::max(max_speed, state.velocity[p].norm());
+  }
+  std::sort(c.by_x.begin(), c.by_x.end(), [&](Index a, Index b) {
+    const Real xa = state.position[a].x(), xb = state.position[b].x();
+    return xa < xb || (xa == xb && a < b);
+  });
+
+  for (Index b = 0; b < m.count(); ++b) {
+    if (!takes_part(model, b)) continue;
+    const RigidShape& shape = m.body_shape[b];
+    const Real body_reach = k * dt * (s.velocity[b].norm() + s.angular_velocity[b].norm() * shape.bounding_radius());
+    // World bounds: |R| times the body-frame half extents.
+    const Mat3 R = s.orientation[b].toRotationMatrix();
+    const Vec3 half = R.cwiseAbs() * shape.local_half_extents() +
+                      Vec3::Constant(max_gap + body_reach + k * dt * (max_speed + fall));
+    const Vec3 lo = s.position[b] - half, hi = s.position[b] + half;
+    auto first = std::lower_bound(c.by_x.begin(), c.by_x.end(), lo.x(),
+                                  [&](Index p, Real x) { return state.position[p].x() < x; });
+    for (auto it = first; it != c.by_x.end() && state.position[*it].x() <= hi.x(); ++it) {
+      const Index p = *it;
+      const Vec3& x = state.position[p];
+      if (x.y() < lo.y() || x.y() > hi.y() || x.z() < lo.z() || x.z() > hi.z()) continue;
+      if (model.particle_inv_mass[p] <= 0 && m.body_inv_mass[b] <= 0) continue;
+      const Real reach = model.particle_collider_gap[p] + body_reach +
+                         k * dt * ((state.velocity[p] - s.velocity[b]).norm() + fall);
+      if (nearest_on_body(model, state, b, x).surface.distance <= reach) c.found.push_back({b, p});
+    }
+  }
+  std::sort(c.found.begin(), c.found.end());
+  const size_t n = c.found.size();
+  c.lambda_normal.assign(n, 0);
+  c.normal.assign(n, Vec3::UnitY());
+  c.offset.assign(n, Vec3::Zero());
+  c.static_friction.resize(n);
+  c.dynamic_friction.resize(n);
+  c.restitution.resize(n);
+  for (size_t q = 0; q < n; ++q) {
+    const auto [b, p] = c.found[q];
+    c.body.push_back(b);
+    c.particle.push_back(p);
+    // Coefficients: the mean of the two sides (Mueller 2020), as for the other contacts.
+    const ObjectInfo& particle_object = model.objects[model.particle_object[p]];
+    c.static_friction[q] = 0.5 * (particle_object.static_friction + m.body_static_friction[b]);
+    c.dynamic_friction[q] = 0.5 * (particle_object.dynamic_friction + m.body_dynamic_friction[b]);
+    c.restitution[q] = 0.5 * (particle_object.restitution + m.body_restitution[b]);
+  }
+}
+
+void reset_particle_body_contacts(State& state) {
+  std::fill(state.particle_body_contacts.lambda_normal.begin(), state.particle_body_contacts.lambda_normal.end(), 0);
+}
+
+void project_particle_body_contacts(const Model& model, State& state) {
+  ParticleBodyContacts& c = state.particle_body_contacts;
+  RigidBodyState& s = state.rigid;
+  for (size_t q = 0; q < c.size(); ++q) {
+    const Index p = c.particle[q], b = c.body[q];
+    const BodyPointContact near = nearest_on_body(model, state, b, state.position[p]);
+    const Real penetration = near.surface.distance - model.particle_collider_gap[p];
+    if (penetration >= 0) continue;
+    const BodyHandle hp = particle_handle(model, state, p), hb = rigid_body_handle(model.rigid, s, b);
+    const Vec3& n = near.normal;
+    c.normal[q] = n;
+    c.offset[q] = near.offset;
+    apply_positional_correction(hp, hb, n, penetration, Vec3::Zero(), near.offset, 0, c.lambda_normal[q]);
+    // Static friction: the slip of the particle against the body's material point over the substep.
+    const Vec3& local = near.surface.point;
+    const Vec3 body_point = s.position[b] + s.orientation[b] * local;
+    const Vec3 body_start = s.start_position[b] + s.start_orientation[b] * local;
+    const Vec3 dp = (state.position[p] - state.substep_start[p]) - (body_point - body_start);
+    const Vec3 dp_t = dp - dp.dot(n) * n;
+    const Real slip = dp_t.norm();
+    if (slip <= 0) continue;
+    const Vec3 t = dp_t / slip;
+    const Vec3 r = body_point - s.position[b];
+    const Real w = hp.positional_weight(Vec3::Zero(), t) + hb.positional_weight(r, t);
+    if (w <= 0 || slip / w >= c.static_friction[q] * c.lambda_normal[q]) continue;
+    Real lambda_t = 0;
+    apply_positional_correction(hp, hb, t, slip, Vec3::Zero(), r, 0, lambda_t);
+  }
+}
+
+void particle_body_contact_velocities(const Model& model, State& state, Real h) {
+  ParticleBodyContacts& c = state.particle_body_contacts;
+  const RigidBodyModel& m = model.rigid;
+  RigidBodyState& s = state.rigid;
+  const Real g = model.settings.gravity.norm();
+  for (size_t q = 0; q < c.size(); ++q) {
+    if (c.lambda_normal[q] <= 0) continue;
+    const Index p = c.particle[q], b = c.body[q];
+    const Vec3& n = c.normal[q];
+    const Vec3& r = c.offset[q];
+    const BodyVelocityHandle vp{&state.velocity[p], nullptr, nullptr, model.particle_inv_mass[p], Vec3::Zero()};
+    const BodyVelocityHandle vb = rigid_body_velocity_handle(m, s, b);
+    const Vec3 v = vp.point_velocity(Vec3::Zero()) - vb.point_velocity(r);
+    const Vec3 before = state.velocity_before[p] - (s.velocity_before[b] + s.angular_velocity_before[b].cross(r));
+    const Real w = vp.weight(Vec3::Zero(), n) + vb.weight(r, n);
+    const Vec3 dv = contact_velocity_change(v, before, n, c.lambda_normal[q], w, c.dynamic_friction[q],
+                                            c.restitution[q], h, g);
+    apply_relative_velocity_change(vp, vb, dv, Vec3::Zero(), r);
+  }
+}
+
+Index touching_particle_body_count(const Model& model, const State& state, Index object) {
+  const ParticleBodyContacts& c = state.particle_body_contacts;
+  Index count = 0;
+  for (size_t q = 0; q < c.size(); ++q) {
+    if (c.lambda_normal[q] <= 0) continue;
+    if (object >= 0 && model.rigid.body_object[c.body[q]] != object && model.particle_object[c.particle[q]] != object)
+      continue;
+    ++count;
+  }
+  return count;
+}
+
+}  // namespace moreau
