@@ -40,15 +40,24 @@ struct FluidBoundarySamples {
   Index size() const { return static_cast<Index>(volume.size()); }
 };
 
-/// Cloth and soft-body surfaces sampled for the fluid (two-way coupling, solid_coupling.hpp). Each
-/// sample is a fixed barycentric combination of up to four particles of the model (a cloth
-/// triangle, or the soft-body tetrahedron that holds a point r inside the surface), so it moves
-/// with the solid and passes the fluid's push back to those particles.
+/// Cloth, soft-body and rigid-body surfaces sampled for the fluid (two-way coupling,
+/// solid_coupling.hpp). A cloth or soft-body sample is a fixed barycentric combination of up to
+/// four particles of the model (a cloth triangle, or the soft-body tetrahedron that holds a point r
+/// inside the surface); a rigid-body sample is a fixed point of its body's frame. Either way it
+/// moves with the solid and passes the fluid's push back to it.
 struct FluidSolidSamples {
-  std::vector<std::array<Index, 4>> particle;  // model particle indices (unused slots: weight 0)
-  std::vector<std::array<Real, 4>> weight;     // barycentric weights, summing to 1
+  std::vector<std::array<Index, 4>> particle;  // model particle indices (unused slots, rigid samples: weight 0)
+  std::vector<std::array<Real, 4>> weight;     // barycentric weights, summing to 1 (all 0 for rigid samples)
   std::vector<Real> volume;                    // m^3, Akinci volume (boundary_sampling.hpp)
   std::vector<Index> object;                   // owning scene object
+  // Rigid-body samples: the body (-1 for cloth and soft-body samples), the body-frame point, and
+  // the body's generalised inverse mass bound there, 1/m + |r|^2 max(I^-1) (0 unless dynamic).
+  std::vector<Index> body;
+  std::vector<Vec3> body_point;                // m
+  std::vector<Real> body_weight;               // 1/kg
+  // The bodies with samples and their contiguous sample ranges [body_begin[j], body_begin[j+1]).
+  std::vector<Index> sampled_body;
+  std::vector<Index> body_begin;
   // Particle -> samples (CSR over `coupled_particle`), so each particle gathers its reaction.
   std::vector<Index> coupled_particle;         // model particles touched by some sample
   std::vector<Index> coupled_begin;            // coupled_particle.size() + 1 offsets

@@ -5,7 +5,8 @@
 
 #include "moreau/collision/collider.hpp"
 #include "moreau/fluids/pair_chunks.hpp"
-#include "moreau/model/model.hpp"
+#include "moreau/model/state.hpp"
+#include "moreau/rigid/body_handle.hpp"
 
 namespace moreau {
 
@@ -28,13 +29,45 @@ void move_solid_particles(const Model& model, const FluidState& fluid, Vec3* x) 
   }
 }
 
+// Each dynamic sampled body takes the reactions of its samples (see the header). Every thread;
+// orphaned omp for over the bodies, each summing its own samples in order.
+void move_rigid_bodies(const Model& model, const FluidState& fluid, RigidBodyState& rigid) {
+  const FluidSolidSamples& s = model.fluid.solid;
+  const Index bodies = static_cast<Index>(s.sampled_body.size());
+#pragma omp for schedule(static)
+  for (Index j = 0; j < bodies; ++j) {
+    const Index b = s.sampled_body[j];
+    if (!model.rigid.is_dynamic(b)) continue;
+    Vec3 force = Vec3::Zero(), moment = Vec3::Zero();
+    for (Index k = s.body_begin[j]; k < s.body_begin[j + 1]; ++k) {
+      force += fluid.solid_reaction[k];
+      moment += (fluid.solid_position[k] - rigid.position[b]).cross(fluid.solid_reaction[k]);
+    }
+    rigid_body_handle(model.rigid, rigid, b).apply_position_impulse(force, Vec3::Zero());
+    rigid_body_handle(model.rigid, rigid, b).apply_angular_impulse(moment);
+  }
+}
+
+void move_solids(const Model& model, State& state) {
+  move_solid_particles(model, state.fluid, state.position.data());
+  if (!model.fluid.solid.sampled_body.empty()) move_rigid_bodies(model, state.fluid, state.rigid);
+}
+
 }  // namespace
 
-void place_solid_samples(const Model& model, FluidState& fluid, const Vec3* x) {
+void place_solid_samples(const Model& model, State& state) {
   const FluidSolidSamples& s = model.fluid.solid;
+  FluidState& fluid = state.fluid;
+  const Vec3* x = state.position.data();
+  const RigidBodyState& rigid = state.rigid;
   const Index n = s.size();
 #pragma omp for schedule(static)
   for (Index k = 0; k < n; ++k) {
+    const Index body = s.body[k];
+    if (body >= 0) {
+      fluid.solid_position[k] = rigid.position[body] + rigid.orientation[body] * s.body_point[k];
+      continue;
+    }
     const auto& p = s.particle[k];
     const auto& b = s.weight[k];
     fluid.solid_position[k] = b[0] * x[p[0]] + b[1] * x[p[1]] + b[2] * x[p[2]] + b[3] * x[p[3]];
@@ -52,9 +85,21 @@ void split_solid_masses(const Model& model, FluidState& fluid) {
       pairs += s.coupled_weight[e] * fluid.solid_fluids.count[s.coupled_sample[e]];
     fluid.solid_share[s.coupled_particle[q]] = 1 / std::max<Real>(1, pairs);
   }
-  // w_s = sum_k b_k^2 w_k / c_k.
+  // c_b = max(1, sum_s n_s) over a rigid body's samples.
+  const Index bodies = static_cast<Index>(s.sampled_body.size());
+#pragma omp for schedule(static)
+  for (Index j = 0; j < bodies; ++j) {
+    Real pairs = 0;
+    for (Index k = s.body_begin[j]; k < s.body_begin[j + 1]; ++k) pairs += fluid.solid_fluids.count[k];
+    fluid.body_share[j] = 1 / std::max<Real>(1, pairs);
+  }
+  // w_s = sum_k b_k^2 w_k / c_k; rigid samples w_bs / c_b.
+#pragma omp for schedule(static)
+  for (Index j = 0; j < bodies; ++j)
+    for (Index k = s.body_begin[j]; k < s.body_begin[j + 1]; ++k) fluid.solid_inv_mass[k] = s.body_weight[k] * fluid.body_share[j];
 #pragma omp for schedule(static)
   for (Index k = 0; k < samples; ++k) {
+    if (s.body[k] >= 0) continue;
     Real w = 0;
     for (int slot = 0; slot < 4; ++slot) {
       const Index p = s.particle[k][slot];
@@ -65,7 +110,8 @@ void split_solid_masses(const Model& model, FluidState& fluid) {
   }
 }
 
-void apply_solid_reactions(const Model& model, FluidState& fluid, Vec3* x) {
+void apply_solid_reactions(const Model& model, State& state) {
+  FluidState& fluid = state.fluid;
   const FluidSolidSamples& s = model.fluid.solid;
   const CubicSplineKernel kernel = model.fluid.kernel;
   const Real pad = 2 * kernel.h;
@@ -92,10 +138,11 @@ void apply_solid_reactions(const Model& model, FluidState& fluid, Vec3* x) {
     }
     fluid.solid_reaction[k] = s.volume[k] * Vec3(sum_lanes(rx), sum_lanes(ry), sum_lanes(rz));
   }
-  move_solid_particles(model, fluid, x);
+  move_solids(model, state);
 }
 
-void project_solid_contacts(const Model& model, FluidState& fluid, Vec3* x, Real time) {
+void project_solid_contacts(const Model& model, State& state, Real time) {
+  FluidState& fluid = state.fluid;
   const FluidModel& fm = model.fluid;
   const FluidSolidSamples& s = fm.solid;
   const Real reach = fm.solid_contact_distance, reach2 = reach * reach;
@@ -139,7 +186,7 @@ void project_solid_contacts(const Model& model, FluidState& fluid, Vec3* x, Real
     }
     fluid.solid_reaction[k] = sum;
   }
-  move_solid_particles(model, fluid, x);
+  move_solids(model, state);
   const Real r = fm.particle_radius;
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {

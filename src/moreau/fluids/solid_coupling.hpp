@@ -20,11 +20,19 @@
 // x_i x F_is - sum_k b_k x_k x F_is = (x_i - x_s) x F_is = 0, as F_is is parallel to x_i - x_s.
 // R_s is gathered over the reverse lists (fluid particles of each sample) and dx_k over the
 // particle -> sample table, so every sum has a fixed order: deterministic for any thread count.
+//
+// Rigid bodies (Akinci et al. 2012, "Versatile rigid-fluid coupling", with the PBD reaction
+// above): a sample is a fixed body-frame point s, at x_s = x_b + q_b s. The pair (i, s) pushes the
+// body with -F_is at x_s, a rigid body's response to a positional impulse (Mueller et al. 2020,
+// eq. 6-9), summed over the body's samples in their fixed order:
+//   dx_b = (1/m) sum_s R_s,   q_b += 1/2 [I^-1 sum_s (x_s - x_b) x R_s, 0] q_b.
+// Linear momentum is kept exactly; the moments too, as R_s acts at x_s on the line of x_i - x_s.
 #include "moreau/fluids/fluid_state.hpp"
 
 namespace moreau {
 
 struct Model;
+struct State;
 
 /// The solid side of the Jacobi split. A solid particle k is moved by every density constraint of
 /// every fluid particle near any of its samples, c_k of them (tens), each computed as if it were
@@ -35,16 +43,21 @@ struct Model;
 /// (Macklin et al. 2014, sec. 4.2) averages corrections over a particle's constraint count. The
 /// corrections themselves keep the true masses (dx_k = w_k grad_k C lambda), so momentum is still
 /// conserved exactly. Measured without the split: a floating slab bobs at 2 cm/s instead of
-/// 0.5 cm/s and a cloth's pins carry 1.6 % less than the load (0.4 % with it). Once per substep, after the neighbour lists (every thread).
+/// 0.5 cm/s and a cloth's pins carry 1.6 % less than the load (0.4 % with it).
+/// A rigid body is one solid moved by all its samples' constraints, c_b = max(1, sum_s n_s) of
+/// them, and its generalised inverse mass at sample s is at most w_bs = 1/m + |s|^2 max(I^-1) for
+/// any direction, so its samples get w_s = w_bs / c_b.
+/// Once per substep, after the neighbour lists (every thread).
 void split_solid_masses(const Model& model, FluidState& fluid);
 
-/// x_s = sum_k b_k x_k for every solid sample, from the model's particle positions x.
-/// Call inside an OpenMP parallel region.
-void place_solid_samples(const Model& model, FluidState& fluid, const Vec3* x);
+/// x_s = sum_k b_k x_k for every cloth and soft-body sample, from the model's particle positions,
+/// and x_s = x_b + q_b s for every rigid-body sample. Call inside an OpenMP parallel region.
+void place_solid_samples(const Model& model, State& state);
 
 /// After project_fluid_density (which left the multipliers in fluid.lambda): the reaction R_s of
-/// every sample, then the solid particles' corrections, added to x. Call inside a parallel region.
-void apply_solid_reactions(const Model& model, FluidState& fluid, Vec3* x);
+/// every sample, then the solid particles' and rigid bodies' corrections. Call inside a parallel
+/// region.
+void apply_solid_reactions(const Model& model, State& state);
 
 /// Keeps fluid particles at least FluidModel::solid_contact_distance from every solid sample: a
 /// position-level contact, split by inverse mass and averaged over the particle's contacts,
@@ -55,6 +68,6 @@ void apply_solid_reactions(const Model& model, FluidState& fluid, Vec3* x);
 /// sits 2r from the samples, beyond d_c = 1.5 r, so the contact does not touch the hydrostatics.
 /// Moves fluid and solid particles (fluid particles stay clear of the colliders at `time`). Call
 /// inside a parallel region, after the density projection.
-void project_solid_contacts(const Model& model, FluidState& fluid, Vec3* x, Real time);
+void project_solid_contacts(const Model& model, State& state, Real time);
 
 }  // namespace moreau

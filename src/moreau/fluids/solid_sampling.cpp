@@ -6,6 +6,7 @@
 
 #include "moreau/fluids/boundary_sampling.hpp"
 #include "moreau/model/model.hpp"
+#include "moreau/rigid/shape_surface.hpp"
 
 namespace moreau {
 
@@ -56,6 +57,9 @@ struct Sampler {
     out.particle.push_back(particle);
     out.weight.push_back(weight);
     out.object.push_back(object);
+    out.body.push_back(-1);
+    out.body_point.push_back(Vec3::Zero());
+    out.body_weight.push_back(0);
     rest.push_back(x);
   }
 
@@ -120,6 +124,30 @@ struct Sampler {
     }
   }
 
+  // A rigid body: its surface triangles (body frame) sampled like a soft body's, each sample r
+  // inside along the face normal. The body's generalised inverse mass at a point r from its centre,
+  // for a push in any direction, is at most 1/m + |r|^2 max(I^-1): the split of
+  // split_solid_masses uses that bound.
+  void sample_rigid_body(Index object, Index b) {
+    const RigidBodyModel& m = model.rigid;
+    const TriangleMesh surface = shape_surface(m.body_shape[b]);
+    const auto& X = surface.vertices;
+    const Real max_inv_inertia = m.body_inv_inertia[b].maxCoeff();
+    for (const auto& t : surface.triangles) {
+      const Vec3 inward = -(X[t[1]] - X[t[0]]).cross(X[t[2]] - X[t[0]]).normalized();
+      for (const Vec3& w : sub_triangle_centroids(subdivisions(X[t[0]], X[t[1]], X[t[2]]))) {
+        const Vec3 q = w[0] * X[t[0]] + w[1] * X[t[1]] + w[2] * X[t[2]] + r * inward;
+        out.particle.push_back({0, 0, 0, 0});
+        out.weight.push_back({0, 0, 0, 0});
+        out.object.push_back(object);
+        out.body.push_back(b);
+        out.body_point.push_back(q);
+        out.body_weight.push_back(m.body_inv_mass[b] + q.squaredNorm() * max_inv_inertia);
+        rest.push_back(q);  // the body frame is as good as any for the volumes
+      }
+    }
+  }
+
   void finish_object(Real spacing, const CubicSplineKernel& kernel) {
     const std::vector<Real> volume = akinci_volumes(rest, spacing, kernel);
     out.volume.insert(out.volume.end(), volume.begin(), volume.end());
@@ -140,6 +168,16 @@ FluidSolidSamples sample_fluid_solids(const Model& model, Real particle_radius, 
     sampler.finish_object(2 * particle_radius, kernel);
   }
   FluidSolidSamples& s = sampler.out;
+  s.body_begin.push_back(s.size());
+  for (Index b = 0; b < model.rigid.count(); ++b) {
+    const Index o = model.rigid.body_object[b];
+    const ObjectInfo& info = model.objects[o];
+    if (info.kind != ObjectKind::rigid_body || !info.fluid_coupling) continue;
+    sampler.sample_rigid_body(o, b);
+    sampler.finish_object(2 * particle_radius, kernel);
+    s.sampled_body.push_back(b);
+    s.body_begin.push_back(s.size());
+  }
 
   // Particle -> (sample, weight), ordered by particle, then sample: each particle gathers its
   // reaction in a fixed order.

@@ -90,6 +90,7 @@ void build_rigid_body(const JsonObject& object, ObjectInfo& info, SceneBuildCont
   info.static_friction = mu_s;
   info.dynamic_friction = mu_k;
   info.restitution = e;
+  info.fluid_coupling = object.boolean("fluid_coupling", true);
   const bool dynamic = !fixed && !kinematic;
   m.body_shape.push_back(std::move(shape));
   m.body_object.push_back(static_cast<Index>(ctx.model.objects.size()));

@@ -144,7 +144,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
       lap(Stage::predict);
       if (fluids) {
         if (model.fluid.boundary.moving) place_boundary_samples(model, fluid, substep_end);
-        if (coupled_solids) place_solid_samples(model, fluid, state.position.data());
+        if (coupled_solids) place_solid_samples(model, state);
         update_fluid_neighbors(model, fluid, substep_end);
         if (coupled_solids) split_solid_masses(model, fluid);
         lap(Stage::fluid_neighbors);
@@ -165,13 +165,13 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
         lap(Stage::attachments);
         // The fluid before the contacts: what it pushes into a collider, the contacts push out.
         if (fluids) {
-          if (coupled_solids) place_solid_samples(model, fluid, state.position.data());
+          if (coupled_solids) place_solid_samples(model, state);
           project_fluid_density(model, fluid, h);
-          if (coupled_solids) apply_solid_reactions(model, fluid, state.position.data());
+          if (coupled_solids) apply_solid_reactions(model, state);
           apply_fluid_corrections(model, fluid, h, substep_end);
           if (coupled_solids) {
-            place_solid_samples(model, fluid, state.position.data());
-            project_solid_contacts(model, fluid, state.position.data(), substep_end);
+            place_solid_samples(model, state);
+            project_solid_contacts(model, state, substep_end);
           }
           lap(Stage::fluid_density);
         }
