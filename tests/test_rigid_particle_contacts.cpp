@@ -71,8 +71,9 @@ TEST(PointQuery, NearestSurfacePointIsOnTheSurfaceAndTheDistanceGradientIsTheNor
                       (2 * e);
       }
       EXPECT_LT((gradient - s.normal).norm(), 1e-6);
-      if (shape.type == ShapeType::convex_hull && s.distance > 0)
+      if (shape.type == ShapeType::convex_hull && s.distance > 0) {
         EXPECT_NEAR(s.distance, sampled_polyhedron_distance(shape.polyhedron, p), 0.01);
+      }
     }
   }
 }

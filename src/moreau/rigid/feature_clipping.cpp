@@ -79,7 +79,8 @@ Feature support_feature(const RigidShape& s, const Pose& pose, const Vec3& direc
       }
       break;
     }
-    case ShapeType::plane: break;
+    case ShapeType::plane:
+    case ShapeType::triangle_mesh: break;
   }
   return f;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "moreau/rigid/mesh_shape.hpp"
 #include "moreau/rigid/narrow_phase_parts.hpp"
 
 namespace moreau {
@@ -167,12 +168,24 @@ void collide_plane(const RigidShape& a, const Pose& pa, const Pose& plane, Real 
       for (int k = 0; k < f.count; ++k) add_point(f.points[k], 0);
       break;
     }
-    case ShapeType::plane: break;
+    case ShapeType::plane:
+    case ShapeType::triangle_mesh: break;  // both fixed or kinematic: never a pair
   }
 }
 
 }  // namespace
 }  // namespace narrow
+
+void swap_sides(ContactManifold& m) {
+  for (int k = 0; k < m.count; ++k) {
+    ContactGeometry& g = m.points[k];
+    std::swap(g.core_a, g.core_b);
+    std::swap(g.radius_a, g.radius_b);
+    g.normal = -g.normal;
+  }
+  if (m.frame == NormalFrame::body_a) m.frame = NormalFrame::body_b;
+  else if (m.frame == NormalFrame::body_b) m.frame = NormalFrame::body_a;
+}
 
 ContactManifold collide_shapes(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin) {
   using namespace narrow;
@@ -184,20 +197,16 @@ ContactManifold collide_shapes(const RigidShape& a, const Pose& pa, const RigidS
       case ShapeType::cylinder: return 2;
       case ShapeType::box:
       case ShapeType::convex_hull: return 3;
-      case ShapeType::plane: return 4;
+      case ShapeType::plane:
+      case ShapeType::triangle_mesh: return 4;
     }
     return 0;
   };
+  // Meshes give one manifold per triangle: collide_with_mesh.
+  if (a.type == ShapeType::triangle_mesh || b.type == ShapeType::triangle_mesh) return {};
   if (rank(a) > rank(b)) {
     ContactManifold m = collide_shapes(b, pb, a, pa, margin);
-    for (int k = 0; k < m.count; ++k) {
-      ContactGeometry& g = m.points[k];
-      std::swap(g.core_a, g.core_b);
-      std::swap(g.radius_a, g.radius_b);
-      g.normal = -g.normal;
-    }
-    if (m.frame == NormalFrame::body_a) m.frame = NormalFrame::body_b;
-    else if (m.frame == NormalFrame::body_b) m.frame = NormalFrame::body_a;
+    swap_sides(m);
     return m;
   }
   Candidates c;
@@ -213,6 +222,50 @@ ContactManifold collide_shapes(const RigidShape& a, const Pose& pa, const RigidS
     collide_convex_mpr(a, pa, b, pb, margin, c);
   }
   return reduce_to_manifold(c, pa, pb);
+}
+
+void collide_with_mesh(const RigidShape& convex, const Pose& pose, const RigidShape& mesh, const Pose& mesh_pose,
+                       Real margin, std::vector<ContactManifold>& out) {
+  const MeshShape& m = *mesh.mesh;
+  if (convex.type == ShapeType::plane || convex.type == ShapeType::triangle_mesh) return;
+  // The convex shape's bounds in the mesh frame, grown by the margin.
+  const Quat relative = mesh_pose.orientation.conjugate() * pose.orientation;
+  const Vec3 center = mesh_pose.to_local(pose.position);
+  const Vec3 half = relative.toRotationMatrix().cwiseAbs() * convex.local_half_extents() + Vec3::Constant(margin);
+  thread_local std::vector<Index> near;
+  m.triangles_near(center - half, center + half, near);
+  constexpr Real kMinFrontCosine = 0.5;  // contacts within 60 degrees of the front normal
+  constexpr Real kSameNormalCosine = 0.999;  // manifolds merged when their normals agree to 2.6 degrees
+  // Per triangle, then merged by normal: a face resting across the seams of a flat region is one
+  // manifold of up to four points, as on a single solid (separate manifolds per triangle each
+  // held a share of the friction and let a sliding box run 22 % too far).
+  thread_local std::vector<narrow::Candidates> groups;
+  groups.clear();
+  for (Index t : near) {
+    const ContactManifold cm = collide_shapes(convex, pose, m.prisms[t], mesh_pose, margin);
+    if (cm.count == 0) continue;
+    const Vec3 front = mesh_pose.orientation * m.normals[t];
+    const Vec3 n = contact_normal(cm.frame, cm.points[0], pose, mesh_pose);
+    if (n.dot(front) < kMinFrontCosine) continue;
+    narrow::Candidates* group = nullptr;
+    for (narrow::Candidates& g : groups)
+      if (g.normal.dot(n) > kSameNormalCosine) group = &g;
+    if (group == nullptr) {
+      group = &groups.emplace_back();
+      group->normal = n;
+      group->frame = NormalFrame::body_b;
+    }
+    for (int k = 0; k < cm.count; ++k) {
+      const ContactGeometry& g = cm.points[k];
+      const Vec3 ca = pose.to_world(g.core_a), cb = mesh_pose.to_world(g.core_b);
+      const Real separation = ((ca - g.radius_a * group->normal) - (cb + g.radius_b * group->normal)).dot(group->normal);
+      // A point on a seam comes from both triangles: keep it once.
+      bool seen = false;
+      for (int i = 0; i < group->count && !seen; ++i) seen = (group->items[i].core_b - cb).squaredNorm() < 1e-18;
+      if (!seen) group->add({ca, cb, g.radius_a, g.radius_b, separation});
+    }
+  }
+  for (const narrow::Candidates& g : groups) out.push_back(narrow::reduce_to_manifold(g, pose, mesh_pose));
 }
 
 Vec3 contact_normal(NormalFrame frame, const ContactGeometry& c, const Pose& pa, const Pose& pb) {

@@ -20,6 +20,7 @@
 //   other pairs (capsule or cylinder    Minkowski portal refinement (libccd, Snethen 2008) for the
 //   with box/hull, cylinder pairs)      normal, then the same feature clipping
 #include <array>
+#include <vector>
 
 #include "moreau/rigid/rigid_shape.hpp"
 
@@ -51,6 +52,14 @@ struct ContactManifold {
 /// Contacts between A and B whose separation is below `margin` (m); count = 0 if none.
 ContactManifold collide_shapes(const RigidShape& a, const Pose& pose_a, const RigidShape& b, const Pose& pose_b,
                                Real margin);
+
+/// The same manifold seen from the other body: A and B swapped, the normal reversed.
+void swap_sides(ContactManifold& m);
+
+/// Contacts of a convex shape (A) with a triangle mesh (B), one manifold per triangle whose slab it
+/// touches (mesh_shape.hpp), appended to `out`.
+void collide_with_mesh(const RigidShape& convex, const Pose& pose, const RigidShape& mesh, const Pose& mesh_pose,
+                       Real margin, std::vector<ContactManifold>& out);
 
 /// World-space unit normal (B to A) of a contact in the current poses.
 Vec3 contact_normal(NormalFrame frame, const ContactGeometry& c, const Pose& pose_a, const Pose& pose_b);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "moreau/rigid/mesh_shape.hpp"
 #include "moreau/rigid/narrow_phase_parts.hpp"
 
 namespace moreau {
@@ -107,6 +108,7 @@ SurfacePoint nearest_surface_point(const RigidShape& shape, const Vec3& p) {
     case ShapeType::cylinder: return nearest_cylinder_point(shape.half_height, shape.radius, p);
     case ShapeType::convex_hull: return nearest_polyhedron_point(shape.polyhedron, p);
     case ShapeType::plane: return {p.y(), Vec3::UnitY(), Vec3(p.x(), 0, p.z())};
+    case ShapeType::triangle_mesh: return nearest_mesh_point(*shape.mesh, p);
   }
   return {};
 }

@@ -10,6 +10,7 @@
 //   polyhedron inside: the nearest face plane; outside: the nearest face (its polygon holds the
 //             projection) or edge
 //   plane     the half-space y <= 0: d = y
+//   mesh      the nearest triangle within one grid cell (mesh_shape.hpp); none: d = +infinity
 #include "moreau/rigid/rigid_shape.hpp"
 
 namespace moreau {

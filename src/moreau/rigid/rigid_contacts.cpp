@@ -82,29 +82,32 @@ void body_bounds(const RigidBodyModel& m, const RigidBodyState& s, Index b, Real
 }
 
 // Carries stuck slip over from last step's point of the same pair with the same body-frame cores
-// (within 5 % of the smaller body's size: the same corner or face point, not a neighbour).
+// (within 5 % of the smaller body's size: the same corner or face point, not a neighbour). A pair
+// with a mesh has a manifold per triangle; all of the pair's previous manifolds are searched.
 void carry_stuck_slip(const RigidBodyModel& m, RigidContacts& contacts) {
   const RigidBroadPhaseScratch& bp = contacts.scratch;
-  size_t old = 0;
+  const auto& previous = bp.previous_manifolds;
+  size_t begin = 0;
   for (RigidManifold& mf : contacts.manifolds) {
-    while (old < bp.previous_manifolds.size() &&
-           std::make_pair(bp.previous_manifolds[old].body_a, bp.previous_manifolds[old].body_b) <
-               std::make_pair(mf.body_a, mf.body_b))
-      ++old;
-    if (old == bp.previous_manifolds.size()) return;
-    const RigidManifold& before = bp.previous_manifolds[old];
-    if (before.body_a != mf.body_a || before.body_b != mf.body_b || before.sliding) continue;
+    const auto pair = std::make_pair(mf.body_a, mf.body_b);
+    while (begin < previous.size() && std::make_pair(previous[begin].body_a, previous[begin].body_b) < pair) ++begin;
+    if (begin == previous.size()) return;
     Real size = std::numeric_limits<Real>::infinity();
     for (Index body : {mf.body_a, mf.body_b}) size = std::min(size, m.body_shape[body].bounding_radius());
     const Real tolerance = 0.05 * size;
-    for (Index i = mf.first; i < mf.first + mf.count; ++i) {
-      RigidContactPoint& c = contacts.points[i];
-      for (Index j = before.first; j < before.first + before.count; ++j) {
-        const RigidContactPoint& p = bp.previous_points[j];
-        if ((p.geometry.core_a - c.geometry.core_a).norm() + (p.geometry.core_b - c.geometry.core_b).norm() <
-            tolerance) {
-          c.stuck_slip = p.stuck_slip;
-          break;
+    for (size_t old = begin; old < previous.size() && previous[old].body_a == mf.body_a && previous[old].body_b == mf.body_b;
+         ++old) {
+      const RigidManifold& before = previous[old];
+      if (before.sliding) continue;
+      for (Index i = mf.first; i < mf.first + mf.count; ++i) {
+        RigidContactPoint& c = contacts.points[i];
+        for (Index j = before.first; j < before.first + before.count; ++j) {
+          const RigidContactPoint& p = bp.previous_points[j];
+          if ((p.geometry.core_a - c.geometry.core_a).norm() + (p.geometry.core_b - c.geometry.core_b).norm() <
+              tolerance) {
+            c.stuck_slip = p.stuck_slip;
+            break;
+          }
         }
       }
     }
@@ -306,33 +309,43 @@ void detect_rigid_contacts(const Model& model, State& state) {
 
   // Narrow phase per pair (parallel), gathered in pair order.
   const Index pairs = static_cast<Index>(bp.pairs.size());
-  bp.pair_manifold.resize(pairs);
+  if (static_cast<Index>(bp.pair_manifolds.size()) < pairs) bp.pair_manifolds.resize(pairs);
 #pragma omp parallel for schedule(dynamic, 16) num_threads(model.settings.threads > 0 ? model.settings.threads : 0)
   for (Index p = 0; p < pairs; ++p) {
     const Index a = bp.pairs[p][0], b = bp.pairs[p][1];
-    bp.pair_manifold[p] =
-        collide_shapes(m.body_shape[a], body_pose(s, a), m.body_shape[b], body_pose(s, b), bp.margin[a] + bp.margin[b]);
-  }
-  for (Index p = 0; p < pairs; ++p) {
-    const ContactManifold& cm = bp.pair_manifold[p];
-    if (cm.count == 0) continue;
-    const Index a = bp.pairs[p][0], b = bp.pairs[p][1];
-    RigidManifold mf;
-    mf.body_a = a;
-    mf.body_b = b;
-    mf.first = static_cast<Index>(contacts.points.size());
-    mf.count = cm.count;
-    mf.frame = cm.frame;
-    mf.static_friction = 0.5 * (m.body_static_friction[a] + m.body_static_friction[b]);
-    mf.dynamic_friction = 0.5 * (m.body_dynamic_friction[a] + m.body_dynamic_friction[b]);
-    mf.restitution = 0.5 * (m.body_restitution[a] + m.body_restitution[b]);
-    contacts.manifolds.push_back(mf);
-    for (int c = 0; c < cm.count; ++c) {
-      RigidContactPoint point;
-      point.geometry = cm.points[c];
-      contacts.points.push_back(point);
+    const RigidShape &sa = m.body_shape[a], &sb = m.body_shape[b];
+    const Real margin = bp.margin[a] + bp.margin[b];
+    std::vector<ContactManifold>& found = bp.pair_manifolds[p];
+    found.clear();
+    if (sb.type == ShapeType::triangle_mesh) {
+      collide_with_mesh(sa, body_pose(s, a), sb, body_pose(s, b), margin, found);
+    } else if (sa.type == ShapeType::triangle_mesh) {
+      collide_with_mesh(sb, body_pose(s, b), sa, body_pose(s, a), margin, found);
+      for (ContactManifold& cm : found) swap_sides(cm);
+    } else {
+      const ContactManifold cm = collide_shapes(sa, body_pose(s, a), sb, body_pose(s, b), margin);
+      if (cm.count > 0) found.push_back(cm);
     }
   }
+  for (Index p = 0; p < pairs; ++p)
+    for (const ContactManifold& cm : bp.pair_manifolds[p]) {
+      const Index a = bp.pairs[p][0], b = bp.pairs[p][1];
+      RigidManifold mf;
+      mf.body_a = a;
+      mf.body_b = b;
+      mf.first = static_cast<Index>(contacts.points.size());
+      mf.count = cm.count;
+      mf.frame = cm.frame;
+      mf.static_friction = 0.5 * (m.body_static_friction[a] + m.body_static_friction[b]);
+      mf.dynamic_friction = 0.5 * (m.body_dynamic_friction[a] + m.body_dynamic_friction[b]);
+      mf.restitution = 0.5 * (m.body_restitution[a] + m.body_restitution[b]);
+      contacts.manifolds.push_back(mf);
+      for (int c = 0; c < cm.count; ++c) {
+        RigidContactPoint point;
+        point.geometry = cm.points[c];
+        contacts.points.push_back(point);
+      }
+    }
   carry_stuck_slip(m, contacts);
 }
 

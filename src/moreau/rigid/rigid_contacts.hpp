@@ -64,7 +64,7 @@ struct RigidBroadPhaseScratch {
   std::vector<Index> order;                  // bodies sorted by lower x
   std::vector<Real> margin;                  // per body, m
   std::vector<std::array<Index, 2>> pairs;
-  std::vector<ContactManifold> pair_manifold;
+  std::vector<std::vector<ContactManifold>> pair_manifolds;  // per pair: one, or one per mesh triangle
   std::vector<RigidManifold> previous_manifolds;  // last step's, to carry stuck slip over
   std::vector<RigidContactPoint> previous_points;
 };

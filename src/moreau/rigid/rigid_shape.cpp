@@ -6,6 +6,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "moreau/rigid/mesh_shape.hpp"
+
 namespace moreau {
 
 void ConvexPolyhedron::finish_topology() {
@@ -63,6 +65,7 @@ Real RigidShape::bounding_radius() const {
       return r;
     }
     case ShapeType::plane: return std::numeric_limits<Real>::infinity();
+    case ShapeType::triangle_mesh: return std::max(mesh->lower.norm(), mesh->upper.norm());
   }
   return 0;
 }
@@ -79,7 +82,8 @@ Vec3 RigidShape::support(const Vec3& d) const {
     }
     case ShapeType::box:
     case ShapeType::convex_hull: return polyhedron.vertices[polyhedron.support_vertex(d)];
-    case ShapeType::plane: break;
+    case ShapeType::plane:
+    case ShapeType::triangle_mesh: break;
   }
   return Vec3::Zero();
 }
@@ -95,6 +99,7 @@ Vec3 RigidShape::local_half_extents() const {
       for (const Vec3& v : polyhedron.vertices) e = e.cwiseMax(v.cwiseAbs());
       return e;
     }
+    case ShapeType::triangle_mesh: return mesh->lower.cwiseAbs().cwiseMax(mesh->upper.cwiseAbs());
     case ShapeType::plane: break;
   }
   return Vec3::Constant(std::numeric_limits<Real>::infinity());
@@ -104,6 +109,13 @@ RigidShape make_sphere(Real radius) {
   RigidShape s;
   s.type = ShapeType::sphere;
   s.radius = radius;
+  return s;
+}
+
+RigidShape make_triangle_mesh(std::shared_ptr<const MeshShape> mesh) {
+  RigidShape s;
+  s.type = ShapeType::triangle_mesh;
+  s.mesh = std::move(mesh);
   return s;
 }
 
@@ -203,7 +215,8 @@ MassProperties mass_properties(const RigidShape& s) {
       break;
     }
     case ShapeType::convex_hull: return polyhedron_mass_properties(s.polyhedron);
-    case ShapeType::plane: break;
+    case ShapeType::plane:
+    case ShapeType::triangle_mesh: break;  // no mass: fixed and kinematic bodies only
   }
   return m;
 }

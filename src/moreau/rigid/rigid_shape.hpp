@@ -2,6 +2,7 @@
 // Collision and mass shapes of rigid bodies. Every shape is stored in its body frame: the origin at
 // the centre of mass and the axes along the principal axes of inertia, so a body's inertia tensor
 // is diagonal there (Mueller et al. 2020, sec. 3.3: corrections are evaluated in the rest frame).
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -9,7 +10,7 @@
 
 namespace moreau {
 
-enum class ShapeType { sphere, box, capsule, cylinder, convex_hull, plane };
+enum class ShapeType { sphere, box, capsule, cylinder, convex_hull, plane, triangle_mesh };
 
 /// A convex polyhedron: faces are counter-clockwise seen from outside; a face's plane is
 /// {x : face_normal . x = face_offset}, the normal pointing out.
@@ -27,19 +28,22 @@ struct ConvexPolyhedron {
   Index support_vertex(const Vec3& direction) const;
 };
 
+struct MeshShape;
+
 struct RigidShape {
   ShapeType type = ShapeType::sphere;
   Real radius = 0;                   // m: sphere, capsule, cylinder
   Real half_height = 0;              // m: capsule segment / cylinder, along the local y axis
   Vec3 half_extents = Vec3::Zero();  // m: box
   ConvexPolyhedron polyhedron;       // box and convex hull
+  std::shared_ptr<const MeshShape> mesh;  // triangle mesh (fixed and kinematic bodies only; mesh_shape.hpp)
 
   bool is_polyhedron() const { return type == ShapeType::box || type == ShapeType::convex_hull; }
   /// Sphere and capsule: a core (point or segment) swept by `radius`.
   bool is_round() const { return type == ShapeType::sphere || type == ShapeType::capsule; }
   /// Radius of the smallest origin-centred sphere holding the shape (m; infinite for a plane).
   Real bounding_radius() const;
-  /// Furthest point along `direction` (body frame); planes have none.
+  /// Furthest point along `direction` (body frame); planes and meshes have none.
   Vec3 support(const Vec3& direction) const;
   /// Half extents of the body-frame bounding box.
   Vec3 local_half_extents() const;
@@ -58,6 +62,8 @@ RigidShape make_capsule(Real radius, Real half_height);
 RigidShape make_cylinder(Real radius, Real half_height);
 /// Half-space y <= 0 of its body frame (colliders only).
 RigidShape make_plane();
+/// A triangle mesh shape (its vertices in the body frame; mesh_shape.hpp).
+RigidShape make_triangle_mesh(std::shared_ptr<const MeshShape> mesh);
 
 /// Convex hull of `points` (computed with qhull); coplanar facets merged into polygons. Throws
 /// std::invalid_argument when the points span no volume.

@@ -1,6 +1,7 @@
 #include "moreau/rigid/shape_surface.hpp"
 
 #include "moreau/geometry/primitive_meshes.hpp"
+#include "moreau/rigid/mesh_shape.hpp"
 
 namespace moreau {
 
@@ -18,6 +19,7 @@ TriangleMesh shape_surface(const RigidShape& s) {
         for (size_t k = 1; k + 1 < f.size(); ++k) m.triangles.push_back({f[0], f[k], f[k + 1]});
       return m;
     }
+    case ShapeType::triangle_mesh: return s.mesh->surface;
     case ShapeType::plane: break;
   }
   return {};

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "moreau/geometry/mesh_readers.hpp"
+#include "moreau/rigid/mesh_shape.hpp"
 #include "moreau/scene/object_builders.hpp"
 
 namespace moreau {
@@ -27,7 +28,7 @@ Quat read_orientation(const JsonObject& object) {
 }
 
 RigidShape read_shape(const JsonObject& shape, const SceneBuildContext& ctx) {
-  const std::string type = shape.choice("type", {"sphere", "box", "capsule", "cylinder", "convex_hull"});
+  const std::string type = shape.choice("type", {"sphere", "box", "capsule", "cylinder", "convex_hull", "triangle_mesh"});
   RigidShape s;
   if (type == "sphere") {
     s = make_sphere(shape.number("radius", Range::positive()));
@@ -51,6 +52,15 @@ RigidShape read_shape(const JsonObject& shape, const SceneBuildContext& ctx) {
       shape.fail("mesh", e.what());
     }
     for (Vec3& v : mesh.vertices) v *= scale;
+    if (type == "triangle_mesh") {
+      // A one-sided shell with a slab of solid `thickness` behind each triangle (mesh_shape.hpp).
+      const Real thickness = shape.number("thickness", 0.05, Range::positive());
+      try {
+        return make_triangle_mesh(make_mesh_shape(mesh, thickness));
+      } catch (const std::invalid_argument& e) {
+        shape.fail("mesh", fmt::format("'{}': {}", file, e.what()));
+      }
+    }
     s.type = ShapeType::convex_hull;
     try {
       s.polyhedron = convex_hull(mesh.vertices);
@@ -75,10 +85,20 @@ void build_rigid_body(const JsonObject& object, ObjectInfo& info, SceneBuildCont
   const bool fixed = object.boolean("fixed", false), kinematic = object.boolean("kinematic", false);
   if (fixed && kinematic) object.fail("kinematic", "a body is either fixed or kinematic, not both");
   Real mass = 0;
-  if (object.has("mass") && object.has("density")) object.fail("mass", "give either \"mass\" (kg) or \"density\" (kg/m^3), not both");
-  if (object.has("mass")) mass = object.number("mass", Range::positive());
-  else mass = object.number("density", 1000.0, Range::positive()) * props.volume;
-  const Vec3 inertia = (props.inertia.diagonal() * (mass / props.volume)).eval();
+  Vec3 inertia = Vec3::Zero();
+  if (shape.type == ShapeType::triangle_mesh) {
+    // A mesh has no volume to give it mass: it only moves as prescribed.
+    if (!fixed && !kinematic)
+      shape_json.fail("type", "a triangle_mesh body must be \"fixed\" or \"kinematic\"; a dynamic body needs a "
+                              "solid shape (a \"convex_hull\" of the same OBJ, or a primitive)");
+    if (object.has("mass") || object.has("density"))
+      object.fail(object.has("mass") ? "mass" : "density", "a triangle_mesh body has no mass (it is fixed or kinematic)");
+  } else {
+    if (object.has("mass") && object.has("density")) object.fail("mass", "give either \"mass\" (kg) or \"density\" (kg/m^3), not both");
+    if (object.has("mass")) mass = object.number("mass", Range::positive());
+    else mass = object.number("density", 1000.0, Range::positive()) * props.volume;
+    inertia = props.inertia.diagonal() * (mass / props.volume);
+  }
 
   const Vec3 position = object.vec3("position");
   const Quat orientation = read_orientation(object);
