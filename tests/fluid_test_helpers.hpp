@@ -32,4 +32,11 @@ inline Real median_column_top(const FluidState& f, Real half, Real r) {
   return median_column_top(f, half, r, [](const Vec3&) { return true; });
 }
 
+/// The free surface of the slab-flotation tanks (0.24 m square, r = 6.25 mm) away from a floating
+/// slab: the median column top over the outer ring |x| or |z| >= 0.09 m, 3 cm clear of it.
+inline Real slab_tank_open_surface(const FluidState& f) {
+  return median_column_top(f, 0.12, 0.00625,
+                           [](const Vec3& x) { return std::max(std::abs(x.x()), std::abs(x.z())) >= 0.09; });
+}
+
 }  // namespace moreau::test

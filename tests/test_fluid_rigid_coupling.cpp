@@ -29,11 +29,6 @@ std::string rigid_slab_scene(Real density) {
                      density);
 }
 
-Real open_water_surface(const Scene& s) {
-  return test::median_column_top(s.state.fluid, 0.12, 0.00625,
-                                 [](const Vec3& x) { return std::max(std::abs(x.x()), std::abs(x.z())) >= 0.09; });
-}
-
 TEST(FluidRigidCoupling, BoxOfHalfTheWaterDensityFloatsHalfSubmerged) {
   // Archimedes: rho_s H = rho_w T, so a 0.06 m slab of 500 kg/m^3 floats with draft T = 0.03 m,
   // half its height. Draft = open-water surface minus the slab's bottom face, averaged over 0.3 s
@@ -48,7 +43,7 @@ TEST(FluidRigidCoupling, BoxOfHalfTheWaterDensityFloatsHalfSubmerged) {
   for (int k = 0; k < samples; ++k) {
     run_steps(scene, 1);
     const Real bottom = scene.state.rigid.position[body].y() - 0.03;
-    draft += (open_water_surface(scene) - bottom) / samples;
+    draft += (test::slab_tank_open_surface(scene.state.fluid) - bottom) / samples;
     const Vec3 up = scene.state.rigid.orientation[body] * Vec3::UnitY();
     tilt = std::max(tilt, std::acos(std::min<Real>(1, up.y())) * 180 / kPi);
   }

@@ -45,7 +45,6 @@ FluidState make_fluid_state(const FluidModel& fm) {
   s.solid_contacts.assign(capacity, 0);
   s.solid_inv_mass.assign(fm.solid.size(), 0);  // set per substep by split_solid_masses
   s.solid_share.assign(fm.solid.coupled_particle.empty() ? 0 : fm.solid.coupled_particle.back() + 1, 1.0);
-  s.body_share.assign(fm.solid.sampled_body.size(), 1.0);
   s.solid_neighbors.stride = fm.solid.size() > 0 ? 48 : 1;
   s.solid_neighbors.count.assign(capacity, 0);
   s.solid_neighbors.entries.assign(capacity * s.solid_neighbors.stride, 0);

@@ -47,7 +47,6 @@ struct FluidState {
   std::vector<Vec3> solid_reaction;
   std::vector<Real> solid_inv_mass;      // 1/kg per solid sample, this substep's split (split_solid_masses)
   std::vector<Real> solid_share;         // per model particle: 1 / c_k of the split (coupled particles only)
-  std::vector<Real> body_share;          // per sampled rigid body: 1 / c_b of the split
   std::vector<Index> solid_contacts;     // per fluid particle: solid samples it touches (project_solid_contacts)
 
   // Neighbour search.

@@ -43,8 +43,9 @@ void move_rigid_bodies(const Model& model, const FluidState& fluid, RigidBodySta
       force += fluid.solid_reaction[k];
       moment += (fluid.solid_position[k] - rigid.position[b]).cross(fluid.solid_reaction[k]);
     }
-    rigid_body_handle(model.rigid, rigid, b).apply_position_impulse(force, Vec3::Zero());
-    rigid_body_handle(model.rigid, rigid, b).apply_angular_impulse(moment);
+    const BodyHandle body = rigid_body_handle(model.rigid, rigid, b);
+    body.apply_position_impulse(force, Vec3::Zero());
+    body.apply_angular_impulse(moment);
   }
 }
 
@@ -85,18 +86,16 @@ void split_solid_masses(const Model& model, FluidState& fluid) {
       pairs += s.coupled_weight[e] * fluid.solid_fluids.count[s.coupled_sample[e]];
     fluid.solid_share[s.coupled_particle[q]] = 1 / std::max<Real>(1, pairs);
   }
-  // c_b = max(1, sum_s n_s) over a rigid body's samples.
+  // Rigid samples: w_s = w_bs / c_b, c_b = max(1, sum_s n_s) over the body's samples.
   const Index bodies = static_cast<Index>(s.sampled_body.size());
 #pragma omp for schedule(static)
   for (Index j = 0; j < bodies; ++j) {
     Real pairs = 0;
     for (Index k = s.body_begin[j]; k < s.body_begin[j + 1]; ++k) pairs += fluid.solid_fluids.count[k];
-    fluid.body_share[j] = 1 / std::max<Real>(1, pairs);
+    const Real share = 1 / std::max<Real>(1, pairs);
+    for (Index k = s.body_begin[j]; k < s.body_begin[j + 1]; ++k) fluid.solid_inv_mass[k] = s.body_weight[k] * share;
   }
-  // w_s = sum_k b_k^2 w_k / c_k; rigid samples w_bs / c_b.
-#pragma omp for schedule(static)
-  for (Index j = 0; j < bodies; ++j)
-    for (Index k = s.body_begin[j]; k < s.body_begin[j + 1]; ++k) fluid.solid_inv_mass[k] = s.body_weight[k] * fluid.body_share[j];
+  // Cloth and soft-body samples: w_s = sum_k b_k^2 w_k / c_k.
 #pragma omp for schedule(static)
   for (Index k = 0; k < samples; ++k) {
     if (s.body[k] >= 0) continue;

@@ -76,6 +76,9 @@ struct BodyHandle {
   }
 };
 
+/// A particle (a body without rotation) at position x with inverse mass w.
+inline BodyHandle particle_handle(Vec3& x, Real w) { return {&x, nullptr, w, Vec3::Zero()}; }
+
 /// One XPBD positional correction C = c along n between two handles (see the file comment);
 /// returns dlambda. `lambda` accumulates over the substep's iterations.
 inline Real apply_positional_correction(const BodyHandle& a, const BodyHandle& b, const Vec3& n, Real c,
@@ -172,6 +175,9 @@ struct BodyVelocityHandle {
     if (rotates()) *angular_velocity += apply_inv_inertia(r.cross(p));
   }
 };
+
+/// A particle seen through its velocity v, inverse mass w.
+inline BodyVelocityHandle particle_velocity_handle(Vec3& v, Real w) { return {&v, nullptr, nullptr, w, Vec3::Zero()}; }
 
 /// Applies velocity change dv of the relative velocity (a minus b) at offsets ra, rb as the impulse
 /// p = dv / (w_a + w_b) (Mueller 2020, eq. 33).

@@ -28,7 +28,7 @@ EndView end_view(const Model& model, State& state, const JointEnd& e) {
     case JointEndKind::world: return {BodyHandle{}, &e};
     case JointEndKind::body: return {rigid_body_handle(model.rigid, state.rigid, e.index), &e};
     case JointEndKind::particle:
-      return {BodyHandle{&state.position[e.index], nullptr, model.particle_inv_mass[e.index], Vec3::Zero()}, &e};
+      return {particle_handle(state.position[e.index], model.particle_inv_mass[e.index]), &e};
   }
   return {BodyHandle{}, &e};
 }
@@ -38,7 +38,7 @@ BodyVelocityHandle velocity_view(const Model& model, State& state, const JointEn
     case JointEndKind::world: return {};
     case JointEndKind::body: return rigid_body_velocity_handle(model.rigid, state.rigid, e.index);
     case JointEndKind::particle:
-      return {&state.velocity[e.index], nullptr, nullptr, model.particle_inv_mass[e.index], Vec3::Zero()};
+      return particle_velocity_handle(state.velocity[e.index], model.particle_inv_mass[e.index]);
   }
   return {};
 }

@@ -70,19 +70,13 @@ std::shared_ptr<const MeshShape> make_mesh_shape(const TriangleMesh& mesh, Real 
   const Vec3 extent = (m.upper - m.lower).cwiseMax(Vec3::Constant(1e-9));
   m.cell = std::max(edge_sum / count, extent.maxCoeff() / 64);
   for (int a = 0; a < 3; ++a) m.cells[a] = std::max(1, static_cast<int>(std::ceil(extent[a] / m.cell)));
-  auto cell_range = [&](const Vec3& lo, const Vec3& hi, Eigen::Vector3i& c0, Eigen::Vector3i& c1) {
-    for (int a = 0; a < 3; ++a) {
-      c0[a] = std::clamp(static_cast<int>(std::floor((lo[a] - m.lower[a]) / m.cell)), 0, m.cells[a] - 1);
-      c1[a] = std::clamp(static_cast<int>(std::floor((hi[a] - m.lower[a]) / m.cell)), 0, m.cells[a] - 1);
-    }
-  };
   const Index total = static_cast<Index>(m.cells.prod());
   std::vector<std::vector<Index>> lists(total);
   for (Index t = 0; t < count; ++t) {
     Vec3 lo = Vec3::Constant(std::numeric_limits<Real>::infinity()), hi = -lo;
     for (const Vec3& v : m.prisms[t].polyhedron.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
     Eigen::Vector3i c0, c1;
-    cell_range(lo, hi, c0, c1);
+    m.cell_range(lo, hi, c0, c1);
     for (int i = c0.x(); i <= c1.x(); ++i)
       for (int j = c0.y(); j <= c1.y(); ++j)
         for (int k = c0.z(); k <= c1.z(); ++k) lists[(k * m.cells.y() + j) * m.cells.x() + i].push_back(t);
@@ -95,14 +89,18 @@ std::shared_ptr<const MeshShape> make_mesh_shape(const TriangleMesh& mesh, Real 
   return shape;
 }
 
-void MeshShape::triangles_near(const Vec3& lo, const Vec3& hi, std::vector<Index>& out) const {
-  out.clear();
-  if ((lo.array() > upper.array()).any() || (hi.array() < lower.array()).any()) return;
-  Eigen::Vector3i c0, c1;
+void MeshShape::cell_range(const Vec3& lo, const Vec3& hi, Eigen::Vector3i& c0, Eigen::Vector3i& c1) const {
   for (int a = 0; a < 3; ++a) {
     c0[a] = std::clamp(static_cast<int>(std::floor((lo[a] - lower[a]) / cell)), 0, cells[a] - 1);
     c1[a] = std::clamp(static_cast<int>(std::floor((hi[a] - lower[a]) / cell)), 0, cells[a] - 1);
   }
+}
+
+void MeshShape::triangles_near(const Vec3& lo, const Vec3& hi, std::vector<Index>& out) const {
+  out.clear();
+  if ((lo.array() > upper.array()).any() || (hi.array() < lower.array()).any()) return;
+  Eigen::Vector3i c0, c1;
+  cell_range(lo, hi, c0, c1);
   for (int i = c0.x(); i <= c1.x(); ++i)
     for (int j = c0.y(); j <= c1.y(); ++j)
       for (int k = c0.z(); k <= c1.z(); ++k) {

@@ -19,6 +19,7 @@
 namespace moreau {
 
 struct RigidShape;
+struct SurfacePoint;  // point_query.hpp
 
 struct MeshShape {
   TriangleMesh surface;                // body frame
@@ -34,6 +35,8 @@ struct MeshShape {
 
   /// Triangles whose slab bounds may overlap the body-frame box [lo, hi], sorted, each once.
   void triangles_near(const Vec3& lo, const Vec3& hi, std::vector<Index>& out) const;
+  /// The grid cells [c0, c1] (inclusive, clamped to the grid) covering the body-frame box [lo, hi].
+  void cell_range(const Vec3& lo, const Vec3& hi, Eigen::Vector3i& c0, Eigen::Vector3i& c1) const;
 };
 
 /// Builds the slabs and the grid. Throws std::invalid_argument for an empty mesh or one whose
@@ -41,8 +44,7 @@ struct MeshShape {
 std::shared_ptr<const MeshShape> make_mesh_shape(const TriangleMesh& mesh, Real thickness);
 
 /// The nearest point of the mesh to body-frame point p among triangles within one grid cell of p
-/// (SurfacePoint of point_query.hpp: distance, normal, point). Found nothing: distance = +inf.
-struct SurfacePoint;
+/// (distance, normal, point). Found nothing: distance = +inf.
 SurfacePoint nearest_mesh_point(const MeshShape& mesh, const Vec3& p);
 
 }  // namespace moreau

@@ -19,12 +19,8 @@ bool takes_part(const Model& model, Index body) {
 
 Pose body_pose(const RigidBodyState& s, Index b) { return {s.position[b], s.orientation[b]}; }
 
-BodyHandle particle_handle(const Model& model, State& state, Index p) {
-  return {&state.position[p], nullptr, model.particle_inv_mass[p], Vec3::Zero()};
-}
-
 // The nearest surface point of body b to world point x: body-frame point and normal, world normal
-// and offset r = q s, and the gap d - g.
+// and offset r = q s from the body's centre.
 struct BodyPointContact {
   SurfacePoint surface;
   Vec3 normal, offset;
@@ -40,9 +36,7 @@ BodyPointContact nearest_on_body(const Model& model, const State& state, Index b
 
 void detect_particle_body_contacts(const Model& model, State& state) {
   ParticleBodyContacts& c = state.particle_body_contacts;
-  c.particle.clear();
-  c.body.clear();
-  c.found.clear();
+  c.pair.clear();
   const RigidBodyModel& m = model.rigid;
   const RigidBodyState& s = state.rigid;
   const Index particles = model.particle_count();
@@ -81,11 +75,11 @@ void detect_particle_body_contacts(const Model& model, State& state) {
       if (model.particle_inv_mass[p] <= 0 && m.body_inv_mass[b] <= 0) continue;
       const Real reach = model.particle_collider_gap[p] + body_reach +
                          k * dt * ((state.velocity[p] - s.velocity[b]).norm() + fall);
-      if (nearest_on_body(model, state, b, x).surface.distance <= reach) c.found.push_back({b, p});
+      if (nearest_on_body(model, state, b, x).surface.distance <= reach) c.pair.push_back({b, p});
     }
   }
-  std::sort(c.found.begin(), c.found.end());
-  const size_t n = c.found.size();
+  std::sort(c.pair.begin(), c.pair.end());
+  const size_t n = c.pair.size();
   c.lambda_normal.assign(n, 0);
   c.normal.assign(n, Vec3::UnitY());
   c.offset.assign(n, Vec3::Zero());
@@ -93,9 +87,7 @@ void detect_particle_body_contacts(const Model& model, State& state) {
   c.dynamic_friction.resize(n);
   c.restitution.resize(n);
   for (size_t q = 0; q < n; ++q) {
-    const auto [b, p] = c.found[q];
-    c.body.push_back(b);
-    c.particle.push_back(p);
+    const auto [b, p] = c.pair[q];
     // Coefficients: the mean of the two sides (Mueller 2020), as for the other contacts.
     const ObjectInfo& particle_object = model.objects[model.particle_object[p]];
     c.static_friction[q] = 0.5 * (particle_object.static_friction + m.body_static_friction[b]);
@@ -112,11 +104,11 @@ void project_particle_body_contacts(const Model& model, State& state) {
   ParticleBodyContacts& c = state.particle_body_contacts;
   RigidBodyState& s = state.rigid;
   for (size_t q = 0; q < c.size(); ++q) {
-    const Index p = c.particle[q], b = c.body[q];
+    const auto [b, p] = c.pair[q];
     const BodyPointContact near = nearest_on_body(model, state, b, state.position[p]);
     const Real penetration = near.surface.distance - model.particle_collider_gap[p];
     if (penetration >= 0) continue;
-    const BodyHandle hp = particle_handle(model, state, p), hb = rigid_body_handle(model.rigid, s, b);
+    const BodyHandle hp = particle_handle(state.position[p], model.particle_inv_mass[p]), hb = rigid_body_handle(model.rigid, s, b);
     const Vec3& n = near.normal;
     c.normal[q] = n;
     c.offset[q] = near.offset;
@@ -145,10 +137,10 @@ void particle_body_contact_velocities(const Model& model, State& state, Real h) 
   const Real g = model.settings.gravity.norm();
   for (size_t q = 0; q < c.size(); ++q) {
     if (c.lambda_normal[q] <= 0) continue;
-    const Index p = c.particle[q], b = c.body[q];
+    const auto [b, p] = c.pair[q];
     const Vec3& n = c.normal[q];
     const Vec3& r = c.offset[q];
-    const BodyVelocityHandle vp{&state.velocity[p], nullptr, nullptr, model.particle_inv_mass[p], Vec3::Zero()};
+    const BodyVelocityHandle vp = particle_velocity_handle(state.velocity[p], model.particle_inv_mass[p]);
     const BodyVelocityHandle vb = rigid_body_velocity_handle(m, s, b);
     const Vec3 v = vp.point_velocity(Vec3::Zero()) - vb.point_velocity(r);
     const Vec3 before = state.velocity_before[p] - (s.velocity_before[b] + s.angular_velocity_before[b].cross(r));
@@ -164,8 +156,8 @@ Index touching_particle_body_count(const Model& model, const State& state, Index
   Index count = 0;
   for (size_t q = 0; q < c.size(); ++q) {
     if (c.lambda_normal[q] <= 0) continue;
-    if (object >= 0 && model.rigid.body_object[c.body[q]] != object && model.particle_object[c.particle[q]] != object)
-      continue;
+    const auto [b, p] = c.pair[q];
+    if (object >= 0 && model.rigid.body_object[b] != object && model.particle_object[p] != object) continue;
     ++count;
   }
   return count;

@@ -16,6 +16,7 @@
 // the same laws as the particle-collider contacts (contacts.hpp), applied as an impulse between
 // the particle and the body's material point (eq. 33).
 // Colliders are not rigid bodies here: particles meet them through collider contacts.
+#include <array>
 #include <vector>
 
 #include "moreau/math/types.hpp"
@@ -26,16 +27,14 @@ struct Model;
 struct State;
 
 struct ParticleBodyContacts {
-  std::vector<Index> particle, body;   // sorted by body, then particle
+  std::vector<std::array<Index, 2>> pair;  // (body, particle), sorted
   std::vector<Real> lambda_normal;     // kg m, this substep
   std::vector<Vec3> normal;            // world, at the last projection
   std::vector<Vec3> offset;            // world, body surface point minus body centre, at the last projection
   std::vector<Real> static_friction, dynamic_friction, restitution;  // combined (means)
-  // Scratch of the detection.
-  std::vector<Index> by_x;             // candidate particles sorted by x
-  std::vector<std::array<Index, 2>> found;
+  std::vector<Index> by_x;             // detection scratch: particles sorted by x
 
-  size_t size() const { return particle.size(); }
+  size_t size() const { return pair.size(); }
 };
 
 /// Gathers (particle, body) candidates for the coming step.
