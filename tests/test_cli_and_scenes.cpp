@@ -130,6 +130,27 @@ TEST(CommandLine, FluidInputErrorsNameTheirKey) {
                    {"probes[0].object", "fluid object"});
 }
 
+TEST(CommandLine, RigidAndJointInputErrorsNameTheirKey) {
+  auto scene = [](const std::string& body_extra, const std::string& joint) {
+    return R"({"name": "r", "objects": [{"name": "a", "kind": "rigid_body", "shape": {"type": "box", "half_extents": [0.5, 0.5, 0.5]}, "position": [0, 0, 0])" +
+           body_extra + R"(}], "joints": [)" + joint + "]}";
+  };
+  const std::string ok_joint = R"({"name": "j", "type": "spherical", "bodies": ["world", "a"], "anchor": [0, 1, 0]})";
+  expect_bad_input("anchors_type", scene("", R"({"name": "j", "type": "distance", "bodies": ["world", "a"],
+      "anchors": [[0, 2, 0], [0, "one", 0]]})"),
+                   {"joints[0].anchors", "three numbers"});
+  expect_bad_input("joint_body", scene("", R"({"name": "j", "type": "hinge", "bodies": ["world", "door"], "anchor": [0, 1, 0]})"),
+                   {"joints[0].bodies", "'door'", "\"world\""});
+  expect_bad_input("joint_self", scene("", R"({"name": "j", "type": "fixed", "bodies": ["a", "a"], "anchor": [0, 1, 0]})"),
+                   {"joints[0].bodies", "itself"});
+  expect_bad_input("joint_limits", scene("", R"({"name": "j", "type": "hinge", "bodies": ["world", "a"], "anchor": [0, 1, 0],
+      "limits_deg": [30, -30]})"),
+                   {"joints[0].limits_deg", "lower limit"});
+  expect_bad_input("shape_type", R"({"name": "r", "objects": [{"name": "a", "kind": "rigid_body", "shape": {"type": "cone"}, "position": [0, 0, 0]}]})",
+                   {"objects[0].shape.type", "sphere"});
+  expect_bad_input("friction", scene(R"(, "friction": {"static": -0.5})", ok_joint), {"objects[0].friction.static", "out of range"});
+}
+
 TEST(CommandLine, FluidRunWritesParticlesAndWarnsAboutCfl) {
   // dt = 20 ms with 1 substep: water falling 0.4 m reaches ~2.8 m/s, CFL = 2.8 * 0.02 / 0.1 > 0.4.
   const std::string scene = write_scene("fluid_ok", R"({"name": "drop", "settings": {"dt": 0.02, "substeps": 1, "duration": 0.4},

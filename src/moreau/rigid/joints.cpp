@@ -71,6 +71,23 @@ Real limited(Real lambda, Real max, Real h) {
 
 Real hinge_angle(const Vec3& axis_a, const Vec3& y_a, const Vec3& y_b) { return signed_angle(y_a, y_b, axis_a); }
 
+// Twist of a spherical joint: the angle between the two ends' y axes about the mean of their x
+// axes, n = (x_a + x_b)/|x_a + x_b|, after projecting both onto the plane normal to n. Returns false
+// where it is undefined (the x axes opposite, or a y axis along n).
+struct Twist {
+  Vec3 axis;
+  Real angle = 0;
+};
+bool spherical_twist(const Vec3& xa, const Vec3& ya, const Vec3& xb, const Vec3& yb, Twist& out) {
+  const Vec3 mean = xa + xb;
+  if (mean.norm() <= 1e-9) return false;
+  const Vec3 n = mean.normalized();
+  const Vec3 pa = ya - n.dot(ya) * n, pb = yb - n.dot(yb) * n;
+  if (pa.norm() <= 1e-9 || pb.norm() <= 1e-9) return false;
+  out = {n, signed_angle(pa.normalized(), pb.normalized(), n)};
+  return true;
+}
+
 // The drive's angular correction, limited in torque: solved as a correction with its own
 // multiplier; when the limit binds, the correction is scaled back to the allowed multiplier.
 void drive_rotation(const EndView& a, const EndView& b, const Vec3& n, Real error, const Joint& j, Real h,
@@ -155,20 +172,11 @@ void project_joints(const Model& model, State& state, Real h) {
           if (swing > j.swing && k_axis.norm() > 1e-12)
             correct_rotation(a, b, -k_axis.normalized() * (swing - j.swing), 0, L.swing);
         }
-        if (j.twist_limited) {
-          const Vec3 xa = a.axis(0), xb = b.axis(0);
-          const Vec3 mean = xa + xb;
-          if (mean.norm() > 1e-9) {
-            const Vec3 n = mean.normalized();
-            const Vec3 ya = a.axis(1) - n.dot(a.axis(1)) * n, yb = b.axis(1) - n.dot(b.axis(1)) * n;
-            if (ya.norm() > 1e-9 && yb.norm() > 1e-9) {
-              const Real twist = signed_angle(ya.normalized(), yb.normalized(), n);
-              if (twist < j.twist_lower || twist > j.twist_upper) {
-                const Real target = std::clamp(twist, j.twist_lower, j.twist_upper);
-                correct_rotation(a, b, -n * (twist - target), 0, L.twist);
-              }
-            }
-          }
+        Twist t;
+        if (j.twist_limited && spherical_twist(a.axis(0), a.axis(1), b.axis(0), b.axis(1), t) &&
+            (t.angle < j.twist_lower || t.angle > j.twist_upper)) {
+          const Real target = std::clamp(t.angle, j.twist_lower, j.twist_upper);
+          correct_rotation(a, b, -t.axis * (t.angle - target), 0, L.twist);
         }
         break;
       }
@@ -254,6 +262,9 @@ JointError joint_error(const Model& model, const State& state, Index k) {
       e.position = d.norm();
       const Vec3 xa = a.axis(0), xb = b.axis(0);
       if (j.swing_limited) e.angle = std::max(Real(0), std::atan2(xa.cross(xb).norm(), xa.dot(xb)) - j.swing);
+      Twist t;
+      if (j.twist_limited && spherical_twist(xa, a.axis(1), xb, b.axis(1), t))
+        e.angle = std::max(e.angle, excess(t.angle, j.twist_lower, j.twist_upper));
       break;
     }
     case JointType::hinge: {

@@ -149,8 +149,11 @@ void build_joints(const std::vector<JsonObject>& list, Model& model) {
       const auto& raw = j.raw("anchors");
       if (!raw.is_array() || raw.size() != 2) j.fail("anchors", "expected two world points [[x, y, z], [x, y, z]]");
       for (int k = 0; k < 2; ++k) {
-        if (!raw[k].is_array() || raw[k].size() != 3) j.fail("anchors", "expected two world points [[x, y, z], [x, y, z]]");
-        anchors[k] = Vec3(raw[k][0].get<Real>(), raw[k][1].get<Real>(), raw[k][2].get<Real>());
+        const auto& point = raw[k];
+        const bool numeric = point.is_array() && point.size() == 3 &&
+                             std::all_of(point.begin(), point.end(), [](const auto& v) { return v.is_number(); });
+        if (!numeric) j.fail("anchors", "expected two world points of three numbers each [[x, y, z], [x, y, z]]");
+        anchors[k] = Vec3(point[0].get<Real>(), point[1].get<Real>(), point[2].get<Real>());
       }
     }
     const Vec3 axis_in = j.vec3("axis", Vec3::UnitX());
