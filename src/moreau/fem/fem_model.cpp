@@ -1,0 +1,171 @@
+#include "moreau/fem/fem_model.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <stdexcept>
+
+namespace moreau {
+
+namespace {
+
+int stiffness_degree(ElementType type) { return type == ElementType::tri3 || type == ElementType::tet4 ? 1 : 2; }
+
+// Greedy colouring of cells: no two cells of a colour share a node.
+std::vector<std::vector<Index>> colour_cells(const FemMesh& mesh) {
+  std::vector<std::uint64_t> used(mesh.node_count(), 0);
+  std::vector<std::vector<Index>> colours;
+  for (Index e = 0; e < mesh.cell_count(); ++e) {
+    std::uint64_t taken = 0;
+    const Index* c = mesh.cell(e);
+    for (int a = 0; a < mesh.nodes_per_cell(); ++a) taken |= used[c[a]];
+    int colour = 0;
+    while (colour < 64 && (taken >> colour) & 1) ++colour;
+    if (colour == 64) throw std::runtime_error("cell colouring needs more than 64 colours");
+    if (colour >= static_cast<int>(colours.size())) colours.resize(colour + 1);
+    colours[colour].push_back(e);
+    for (int a = 0; a < mesh.nodes_per_cell(); ++a) used[c[a]] |= std::uint64_t(1) << colour;
+  }
+  return colours;
+}
+
+}  // namespace
+
+Vec3 FemModel::reference_position(Index node) const {
+  const auto [solid, local] = owner(node);
+  return solid->mesh.nodes[local];
+}
+
+std::pair<const FemSolid*, Index> FemModel::owner(Index node) const {
+  for (const FemSolid& s : solids)
+    if (node >= s.node_begin && node < s.node_begin + s.mesh.node_count()) return {&s, node - s.node_begin};
+  throw std::out_of_range("node outside every solid");
+}
+
+void add_fem_solid(FemModel& model, FemSolid solid) {
+  if (solid.mesh.dim != model.dim) throw std::logic_error("a solid's mesh dimension differs from the model's");
+  const FemMesh& mesh = solid.mesh;
+  const auto rule = gauss_rule(mesh.element, stiffness_degree(mesh.element));
+  const int nodes = mesh.nodes_per_cell();
+  solid.points_per_cell = static_cast<int>(rule.size());
+  solid.weight.resize(static_cast<size_t>(mesh.cell_count()) * rule.size());
+  solid.gradient.resize(solid.weight.size() * nodes);
+  Real N[kMaxElementNodes];
+  Vec3 dN[kMaxElementNodes];
+  for (Index e = 0; e < mesh.cell_count(); ++e)
+    for (size_t p = 0; p < rule.size(); ++p) {
+      shape_functions(mesh.element, rule[p].xi, N, dN);
+      const Mat3 J = cell_jacobian(mesh, e, dN);
+      const Mat3 Jinv_t = J.inverse().transpose();
+      const size_t qp = static_cast<size_t>(e) * rule.size() + p;
+      solid.weight[qp] = rule[p].weight * J.determinant();
+      for (int a = 0; a < nodes; ++a) {
+        Vec3 g = Jinv_t * dN[a];
+        for (int k = mesh.dim; k < 3; ++k) g[k] = 0;
+        solid.gradient[qp * nodes + a] = g;
+      }
+    }
+  solid.node_begin = model.node_count;
+  model.node_count += mesh.node_count();
+  model.solids.push_back(std::move(solid));
+}
+
+void finalize_fem_model(FemModel& model) {
+  const Index dofs = model.dof_count();
+  model.free_index.assign(dofs, 0);
+  for (const PrescribedDof& p : model.prescribed) model.free_index[p.dof] = -1;
+  model.free_count = 0;
+  for (Index d = 0; d < dofs; ++d)
+    if (model.free_index[d] >= 0) model.free_index[d] = model.free_count++;
+
+  std::vector<Eigen::Triplet<Real, int>> entries;
+  for (const FemSolid& s : model.solids) {
+    const int nodes = s.mesh.nodes_per_cell();
+    for (Index e = 0; e < s.mesh.cell_count(); ++e) {
+      const Index* c = s.mesh.cell(e);
+      for (int a = 0; a < nodes; ++a)
+        for (int i = 0; i < model.dim; ++i) {
+          const Index r = model.free_index[model.dof(s.node_begin + c[a], i)];
+          if (r < 0) continue;
+          for (int b = 0; b < nodes; ++b)
+            for (int j = 0; j < model.dim; ++j) {
+              const Index q = model.free_index[model.dof(s.node_begin + c[b], j)];
+              if (q >= 0) entries.emplace_back(r, q, 0.0);
+            }
+        }
+    }
+  }
+  model.pattern.resize(model.free_count, model.free_count);
+  model.pattern.setFromTriplets(entries.begin(), entries.end());
+  model.pattern.makeCompressed();
+
+  // Where each cell's local entry lands in the value array.
+  const int* outer = model.pattern.outerIndexPtr();
+  const int* inner = model.pattern.innerIndexPtr();
+  auto slot = [&](Index r, Index q) -> Index {
+    const int* begin = inner + outer[q];
+    const int* end = inner + outer[q + 1];
+    return static_cast<Index>(std::lower_bound(begin, end, r) - inner);
+  };
+  for (FemSolid& s : model.solids) {
+    s.colours = colour_cells(s.mesh);
+    const int nodes = s.mesh.nodes_per_cell(), n = nodes * model.dim;
+    s.slots.assign(static_cast<size_t>(s.mesh.cell_count()) * n * n, -1);
+    for (Index e = 0; e < s.mesh.cell_count(); ++e) {
+      const Index* c = s.mesh.cell(e);
+      Index* cell_slots = s.slots.data() + static_cast<size_t>(e) * n * n;
+      for (int a = 0; a < n; ++a) {
+        const Index r = model.free_index[model.dof(s.node_begin + c[a / model.dim], a % model.dim)];
+        if (r < 0) continue;
+        for (int b = 0; b < n; ++b) {
+          const Index q = model.free_index[model.dof(s.node_begin + c[b / model.dim], b % model.dim)];
+          if (q >= 0) cell_slots[a * n + b] = slot(r, q);
+        }
+      }
+    }
+  }
+}
+
+std::vector<Real> cell_node_integrals(const FemSolid& solid, Real density) {
+  const FemMesh& mesh = solid.mesh;
+  const auto rule = gauss_rule(mesh.element, 2);
+  std::vector<Real> w(mesh.node_count(), 0.0);
+  Real N[kMaxElementNodes];
+  Vec3 dN[kMaxElementNodes];
+  for (Index e = 0; e < mesh.cell_count(); ++e)
+    for (const QuadraturePoint& q : rule) {
+      shape_functions(mesh.element, q.xi, N, dN);
+      const Real jw = q.weight * cell_jacobian(mesh, e, dN).determinant();
+      for (int a = 0; a < mesh.nodes_per_cell(); ++a) w[mesh.cell(e)[a]] += density * N[a] * jw;
+    }
+  return w;
+}
+
+void facet_node_integrals(const FemSolid& solid, const std::string& name, std::vector<Index>& nodes,
+                          std::vector<Real>& weights) {
+  const FemMesh& mesh = solid.mesh;
+  const FemBoundary* boundary = mesh.boundary(name);
+  nodes = mesh.boundary_nodes(name);
+  weights.assign(nodes.size(), 0.0);
+  if (!boundary) return;
+  const ElementType type = facet_type(mesh.element);
+  const int per = element_node_count(type);
+  const auto rule = gauss_rule(type, 2);
+  Real N[kMaxElementNodes];
+  Vec3 dN[kMaxElementNodes];
+  for (size_t f = 0; f < boundary->facets.size(); f += per)
+    for (const QuadraturePoint& q : rule) {
+      shape_functions(type, q.xi, N, dN);
+      Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();
+      for (int a = 0; a < per; ++a) {
+        t1 += mesh.nodes[boundary->facets[f + a]] * dN[a].x();
+        t2 += mesh.nodes[boundary->facets[f + a]] * dN[a].y();
+      }
+      const Real measure = type == ElementType::line2 ? t1.norm() : t1.cross(t2).norm();
+      for (int a = 0; a < per; ++a) {
+        const size_t i = std::lower_bound(nodes.begin(), nodes.end(), boundary->facets[f + a]) - nodes.begin();
+        weights[i] += N[a] * q.weight * measure;
+      }
+    }
+}
+
+}  // namespace moreau

@@ -1,0 +1,29 @@
+#include "moreau/fem/linear_solver.hpp"
+
+namespace moreau {
+
+bool SparseSymmetricSolver::factorize(const SparseMatrix& K) {
+  if (!cholesky_analyzed_) {
+    cholesky_.analyzePattern(K);
+    cholesky_analyzed_ = true;
+  }
+  cholesky_.factorize(K);
+  if (cholesky_.info() == Eigen::Success) {
+    method_ = "cholmod";
+    return true;
+  }
+  if (!lu_analyzed_) {
+    lu_.analyzePattern(K);
+    lu_analyzed_ = true;
+  }
+  lu_.factorize(K);
+  method_ = "umfpack";
+  return lu_.info() == Eigen::Success;
+}
+
+VectorX SparseSymmetricSolver::solve(const VectorX& b) const {
+  if (method_ == "cholmod") return cholesky_.solve(b);
+  return lu_.solve(b);
+}
+
+}  // namespace moreau

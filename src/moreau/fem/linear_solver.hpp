@@ -1,0 +1,33 @@
+#pragma once
+// Sparse direct solves of the FEM engine's tangent systems through Eigen's SuiteSparse wrappers.
+// The tangent of a hyperelastic solid is symmetric; near equilibrium and with enough Dirichlet
+// conditions it is positive definite and CHOLMOD's supernodal Cholesky factorizes it. Where it is
+// not (buckling, a free-floating body's rigid modes, compression past a limit point) the
+// factorization reports it and UMFPACK's LU takes over. The symbolic analysis is done once per
+// sparsity pattern and reused by every later factorization.
+#include <Eigen/CholmodSupport>
+#include <Eigen/UmfPackSupport>
+#include <memory>
+#include <string>
+
+#include "moreau/fem/fem_model.hpp"
+
+namespace moreau {
+
+class SparseSymmetricSolver {
+ public:
+  /// Factorizes K; false if neither Cholesky nor LU succeeds (a singular K).
+  bool factorize(const SparseMatrix& K);
+  /// Solves K x = b with the last factorization.
+  VectorX solve(const VectorX& b) const;
+  /// "cholmod" or "umfpack": what factorized the last K.
+  const std::string& method() const { return method_; }
+
+ private:
+  Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholesky_;
+  Eigen::UmfPackLU<SparseMatrix> lu_;
+  bool cholesky_analyzed_ = false, lu_analyzed_ = false;
+  std::string method_;
+};
+
+}  // namespace moreau

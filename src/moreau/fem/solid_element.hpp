@@ -1,0 +1,48 @@
+#pragma once
+// Total-Lagrangian hyperelastic element: internal force, tangent and stored energy of one cell
+// from its nodal displacements, with the reference-configuration shape gradients precomputed.
+//
+//   F = I + sum_a u_a (x) G_a,  G_a = dN_a/dX,   C = F^T F,   S = S(C),  CC = CC(C)
+//   dE = sym(F^T grad du)  ->  dE_voigt = sum_a B_a du_a  with, for a displacement component k,
+//     B_a[11] = F_k1 G_a1, B_a[22] = F_k2 G_a2, B_a[33] = F_k3 G_a3,
+//     B_a[12] = F_k1 G_a2 + F_k2 G_a1, B_a[23] = F_k2 G_a3 + F_k3 G_a2, B_a[13] = F_k1 G_a3 + F_k3 G_a1
+//   f_a  = sum_qp w B_a^T S                                          (internal force)
+//   K_ab = sum_qp w (B_a^T CC B_b + (G_a . S G_b) I)                  (material + geometric)
+// (Bonet & Wood, Nonlinear Continuum Mechanics for Finite Element Analysis, ch. 7; Belytschko,
+// Liu & Moran, Nonlinear Finite Elements, sec. 4.9.) In 2D (plane strain) the third components of
+// u and G are zero and F_33 = 1; w is then per unit thickness.
+#include <Eigen/Dense>
+
+#include "moreau/fem/elements.hpp"
+#include "moreau/materials/hyperelastic.hpp"
+
+namespace moreau {
+
+constexpr int kMaxElementDofs = 3 * kMaxElementNodes;
+using ElementVector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, kMaxElementDofs, 1>;
+using ElementMatrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxElementDofs, kMaxElementDofs>;
+
+/// One cell's quadrature data: per point the weight w = w_gauss det(dX/dxi) and the gradients G_a.
+struct CellQuadrature {
+  int points = 0, nodes = 0;
+  const Real* weight = nullptr;  // [points]
+  const Vec3* gradient = nullptr;  // [points][nodes]
+};
+
+/// What to compute for a cell.
+struct ElementOutput {
+  Real energy = 0;       // J (2D: J/m)
+  ElementVector force;   // internal force, dim * nodes, node-major
+  ElementMatrix tangent; // when asked for
+  bool valid = true;     // false if a point is inverted (det F <= 0) or W is undefined there
+};
+
+/// Internal force, energy and (if `with_tangent`) tangent of a cell; `u` holds the nodal
+/// displacements (dim per node, node-major); `dim` is 2 or 3.
+void solid_element(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u,
+                   bool with_tangent, ElementOutput& out);
+
+/// The deformation gradient at one quadrature point (dim per node displacements).
+Mat3 deformation_gradient(const Vec3* gradient, int nodes, int dim, const Real* u);
+
+}  // namespace moreau

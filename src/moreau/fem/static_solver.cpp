@@ -1,0 +1,91 @@
+#include "moreau/fem/static_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "moreau/fem/fem_assembly.hpp"
+
+namespace moreau {
+
+NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymmetricSolver& solver,
+                          const NewtonSettings& settings) {
+  NewtonResult result;
+  const VectorX f_ext = external_forces(model, t);
+  VectorX f_int, trial_force;
+  SparseMatrix K;
+  InternalForceResult state = assemble_internal_forces(model, u, f_int, &K);
+  if (!state.valid) {
+    result.failure = fmt::format("cell {} of '{}' is inverted at the start of the solve", state.invalid_cell,
+                                 state.invalid_solid);
+    return result;
+  }
+  // Predictor for changed prescribed values: moving only the boundary nodes would squash the cells
+  // next to them; the linearised response carries the increment into the interior,
+  //   K_ff du_f = -(r_f + K_fD du_D).
+  VectorX target = u;
+  apply_prescribed(model, t, target);
+  const VectorX du_D = target - u;
+  if (du_D.squaredNorm() > 0) {
+    if (!solver.factorize(K)) {
+      result.failure = "the tangent is singular (is the body held against rigid motion?)";
+      return result;
+    }
+    const VectorX rhs = free_part(model, f_int - f_ext + tangent_times(model, u, du_D));
+    u = target;
+    add_free_part(model, solver.solve(-rhs), u);
+    ++result.iterations;
+    state = assemble_internal_forces(model, u, f_int, &K);
+    if (!state.valid) {
+      result.failure = fmt::format("the prescribed displacements invert cell {} of '{}'; take smaller load steps",
+                                   state.invalid_cell, state.invalid_solid);
+      return result;
+    }
+  }
+  for (;;) {
+    const VectorX r = free_part(model, f_int - f_ext);
+    const Real norm = r.norm();
+    result.residual_norms.push_back(norm);
+    result.energy = state.energy;
+    const Real scale = std::max({f_ext.norm(), f_int.norm(), Real(1e-300)});
+    if (norm <= settings.tolerance * scale) {
+      result.converged = true;
+      return result;
+    }
+    if (result.iterations == settings.max_iterations) {
+      result.failure = fmt::format("no convergence in {} Newton iterations (|r| = {:.3e}, scale {:.3e})",
+                                   settings.max_iterations, norm, scale);
+      return result;
+    }
+    if (!solver.factorize(K)) {
+      result.failure = "the tangent is singular (is the body held against rigid motion?)";
+      return result;
+    }
+    const VectorX du = solver.solve(-r);
+    ++result.iterations;
+    const Real potential = state.energy - f_ext.dot(u);
+    const Real slope = r.dot(du);
+    Real alpha = 1;
+    VectorX trial;
+    InternalForceResult trial_state;
+    bool accepted = false;
+    for (int halving = 0; halving <= settings.max_halvings && !accepted; ++halving, alpha *= 0.5) {
+      trial = u;
+      add_free_part(model, alpha * du, trial);
+      trial_state = assemble_internal_forces(model, trial, trial_force, nullptr);
+      if (!trial_state.valid) continue;
+      const Real trial_norm = free_part(model, trial_force - f_ext).norm();
+      const Real trial_potential = trial_state.energy - f_ext.dot(trial);
+      accepted = trial_norm < norm || trial_potential <= potential + 1e-4 * alpha * slope;
+    }
+    if (!accepted) {
+      result.failure = fmt::format("the line search found no step that reduces the residual (|r| = {:.3e})", norm);
+      return result;
+    }
+    u = trial;
+    state = assemble_internal_forces(model, u, f_int, &K);
+  }
+}
+
+}  // namespace moreau

@@ -1,0 +1,41 @@
+#pragma once
+// Quasi-static equilibrium f_int(u) = f_ext(t) by Newton's method with a backtracking line search
+// (load stepping is the caller's sequence of t). Each iteration:
+//   r = f_int(u) - f_ext(t) on the free dofs;   K du = -r;   u += alpha du
+// alpha = 1, 1/2, 1/4, ... until the step leaves every cell valid and either the residual norm
+// drops or the potential Pi(u) = W(u) - f_ext . u decreases by the Armijo condition
+// Pi(u + alpha du) <= Pi(u) + 1e-4 alpha (r . du) (the residual test alone keeps Newton's full
+// steps near the solution, where Pi's changes are below its round-off).
+// When the prescribed displacements change, a predictor first carries their increment du_D into
+// the interior by the linearised response K_ff du_f = -(r_f + K_fD du_D) (moving the boundary
+// nodes alone would invert the cells next to them).
+// Converged when |r| <= tolerance * max(|f_ext|, |f_int|, 1e-300) over all dofs (the reactions at
+// prescribed dofs set the scale of a displacement-driven problem).
+#include <string>
+#include <vector>
+
+#include "moreau/fem/fem_model.hpp"
+#include "moreau/fem/linear_solver.hpp"
+
+namespace moreau {
+
+struct NewtonSettings {
+  Real tolerance = 1e-10;
+  int max_iterations = 25;
+  int max_halvings = 12;
+};
+
+struct NewtonResult {
+  bool converged = false;
+  int iterations = 0;                  // linear solves
+  std::vector<Real> residual_norms;    // |r| before each solve and at the end
+  Real energy = 0;                     // stored energy at the end, J
+  std::string failure;                 // why it did not converge
+};
+
+/// Equilibrium at load time t, starting from u (its prescribed dofs are overwritten with their
+/// values at t). `solver` keeps its symbolic analysis between calls.
+NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymmetricSolver& solver,
+                          const NewtonSettings& settings = {});
+
+}  // namespace moreau

@@ -1,0 +1,62 @@
+#pragma once
+// Hyperelastic materials written in the right Cauchy-Green tensor C = F^T F, shared by the FEM
+// engine (total-Lagrangian elements, energy-momentum integration) and, later, the constraint
+// engine. Each model gives the stored energy W(C) per reference volume, the second
+// Piola-Kirchhoff stress S = 2 dW/dC and the material tangent CC = 4 d2W/dC dC (so that
+// dS = CC : dE with E = (C - I)/2).
+//
+// Compressible Neo-Hookean (methods.md sec. 9; e.g. Bonet & Wood, Nonlinear Continuum Mechanics, ch. 6):
+//   W = mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2,       J = sqrt(det C)
+//   S = mu (I - C^-1) + lambda ln J C^-1
+//   CC_IJKL = lambda C^-1_IJ C^-1_KL + (mu - lambda ln J)(C^-1_IK C^-1_JL + C^-1_IL C^-1_JK)
+// St. Venant-Kirchhoff:
+//   W = lambda/2 (tr E)^2 + mu E:E,   S = lambda tr E I + 2 mu E,   CC = lambda I(x)I + 2 mu II_sym
+// Both reduce to linear elasticity with Lame's lambda and mu at C = I. Plane strain uses the same
+// formulas with C_33 = 1 (C_13 = C_23 = 0).
+//
+// Voigt order used for stresses and the tangent: (11, 22, 33, 12, 23, 13); strains in Voigt form
+// carry engineering shears (2 E_12, ...), so S_v . dE_v = S : dE.
+#include <Eigen/Dense>
+
+#include "moreau/math/types.hpp"
+
+namespace moreau {
+
+using Vec6 = Eigen::Matrix<Real, 6, 1>;
+using Mat6 = Eigen::Matrix<Real, 6, 6>;
+
+struct LameParameters {
+  Real lambda = 0, mu = 0;  // Pa
+};
+
+/// lambda = E nu / ((1 + nu)(1 - 2 nu)), mu = E / (2 (1 + nu)); E > 0, -1 < nu < 1/2.
+LameParameters lame_from_youngs(Real youngs_modulus, Real poisson_ratio);
+
+enum class HyperelasticModel { neo_hookean, st_venant_kirchhoff };
+
+/// The stress and tangent at one C; `valid` is false where W is undefined (Neo-Hookean, det C <= 0).
+struct HyperelasticResponse {
+  Real energy = 0;       // J/m^3
+  Vec6 stress;           // S in Voigt order, Pa
+  Mat6 tangent;          // CC in Voigt order, Pa
+  bool valid = true;
+};
+
+struct HyperelasticMaterial {
+  HyperelasticModel model = HyperelasticModel::neo_hookean;
+  LameParameters lame;
+  Real density = 0;  // kg/m^3 (reference configuration)
+
+  /// W(C); +infinity where undefined.
+  Real energy(const Mat3& C) const;
+  /// S(C) as a symmetric matrix.
+  Mat3 stress(const Mat3& C) const;
+  /// W, S and, if `with_tangent`, CC at C.
+  HyperelasticResponse respond(const Mat3& C, bool with_tangent = true) const;
+};
+
+/// A symmetric 3x3 matrix in Voigt order (no factor 2 on the shears).
+Vec6 to_voigt(const Mat3& A);
+Mat3 from_voigt(const Vec6& v);
+
+}  // namespace moreau
