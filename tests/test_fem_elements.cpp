@@ -87,41 +87,49 @@ TEST(FemElements, GaussRulesIntegrateMonomialsExactly) {
 }
 
 TEST(FemMaterials, StressAndTangentAreDerivativesOfTheEnergy) {
-  // S = 2 dW/dC and CC = 2 dS/dC by central differences with step 1e-6 on C: the truncation error
-  // is ~1e-12 relative and round-off ~1e-10, so 1e-7 relative separates a right formula from a
-  // wrong factor or sign. Checked at a moderate and a large deformation (stretch 1.8, shear 0.5).
-  Mat3 F1;
-  F1 << 1.05, 0.1, 0.02, -0.03, 0.97, 0.08, 0.01, -0.05, 1.1;
-  Mat3 F2;
-  F2 << 1.8, 0.5, 0.0, 0.1, 0.7, 0.2, -0.3, 0.0, 1.2;
+  // S = dW/dE and CC = dS/dE by central differences with step 1e-6 on E: the truncation error is
+  // ~1e-12 relative and round-off ~1e-10, so 1e-7 relative separates a right formula from a wrong
+  // factor or sign. Checked at a moderate and a large deformation (stretch 1.8, shear 0.5).
+  Mat3 H1;
+  H1 << 0.05, 0.1, 0.02, -0.03, -0.03, 0.08, 0.01, -0.05, 0.1;
+  Mat3 H2;
+  H2 << 0.8, 0.5, 0.0, 0.1, -0.3, 0.2, -0.3, 0.0, 0.2;
   for (HyperelasticModel model : {HyperelasticModel::neo_hookean, HyperelasticModel::st_venant_kirchhoff}) {
     const HyperelasticMaterial m = test::fem_material(model, 2e6, 0.35);
-    for (const Mat3& F : {F1, F2}) {
-      const Mat3 C = F.transpose() * F;
-      const HyperelasticResponse r = m.respond(C);
+    for (const Mat3& H : {H1, H2}) {
+      const Mat3 E = green_lagrange_strain(H);
+      const Mat3 F = Mat3::Identity() + H;
+      EXPECT_LT((E - 0.5 * (F.transpose() * F - Mat3::Identity())).norm(), 1e-15);
+      const HyperelasticResponse r = m.respond(E);
       const Real h = 1e-6;
       static const int pairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {1, 2}, {0, 2}};
       for (int q = 0; q < 6; ++q) {
-        Mat3 dC = Mat3::Zero();
-        dC(pairs[q][0], pairs[q][1]) = dC(pairs[q][1], pairs[q][0]) = h;
-        // dW = S : dC / 2: a diagonal step gives S_II h / 2, an off-diagonal (both entries) S_IJ h.
-        const Real dW = (m.energy(C + dC) - m.energy(C - dC)) / 2;
-        const Real S_fd = q < 3 ? 2 * dW / h : dW / h;
+        Mat3 dE = Mat3::Zero();
+        dE(pairs[q][0], pairs[q][1]) = dE(pairs[q][1], pairs[q][0]) = h;
+        // dW = S : dE: a diagonal step gives S_II h, an off-diagonal one (both entries) 2 S_IJ h;
+        // in Voigt form the step is dE_q = h (diagonal) or 2h (engineering shear).
+        const Real step = q < 3 ? h : 2 * h;
+        const Real S_fd = (m.energy(E + dE) - m.energy(E - dE)) / (2 * step);
         EXPECT_NEAR(r.stress[q], S_fd, 1e-7 * r.stress.norm()) << "S component " << q;
-        // dS = CC : dE with dE = dC / 2; in Voigt form dE_q = h/2 (diagonal) or h (engineering shear).
-        const Vec6 dS = (to_voigt(m.stress(C + dC)) - to_voigt(m.stress(C - dC))) / 2;
-        const Vec6 column = dS / (q < 3 ? h / 2 : h);
+        const Vec6 column = (to_voigt(m.stress(E + dE)) - to_voigt(m.stress(E - dE))) / (2 * step);
         EXPECT_LT((r.tangent.col(q) - column).norm(), 1e-7 * r.tangent.norm()) << "CC column " << q;
       }
       EXPECT_LT((r.tangent - r.tangent.transpose()).norm(), 1e-12 * r.tangent.norm());
     }
-    // At C = I both reduce to linear elasticity: CC = lambda I(x)I + 2 mu II.
-    const HyperelasticResponse r0 = m.respond(Mat3::Identity());
-    EXPECT_NEAR(r0.energy, 0.0, 1e-9);
-    EXPECT_LT(r0.stress.norm(), 1e-6);
-    EXPECT_NEAR(r0.tangent(0, 0), m.lame.lambda + 2 * m.lame.mu, 1e-6 * m.lame.mu);
-    EXPECT_NEAR(r0.tangent(0, 1), m.lame.lambda, 1e-6 * m.lame.mu);
-    EXPECT_NEAR(r0.tangent(3, 3), m.lame.mu, 1e-6 * m.lame.mu);
+    // At E = 0 both reduce to linear elasticity: CC = lambda I(x)I + 2 mu II; and at a strain of
+    // 1e-9 the stress is CC : E to 1e-6 relative (no digits lost to cancellation: a formula in
+    // C - I would keep only ~7 of them there).
+    const HyperelasticResponse r0 = m.respond(Mat3::Zero());
+    EXPECT_EQ(r0.energy, 0.0);
+    EXPECT_EQ(r0.stress.norm(), 0.0);
+    EXPECT_NEAR(r0.tangent(0, 0), m.lame.lambda + 2 * m.lame.mu, 1e-9 * m.lame.mu);
+    EXPECT_NEAR(r0.tangent(0, 1), m.lame.lambda, 1e-9 * m.lame.mu);
+    EXPECT_NEAR(r0.tangent(3, 3), m.lame.mu, 1e-9 * m.lame.mu);
+    const Mat3 tiny = 1e-9 * green_lagrange_strain(H1) / green_lagrange_strain(H1).norm();
+    Vec6 tiny_voigt = to_voigt(tiny);
+    tiny_voigt.tail<3>() *= 2;
+    const Vec6 linear = r0.tangent * tiny_voigt;
+    EXPECT_LT((m.respond(tiny).stress - linear).norm(), 1e-6 * linear.norm());
   }
 }
 

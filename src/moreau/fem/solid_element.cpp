@@ -8,11 +8,11 @@ namespace {
 constexpr Real kInverted = std::numeric_limits<Real>::infinity();
 }  // namespace
 
-Mat3 deformation_gradient(const Vec3* G, int nodes, int dim, const Real* u) {
-  Mat3 F = Mat3::Identity();
+Mat3 displacement_gradient(const Vec3* G, int nodes, int dim, const Real* u) {
+  Mat3 H = Mat3::Zero();
   for (int a = 0; a < nodes; ++a)
-    for (int k = 0; k < dim; ++k) F.row(k) += u[a * dim + k] * G[a].transpose();
-  return F;
+    for (int k = 0; k < dim; ++k) H.row(k) += u[a * dim + k] * G[a].transpose();
+  return H;
 }
 
 void solid_element(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u,
@@ -27,14 +27,15 @@ void solid_element(const HyperelasticMaterial& material, const CellQuadrature& q
   for (int p = 0; p < q.points; ++p) {
     const Vec3* G = q.gradient + static_cast<size_t>(p) * q.nodes;
     const Real w = q.weight[p];
-    const Mat3 F = deformation_gradient(G, q.nodes, dim, u);
+    const Mat3 H = displacement_gradient(G, q.nodes, dim, u);
+    const Mat3 F = Mat3::Identity() + H;
     // det C = J^2 cannot see an inverted point (J < 0); W is defined for J > 0 only.
     if (!(F.determinant() > 0)) {
       out.valid = false;
       out.energy = kInverted;
       return;
     }
-    const HyperelasticResponse r = material.respond(F.transpose() * F, with_tangent);
+    const HyperelasticResponse r = material.respond(green_lagrange_strain(H), with_tangent);
     if (!r.valid) {
       out.valid = false;
       out.energy = r.energy;

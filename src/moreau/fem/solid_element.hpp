@@ -42,7 +42,8 @@ struct ElementOutput {
 void solid_element(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u,
                    bool with_tangent, ElementOutput& out);
 
-/// The deformation gradient at one quadrature point (dim per node displacements).
-Mat3 deformation_gradient(const Vec3* gradient, int nodes, int dim, const Real* u);
+/// The displacement gradient H = F - I at one quadrature point (dim per node displacements),
+/// summed directly so that small strains keep their digits.
+Mat3 displacement_gradient(const Vec3* gradient, int nodes, int dim, const Real* u);
 
 }  // namespace moreau

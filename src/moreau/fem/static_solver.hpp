@@ -10,7 +10,8 @@
 // the interior by the linearised response K_ff du_f = -(r_f + K_fD du_D) (moving the boundary
 // nodes alone would invert the cells next to them).
 // Converged when |r| <= tolerance * max(|f_ext|, |f_int|, 1e-300) over all dofs (the reactions at
-// prescribed dofs set the scale of a displacement-driven problem).
+// prescribed dofs set the scale of a displacement-driven problem), or when the last correction
+// was below tolerance * |u_free| (the residual's round-off floor is ~ eps |K| |u|).
 #include <string>
 #include <vector>
 

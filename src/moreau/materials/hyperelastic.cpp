@@ -39,35 +39,46 @@ Mat3 from_voigt(const Vec6& v) {
   return A;
 }
 
-HyperelasticResponse HyperelasticMaterial::respond(const Mat3& C, bool with_tangent) const {
+Mat3 green_lagrange_strain(const Mat3& H) { return 0.5 * (H + H.transpose() + H.transpose() * H); }
+
+namespace {
+
+// det(I + X) - 1 = tr X + ((tr X)^2 - tr X^2)/2 + det X, without cancellation for small X.
+Real det_identity_plus_minus_one(const Mat3& X) {
+  const Real t = X.trace();
+  return t + 0.5 * (t * t - (X * X).trace()) + X.determinant();
+}
+
+}  // namespace
+
+HyperelasticResponse HyperelasticMaterial::respond(const Mat3& E, bool with_tangent) const {
   const Real lambda = lame.lambda, mu = lame.mu;
   HyperelasticResponse r;
   if (model == HyperelasticModel::st_venant_kirchhoff) {
-    const Mat3 E = 0.5 * (C - Mat3::Identity());
     const Real trE = E.trace();
     r.energy = 0.5 * lambda * trE * trE + mu * E.squaredNorm();
     r.stress = to_voigt(lambda * trE * Mat3::Identity() + 2 * mu * E);
     if (with_tangent) r.tangent = product_plus_symmetric(Mat3::Identity(), lambda, mu);
     return r;
   }
-  const Real detC = C.determinant();
-  if (!(detC > 0)) {
+  const Real detC_minus_one = det_identity_plus_minus_one(2 * E);
+  if (!(detC_minus_one > -1)) {
     r.valid = false;
     r.energy = std::numeric_limits<Real>::infinity();
     r.stress.setZero();
     if (with_tangent) r.tangent.setZero();
     return r;
   }
-  const Real lnJ = 0.5 * std::log(detC);
-  const Mat3 Cinv = C.inverse();
-  r.energy = 0.5 * mu * (C.trace() - 3) - mu * lnJ + 0.5 * lambda * lnJ * lnJ;
-  r.stress = to_voigt(mu * (Mat3::Identity() - Cinv) + lambda * lnJ * Cinv);
+  const Real lnJ = 0.5 * std::log1p(detC_minus_one);
+  const Mat3 Cinv = (Mat3::Identity() + 2 * E).inverse();
+  r.energy = mu * (E.trace() - lnJ) + 0.5 * lambda * lnJ * lnJ;
+  r.stress = to_voigt(2 * mu * Cinv * E + lambda * lnJ * Cinv);
   if (with_tangent) r.tangent = product_plus_symmetric(Cinv, lambda, mu - lambda * lnJ);
   return r;
 }
 
-Real HyperelasticMaterial::energy(const Mat3& C) const { return respond(C, false).energy; }
+Real HyperelasticMaterial::energy(const Mat3& E) const { return respond(E, false).energy; }
 
-Mat3 HyperelasticMaterial::stress(const Mat3& C) const { return from_voigt(respond(C, false).stress); }
+Mat3 HyperelasticMaterial::stress(const Mat3& E) const { return from_voigt(respond(E, false).stress); }
 
 }  // namespace moreau

@@ -1,9 +1,8 @@
 #pragma once
-// Hyperelastic materials written in the right Cauchy-Green tensor C = F^T F, shared by the FEM
-// engine (total-Lagrangian elements, energy-momentum integration) and, later, the constraint
-// engine. Each model gives the stored energy W(C) per reference volume, the second
-// Piola-Kirchhoff stress S = 2 dW/dC and the material tangent CC = 4 d2W/dC dC (so that
-// dS = CC : dE with E = (C - I)/2).
+// Hyperelastic materials written in the Green-Lagrange strain E = (C - I)/2, C = F^T F, shared by
+// the FEM engine (total-Lagrangian elements, energy-momentum integration) and, later, the
+// constraint engine. Each model gives the stored energy W per reference volume, the second
+// Piola-Kirchhoff stress S = dW/dE = 2 dW/dC and the material tangent CC = dS/dE.
 //
 // Compressible Neo-Hookean (methods.md sec. 9; e.g. Bonet & Wood, Nonlinear Continuum Mechanics, ch. 6):
 //   W = mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2,       J = sqrt(det C)
@@ -11,8 +10,12 @@
 //   CC_IJKL = lambda C^-1_IJ C^-1_KL + (mu - lambda ln J)(C^-1_IK C^-1_JL + C^-1_IL C^-1_JK)
 // St. Venant-Kirchhoff:
 //   W = lambda/2 (tr E)^2 + mu E:E,   S = lambda tr E I + 2 mu E,   CC = lambda I(x)I + 2 mu II_sym
-// Both reduce to linear elasticity with Lame's lambda and mu at C = I. Plane strain uses the same
-// formulas with C_33 = 1 (C_13 = C_23 = 0).
+// Both reduce to linear elasticity with Lame's lambda and mu at E = 0. Plane strain uses the same
+// formulas with E_33 = E_13 = E_23 = 0.
+// Why E and not C: at small strains C - I and ln det C lose the digits of the strain to
+// cancellation (a strain of 1e-5 keeps 11). Here I - C^-1 = 2 C^-1 E and ln J = log1p(det C - 1)/2
+// with det(I + 2E) - 1 expanded in the invariants of 2E, so the stress is accurate to round-off
+// at any strain, which Newton's convergence on stiff or lightly loaded bodies needs.
 //
 // Voigt order used for stresses and the tangent: (11, 22, 33, 12, 23, 13); strains in Voigt form
 // carry engineering shears (2 E_12, ...), so S_v . dE_v = S : dE.
@@ -34,7 +37,7 @@ LameParameters lame_from_youngs(Real youngs_modulus, Real poisson_ratio);
 
 enum class HyperelasticModel { neo_hookean, st_venant_kirchhoff };
 
-/// The stress and tangent at one C; `valid` is false where W is undefined (Neo-Hookean, det C <= 0).
+/// The stress and tangent at one strain; `valid` is false where W is undefined (Neo-Hookean, det C <= 0).
 struct HyperelasticResponse {
   Real energy = 0;       // J/m^3
   Vec6 stress;           // S in Voigt order, Pa
@@ -47,13 +50,16 @@ struct HyperelasticMaterial {
   LameParameters lame;
   Real density = 0;  // kg/m^3 (reference configuration)
 
-  /// W(C); +infinity where undefined.
-  Real energy(const Mat3& C) const;
-  /// S(C) as a symmetric matrix.
-  Mat3 stress(const Mat3& C) const;
-  /// W, S and, if `with_tangent`, CC at C.
-  HyperelasticResponse respond(const Mat3& C, bool with_tangent = true) const;
+  /// W(E); +infinity where undefined.
+  Real energy(const Mat3& E) const;
+  /// S(E) as a symmetric matrix.
+  Mat3 stress(const Mat3& E) const;
+  /// W, S and, if `with_tangent`, CC at the Green-Lagrange strain E.
+  HyperelasticResponse respond(const Mat3& E, bool with_tangent = true) const;
 };
+
+/// The Green-Lagrange strain of F = I + H without forming C - I: E = (H + H^T + H^T H)/2.
+Mat3 green_lagrange_strain(const Mat3& H);
 
 /// A symmetric 3x3 matrix in Voigt order (no factor 2 on the shears).
 Vec6 to_voigt(const Mat3& A);
