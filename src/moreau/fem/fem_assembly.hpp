@@ -19,8 +19,20 @@ struct InternalForceResult {
 InternalForceResult assemble_internal_forces(const FemModel& model, const VectorX& u, VectorX& force,
                                              SparseMatrix* tangent);
 
+/// The algorithmic internal force of a time step from u_n to u_next (solid_element_step) on all
+/// dofs, the stored energy at u_next, and (if `tangent` is given) d f / d u_next on the free dofs.
+InternalForceResult assemble_step_forces(const FemModel& model, const VectorX& u_n, const VectorX& u_next,
+                                         StepRule rule, VectorX& force, SparseMatrix* tangent);
+
 /// K(u) d on all dofs, with K the full tangent (prescribed rows and columns included).
 VectorX tangent_times(const FemModel& model, const VectorX& u, const VectorX& direction);
+
+/// The consistent mass matrix on the free dofs, with the structure of model.pattern (so that
+/// its values add to a tangent's entry by entry).
+SparseMatrix assemble_mass_matrix(const FemModel& model);
+
+/// M x on all dofs (consistent mass).
+VectorX mass_times(const FemModel& model, const VectorX& x);
 
 /// External forces f_ext(t) on all dofs: the sum of the model's nodal loads.
 VectorX external_forces(const FemModel& model, Real t);

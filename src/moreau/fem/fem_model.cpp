@@ -64,6 +64,18 @@ void add_fem_solid(FemModel& model, FemSolid solid) {
         solid.gradient[qp * nodes + a] = g;
       }
     }
+  // Consistent mass with a degree-2 rule (exact for affine cells; quads and hexes use 2 points per
+  // direction either way).
+  const auto mass_rule = gauss_rule(mesh.element, 2);
+  solid.cell_mass.assign(static_cast<size_t>(mesh.cell_count()) * nodes * nodes, 0.0);
+  for (Index e = 0; e < mesh.cell_count(); ++e)
+    for (const QuadraturePoint& q : mass_rule) {
+      shape_functions(mesh.element, q.xi, N, dN);
+      const Real w = solid.material.density * q.weight * cell_jacobian(mesh, e, dN).determinant();
+      Real* Me = solid.cell_mass.data() + static_cast<size_t>(e) * nodes * nodes;
+      for (int a = 0; a < nodes; ++a)
+        for (int b = 0; b < nodes; ++b) Me[a * nodes + b] += w * N[a] * N[b];
+    }
   solid.node_begin = model.node_count;
   model.node_count += mesh.node_count();
   model.solids.push_back(std::move(solid));

@@ -30,6 +30,8 @@ struct FemSolid {
   int points_per_cell = 0;
   std::vector<Real> weight;    // [cell][point]  w_gauss det(dX/dxi)
   std::vector<Vec3> gradient;  // [cell][point][node]  dN/dX
+  // Consistent mass per cell, M_ab = integral of rho N_a N_b (the same for every component).
+  std::vector<Real> cell_mass;  // [cell][a * nodes + b]
   // Cells grouped so that no two cells of a group share a node (parallel scatter without races).
   std::vector<std::vector<Index>> colours;
   // Per cell, per local (row, column) dof pair, the position in the tangent's value array (-1 when

@@ -1,5 +1,6 @@
 #include "moreau/fem/solid_element.hpp"
 
+#include <cmath>
 #include <limits>
 
 namespace moreau {
@@ -15,58 +16,111 @@ Mat3 displacement_gradient(const Vec3* G, int nodes, int dim, const Real* u) {
   return H;
 }
 
-void solid_element(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u,
-                   bool with_tangent, ElementOutput& out) {
-  const int n = q.nodes * dim;
+namespace {
+
+using StrainMatrix = Eigen::Matrix<Real, 6, Eigen::Dynamic, 0, 6, kMaxElementDofs>;
+
+// B with dE_voigt = B du at deformation gradient F (see the header).
+void strain_displacement(const Mat3& F, const Vec3* G, int nodes, int dim, StrainMatrix& B) {
+  B.resize(6, nodes * dim);
+  for (int a = 0; a < nodes; ++a) {
+    const Vec3& g = G[a];
+    for (int k = 0; k < dim; ++k) {
+      const int col = a * dim + k;
+      B(0, col) = F(k, 0) * g[0];
+      B(1, col) = F(k, 1) * g[1];
+      B(2, col) = F(k, 2) * g[2];
+      B(3, col) = F(k, 0) * g[1] + F(k, 1) * g[0];
+      B(4, col) = F(k, 1) * g[2] + F(k, 2) * g[1];
+      B(5, col) = F(k, 0) * g[2] + F(k, 2) * g[0];
+    }
+  }
+}
+
+// Adds scale (B^T CC B + geometric(S)) to the tangent: the geometric part (G_a . S G_b) on the
+// diagonal of each node pair's block.
+void add_tangent(const StrainMatrix& B, const Mat6& CC, const Vec6& stress, const Vec3* G, int nodes, int dim,
+                 Real scale, ElementMatrix& K) {
+  const StrainMatrix DB = CC * B;
+  K.noalias() += scale * B.transpose() * DB;
+  const Mat3 S = from_voigt(stress);
+  for (int a = 0; a < nodes; ++a) {
+    const Vec3 SGa = S * G[a];
+    for (int b = 0; b < nodes; ++b) {
+      const Real s = scale * SGa.dot(G[b]);
+      for (int k = 0; k < dim; ++k) K(a * dim + k, b * dim + k) += s;
+    }
+  }
+}
+
+void start_output(int n, bool with_tangent, ElementOutput& out) {
   out.energy = 0;
   out.valid = true;
   out.force.setZero(n);
   if (with_tangent) out.tangent.setZero(n, n);
-  Eigen::Matrix<Real, 6, Eigen::Dynamic, 0, 6, kMaxElementDofs> B(6, n);
-  Eigen::Matrix<Real, 6, Eigen::Dynamic, 0, 6, kMaxElementDofs> DB(6, n);
+}
+
+void mark_inverted(ElementOutput& out) {
+  out.valid = false;
+  out.energy = kInverted;
+}
+
+}  // namespace
+
+void solid_element(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u,
+                   bool with_tangent, ElementOutput& out) {
+  start_output(q.nodes * dim, with_tangent, out);
+  StrainMatrix B;
   for (int p = 0; p < q.points; ++p) {
     const Vec3* G = q.gradient + static_cast<size_t>(p) * q.nodes;
     const Real w = q.weight[p];
     const Mat3 H = displacement_gradient(G, q.nodes, dim, u);
     const Mat3 F = Mat3::Identity() + H;
     // det C = J^2 cannot see an inverted point (J < 0); W is defined for J > 0 only.
-    if (!(F.determinant() > 0)) {
-      out.valid = false;
-      out.energy = kInverted;
-      return;
-    }
+    if (!(F.determinant() > 0)) return mark_inverted(out);
     const HyperelasticResponse r = material.respond(green_lagrange_strain(H), with_tangent);
-    if (!r.valid) {
-      out.valid = false;
-      out.energy = r.energy;
-      return;
-    }
+    if (!r.valid) return mark_inverted(out);
     out.energy += w * r.energy;
-    for (int a = 0; a < q.nodes; ++a) {
-      const Vec3& g = G[a];
-      for (int k = 0; k < dim; ++k) {
-        const int col = a * dim + k;
-        B(0, col) = F(k, 0) * g[0];
-        B(1, col) = F(k, 1) * g[1];
-        B(2, col) = F(k, 2) * g[2];
-        B(3, col) = F(k, 0) * g[1] + F(k, 1) * g[0];
-        B(4, col) = F(k, 1) * g[2] + F(k, 2) * g[1];
-        B(5, col) = F(k, 0) * g[2] + F(k, 2) * g[0];
-      }
-    }
+    strain_displacement(F, G, q.nodes, dim, B);
     out.force.noalias() += w * B.transpose() * r.stress;
-    if (!with_tangent) continue;
-    DB.noalias() = r.tangent * B;
-    out.tangent.noalias() += w * B.transpose() * DB;
-    // Geometric part: (G_a . S G_b) on the diagonal of each node pair's block.
-    const Mat3 S = from_voigt(r.stress);
-    for (int a = 0; a < q.nodes; ++a) {
-      const Vec3 SGa = S * G[a];
-      for (int b = 0; b < q.nodes; ++b) {
-        const Real s = w * SGa.dot(G[b]);
-        for (int k = 0; k < dim; ++k) out.tangent(a * dim + k, b * dim + k) += s;
+    if (with_tangent) add_tangent(B, r.tangent, r.stress, G, q.nodes, dim, w, out.tangent);
+  }
+}
+
+void solid_element_step(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u_n,
+                        const Real* u_next, StepRule rule, bool with_tangent, ElementOutput& out) {
+  start_output(q.nodes * dim, with_tangent, out);
+  StrainMatrix B;
+  for (int p = 0; p < q.points; ++p) {
+    const Vec3* G = q.gradient + static_cast<size_t>(p) * q.nodes;
+    const Real w = q.weight[p];
+    const Mat3 H0 = displacement_gradient(G, q.nodes, dim, u_n);
+    const Mat3 H1 = displacement_gradient(G, q.nodes, dim, u_next);
+    const Mat3 Fm = Mat3::Identity() + 0.5 * (H0 + H1);
+    if (!((Mat3::Identity() + H1).determinant() > 0) || !(Fm.determinant() > 0)) return mark_inverted(out);
+    const Mat3 E0 = green_lagrange_strain(H0), E1 = green_lagrange_strain(H1);
+    const Real W1 = material.energy(E1);
+    if (!std::isfinite(W1)) return mark_inverted(out);
+    out.energy += w * W1;
+    HyperelasticResponse r;
+    Vec6 S_algo;
+    if (rule == StepRule::midpoint) {
+      r = material.respond(green_lagrange_strain(0.5 * (H0 + H1)), with_tangent);
+      S_algo = r.stress;
+    } else {
+      r = material.respond(0.5 * (E0 + E1), with_tangent);
+      S_algo = r.stress;
+      const Mat3 dE = E1 - E0;
+      const Real dE2 = dE.squaredNorm();
+      if (dE2 > 1e-16) {
+        const Real SdE = from_voigt(r.stress).cwiseProduct(dE).sum();
+        S_algo += (W1 - material.energy(E0) - SdE) / dE2 * to_voigt(dE);
       }
     }
+    if (!r.valid) return mark_inverted(out);
+    strain_displacement(Fm, G, q.nodes, dim, B);
+    out.force.noalias() += w * B.transpose() * S_algo;
+    if (with_tangent) add_tangent(B, r.tangent, S_algo, G, q.nodes, dim, 0.5 * w, out.tangent);
   }
 }
 

@@ -42,6 +42,25 @@ struct ElementOutput {
 void solid_element(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u,
                    bool with_tangent, ElementOutput& out);
 
+/// How the internal force of a time step is evaluated between u_n and u_n+1 (methods.md sec. 9).
+enum class StepRule {
+  midpoint,         // f = f_int(u_n+1/2): the implicit midpoint rule
+  energy_momentum,  // f = sum_qp w B(F_n+1/2)^T S_algo, Gonzalez's discrete gradient in E
+};
+
+/// Algorithmic internal force of a step, the stored energy at n+1 and (if asked) an approximate
+/// tangent d f / d u_n+1. Gonzalez (2000), written in E = (C - I)/2:
+///   E_avg = (E_n + E_n+1)/2,  dE = E_n+1 - E_n,
+///   S_algo = S(E_avg) + (W(E_n+1) - W(E_n) - S(E_avg) : dE) / (dE : dE) dE
+/// so that S_algo : dE = W(E_n+1) - W(E_n) exactly; with E_n+1 - E_n = sym(F_n+1/2^T grad(du))
+/// (E is quadratic in u) the force does work W_n+1 - W_n: energy is conserved, and S_algo is
+/// symmetric, so angular momentum is too. The correction is skipped when |dE| < 1e-8 (its
+/// numerator is then round-off; what it would add is O(|dE|^3)). Tangent: (1/2)(B_m^T CC(E_avg)
+/// B_m + geometric(S_algo)) with B_m at F_n+1/2, symmetric; it omits the correction's derivative,
+/// so Newton converges fast but not quadratically for energy_momentum (exactly for midpoint).
+void solid_element_step(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u_n,
+                        const Real* u_next, StepRule rule, bool with_tangent, ElementOutput& out);
+
 /// The displacement gradient H = F - I at one quadrature point (dim per node displacements),
 /// summed directly so that small strains keep their digits.
 Mat3 displacement_gradient(const Vec3* gradient, int nodes, int dim, const Real* u);
