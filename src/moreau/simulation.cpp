@@ -16,6 +16,7 @@
 #include "moreau/moreau.hpp"
 #include "moreau/scene/scene.hpp"
 #include "moreau/solvers/xpbd/xpbd_step.hpp"
+#include "moreau/fem_run.hpp"
 
 namespace moreau {
 
@@ -37,6 +38,7 @@ Scene& Simulation::internals() { return *scene_; }
 double Simulation::time() const { return scene_->state.time; }
 
 void Simulation::step() {
+  if (scene_->fem) throw InputError("Simulation::step is not available for \"solver\": \"fem\" scenes; use run");
   StageTimer timer;
   xpbd_step(scene_->model, scene_->state, timer);
 }
@@ -50,6 +52,7 @@ std::vector<double> Simulation::position(const std::string& object, int vertex) 
 }
 
 std::string Simulation::summary() const {
+  if (scene_->fem) return fem_summary(*scene_);
   const Model& m = scene_->model;
   std::string s = fmt::format("scene '{}' ({}): solver {}, dt {} s, {} substeps x {} iterations, duration {} s\n",
                               scene_->name, scene_->file, scene_->solver, m.settings.dt, m.settings.substeps,
@@ -152,6 +155,7 @@ nlohmann::json run_summary_json(const Scene& scene, const StageTimer& timer, con
 
 RunResult Simulation::run(const RunOptions& options) {
   Scene& scene = *scene_;
+  if (scene.fem) return run_fem_scene(scene, options);
   Model& model = scene.model;
   if (options.threads) model.settings.threads = *options.threads;
   const double duration = options.duration.value_or(scene.duration);
@@ -160,11 +164,7 @@ RunResult Simulation::run(const RunOptions& options) {
   RunResult result;
   result.out_dir = options.out_dir.empty() ? "out/" + safe_file_name(scene.name) : options.out_dir;
   const fs::path dir(result.out_dir);
-  fs::create_directories(dir);
-  fs::remove_all(dir / "frames");
-  fs::create_directories(dir / "frames");
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().extension() == ".pvd") fs::remove(entry.path());
+  prepare_output_directory(result.out_dir);
 
   State& state = scene.state;
   FrameWriter frames(model, result.out_dir, scene.name);

@@ -2,6 +2,11 @@
 
 namespace moreau {
 
+SparseSymmetricSolver::SparseSymmetricSolver() {
+  // An indefinite tangent is an expected outcome (UMFPACK takes over), not a warning to print.
+  cholesky_.cholmod().print = 0;
+}
+
 bool SparseSymmetricSolver::factorize(const SparseMatrix& K) {
   if (!cholesky_analyzed_) {
     cholesky_.analyzePattern(K);

@@ -16,6 +16,7 @@ namespace moreau {
 
 class SparseSymmetricSolver {
  public:
+  SparseSymmetricSolver();
   /// Factorizes K; false if neither Cholesky nor LU succeeds (a singular K).
   bool factorize(const SparseMatrix& K);
   /// Solves K x = b with the last factorization.

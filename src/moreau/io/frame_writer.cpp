@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <filesystem>
+
 #include <algorithm>
 #include <fstream>
 
@@ -127,6 +129,16 @@ void FrameWriter::write(const State& state) {
   write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", entries_);
   write_rigid_poses(state);
   ++frame_;
+}
+
+void prepare_output_directory(const std::string& out_dir) {
+  namespace fs = std::filesystem;
+  const fs::path dir(out_dir);
+  fs::create_directories(dir);
+  fs::remove_all(dir / "frames");
+  fs::create_directories(dir / "frames");
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().extension() == ".pvd") fs::remove(entry.path());
 }
 
 }  // namespace moreau

@@ -31,4 +31,7 @@ class FrameWriter {
 /// File-system-safe version of a scene or object name.
 std::string safe_file_name(const std::string& name);
 
+/// Creates the output directory and clears the frames and .pvd files of an earlier run.
+void prepare_output_directory(const std::string& dir);
+
 }  // namespace moreau

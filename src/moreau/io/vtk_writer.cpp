@@ -73,7 +73,8 @@ void write_vtp(const std::string& path, const std::vector<Vec3>& points, const s
 }
 
 void write_vtu(const std::string& path, const std::vector<Vec3>& points, const std::vector<Index>& connectivity,
-               int nodes_per_cell, VtkCell cell_type, const std::vector<VtkPointArray>& point_arrays) {
+               int nodes_per_cell, VtkCell cell_type, const std::vector<VtkPointArray>& point_arrays,
+               const std::vector<VtkCellArray>& cell_arrays) {
   const size_t cells = connectivity.size() / nodes_per_cell;
   AppendedData data;
   std::string xml;
@@ -85,7 +86,11 @@ void write_vtu(const std::string& path, const std::vector<Vec3>& points, const s
   for (const auto& a : point_arrays)
     xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n",
                        a.name, data.add(flatten(a.values)));
-  xml += "</PointData>\n<Points>\n";
+  xml += "</PointData>\n<CellData>\n";
+  for (const auto& a : cell_arrays)
+    xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{}\"/>\n",
+                       a.name, a.components, data.add(std::vector<double>(a.values.begin(), a.values.end())));
+  xml += "</CellData>\n<Points>\n";
   xml += fmt::format("<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n",
                      data.add(flatten(points)));
   xml += "</Points>\n<Cells>\n";

@@ -10,7 +10,7 @@
 namespace moreau {
 
 /// VTK cell type ids.
-enum class VtkCell : unsigned char { triangle = 5, tetra = 10 };
+enum class VtkCell : unsigned char { line = 3, triangle = 5, quad = 9, tetra = 10, hexahedron = 12 };
 
 struct VtkPointArray {
   std::string name;
@@ -22,9 +22,18 @@ struct VtkScalarArray {
   std::vector<Real> values;
 };
 
-/// Writes an unstructured grid of one cell type with 3-component point arrays.
+/// Per-cell values with `components` numbers per cell (1: scalar, 6: a symmetric tensor in VTK's
+/// order xx, yy, zz, xy, yz, xz, which ParaView shows as a tensor).
+struct VtkCellArray {
+  std::string name;
+  int components = 1;
+  std::vector<Real> values;
+};
+
+/// Writes an unstructured grid of one cell type with 3-component point arrays and cell arrays.
 void write_vtu(const std::string& path, const std::vector<Vec3>& points, const std::vector<Index>& connectivity,
-               int nodes_per_cell, VtkCell cell_type, const std::vector<VtkPointArray>& point_arrays);
+               int nodes_per_cell, VtkCell cell_type, const std::vector<VtkPointArray>& point_arrays,
+               const std::vector<VtkCellArray>& cell_arrays = {});
 
 /// Writes particles as a poly-data file (.vtp): one vertex cell per point, so ParaView shows them
 /// without a filter (use "Point Gaussian" with the `radius` array for spheres).

@@ -3,6 +3,9 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
+#include "moreau/fem/fem_problem.hpp"
 #include "moreau/io/probes.hpp"
 #include "moreau/model/state.hpp"
 
@@ -22,6 +25,7 @@ struct Scene {
   State state;
   OutputSettings output;
   std::vector<ProbeSpec> probes;
+  std::unique_ptr<FemProblem> fem;  // "solver": "fem" scenes: the FEM engine's problem (model is then empty)
 };
 
 /// Reads, validates and builds a scene. `overrides` are "path=value" assignments applied to the

@@ -3,6 +3,7 @@
 #include <filesystem>
 
 #include "moreau/errors.hpp"
+#include "moreau/scene/fem_scene.hpp"
 #include "moreau/scene/object_builders.hpp"
 #include "moreau/scene/scene.hpp"
 
@@ -13,9 +14,14 @@ namespace {
 void read_settings(const JsonObject& settings, Scene& scene) {
   SolverSettings& s = scene.model.settings;
   const std::string solver = settings.choice("solver", "xpbd", {"xpbd", "nmd", "xpbi", "fem"});
-  if (solver != "xpbd")
-    settings.fail("solver", fmt::format("the '{}' formulation is not available in this version of moreau; allowed: xpbd", solver));
+  if (solver != "xpbd" && solver != "fem")
+    settings.fail("solver",
+                  fmt::format("the '{}' formulation is not available in this version of moreau; allowed: xpbd, fem", solver));
   scene.solver = solver;
+  if (solver == "fem") {
+    scene.fem = std::make_unique<FemProblem>();
+    read_fem_settings(settings, *scene.fem);
+  }
   s.dt = settings.number("dt", s.dt, Range::positive());
   s.substeps = settings.integer("substeps", s.substeps, 1, 100000);
   s.iterations = settings.integer("iterations", s.iterations, 1, 100000);
@@ -189,6 +195,12 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   if (scene.name.empty()) top.fail("name", "the scene name must not be empty");
   top.allow("description");
   if (auto settings = top.optional_object("settings")) read_settings(*settings, scene);
+
+  if (scene.fem) {
+    build_fem_scene(top, *scene.fem, scene.model.settings.gravity, scene.model.settings.threads);
+    top.finish();
+    return scene;
+  }
 
   std::vector<Vec3> initial_velocity;
   SceneBuildContext ctx{scene.model, initial_velocity, std::filesystem::absolute(path).parent_path(), scene.duration};

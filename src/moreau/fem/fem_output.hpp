@@ -1,0 +1,31 @@
+#pragma once
+// Frames of a FEM run: one .vtu per solid and output step with the deformed nodes, point arrays
+// displacement and velocity, and cell arrays cauchy_stress (the Cauchy stress
+// sigma = J^-1 F S F^T averaged over the cell's quadrature points, a symmetric tensor) and
+// von_mises (sqrt(3/2 s:s), s the deviator of that average). 2D solids are written in the xy plane.
+#include <string>
+#include <vector>
+
+#include "moreau/fem/dynamic_solver.hpp"
+#include "moreau/io/vtk_writer.hpp"
+
+namespace moreau {
+
+/// Per cell of a solid: the 6 Cauchy stress components (xx, yy, zz, xy, yz, xz) and von Mises.
+void cell_stresses(const FemModel& model, const FemSolid& solid, const VectorX& u, std::vector<Real>& cauchy,
+                   std::vector<Real>& von_mises);
+
+class FemFrameWriter {
+ public:
+  FemFrameWriter(const FemModel& model, std::string out_dir, std::string scene_name)
+      : model_(model), out_dir_(std::move(out_dir)), scene_name_(std::move(scene_name)) {}
+  void write(const FemDynamicState& state);
+
+ private:
+  const FemModel& model_;
+  std::string out_dir_, scene_name_;
+  std::vector<PvdEntry> entries_;
+  int frame_ = 0;
+};
+
+}  // namespace moreau

@@ -1,0 +1,149 @@
+#include "moreau/fem_run.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <chrono>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "moreau/fem/fem_assembly.hpp"
+#include "moreau/fem/fem_output.hpp"
+#include "moreau/io/frame_writer.hpp"
+#include "moreau/io/progress_bar.hpp"
+
+namespace moreau {
+
+namespace {
+
+const char* integrator_name(FemIntegrator i) {
+  switch (i) {
+    case FemIntegrator::static_load_steps: return "static";
+    case FemIntegrator::midpoint: return "midpoint";
+    case FemIntegrator::energy_momentum: return "energy_momentum";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string fem_summary(const Scene& scene) {
+  const FemProblem& p = *scene.fem;
+  const FemModel& m = p.model;
+  std::string s = fmt::format("scene '{}' ({}): solver fem ({}D), integrator {}, dt {} s, duration {} s\n", scene.name,
+                              scene.file, m.dim, integrator_name(p.integrator), scene.model.settings.dt, scene.duration);
+  for (const FemSolid& solid : m.solids)
+    s += fmt::format("  solid {:<16} {} nodes, {} {} cells, {}, lambda {:.6g} Pa, mu {:.6g} Pa, density {} kg/m^3\n",
+                     solid.name, solid.mesh.node_count(), solid.mesh.cell_count(), element_name(solid.mesh.element),
+                     solid.material.model == HyperelasticModel::neo_hookean ? "Neo-Hookean" : "St. Venant-Kirchhoff",
+                     solid.material.lame.lambda, solid.material.lame.mu, solid.material.density);
+  s += fmt::format("  dofs {} ({} free, {} prescribed), loads {}, tangent nonzeros {}\n", m.dof_count(), m.free_count,
+                   m.dof_count() - m.free_count, m.loads.size(), m.pattern.nonZeros());
+  s += fmt::format("  probes: {}\n", p.probes.size());
+  return s;
+}
+
+RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
+  FemProblem& problem = *scene.fem;
+  FemModel& model = problem.model;
+  if (options.threads) model.threads = *options.threads;
+  const int threads = model.threads > 0 ? model.threads : omp_get_max_threads();
+  const double duration = options.duration.value_or(scene.duration);
+  const Real dt = scene.model.settings.dt;
+
+  RunResult result;
+  result.out_dir = options.out_dir.empty() ? "out/" + safe_file_name(scene.name) : options.out_dir;
+  prepare_output_directory(result.out_dir);
+  FemFrameWriter frames(model, result.out_dir, scene.name);
+  std::ofstream csv(result.out_dir + "/probes.csv");
+  csv << "time";
+  for (const FemProbe& p : problem.probes)
+    for (const auto& c : fem_probe_columns(p, model.dim)) csv << ',' << c;
+  csv << '\n';
+
+  FemDynamicState state = initial_dynamic_state(model);
+  state.v = problem.initial_velocity;
+  for (Index d = 0; d < model.dof_count(); ++d)
+    if (model.free_index[d] < 0) state.v[d] = 0;
+  {
+    VectorX force;
+    state.energy = assemble_internal_forces(model, state.u, force, nullptr).energy;
+  }
+  int last_iterations = 0;
+  long total_iterations = 0;
+  int max_iterations = 0;
+  std::vector<Real> values;
+  auto sample = [&] {
+    values.clear();
+    for (const FemProbe& p : problem.probes) evaluate_fem_probe(p, model, state, last_iterations, values);
+    csv << fmt::format("{:.9g}", state.time);
+    for (Real v : values) csv << fmt::format(",{:.17g}", v);
+    csv << '\n';
+    if (scene.output.write_vtk) frames.write(state);
+  };
+
+  const SparseMatrix mass = problem.integrator == FemIntegrator::static_load_steps ? SparseMatrix() : assemble_mass_matrix(model);
+  SparseSymmetricSolver solver;
+  const long steps = std::max<long>(1, std::lround(duration / dt));
+  ProgressBar progress(options.progress, duration);
+  sample();
+  double wall = 0;
+  std::string status = "completed", message;
+  for (long s = 0; s < steps; ++s) {
+    const auto t0 = std::chrono::steady_clock::now();
+    NewtonResult r;
+    if (problem.integrator == FemIntegrator::static_load_steps) {
+      r = solve_static(model, state.time + dt, state.u, solver, problem.newton);
+      if (r.converged) {
+        state.time += dt;
+        state.energy = r.energy;
+      }
+    } else {
+      const StepRule rule = problem.integrator == FemIntegrator::midpoint ? StepRule::midpoint : StepRule::energy_momentum;
+      r = step_dynamic(model, mass, rule, dt, state, solver, problem.newton);
+    }
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!r.converged) {
+      status = "failed";
+      message = fmt::format("step {} (t = {:.6g} s to {:.6g} s) failed: {}", s + 1, state.time, state.time + dt, r.failure);
+      break;
+    }
+    last_iterations = r.iterations;
+    total_iterations += r.iterations;
+    max_iterations = std::max(max_iterations, r.iterations);
+    result.steps = s + 1;
+    if ((s + 1) % scene.output.every == 0 || s + 1 == steps) sample();
+    progress.update(state.time, result.steps, wall);
+  }
+  progress.finish();
+  result.wall_time_s = wall;
+
+  nlohmann::json j;
+  j["moreau_version"] = version();
+  j["scene"] = scene.name;
+  j["scene_file"] = scene.file;
+  j["status"] = status;
+  if (!message.empty()) j["message"] = message;
+  j["solver"] = "fem";
+  j["integrator"] = integrator_name(problem.integrator);
+  j["dt"] = dt;
+  j["threads"] = threads;
+  j["steps"] = result.steps;
+  j["simulated_time_s"] = state.time;
+  j["wall_time_s"] = wall;
+  Index cells = 0;
+  for (const FemSolid& s : model.solids) cells += s.mesh.cell_count();
+  j["counts"] = {{"solids", model.solids.size()}, {"nodes", model.node_count}, {"cells", cells},
+                 {"dofs", model.dof_count()},     {"free_dofs", model.free_count}};
+  j["newton"] = {{"iterations", total_iterations},
+                 {"max_iterations_per_step", max_iterations},
+                 {"tolerance", problem.newton.tolerance},
+                 {"last_linear_solver", solver.method()}};
+  if (status == "completed")
+    j["final_energy_j"] = {{"kinetic", kinetic_energy(model, state.v)}, {"strain", state.energy}};
+  std::ofstream(result.out_dir + "/run.json") << j.dump(2) << '\n';
+  if (status != "completed") throw NumericalError(message);
+  return result;
+}
+
+}  // namespace moreau

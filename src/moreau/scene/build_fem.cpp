@@ -1,0 +1,260 @@
+// Scenes of the FEM engine ("solver": "fem"): "solids" with a mesh, a hyperelastic material,
+// loads and Dirichlet conditions, and FEM probes (docs/scene-format.md, "FEM scenes").
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <limits>
+#include <memory>
+
+#include "moreau/fem/fem_assembly.hpp"
+#include "moreau/math/expression.hpp"
+#include "moreau/scene/fem_scene.hpp"
+
+namespace moreau {
+
+namespace {
+
+// A point of `dim` numbers (z = 0 in 2D).
+Vec3 read_point(const JsonObject& j, const std::string& key, int dim) {
+  if (dim == 3) return j.vec3(key);
+  const Vec2 p = j.vec2(key, Range::any());
+  return Vec3(p.x(), p.y(), 0);
+}
+
+FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where) {
+  const std::string type = mesh.choice("type", {"box", "rectangle"});
+  FemMesh result;
+  if (type == "box") {
+    const Vec3 lo = mesh.vec3("min"), hi = mesh.vec3("max");
+    if (!((hi - lo).array() > 0).all()) mesh.fail("max", "every component of max must exceed min");
+    const auto cells = mesh.integers("cells", 3, 1);
+    const ElementType element = mesh.choice("element", "hex8", {"hex8", "tet4"}) == "hex8" ? ElementType::hex8 : ElementType::tet4;
+    result = make_box_mesh(lo, hi, {cells[0], cells[1], cells[2]}, element);
+  } else {
+    const Vec2 lo = mesh.vec2("min", Range::any()), hi = mesh.vec2("max", Range::any());
+    if (!((hi - lo).array() > 0).all()) mesh.fail("max", "every component of max must exceed min");
+    const auto cells = mesh.integers("cells", 2, 1);
+    const ElementType element = mesh.choice("element", "quad4", {"quad4", "tri3"}) == "quad4" ? ElementType::quad4 : ElementType::tri3;
+    result = make_rectangle_mesh(lo, hi, {cells[0], cells[1]}, element);
+  }
+  mesh.finish();
+  orient_and_validate_cells(result, where);
+  return result;
+}
+
+HyperelasticMaterial read_fem_material(const JsonObject& m) {
+  HyperelasticMaterial material;
+  material.model = m.choice("model", "neo_hookean", {"neo_hookean", "st_venant_kirchhoff"}) == "neo_hookean"
+                       ? HyperelasticModel::neo_hookean
+                       : HyperelasticModel::st_venant_kirchhoff;
+  const bool youngs = m.has("youngs_modulus") || m.has("poisson_ratio");
+  const bool lame = m.has("lame_lambda") || m.has("lame_mu");
+  if (youngs == lame)
+    m.fail("youngs_modulus", "give either \"youngs_modulus\" and \"poisson_ratio\" or \"lame_lambda\" and \"lame_mu\"");
+  if (youngs) {
+    material.lame = lame_from_youngs(m.number("youngs_modulus", Range::positive()),
+                                     m.number("poisson_ratio", Range{-1, 0.5, true, true}));
+  } else {
+    material.lame = {m.number("lame_lambda", Range::non_negative()), m.number("lame_mu", Range::positive())};
+  }
+  material.density = m.number("density", Range::positive());
+  m.finish();
+  return material;
+}
+
+// One expression per component: a number, a string, or (if `allow_null`) null for "not given".
+std::vector<std::unique_ptr<Expression>> read_components(const JsonObject& j, const std::string& key, int dim,
+                                                         bool allow_null) {
+  const auto& raw = j.raw(key);
+  const std::string expected = fmt::format("an array of {} entries, each a number or an expression of t, x, y, z{}", dim,
+                                           allow_null ? " (or null to leave that component free)" : "");
+  if (!raw.is_array() || static_cast<int>(raw.size()) != dim) j.fail(key, "expected " + expected);
+  std::vector<std::unique_ptr<Expression>> out;
+  for (int k = 0; k < dim; ++k) {
+    const auto& v = raw[k];
+    if (v.is_null() && allow_null) {
+      out.push_back(nullptr);
+    } else if (v.is_number()) {
+      out.push_back(std::make_unique<Expression>(v.get<Real>()));
+    } else if (v.is_string()) {
+      try {
+        out.push_back(std::make_unique<Expression>(v.get<std::string>()));
+      } catch (const std::invalid_argument& e) {
+        j.fail(key, fmt::format("entry {} \"{}\" is not a valid expression: {}", k, v.get<std::string>(), e.what()));
+      }
+    } else {
+      j.fail(key, fmt::format("entry {} is {}; expected {}", k, v.dump(), expected));
+    }
+  }
+  return out;
+}
+
+// The nodes (local to the solid) that a "where" selects: {"box": {"min", "max"}} or
+// {"boundary": "<name>"}; `boundary_name` is set for the latter.
+std::vector<Index> select_nodes(const JsonObject& where, const FemMesh& mesh, std::string* boundary_name) {
+  if (where.has("box") == where.has("boundary"))
+    where.fail("box", "give exactly one of \"box\": {\"min\": [...], \"max\": [...]} or \"boundary\": \"<name>\"");
+  std::vector<Index> nodes;
+  if (where.has("boundary")) {
+    const std::string name = where.string("boundary");
+    if (!mesh.boundary(name)) {
+      std::string names;
+      for (const auto& b : mesh.boundaries) names += (names.empty() ? "" : ", ") + b.name;
+      where.fail("boundary", fmt::format("no boundary named '{}'; allowed: {}", name, names));
+    }
+    nodes = mesh.boundary_nodes(name);
+    if (boundary_name) *boundary_name = name;
+  } else {
+    const JsonObject box = where.object("box");
+    const Vec3 lo = read_point(box, "min", mesh.dim), hi = read_point(box, "max", mesh.dim);
+    box.finish();
+    for (Index n = 0; n < mesh.node_count(); ++n) {
+      const Vec3& X = mesh.nodes[n];
+      if ((X.head(mesh.dim).array() >= lo.head(mesh.dim).array()).all() &&
+          (X.head(mesh.dim).array() <= hi.head(mesh.dim).array()).all())
+        nodes.push_back(n);
+    }
+  }
+  where.finish();
+  if (nodes.empty()) where.fail(where.has("box") ? "box" : "boundary", "selects no node of the mesh");
+  return nodes;
+}
+
+void read_loads(const JsonObject& solid_json, FemModel& model, Index solid) {
+  for (const JsonObject& load : solid_json.object_list("loads")) {
+    const FemSolid& s = model.solids[solid];
+    const std::string type = load.choice("type", {"nodal_force", "traction"});
+    std::string boundary;
+    const std::vector<Index> nodes = select_nodes(load.object("where"), s.mesh, &boundary);
+    NodalLoad l;
+    l.name = load.path();
+    if (type == "traction") {
+      if (boundary.empty()) load.fail("where", "a traction acts on a named boundary: {\"boundary\": \"<name>\"}");
+      facet_node_integrals(s, boundary, l.nodes, l.weights);
+    } else {
+      l.nodes = nodes;
+      l.weights.assign(nodes.size(), 1.0);
+    }
+    for (Index& n : l.nodes) n += s.node_begin;
+    std::shared_ptr<std::vector<std::unique_ptr<Expression>>> value(
+        new std::vector<std::unique_ptr<Expression>>(read_components(load, "value", model.dim, false)));
+    l.value = [value](Real t) {
+      Vec3 v = Vec3::Zero();
+      for (size_t k = 0; k < value->size(); ++k) v[k] = (*(*value)[k])(t);
+      return v;
+    };
+    load.finish();
+    model.loads.push_back(std::move(l));
+  }
+}
+
+void read_dirichlet(const JsonObject& solid_json, FemModel& model, Index solid) {
+  for (const JsonObject& bc : solid_json.object_list("dirichlet")) {
+    const FemSolid& s = model.solids[solid];
+    const std::vector<Index> nodes = select_nodes(bc.object("where"), s.mesh, nullptr);
+    std::shared_ptr<std::vector<std::unique_ptr<Expression>>> value(
+        new std::vector<std::unique_ptr<Expression>>(read_components(bc, "value", model.dim, true)));
+    for (Index n : nodes)
+      for (int k = 0; k < model.dim; ++k) {
+        if (!(*value)[k]) continue;
+        const Vec3 X = s.mesh.nodes[n];
+        model.prescribed.push_back({model.dof(s.node_begin + n, k), [value, k, X](Real t) { return (*(*value)[k])(t, X); }});
+      }
+    bc.finish();
+  }
+}
+
+FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
+  FemProbe p;
+  p.name = j.string("name");
+  const std::string type = j.choice("type", {"point", "energy", "momentum", "newton_iterations"});
+  const FemModel& model = problem.model;
+  if (type == "point") {
+    const std::string object = j.string("object");
+    const FemSolid* solid = nullptr;
+    for (const FemSolid& s : model.solids)
+      if (s.name == object) solid = &s;
+    if (!solid) j.fail("object", fmt::format("no solid named '{}'", object));
+    const Vec3 at = read_point(j, "nearest", model.dim);
+    Real best = std::numeric_limits<Real>::infinity();
+    for (Index n = 0; n < solid->mesh.node_count(); ++n)
+      if ((solid->mesh.nodes[n] - at).norm() < best) {
+        best = (solid->mesh.nodes[n] - at).norm();
+        p.node = solid->node_begin + n;
+      }
+    const std::string q = j.choice("quantity", "displacement", {"displacement", "position", "velocity"});
+    p.type = q == "displacement" ? FemProbeType::displacement : q == "position" ? FemProbeType::position : FemProbeType::velocity;
+  } else if (type == "energy") {
+    p.type = FemProbeType::energy;
+    p.quantity = j.choice("quantity", "total", {"kinetic", "strain", "total"});
+    j.allow("object");
+  } else if (type == "momentum") {
+    p.type = FemProbeType::momentum;
+    p.quantity = j.choice("quantity", "linear", {"linear", "angular"});
+    j.allow("object");
+  } else {
+    p.type = FemProbeType::newton_iterations;
+  }
+  j.finish();
+  return p;
+}
+
+}  // namespace
+
+void read_fem_settings(const JsonObject& settings, FemProblem& problem) {
+  const std::string integrator = settings.choice("integrator", "energy_momentum", {"static", "midpoint", "energy_momentum"});
+  problem.integrator = integrator == "static"     ? FemIntegrator::static_load_steps
+                       : integrator == "midpoint" ? FemIntegrator::midpoint
+                                                  : FemIntegrator::energy_momentum;
+  if (auto newton = settings.optional_object("newton")) {
+    problem.newton.tolerance = newton->number("tolerance", problem.newton.tolerance, Range::open(0, 1));
+    problem.newton.max_iterations = newton->integer("max_iterations", problem.newton.max_iterations, 1, 1000);
+    newton->finish();
+  }
+}
+
+void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gravity, int threads) {
+  FemModel& model = problem.model;
+  model.threads = threads;
+  for (const char* key : {"objects", "joints"})
+    if (top.has(key)) top.fail(key, "a \"solver\": \"fem\" scene has \"solids\" (and \"probes\"), not objects or joints");
+  if (top.has("rigid_bodies"))
+    top.fail("rigid_bodies", "director rigid bodies of the FEM engine are not available in this version of moreau yet");
+  const auto solids = top.object_list("solids");
+  if (solids.empty()) top.fail("solids", "a \"solver\": \"fem\" scene needs at least one solid");
+  std::vector<Vec3> velocities;
+  for (const JsonObject& sj : solids) {
+    FemSolid solid;
+    solid.name = sj.string("name");
+    for (const FemSolid& other : model.solids)
+      if (other.name == solid.name) sj.fail("name", fmt::format("another solid is already named '{}'", solid.name));
+    solid.mesh = read_fem_mesh(sj.object("mesh"), top.file() + ": " + sj.path_of("mesh"));
+    if (model.solids.empty()) model.dim = solid.mesh.dim;
+    if (solid.mesh.dim != model.dim) sj.fail("mesh", "all solids of a scene must be 2D (rectangle) or all 3D (box)");
+    solid.material = read_fem_material(sj.object("material"));
+    velocities.push_back(sj.has("velocity") ? read_point(sj, "velocity", model.dim) : Vec3::Zero());
+    add_fem_solid(model, std::move(solid));
+    const Index index = static_cast<Index>(model.solids.size()) - 1;
+    read_loads(sj, model, index);
+    read_dirichlet(sj, model, index);
+    sj.finish();
+  }
+  // Gravity acts on every solid as a body load rho g.
+  if (gravity.head(model.dim).norm() > 0)
+    for (const FemSolid& s : model.solids) {
+      NodalLoad g{"gravity", {}, cell_node_integrals(s, s.material.density), [gravity](Real) { return gravity; }};
+      g.nodes.resize(s.mesh.node_count());
+      for (Index n = 0; n < s.mesh.node_count(); ++n) g.nodes[n] = s.node_begin + n;
+      model.loads.push_back(std::move(g));
+    }
+  finalize_fem_model(model);
+  if (problem.integrator == FemIntegrator::static_load_steps && model.free_count > 0 && model.prescribed.empty())
+    top.fail("solids", "a static solve needs Dirichlet conditions that hold the solids against rigid motion");
+  problem.initial_velocity = VectorX::Zero(model.dof_count());
+  for (size_t i = 0; i < model.solids.size(); ++i)
+    for (Index n = 0; n < model.solids[i].mesh.node_count(); ++n)
+      for (int k = 0; k < model.dim; ++k) problem.initial_velocity[model.dof(model.solids[i].node_begin + n, k)] = velocities[i][k];
+  for (const JsonObject& probe : top.object_list("probes")) problem.probes.push_back(read_fem_probe(probe, problem));
+}
+
+}  // namespace moreau

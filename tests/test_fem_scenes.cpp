@@ -1,0 +1,155 @@
+// "solver": "fem" scenes through the command line: a static tension test against the exact
+// homogeneous solution, a dynamic run's energy after a load pulse, output files, and bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "moreau/materials/hyperelastic.hpp"
+#include "test_helpers.hpp"
+
+namespace moreau {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string write_scene(const std::string& tag, const std::string& text) {
+  const std::string path = test::temp_dir(tag) + "/scene.json";
+  std::ofstream(path) << text;
+  return path;
+}
+
+// probes.csv as rows of numbers (the header skipped).
+std::vector<std::vector<Real>> read_probes(const std::string& dir) {
+  std::ifstream in(dir + "/probes.csv");
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::vector<Real>> rows;
+  while (std::getline(in, line)) {
+    std::vector<Real> row;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) row.push_back(std::stod(cell));
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+TEST(FemScenes, StaticUniaxialTensionMatchesTheHomogeneousSolution) {
+  // A 1 x 0.2 x 0.2 m Neo-Hookean block on rollers (u_x = 0 on the left, u_y = 0 on the bottom,
+  // u_z = 0 at the back; the other components free) pulled by a reference traction P on its right
+  // face, ramped over 4 load steps (value "P*t", t = 0.25 ... 1). The exact solution is homogeneous,
+  // F = diag(l1, l2, l2) with P_11 = l1 S_11 = P and S_22 = 0,
+  //   S = mu (I - C^-1) + lambda ln J C^-1,  J = l1 l2^2,
+  // which every mesh reproduces (patch test): the right face moves by (l1 - 1) L to Newton's
+  // tolerance. Here P = 0.3 E gives a 25 % stretch.
+  const Real E = 1e6, nu = 0.3, P = 3e5;
+  const std::string scene = write_scene("fem_tension", fmt::format(R"({{"name": "tension",
+    "settings": {{"solver": "fem", "integrator": "static", "dt": 0.25, "duration": 1, "gravity": [0, 0, 0],
+                 "newton": {{"tolerance": 1e-12}}}},
+    "solids": [{{"name": "bar", "mesh": {{"type": "box", "min": [0, 0, 0], "max": [1, 0.2, 0.2], "cells": [5, 2, 2]}},
+                "material": {{"youngs_modulus": {}, "poisson_ratio": {}, "density": 1000}},
+                "loads": [{{"type": "traction", "where": {{"boundary": "right"}}, "value": ["{}*t", 0, 0]}}],
+                "dirichlet": [{{"where": {{"boundary": "left"}}, "value": [0, null, null]}},
+                              {{"where": {{"boundary": "bottom"}}, "value": [null, 0, null]}},
+                              {{"where": {{"boundary": "back"}}, "value": [null, null, 0]}}]}}],
+    "probes": [{{"name": "end", "type": "point", "object": "bar", "nearest": [1, 0.2, 0.2]}},
+               {{"name": "newton", "type": "newton_iterations"}}]}})",
+                                                                   E, nu, P));
+  const std::string out = fs::path(scene).parent_path() / "out";
+  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", scene, out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  // The exact stretches by Newton on (P_11 - P, S_22).
+  const LameParameters lame = lame_from_youngs(E, nu);
+  auto residual = [&](Real l1, Real l2) {
+    const Real lnJ = std::log(l1 * l2 * l2);
+    const Real S11 = lame.mu * (1 - 1 / (l1 * l1)) + lame.lambda * lnJ / (l1 * l1);
+    const Real S22 = lame.mu * (1 - 1 / (l2 * l2)) + lame.lambda * lnJ / (l2 * l2);
+    return Vec2(l1 * S11 - P, S22);
+  };
+  Vec2 l(1.2, 0.95);
+  for (int it = 0; it < 50; ++it) {
+    const Real h = 1e-7;
+    Eigen::Matrix2d J;
+    J.col(0) = (residual(l.x() + h, l.y()) - residual(l.x() - h, l.y())) / (2 * h);
+    J.col(1) = (residual(l.x(), l.y() + h) - residual(l.x(), l.y() - h)) / (2 * h);
+    l -= J.partialPivLu().solve(residual(l.x(), l.y()));
+  }
+  ASSERT_LT(residual(l.x(), l.y()).norm(), 1e-6);
+  const auto rows = read_probes(out);
+  ASSERT_EQ(rows.size(), 5u);  // t = 0 and four load steps
+  EXPECT_NEAR(rows.back()[1], l.x() - 1, 1e-9);
+  EXPECT_NEAR(rows.back()[2], 0.2 * (l.y() - 1), 1e-9);
+  EXPECT_NEAR(rows.back()[3], 0.2 * (l.y() - 1), 1e-9);
+  EXPECT_GT(l.x(), 1.2);
+  EXPECT_TRUE(fs::exists(out + "/tension.pvd"));
+  EXPECT_TRUE(fs::exists(out + "/frames/bar_000004.vtu"));
+  std::ifstream frame(out + "/frames/bar_000004.vtu");
+  const std::string xml((std::istreambuf_iterator<char>(frame)), std::istreambuf_iterator<char>());
+  EXPECT_NE(xml.find("Name=\"cauchy_stress\" NumberOfComponents=\"6\""), std::string::npos);
+  EXPECT_NE(xml.find("Name=\"von_mises\""), std::string::npos);
+}
+
+TEST(FemScenes, DynamicRunKeepsEnergyAfterAPulse) {
+  // A clamped hex8 beam pushed at its tip for 0.5 s (value "1*(t<0.5)" per node), then free:
+  // with the energy-momentum scheme the total energy after the pulse stays constant to 1e-9
+  // relative (Newton tolerance 1e-10) over 75 steps of 0.02 s.
+  const std::string scene = write_scene("fem_beam", R"J({"name": "beam",
+    "settings": {"solver": "fem", "dt": 0.02, "duration": 2, "integrator": "energy_momentum", "gravity": [0, 0, 0]},
+    "solids": [{"name": "beam", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 0.1, 0.1], "cells": [20, 2, 2]},
+                "material": {"model": "neo_hookean", "youngs_modulus": 1e7, "poisson_ratio": 0.3, "density": 1000},
+                "loads": [{"type": "nodal_force", "where": {"box": {"min": [0.9, -1, -1], "max": [2, 2, 2]}},
+                           "value": ["0", "1*(t<0.5)", "0"]}],
+                "dirichlet": [{"where": {"boundary": "left"}, "value": ["0", "0", "0"]}]}],
+    "probes": [{"name": "E", "type": "energy", "quantity": "total"}, {"name": "tip", "type": "point", "object": "beam",
+                "nearest": [1, 0.05, 0.05], "quantity": "velocity"}]})J");
+  const std::string out = fs::path(scene).parent_path() / "out";
+  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", scene, out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = read_probes(out);
+  ASSERT_EQ(rows.size(), 101u);
+  Real reference = 0, drift = 0, speed = 0;
+  for (const auto& row : rows) {
+    if (row[0] < 0.5 + 1e-9) continue;
+    if (reference == 0) reference = row[1];
+    drift = std::max(drift, std::abs(row[1] - reference));
+    speed = std::max(speed, std::abs(row[3]));
+  }
+  EXPECT_GT(reference, 0.1);  // the pulse did work
+  EXPECT_GT(speed, 0.01);     // and the beam vibrates
+  EXPECT_LT(drift, 1e-9 * reference);
+}
+
+TEST(FemScenes, BadInputNamesItsKey) {
+  auto scene = [](const std::string& solid_extra, const std::string& settings_extra = "") {
+    return R"({"name": "f", "settings": {"solver": "fem")" + settings_extra + R"(},
+      "solids": [{"name": "s", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [2, 2, 2]},
+                  "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000})" +
+           solid_extra + "}]}";
+  };
+  auto expect_bad = [](const std::string& tag, const std::string& text, const std::vector<std::string>& needles) {
+    const std::string path = write_scene(tag, text);
+    const std::string out = fs::path(path).parent_path() / "out";
+    const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", path, out));
+    EXPECT_EQ(r.exit_code, 2) << r.output;
+    for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "missing '" << n << "' in: " << r.output;
+    EXPECT_FALSE(fs::exists(out)) << "bad input must not leave output behind";
+  };
+  expect_bad("fem_boundary", scene(R"(, "dirichlet": [{"where": {"boundary": "side"}, "value": [0, 0, 0]}])"),
+             {"solids[0].dirichlet[0].where.boundary", "'side'", "left"});
+  expect_bad("fem_expression", scene(R"(, "loads": [{"type": "nodal_force", "where": {"boundary": "top"}, "value": [0, "sin(", 0]}])"),
+             {"solids[0].loads[0].value", "not a valid expression"});
+  expect_bad("fem_components", scene(R"(, "loads": [{"type": "nodal_force", "where": {"boundary": "top"}, "value": [0, 1]}])"),
+             {"solids[0].loads[0].value", "3 entries"});
+  expect_bad("fem_traction", scene(R"(, "loads": [{"type": "traction", "where": {"box": {"min": [0, 0, 0], "max": [1, 1, 1]}}, "value": [0, 1, 0]}])"),
+             {"solids[0].loads[0].where", "named boundary"});
+  expect_bad("fem_static", scene("", R"(, "integrator": "static")"), {"Dirichlet", "rigid motion"});
+  expect_bad("fem_material", scene(R"(, "dirichlet": [])").replace(scene("").find("\"youngs_modulus\""), 0, "\"lame_mu\": 1, "),
+             {"solids[0].material", "either"});
+  expect_bad("fem_integrator", scene("", R"(, "integrator": "rk4")"), {"settings.integrator", "energy_momentum"});
+}
+
+}  // namespace
+}  // namespace moreau
