@@ -72,6 +72,7 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   int last_iterations = 0;
   long total_iterations = 0;
   int max_iterations = 0;
+  double assembly_s = 0, solve_s = 0;
   std::vector<Real> values;
   auto sample = [&] {
     values.clear();
@@ -108,6 +109,8 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
       message = fmt::format("step {} (t = {:.6g} s to {:.6g} s) failed: {}", s + 1, state.time, state.time + dt, r.failure);
       break;
     }
+    assembly_s += r.assembly_s;
+    solve_s += r.solve_s;
     last_iterations = r.iterations;
     total_iterations += r.iterations;
     max_iterations = std::max(max_iterations, r.iterations);
@@ -138,6 +141,8 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   j["newton"] = {{"iterations", total_iterations},
                  {"max_iterations_per_step", max_iterations},
                  {"tolerance", problem.newton.tolerance},
+                 {"assembly_s", assembly_s},
+                 {"solve_s", solve_s},
                  {"last_linear_solver", solver.method()}};
   if (status == "completed")
     j["final_energy_j"] = {{"kinetic", kinetic_energy(model, state.v)}, {"strain", state.energy}};

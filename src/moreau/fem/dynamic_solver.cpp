@@ -26,11 +26,11 @@ NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepR
   apply_prescribed(model, state.time + h, u1);
   VectorX f;
   SparseMatrix K;
-  InternalForceResult cells = assemble_step_forces(model, u0, u1, rule, f, &K);
+  InternalForceResult cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, u1, rule, f, &K); });
   if (!cells.valid) {
     u1 = u0;
     apply_prescribed(model, state.time + h, u1);
-    cells = assemble_step_forces(model, u0, u1, rule, f, &K);
+    cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, u1, rule, f, &K); });
     if (!cells.valid) {
       result.failure = fmt::format("cell {} of '{}' is inverted at the start of the step", cells.invalid_cell,
                                    cells.invalid_solid);
@@ -52,18 +52,18 @@ NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepR
     }
     // dR/du = 2/h^2 M + K_algo: the two matrices share the structure of model.pattern.
     for (Index i = 0; i < K.nonZeros(); ++i) K.valuePtr()[i] += c * mass.valuePtr()[i];
-    if (!solver.factorize(K)) {
+    if (!timed(result.solve_s, [&] { return solver.factorize(K); })) {
       result.failure = "the step's tangent is singular";
       return result;
     }
-    const VectorX du = solver.solve(-R);
+    const VectorX du = timed(result.solve_s, [&] { return solver.solve(-R); });
     ++result.iterations;
     Real alpha = 1;
     VectorX trial;
     for (int halving = 0;; ++halving, alpha *= 0.5) {
       trial = u1;
       add_free_part(model, alpha * du, trial);
-      cells = assemble_step_forces(model, u0, trial, rule, f, &K);
+      cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, trial, rule, f, &K); });
       if (cells.valid) break;
       if (halving == settings.max_halvings) {
         result.failure = fmt::format("every Newton correction inverts cell {} of '{}'", cells.invalid_cell,

@@ -15,7 +15,7 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
   const VectorX f_ext = external_forces(model, t);
   VectorX f_int, trial_force;
   SparseMatrix K;
-  InternalForceResult state = assemble_internal_forces(model, u, f_int, &K);
+  InternalForceResult state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K); });
   if (!state.valid) {
     result.failure = fmt::format("cell {} of '{}' is inverted at the start of the solve", state.invalid_cell,
                                  state.invalid_solid);
@@ -28,15 +28,15 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
   apply_prescribed(model, t, target);
   const VectorX du_D = target - u;
   if (du_D.squaredNorm() > 0) {
-    if (!solver.factorize(K)) {
+    if (!timed(result.solve_s, [&] { return solver.factorize(K); })) {
       result.failure = "the tangent is singular (is the body held against rigid motion?)";
       return result;
     }
     const VectorX rhs = free_part(model, f_int - f_ext + tangent_times(model, u, du_D));
     u = target;
-    add_free_part(model, solver.solve(-rhs), u);
+    add_free_part(model, timed(result.solve_s, [&] { return solver.solve(-rhs); }), u);
     ++result.iterations;
-    state = assemble_internal_forces(model, u, f_int, &K);
+    state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K); });
     if (!state.valid) {
       result.failure = fmt::format("the prescribed displacements invert cell {} of '{}'; take smaller load steps",
                                    state.invalid_cell, state.invalid_solid);
@@ -58,11 +58,11 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
                                    settings.max_iterations, norm, scale);
       return result;
     }
-    if (!solver.factorize(K)) {
+    if (!timed(result.solve_s, [&] { return solver.factorize(K); })) {
       result.failure = "the tangent is singular (is the body held against rigid motion?)";
       return result;
     }
-    const VectorX du = solver.solve(-r);
+    const VectorX du = timed(result.solve_s, [&] { return solver.solve(-r); });
     ++result.iterations;
     const Real potential = state.energy - f_ext.dot(u);
     const Real slope = r.dot(du);
@@ -73,7 +73,7 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
       alpha *= 0.5;
       trial = u;
       add_free_part(model, alpha * du, trial);
-      const InternalForceResult trial_state = assemble_internal_forces(model, trial, trial_force, nullptr);
+      const InternalForceResult trial_state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, trial, trial_force, nullptr); });
       if (!trial_state.valid) continue;
       const Real trial_norm = free_part(model, trial_force - f_ext).norm();
       const Real trial_potential = trial_state.energy - f_ext.dot(trial);
@@ -84,7 +84,7 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
       return result;
     }
     u = trial;
-    state = assemble_internal_forces(model, u, f_int, &K);
+    state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K); });
     // A correction below tolerance * |u| is converged even where the residual sits on its
     // round-off floor (~ eps |K| |u|, above tolerance * |f| for stiff or lightly loaded bodies).
     if (alpha * du.norm() <= settings.tolerance * free_part(model, u).norm()) {

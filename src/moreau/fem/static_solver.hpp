@@ -12,6 +12,7 @@
 // Converged when |r| <= tolerance * max(|f_ext|, |f_int|, 1e-300) over all dofs (the reactions at
 // prescribed dofs set the scale of a displacement-driven problem), or when the last correction
 // was below tolerance * |u_free| (the residual's round-off floor is ~ eps |K| |u|).
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -32,7 +33,20 @@ struct NewtonResult {
   std::vector<Real> residual_norms;    // |r| before each solve and at the end
   Real energy = 0;                     // stored energy at the end, J
   std::string failure;                 // why it did not converge
+  double assembly_s = 0, solve_s = 0;  // wall time in assembly (forces, tangents) and in factorize + solve
 };
+
+/// Adds the wall time of f() to `seconds` and returns f's result.
+template <class F>
+auto timed(double& seconds, F&& f) {
+  const auto start = std::chrono::steady_clock::now();
+  struct Add {
+    double& s;
+    std::chrono::steady_clock::time_point t0;
+    ~Add() { s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(); }
+  } add{seconds, start};
+  return f();
+}
 
 /// Equilibrium at load time t, starting from u (its prescribed dofs are overwritten with their
 /// values at t). `solver` keeps its symbolic analysis between calls.
