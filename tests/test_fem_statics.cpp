@@ -2,6 +2,7 @@
 // Newton's quadratic convergence on a large-deflection problem.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -84,18 +85,22 @@ TEST(FemStatics, NewtonConvergesQuadraticallyOnALargeDeflection) {
   const auto& norms = r.residual_norms;
   for (size_t k = 0; k < norms.size(); ++k) std::printf("Newton %zu: |r| = %.3e\n", k, norms[k]);
   ASSERT_TRUE(r.converged) << r.failure;
-  EXPECT_LE(r.iterations, 10);
-  int quadratic_steps = 0, solves_below_1e2 = 0;
+  EXPECT_LE(r.iterations, 12);
+  int quadratic_steps = 0;
+  size_t below_1e2 = norms.size(), at_floor = norms.size();
+  for (size_t k = 0; k < norms.size(); ++k) {
+    if (norms[k] / norms.front() < 1e-2) below_1e2 = std::min(below_1e2, k);
+    if (norms[k] / norms.front() < 1e-9) at_floor = std::min(at_floor, k);
+  }
   for (size_t k = 0; k + 1 < norms.size(); ++k) {
     const Real a = norms[k] / norms.front(), b = norms[k + 1] / norms.front();
-    if (a < 1e-2) ++solves_below_1e2;
     if (a < 1e-2 && b > 1e-9) {
       EXPECT_LE(b, 10 * a * a) << "step " << k;
       ++quadratic_steps;
     }
   }
   EXPECT_GE(quadratic_steps, 1);
-  EXPECT_LE(solves_below_1e2, 3);
+  EXPECT_LE(at_floor - below_1e2, 3u);
   // The tip moved down by nearly the linear estimate 0.05 L (a large rotation shortens it a little).
   const Real tip = tip_deflection(model, u, 40, 4);
   EXPECT_GT(tip, 0.04 * L);

@@ -7,13 +7,13 @@ SparseSymmetricSolver::SparseSymmetricSolver() {
   cholesky_.cholmod().print = 0;
 }
 
-bool SparseSymmetricSolver::factorize(const SparseMatrix& K) {
-  if (!cholesky_analyzed_) {
+bool SparseSymmetricSolver::factorize(const SparseMatrix& K, bool symmetric) {
+  if (symmetric && !cholesky_analyzed_) {
     cholesky_.analyzePattern(K);
     cholesky_analyzed_ = true;
   }
-  cholesky_.factorize(K);
-  if (cholesky_.info() == Eigen::Success) {
+  if (symmetric) cholesky_.factorize(K);
+  if (symmetric && cholesky_.info() == Eigen::Success) {
     method_ = "cholmod";
     return true;
   }

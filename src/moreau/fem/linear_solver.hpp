@@ -17,8 +17,9 @@ namespace moreau {
 class SparseSymmetricSolver {
  public:
   SparseSymmetricSolver();
-  /// Factorizes K; false if neither Cholesky nor LU succeeds (a singular K).
-  bool factorize(const SparseMatrix& K);
+  /// Factorizes K; false if neither Cholesky nor LU succeeds (a singular K). A K that is not
+  /// symmetric (`symmetric` false) goes to LU directly.
+  bool factorize(const SparseMatrix& K, bool symmetric = true);
   /// Solves K x = b with the last factorization.
   VectorX solve(const VectorX& b) const;
   /// "cholmod" or "umfpack": what factorized the last K.

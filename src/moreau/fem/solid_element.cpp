@@ -37,11 +37,11 @@ void strain_displacement(const Mat3& F, const Vec3* G, int nodes, int dim, Strai
   }
 }
 
-// Adds scale (B^T CC B + geometric(S)) to the tangent: the geometric part (G_a . S G_b) on the
-// diagonal of each node pair's block.
-void add_tangent(const StrainMatrix& B, const Mat6& CC, const Vec6& stress, const Vec3* G, int nodes, int dim,
-                 Real scale, ElementMatrix& K) {
-  const StrainMatrix DB = CC * B;
+// Adds scale (B^T CC B_right + geometric(S)) to the tangent: the geometric part (G_a . S G_b) on
+// the diagonal of each node pair's block.
+void add_tangent(const StrainMatrix& B, const StrainMatrix& B_right, const Mat6& CC, const Vec6& stress, const Vec3* G,
+                 int nodes, int dim, Real scale, ElementMatrix& K) {
+  const StrainMatrix DB = CC * B_right;
   K.noalias() += scale * B.transpose() * DB;
   const Mat3 S = from_voigt(stress);
   for (int a = 0; a < nodes; ++a) {
@@ -83,14 +83,14 @@ void solid_element(const HyperelasticMaterial& material, const CellQuadrature& q
     out.energy += w * r.energy;
     strain_displacement(F, G, q.nodes, dim, B);
     out.force.noalias() += w * B.transpose() * r.stress;
-    if (with_tangent) add_tangent(B, r.tangent, r.stress, G, q.nodes, dim, w, out.tangent);
+    if (with_tangent) add_tangent(B, B, r.tangent, r.stress, G, q.nodes, dim, w, out.tangent);
   }
 }
 
 void solid_element_step(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u_n,
                         const Real* u_next, StepRule rule, bool with_tangent, ElementOutput& out) {
   start_output(q.nodes * dim, with_tangent, out);
-  StrainMatrix B;
+  StrainMatrix B, B_next;
   for (int p = 0; p < q.points; ++p) {
     const Vec3* G = q.gradient + static_cast<size_t>(p) * q.nodes;
     const Real w = q.weight[p];
@@ -99,11 +99,16 @@ void solid_element_step(const HyperelasticMaterial& material, const CellQuadratu
     const Mat3 Fm = Mat3::Identity() + 0.5 * (H0 + H1);
     if (!((Mat3::Identity() + H1).determinant() > 0) || !(Fm.determinant() > 0)) return mark_inverted(out);
     const Mat3 E0 = green_lagrange_strain(H0), E1 = green_lagrange_strain(H1);
-    const Real W1 = material.energy(E1);
-    if (!std::isfinite(W1)) return mark_inverted(out);
+    const HyperelasticResponse r1 = material.respond(E1, false);
+    if (!r1.valid) return mark_inverted(out);
+    const Real W1 = r1.energy;
     out.energy += w * W1;
     HyperelasticResponse r;
     Vec6 S_algo;
+    // The correction's derivative: with kappa = (W1 - W0 - S_a : dE) / |dE|^2 and
+    // g = S(E1) - S_a - CC_a dE / 2 - 2 kappa dE, d(kappa dE)/dE1 = dE (x) g / |dE|^2 + kappa II
+    // (II maps an engineering-shear strain to the tensor's components).
+    Mat6 correction_tangent = Mat6::Zero();
     if (rule == StepRule::midpoint) {
       r = material.respond(green_lagrange_strain(0.5 * (H0 + H1)), with_tangent);
       S_algo = r.stress;
@@ -113,14 +118,32 @@ void solid_element_step(const HyperelasticMaterial& material, const CellQuadratu
       const Mat3 dE = E1 - E0;
       const Real dE2 = dE.squaredNorm();
       if (dE2 > 1e-16) {
+        const Vec6 dE_v = to_voigt(dE);
         const Real SdE = from_voigt(r.stress).cwiseProduct(dE).sum();
-        S_algo += (W1 - material.energy(E0) - SdE) / dE2 * to_voigt(dE);
+        const Real kappa = (W1 - material.energy(E0) - SdE) / dE2;
+        S_algo += kappa * dE_v;
+        if (with_tangent) {
+          Vec6 dE_engineering = dE_v;
+          dE_engineering.tail<3>() *= 2;
+          const Vec6 g = r1.stress - r.stress - 0.5 * r.tangent * dE_engineering - 2 * kappa * dE_v;
+          correction_tangent = dE_v * g.transpose() / dE2;
+          correction_tangent.diagonal() += kappa * (Vec6() << 1, 1, 1, 0.5, 0.5, 0.5).finished();
+        }
       }
     }
     if (!r.valid) return mark_inverted(out);
     strain_displacement(Fm, G, q.nodes, dim, B);
     out.force.noalias() += w * B.transpose() * S_algo;
-    if (with_tangent) add_tangent(B, r.tangent, S_algo, G, q.nodes, dim, 0.5 * w, out.tangent);
+    if (!with_tangent) continue;
+    if (rule == StepRule::midpoint) {
+      add_tangent(B, B, r.tangent, S_algo, G, q.nodes, dim, 0.5 * w, out.tangent);
+    } else {
+      // d E_avg / d u_next = B(F_next) / 2, and the correction depends on E1 = E(F_next) itself:
+      // the tangent is not symmetric.
+      strain_displacement(Mat3::Identity() + H1, G, q.nodes, dim, B_next);
+      const Mat6 CC = r.tangent + 2 * correction_tangent;
+      add_tangent(B, B_next, CC, S_algo, G, q.nodes, dim, 0.5 * w, out.tangent);
+    }
   }
 }
 

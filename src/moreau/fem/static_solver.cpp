@@ -87,7 +87,9 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
     state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K); });
     // A correction below tolerance * |u| is converged even where the residual sits on its
     // round-off floor (~ eps |K| |u|, above tolerance * |f| for stiff or lightly loaded bodies).
-    if (alpha * du.norm() <= settings.tolerance * free_part(model, u).norm()) {
+    const bool stagnating = result.residual_norms.size() >= 2 &&
+                            norm > 0.5 * result.residual_norms[result.residual_norms.size() - 2];
+    if (stagnating && alpha * du.norm() <= settings.tolerance * free_part(model, u).norm()) {
       result.residual_norms.push_back(free_part(model, f_int - f_ext).norm());
       result.energy = state.energy;
       result.converged = true;
