@@ -37,6 +37,9 @@ std::string fem_summary(const Scene& scene) {
                      solid.name, solid.mesh.node_count(), solid.mesh.cell_count(), element_name(solid.mesh.element),
                      solid.material.model == HyperelasticModel::neo_hookean ? "Neo-Hookean" : "St. Venant-Kirchhoff",
                      solid.material.lame.lambda, solid.material.lame.mu, solid.material.density);
+  for (const FemRigidBody& b : p.rigid_bodies)
+    s += fmt::format("  rigid body {:<11} {} nodes, mass {:.6g} kg, Euler tensor ({:.4g}, {:.4g}, {:.4g}) kg m^2 (director frame)\n",
+                     b.name, b.mesh.node_count(), b.body.mass, b.body.euler[0], b.body.euler[1], b.body.euler[2]);
   s += fmt::format("  dofs {} ({} free, {} prescribed), loads {}, tangent nonzeros {}\n", m.dof_count(), m.free_count,
                    m.dof_count() - m.free_count, m.loads.size(), m.pattern.nonZeros());
   s += fmt::format("  probes: {}\n", p.probes.size());
@@ -54,14 +57,17 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   RunResult result;
   result.out_dir = options.out_dir.empty() ? "out/" + safe_file_name(scene.name) : options.out_dir;
   prepare_output_directory(result.out_dir);
-  FemFrameWriter frames(model, result.out_dir, scene.name);
+  FemFrameWriter frames(problem, result.out_dir, scene.name);
   std::ofstream csv(result.out_dir + "/probes.csv");
   csv << "time";
   for (const FemProbe& p : problem.probes)
     for (const auto& c : fem_probe_columns(p, model.dim)) csv << ',' << c;
   csv << '\n';
 
-  FemDynamicState state = initial_dynamic_state(model);
+  FemRunState run;
+  for (const FemRigidBody& b : problem.rigid_bodies) run.bodies.push_back(b.initial);
+  FemDynamicState& state = run.solids;
+  state = initial_dynamic_state(model);
   state.v = problem.initial_velocity;
   for (Index d = 0; d < model.dof_count(); ++d)
     if (model.free_index[d] < 0) state.v[d] = 0;
@@ -76,11 +82,11 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   std::vector<Real> values;
   auto sample = [&] {
     values.clear();
-    for (const FemProbe& p : problem.probes) evaluate_fem_probe(p, model, state, last_iterations, values);
+    for (const FemProbe& p : problem.probes) evaluate_fem_probe(p, problem, run, last_iterations, values);
     csv << fmt::format("{:.9g}", state.time);
     for (Real v : values) csv << fmt::format(",{:.17g}", v);
     csv << '\n';
-    if (scene.output.write_vtk) frames.write(state);
+    if (scene.output.write_vtk) frames.write(run);
   };
 
   const SparseMatrix mass = problem.integrator == FemIntegrator::static_load_steps ? SparseMatrix() : assemble_mass_matrix(model);
@@ -101,7 +107,23 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
       }
     } else {
       const StepRule rule = problem.integrator == FemIntegrator::midpoint ? StepRule::midpoint : StepRule::energy_momentum;
-      r = step_dynamic(model, mass, rule, dt, state, solver, problem.newton);
+      if (model.dof_count() > 0) {
+        r = step_dynamic(model, mass, rule, dt, state, solver, problem.newton);
+      } else {
+        r.converged = true;
+        state.time += dt;
+      }
+      // Rigid bodies: the constrained midpoint step (energy and angular momentum conserving for
+      // either integrator), under gravity.
+      for (size_t b = 0; b < run.bodies.size() && r.converged; ++b) {
+        const DirectorBody& body = problem.rigid_bodies[b].body;
+        const NewtonResult rb = step_director_body(body, dt, body.mass * problem.gravity, Vec3::Zero(), run.bodies[b], problem.newton);
+        if (!rb.converged) {
+          r.converged = false;
+          r.failure = fmt::format("rigid body '{}': {}", problem.rigid_bodies[b].name, rb.failure);
+        }
+        r.iterations += rb.iterations;
+      }
     }
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!r.converged) {
@@ -136,7 +158,7 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   j["wall_time_s"] = wall;
   Index cells = 0;
   for (const FemSolid& s : model.solids) cells += s.mesh.cell_count();
-  j["counts"] = {{"solids", model.solids.size()}, {"nodes", model.node_count}, {"cells", cells},
+  j["counts"] = {{"solids", model.solids.size()}, {"rigid_bodies", problem.rigid_bodies.size()}, {"nodes", model.node_count}, {"cells", cells},
                  {"dofs", model.dof_count()},     {"free_dofs", model.free_count}};
   j["newton"] = {{"iterations", total_iterations},
                  {"max_iterations_per_step", max_iterations},

@@ -50,7 +50,8 @@ VtkCell vtk_cell(ElementType type) {
 
 }  // namespace
 
-void FemFrameWriter::write(const FemDynamicState& state) {
+void FemFrameWriter::write(const FemRunState& run) {
+  const FemDynamicState& state = run.solids;
   for (size_t i = 0; i < model_.solids.size(); ++i) {
     const FemSolid& s = model_.solids[i];
     const Index n = s.mesh.node_count();
@@ -68,6 +69,27 @@ void FemFrameWriter::write(const FemDynamicState& state) {
     write_vtu(out_dir_ + "/" + file, x, s.mesh.cells, s.mesh.nodes_per_cell(), vtk_cell(s.mesh.element),
               {{"displacement", u}, {"velocity", v}}, {{"cauchy_stress", 6, cauchy}, {"von_mises", 1, von_mises}});
     entries_.push_back({state.time, static_cast<int>(i), file});
+  }
+  for (size_t b = 0; b < problem_.rigid_bodies.size(); ++b) {
+    const FemRigidBody& body = problem_.rigid_bodies[b];
+    const DirectorState& d = run.bodies[b];
+    const Index n = body.mesh.node_count();
+    std::vector<Vec3> x(n), u(n), v(n);
+    for (Index a = 0; a < n; ++a) {
+      const Vec3 X = body.mesh.nodes[a] - body.body.centre;
+      x[a] = d.phi;
+      v[a] = d.v_phi;
+      for (int i = 0; i < 3; ++i) {
+        const Real c = X.dot(body.body.axes.col(i));
+        x[a] += c * d.d[i];
+        v[a] += c * d.v_d[i];
+      }
+      u[a] = x[a] - body.mesh.nodes[a];
+    }
+    const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(body.name), frame_);
+    write_vtu(out_dir_ + "/" + file, x, body.mesh.cells, body.mesh.nodes_per_cell(), vtk_cell(body.mesh.element),
+              {{"displacement", u}, {"velocity", v}});
+    entries_.push_back({state.time, static_cast<int>(model_.solids.size() + b), file});
   }
   write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", entries_);
   ++frame_;

@@ -3,10 +3,12 @@
 // displacement and velocity, and cell arrays cauchy_stress (the Cauchy stress
 // sigma = J^-1 F S F^T averaged over the cell's quadrature points, a symmetric tensor) and
 // von_mises (sqrt(3/2 s:s), s the deviator of that average). 2D solids are written in the xy plane.
+// Rigid bodies are written as their mesh carried by the directors, x = phi + sum_i ((X - c) . a_i)
+// d_i, with the velocity of each node.
 #include <string>
 #include <vector>
 
-#include "moreau/fem/dynamic_solver.hpp"
+#include "moreau/fem/fem_problem.hpp"
 #include "moreau/io/vtk_writer.hpp"
 
 namespace moreau {
@@ -17,11 +19,12 @@ void cell_stresses(const FemModel& model, const FemSolid& solid, const VectorX& 
 
 class FemFrameWriter {
  public:
-  FemFrameWriter(const FemModel& model, std::string out_dir, std::string scene_name)
-      : model_(model), out_dir_(std::move(out_dir)), scene_name_(std::move(scene_name)) {}
-  void write(const FemDynamicState& state);
+  FemFrameWriter(const FemProblem& problem, std::string out_dir, std::string scene_name)
+      : problem_(problem), model_(problem.model), out_dir_(std::move(out_dir)), scene_name_(std::move(scene_name)) {}
+  void write(const FemRunState& state);
 
  private:
+  const FemProblem& problem_;
   const FemModel& model_;
   std::string out_dir_, scene_name_;
   std::vector<PvdEntry> entries_;

@@ -1,15 +1,21 @@
 #include "moreau/fem/fem_problem.hpp"
 
+#include <algorithm>
+
 namespace moreau {
 
 std::vector<std::string> fem_probe_columns(const FemProbe& p, int dim) {
   static const char* axes[] = {".x", ".y", ".z"};
+  static const char* body_axes[] = {".d1", ".d2", ".d3"};
   std::vector<std::string> columns;
   switch (p.type) {
     case FemProbeType::displacement:
     case FemProbeType::position:
     case FemProbeType::velocity:
       for (int k = 0; k < dim; ++k) columns.push_back(p.name + axes[k]);
+      break;
+    case FemProbeType::body:
+      for (int k = 0; k < 3; ++k) columns.push_back(p.name + (p.quantity == "body_angular_velocity" ? body_axes[k] : axes[k]));
       break;
     case FemProbeType::momentum:
       if (p.quantity == "angular" && dim == 2) {
@@ -19,13 +25,16 @@ std::vector<std::string> fem_probe_columns(const FemProbe& p, int dim) {
       }
       break;
     case FemProbeType::energy:
+    case FemProbeType::constraint_error:
     case FemProbeType::newton_iterations: columns.push_back(p.name); break;
   }
   return columns;
 }
 
-void evaluate_fem_probe(const FemProbe& p, const FemModel& model, const FemDynamicState& state, int newton_iterations,
+void evaluate_fem_probe(const FemProbe& p, const FemProblem& problem, const FemRunState& run, int newton_iterations,
                         std::vector<Real>& values) {
+  const FemModel& model = problem.model;
+  const FemDynamicState& state = run.solids;
   const int dim = model.dim;
   switch (p.type) {
     case FemProbeType::displacement:
@@ -38,19 +47,37 @@ void evaluate_fem_probe(const FemProbe& p, const FemModel& model, const FemDynam
       break;
     }
     case FemProbeType::energy: {
-      const Real kinetic = kinetic_energy(model, state.v);
+      Real kinetic = kinetic_energy(model, state.v);
+      for (size_t b = 0; b < run.bodies.size(); ++b) kinetic += kinetic_energy(problem.rigid_bodies[b].body, run.bodies[b]);
       values.push_back(p.quantity == "kinetic" ? kinetic : p.quantity == "strain" ? state.energy : kinetic + state.energy);
       break;
     }
     case FemProbeType::momentum: {
       Vec3 linear, angular;
       momenta(model, state.u, state.v, linear, angular);
+      for (size_t b = 0; b < run.bodies.size(); ++b) {
+        linear += problem.rigid_bodies[b].body.mass * run.bodies[b].v_phi;
+        angular += angular_momentum(problem.rigid_bodies[b].body, run.bodies[b]);
+      }
       if (p.quantity == "angular" && dim == 2) {
         values.push_back(angular.z());
       } else {
         const Vec3& m = p.quantity == "angular" ? angular : linear;
         values.insert(values.end(), {m.x(), m.y(), m.z()});
       }
+      break;
+    }
+    case FemProbeType::body: {
+      const DirectorState& b = run.bodies[p.body];
+      Vec3 v = p.quantity == "position" ? b.phi : p.quantity == "velocity" ? b.v_phi : angular_velocity(b);
+      if (p.quantity == "body_angular_velocity") v = Vec3(v.dot(b.d[0]), v.dot(b.d[1]), v.dot(b.d[2]));
+      values.insert(values.end(), {v.x(), v.y(), v.z()});
+      break;
+    }
+    case FemProbeType::constraint_error: {
+      Real worst = 0;
+      for (const DirectorState& b : run.bodies) worst = std::max(worst, director_constraint_error(b));
+      values.push_back(worst);
       break;
     }
     case FemProbeType::newton_iterations: values.push_back(newton_iterations); break;

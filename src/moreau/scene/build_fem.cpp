@@ -167,7 +167,8 @@ void read_dirichlet(const JsonObject& solid_json, FemModel& model, Index solid) 
 FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
   FemProbe p;
   p.name = j.string("name");
-  const std::string type = j.choice("type", {"point", "energy", "momentum", "newton_iterations"});
+  const std::string type =
+      j.choice("type", {"point", "energy", "momentum", "newton_iterations", "body", "constraint_error"});
   const FemModel& model = problem.model;
   if (type == "point") {
     const std::string object = j.string("object");
@@ -192,6 +193,15 @@ FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
     p.type = FemProbeType::momentum;
     p.quantity = j.choice("quantity", "linear", {"linear", "angular"});
     j.allow("object");
+  } else if (type == "body") {
+    p.type = FemProbeType::body;
+    const std::string object = j.string("object");
+    for (size_t b = 0; b < problem.rigid_bodies.size(); ++b)
+      if (problem.rigid_bodies[b].name == object) p.body = static_cast<Index>(b);
+    if (p.body < 0) j.fail("object", fmt::format("no rigid body named '{}'", object));
+    p.quantity = j.choice("quantity", "position", {"position", "velocity", "angular_velocity", "body_angular_velocity"});
+  } else if (type == "constraint_error") {
+    p.type = FemProbeType::constraint_error;
   } else {
     p.type = FemProbeType::newton_iterations;
   }
@@ -218,10 +228,11 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
   model.threads = threads;
   for (const char* key : {"objects", "joints"})
     if (top.has(key)) top.fail(key, "a \"solver\": \"fem\" scene has \"solids\" (and \"probes\"), not objects or joints");
-  if (top.has("rigid_bodies"))
-    top.fail("rigid_bodies", "director rigid bodies of the FEM engine are not available in this version of moreau yet");
   const auto solids = top.object_list("solids");
-  if (solids.empty()) top.fail("solids", "a \"solver\": \"fem\" scene needs at least one solid");
+  const auto bodies = top.object_list("rigid_bodies");
+  if (solids.empty() && bodies.empty())
+    top.fail("solids", "a \"solver\": \"fem\" scene needs at least one solid or rigid body");
+  if (solids.empty()) model.dim = 3;
   std::vector<Vec3> velocities;
   for (const JsonObject& sj : solids) {
     FemSolid solid;
@@ -239,6 +250,24 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
     read_dirichlet(sj, model, index);
     sj.finish();
   }
+  for (const JsonObject& bj : bodies) {
+    FemRigidBody rb;
+    rb.name = bj.string("name");
+    for (const FemSolid& other : model.solids)
+      if (other.name == rb.name) bj.fail("name", fmt::format("a solid is already named '{}'", rb.name));
+    for (const FemRigidBody& other : problem.rigid_bodies)
+      if (other.name == rb.name) bj.fail("name", fmt::format("another rigid body is already named '{}'", rb.name));
+    rb.mesh = read_fem_mesh(bj.object("mesh"), top.file() + ": " + bj.path_of("mesh"));
+    if (rb.mesh.dim != 3) bj.fail("mesh", "a rigid body's mesh is 3D (\"type\": \"box\")");
+    rb.body = director_body_from_mesh(rb.mesh, bj.number("density", Range::positive()));
+    rb.initial = director_state_at_rest_pose(rb.body, bj.vec3("velocity", Vec3::Zero()),
+                                             bj.vec3("angular_velocity", Vec3::Zero()));
+    bj.finish();
+    problem.rigid_bodies.push_back(std::move(rb));
+  }
+  if (!problem.rigid_bodies.empty() && problem.integrator == FemIntegrator::static_load_steps)
+    top.fail("rigid_bodies", "rigid bodies need a dynamic integrator (\"midpoint\" or \"energy_momentum\")");
+  problem.gravity = gravity;
   // Gravity acts on every solid as a body load rho g.
   if (gravity.head(model.dim).norm() > 0)
     for (const FemSolid& s : model.solids) {

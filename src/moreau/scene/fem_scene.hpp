@@ -8,7 +8,8 @@ namespace moreau {
 /// The FEM keys of "settings": integrator and newton.
 void read_fem_settings(const JsonObject& settings, FemProblem& problem);
 
-/// "solids" and "probes" of a FEM scene; gravity (m/s^2) becomes a body load on every solid.
+/// "solids", "rigid_bodies" and "probes" of a FEM scene; gravity (m/s^2) becomes a body load on
+/// every solid and a force m g on every rigid body.
 void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gravity, int threads);
 
 }  // namespace moreau
