@@ -92,6 +92,97 @@ TEST(FemScenes, StaticUniaxialTensionMatchesTheHomogeneousSolution) {
   EXPECT_NE(xml.find("Name=\"von_mises\""), std::string::npos);
 }
 
+TEST(FemScenes, GmshMeshWithPhysicalGroupsSolvesPlaneStrainTension) {
+  // A 2 x 1 m plate of two quads written as a Gmsh MSH 4.1 file with physical curves "left" and
+  // "right": rollers on "left" (u_x = 0) and at the origin (u_y = 0), a reference traction
+  // P = 0.2 E on "right". Plane strain: the exact solution is homogeneous, F = diag(l1, l2, 1)
+  // with P_11 = l1 S_11 = P and S_22 = 0; the corner (2, 1) moves by (2 (l1 - 1), l2 - 1) to
+  // Newton's tolerance.
+  const std::string dir = test::temp_dir("fem_msh");
+  std::ofstream(dir + "/plate.msh") << R"($MeshFormat
+4.1 0 8
+$EndMeshFormat
+$PhysicalNames
+3
+1 1 "left"
+1 2 "right"
+2 3 "plate"
+$EndPhysicalNames
+$Entities
+0 2 1 0
+1 0 0 0 0 1 0 1 1 0
+2 2 0 0 2 1 0 1 2 0
+1 0 0 0 2 1 0 1 3 0
+$EndEntities
+$Nodes
+1 6 1 6
+2 1 0 6
+1
+2
+3
+4
+5
+6
+0 0 0
+1 0 0
+2 0 0
+0 1 0
+1 1 0
+2 1 0
+$EndNodes
+$Elements
+3 4 1 4
+1 1 1 1
+1 1 4
+1 2 1 1
+2 3 6
+2 1 3 2
+3 1 2 5 4
+4 2 3 6 5
+$EndElements
+)";
+  const Real E = 1e6, nu = 0.3, P = 2e5;
+  const std::string scene = dir + "/scene.json";
+  std::ofstream(scene) << fmt::format(R"({{"name": "plate",
+    "settings": {{"solver": "fem", "integrator": "static", "dt": 0.5, "duration": 1, "gravity": [0, 0, 0],
+                 "newton": {{"tolerance": 1e-12}}, "output": {{"formats": []}}}},
+    "solids": [{{"name": "plate", "mesh": {{"type": "msh", "file": "plate.msh"}},
+                "material": {{"youngs_modulus": {}, "poisson_ratio": {}, "density": 1000}},
+                "loads": [{{"type": "traction", "where": {{"boundary": "right"}}, "value": ["{}*t", 0]}}],
+                "dirichlet": [{{"where": {{"boundary": "left"}}, "value": [0, null]}},
+                              {{"where": {{"box": {{"min": [-0.1, -0.1], "max": [0.1, 0.1]}}}}, "value": [null, 0]}}]}}],
+    "probes": [{{"name": "corner", "type": "point", "object": "plate", "nearest": [2, 1]}}]}})",
+                                      E, nu, P);
+  const std::string out = dir + "/out";
+  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", scene, out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const LameParameters lame = lame_from_youngs(E, nu);
+  auto residual = [&](Real l1, Real l2) {
+    const Real lnJ = std::log(l1 * l2);
+    return Vec2(l1 * (lame.mu * (1 - 1 / (l1 * l1)) + lame.lambda * lnJ / (l1 * l1)) - P,
+                lame.mu * (1 - 1 / (l2 * l2)) + lame.lambda * lnJ / (l2 * l2));
+  };
+  Vec2 l(1.2, 0.95);
+  for (int it = 0; it < 50; ++it) {
+    const Real h = 1e-7;
+    Eigen::Matrix2d J;
+    J.col(0) = (residual(l.x() + h, l.y()) - residual(l.x() - h, l.y())) / (2 * h);
+    J.col(1) = (residual(l.x(), l.y() + h) - residual(l.x(), l.y() - h)) / (2 * h);
+    l -= J.partialPivLu().solve(residual(l.x(), l.y()));
+  }
+  const auto rows = read_probes(out);
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_NEAR(rows.back()[1], 2 * (l.x() - 1), 1e-9);
+  EXPECT_NEAR(rows.back()[2], l.y() - 1, 1e-9);
+  // A boundary the file does not name is reported with the names it does.
+  std::ofstream(dir + "/bad.json") << R"({"name": "bad", "settings": {"solver": "fem"},
+    "solids": [{"name": "p", "mesh": {"type": "msh", "file": "plate.msh"}, "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.3, "density": 1},
+                "dirichlet": [{"where": {"boundary": "top"}, "value": [0, 0]}]}]})";
+  const auto bad = test::run_moreau(fmt::format("run {} --out {} --quiet", dir + "/bad.json", dir + "/bad_out"));
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("allowed: left, right"), std::string::npos) << bad.output;
+}
+
 TEST(FemScenes, DynamicRunKeepsEnergyAfterAPulse) {
   // A clamped hex8 beam pushed at its tip for 0.5 s (value "1*(t<0.5)" per node), then free:
   // with the energy-momentum scheme the total energy after the pulse stays constant to 1e-9

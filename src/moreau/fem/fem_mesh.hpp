@@ -48,6 +48,13 @@ FemMesh make_rectangle_mesh(const Vec2& min, const Vec2& max, const std::array<i
 /// Node (i, j, k) is (i (cells[1] + 1) + j)(cells[2] + 1) + k.
 FemMesh make_box_mesh(const Vec3& min, const Vec3& max, const std::array<int, 3>& cells, ElementType element);
 
+/// A FEM mesh from a Gmsh MSH 4.1 file (fem/gmsh_mesh.cpp): the cells are the elements of the
+/// highest dimension (tri3 or quad4: a 2D mesh in the xy plane; tet4 or hex8: 3D), one type per
+/// file; the nodes they use are kept in file order. Each physical group one dimension lower
+/// becomes a boundary named by its physical name (or "physical_<tag>"). Problems are InputErrors
+/// naming the file.
+FemMesh read_gmsh_fem_mesh(const std::string& path);
+
 /// Checks that every cell has a positive Jacobian determinant at its quadrature points; a mesh
 /// whose cells are all inverted (a file convention) is reordered, a mix is an InputError naming
 /// `source`.

@@ -11,44 +11,12 @@
 #include <unordered_map>
 
 #include "moreau/errors.hpp"
+#include "moreau/geometry/gmsh_reader.hpp"
+#include "moreau/geometry/line_reader.hpp"
 
 namespace moreau {
 
 namespace fs = std::filesystem;
-
-namespace {
-
-std::ifstream open_or_throw(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(fmt::format("{}: cannot open mesh file (does it exist and is it readable?)", path));
-  return in;
-}
-
-/// A line reader that skips blank lines and '#' comments and knows its line number.
-struct LineReader {
-  std::ifstream in;
-  std::string path;
-  int line_number = 0;
-
-  bool next(std::istringstream& line) {
-    std::string text;
-    while (std::getline(in, text)) {
-      ++line_number;
-      const auto hash = text.find('#');
-      if (hash != std::string::npos) text.resize(hash);
-      if (text.find_first_not_of(" \t\r") == std::string::npos) continue;
-      line.clear();
-      line.str(text);
-      return true;
-    }
-    return false;
-  }
-  [[noreturn]] void fail(const std::string& what) const {
-    throw InputError(fmt::format("{}:{}: {}", path, line_number, what));
-  }
-};
-
-}  // namespace
 
 TriangleMesh read_obj_triangles(const std::string& path) {
   if (!fs::exists(path)) throw InputError(fmt::format("{}: mesh file not found", path));
@@ -69,68 +37,13 @@ TriangleMesh read_obj_triangles(const std::string& path) {
 }
 
 TetMesh read_gmsh_msh4(const std::string& path) {
-  LineReader r{open_or_throw(path), path};
-  std::istringstream line;
-  std::string section;
-  bool version_ok = false;
-  std::unordered_map<long, Index> node_index;
+  const GmshFile file = read_gmsh_file(path);
   TetMesh mesh;
-  std::vector<std::array<long, 4>> tet_tags;
-  while (r.next(line)) {
-    line >> section;
-    if (section == "$MeshFormat") {
-      double version = 0;
-      int file_type = -1;
-      if (!r.next(line) || !(line >> version >> file_type)) r.fail("malformed $MeshFormat section");
-      if (version < 4.0 || version >= 5.0) r.fail(fmt::format("MSH version {} is not supported; allowed: 4.x ASCII", version));
-      if (file_type != 0) r.fail("binary MSH files are not supported; save as ASCII (Gmsh: -format msh4 -bin 0)");
-      version_ok = true;
-    } else if (section == "$Nodes") {
-      if (!version_ok) r.fail("$Nodes before $MeshFormat");
-      long blocks = 0, count = 0;
-      if (!r.next(line) || !(line >> blocks >> count)) r.fail("malformed $Nodes header");
-      for (long b = 0; b < blocks; ++b) {
-        int dim = 0, entity = 0, parametric = 0;
-        long in_block = 0;
-        if (!r.next(line) || !(line >> dim >> entity >> parametric >> in_block)) r.fail("malformed node block header");
-        if (parametric != 0) r.fail("parametric nodes are not supported");
-        std::vector<long> tags(in_block);
-        for (auto& tag : tags)
-          if (!r.next(line) || !(line >> tag)) r.fail("malformed node tag");
-        for (long tag : tags) {
-          double x, y, z;
-          if (!r.next(line) || !(line >> x >> y >> z)) r.fail("malformed node coordinates");
-          node_index[tag] = static_cast<Index>(mesh.vertices.size());
-          mesh.vertices.emplace_back(x, y, z);
-        }
-      }
-    } else if (section == "$Elements") {
-      long blocks = 0, count = 0;
-      if (!r.next(line) || !(line >> blocks >> count)) r.fail("malformed $Elements header");
-      for (long b = 0; b < blocks; ++b) {
-        int dim = 0, entity = 0, type = 0;
-        long in_block = 0;
-        if (!r.next(line) || !(line >> dim >> entity >> type >> in_block)) r.fail("malformed element block header");
-        for (long e = 0; e < in_block; ++e) {
-          if (!r.next(line)) r.fail("unexpected end of file in $Elements");
-          if (type != 4) continue;  // only 4-node tetrahedra make up the volume
-          long tag;
-          std::array<long, 4> n{};
-          if (!(line >> tag >> n[0] >> n[1] >> n[2] >> n[3])) r.fail("malformed tetrahedron");
-          tet_tags.push_back(n);
-        }
-      }
-    }
-  }
-  if (!version_ok) throw InputError(fmt::format("{}: not a Gmsh MSH file (no $MeshFormat section)", path));
-  for (const auto& n : tet_tags) {
-    std::array<Index, 4> tet{};
-    for (int k = 0; k < 4; ++k) {
-      auto it = node_index.find(n[k]);
-      if (it == node_index.end()) throw InputError(fmt::format("{}: tetrahedron refers to unknown node {}", path, n[k]));
-      tet[k] = it->second;
-    }
-    mesh.tets.push_back(tet);
+  mesh.vertices = file.nodes;
+  for (const GmshElementBlock& block : file.blocks) {
+    if (block.type != GmshElementType::tet4) continue;  // only 4-node tetrahedra make up the volume
+    for (size_t e = 0; e < block.nodes.size(); e += 4)
+      mesh.tets.push_back({block.nodes[e], block.nodes[e + 1], block.nodes[e + 2], block.nodes[e + 3]});
   }
   if (mesh.tets.empty()) throw InputError(fmt::format("{}: no tetrahedra (element type 4) in the file", path));
   return mesh;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <limits>
 #include <memory>
 
@@ -22,9 +23,14 @@ Vec3 read_point(const JsonObject& j, const std::string& key, int dim) {
 }
 
 FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where) {
-  const std::string type = mesh.choice("type", {"box", "rectangle"});
+  const std::string type = mesh.choice("type", {"box", "rectangle", "msh"});
   FemMesh result;
-  if (type == "box") {
+  if (type == "msh") {
+    const std::filesystem::path file = mesh.string("file");
+    const std::filesystem::path resolved =
+        file.is_absolute() ? file : std::filesystem::absolute(mesh.file()).parent_path() / file;
+    result = read_gmsh_fem_mesh(resolved.string());
+  } else if (type == "box") {
     const Vec3 lo = mesh.vec3("min"), hi = mesh.vec3("max");
     if (!((hi - lo).array() > 0).all()) mesh.fail("max", "every component of max must exceed min");
     const auto cells = mesh.integers("cells", 3, 1);
