@@ -68,9 +68,14 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   for (const FemRigidBody& b : problem.rigid_bodies) run.bodies.push_back(b.initial);
   FemDynamicState& state = run.solids;
   state = initial_dynamic_state(model);
-  state.v = problem.initial_velocity;
   for (Index d = 0; d < model.dof_count(); ++d)
-    if (model.free_index[d] < 0) state.v[d] = 0;
+    if (model.free_index[d] >= 0) state.v[d] = problem.initial_velocity[d];
+  // A static solve starts from the reference configuration; its first load step's predictor
+  // carries the prescribed values in (moving only the boundary nodes would invert cells).
+  if (problem.integrator == FemIntegrator::static_load_steps) {
+    state.u.setZero();
+    state.v.setZero();
+  }
   {
     VectorX force;
     state.energy = assemble_internal_forces(model, state.u, force, nullptr).energy;
@@ -167,7 +172,11 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
                  {"solve_s", solve_s},
                  {"last_linear_solver", solver.method()}};
   if (status == "completed")
-    j["final_energy_j"] = {{"kinetic", kinetic_energy(model, state.v)}, {"strain", state.energy}};
+  {
+    Real kinetic = kinetic_energy(model, state.v);
+    for (size_t b = 0; b < run.bodies.size(); ++b) kinetic += kinetic_energy(problem.rigid_bodies[b].body, run.bodies[b]);
+    j["final_energy_j"] = {{"kinetic", kinetic}, {"strain", state.energy}};
+  }
   std::ofstream(result.out_dir + "/run.json") << j.dump(2) << '\n';
   if (status != "completed") throw NumericalError(message);
   return result;

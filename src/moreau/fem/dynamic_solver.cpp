@@ -14,6 +14,7 @@ FemDynamicState initial_dynamic_state(const FemModel& model) {
   s.u = VectorX::Zero(model.dof_count());
   s.v = VectorX::Zero(model.dof_count());
   apply_prescribed(model, 0, s.u);
+  apply_prescribed_velocity(model, 0, s.v);
   return s;
 }
 
@@ -138,6 +139,10 @@ NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepR
   result.converged = true;
   result.energy = cells.energy;
   state.v = (2 / h) * (u1 - u0) - v0;
+  // The recursion above would carry an error in a prescribed dof's velocity forever (a ramp
+  // u = c t started from rest alternates 2c, 0, 2c, ...); prescribed dofs take the derivative of
+  // their values instead.
+  apply_prescribed_velocity(model, state.time + h, state.v);
   state.u = u1;
   state.time += h;
   state.energy = cells.energy;

@@ -23,7 +23,8 @@ struct FemDynamicState {
   Real energy = 0;  // stored energy at `time`, J
 };
 
-/// A state at rest in the reference configuration (prescribed dofs at their values at t = 0).
+/// A state at rest in the reference configuration (prescribed dofs at their values and velocities
+/// at t = 0).
 FemDynamicState initial_dynamic_state(const FemModel& model);
 
 /// Advances `state` by h. `mass` is assemble_mass_matrix(model). On failure the state is unchanged.

@@ -180,6 +180,11 @@ void apply_prescribed(const FemModel& model, Real t, VectorX& u) {
   for (const PrescribedDof& p : model.prescribed) u[p.dof] = p.value(t);
 }
 
+void apply_prescribed_velocity(const FemModel& model, Real t, VectorX& v) {
+  const Real dt = 1e-6;
+  for (const PrescribedDof& p : model.prescribed) v[p.dof] = (p.value(t + dt) - p.value(t - dt)) / (2 * dt);
+}
+
 VectorX free_part(const FemModel& model, const VectorX& full) {
   VectorX free(model.free_count);
   for (Index d = 0; d < model.dof_count(); ++d)

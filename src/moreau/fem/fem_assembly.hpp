@@ -40,6 +40,10 @@ VectorX external_forces(const FemModel& model, Real t);
 /// Displacements of the prescribed dofs at time t written into u (the free ones untouched).
 void apply_prescribed(const FemModel& model, Real t, VectorX& u);
 
+/// Velocities of the prescribed dofs at time t written into v: the time derivative of their
+/// values, by central differences (step 1e-6 s; exact for polynomials up to degree 2).
+void apply_prescribed_velocity(const FemModel& model, Real t, VectorX& v);
+
 /// The free components of a full-dof vector.
 VectorX free_part(const FemModel& model, const VectorX& full);
 /// Adds a free-dof vector into a full-dof vector.

@@ -159,9 +159,14 @@ FemMesh make_box_mesh(const Vec3& min, const Vec3& max, const std::array<int, 3>
 
 void orient_and_validate_cells(FemMesh& mesh, const std::string& source) {
   Index negative = 0, degenerate = 0;
-  Real scale = 0;
-  for (const Vec3& x : mesh.nodes) scale = std::max(scale, x.cwiseAbs().maxCoeff());
-  const Real tiny = 1e-12 * std::pow(std::max(scale, Real(1e-300)), mesh.dim);
+  Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);
+  for (const Vec3& x : mesh.nodes) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  Real size = 0;
+  for (int k = 0; k < mesh.dim && !mesh.nodes.empty(); ++k) size = std::max(size, hi[k] - lo[k]);
+  const Real tiny = 1e-12 * std::pow(std::max(size, Real(1e-300)), mesh.dim);
   for (Index e = 0; e < mesh.cell_count(); ++e) {
     const Real det = centre_jacobian(mesh, e);
     negative += det < 0;

@@ -55,7 +55,8 @@ FemMesh make_box_mesh(const Vec3& min, const Vec3& max, const std::array<int, 3>
 /// naming the file.
 FemMesh read_gmsh_fem_mesh(const std::string& path);
 
-/// Checks that every cell has a positive Jacobian determinant at its quadrature points; a mesh
+/// Checks that every cell has a positive Jacobian determinant at its centre (add_fem_solid then
+/// checks every quadrature point); a mesh
 /// whose cells are all inverted (a file convention) is reordered, a mix is an InputError naming
 /// `source`.
 void orient_and_validate_cells(FemMesh& mesh, const std::string& source);

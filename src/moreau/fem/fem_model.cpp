@@ -1,7 +1,10 @@
 #include "moreau/fem/fem_model.hpp"
 
+#include <fmt/format.h>
+
+#include "moreau/errors.hpp"
+
 #include <algorithm>
-#include <cstdint>
 #include <stdexcept>
 
 namespace moreau {
@@ -10,20 +13,22 @@ namespace {
 
 int stiffness_degree(ElementType type) { return type == ElementType::tri3 || type == ElementType::tet4 ? 1 : 2; }
 
-// Greedy colouring of cells: no two cells of a colour share a node.
+// Greedy colouring of cells: no two cells of a colour share a node. Each node keeps the list of
+// colours its cells have taken (as many as the cells around it, unbounded).
 std::vector<std::vector<Index>> colour_cells(const FemMesh& mesh) {
-  std::vector<std::uint64_t> used(mesh.node_count(), 0);
+  std::vector<std::vector<int>> used(mesh.node_count());
   std::vector<std::vector<Index>> colours;
+  std::vector<char> taken;
   for (Index e = 0; e < mesh.cell_count(); ++e) {
-    std::uint64_t taken = 0;
     const Index* c = mesh.cell(e);
-    for (int a = 0; a < mesh.nodes_per_cell(); ++a) taken |= used[c[a]];
+    taken.assign(colours.size() + 1, 0);
+    for (int a = 0; a < mesh.nodes_per_cell(); ++a)
+      for (int colour : used[c[a]]) taken[colour] = 1;
     int colour = 0;
-    while (colour < 64 && (taken >> colour) & 1) ++colour;
-    if (colour == 64) throw std::runtime_error("cell colouring needs more than 64 colours");
+    while (taken[colour]) ++colour;
     if (colour >= static_cast<int>(colours.size())) colours.resize(colour + 1);
     colours[colour].push_back(e);
-    for (int a = 0; a < mesh.nodes_per_cell(); ++a) used[c[a]] |= std::uint64_t(1) << colour;
+    for (int a = 0; a < mesh.nodes_per_cell(); ++a) used[c[a]].push_back(colour);
   }
   return colours;
 }
@@ -55,6 +60,9 @@ void add_fem_solid(FemModel& model, FemSolid solid) {
     for (size_t p = 0; p < rule.size(); ++p) {
       shape_functions(mesh.element, rule[p].xi, N, dN);
       const Mat3 J = cell_jacobian(mesh, e, dN);
+      if (!(J.determinant() > 0))
+        throw InputError(fmt::format("solid '{}': cell {} ({}) is inverted or degenerate at a quadrature point (det dX/dxi = {:.3g})",
+                                     solid.name, e, element_name(mesh.element), J.determinant()));
       const Mat3 Jinv_t = J.inverse().transpose();
       const size_t qp = static_cast<size_t>(e) * rule.size() + p;
       solid.weight[qp] = rule[p].weight * J.determinant();

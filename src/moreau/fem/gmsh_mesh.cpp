@@ -64,7 +64,10 @@ FemMesh read_gmsh_fem_mesh(const std::string& path) {
   for (const GmshElementBlock& b : file.blocks) {
     if (b.dim != dim - 1) continue;
     const auto physicals = file.entity_physicals.find({b.dim, b.entity});
-    if (physicals == file.entity_physicals.end()) continue;
+    if (physicals == file.entity_physicals.end() || physicals->second.empty()) continue;
+    if (fem_type(b.type) != facet_type(mesh.element))
+      throw InputError(fmt::format("{}: a boundary group of {} cells must consist of {} facets", path,
+                                   element_name(mesh.element), element_name(facet_type(mesh.element))));
     for (int tag : physicals->second) {
       FemBoundary& group = groups[tag];
       const auto name = file.physical_names.find({b.dim, tag});

@@ -27,7 +27,10 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
   VectorX target = u;
   apply_prescribed(model, t, target);
   const VectorX du_D = target - u;
-  if (du_D.squaredNorm() > 0) {
+  if (du_D.squaredNorm() > 0 && model.free_count == 0) {
+    u = target;
+    state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K); });
+  } else if (du_D.squaredNorm() > 0) {
     if (!timed(result.solve_s, [&] { return solver.factorize(K); })) {
       result.failure = "the tangent is singular (is the body held against rigid motion?)";
       return result;

@@ -39,6 +39,11 @@ Expression::~Expression() = default;
 
 Expression::Expression(const Expression& other) : Expression(other.text_) {}
 
+bool Expression::uses_position() const {
+  const auto used = parser_->parser.GetUsedVar();
+  return used.count("x") || used.count("y") || used.count("z");
+}
+
 Real Expression::operator()(Real t, const Vec3& x) const {
   parser_->t = t;
   parser_->x = x.x();

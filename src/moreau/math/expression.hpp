@@ -23,6 +23,8 @@ class Expression {
 
   Real operator()(Real t, const Vec3& x = Vec3::Zero()) const;
   const std::string& text() const { return text_; }
+  /// Whether the expression reads x, y or z.
+  bool uses_position() const;
 
  private:
   struct Parser;

@@ -144,6 +144,9 @@ void read_loads(const JsonObject& solid_json, FemModel& model, Index solid) {
     for (Index& n : l.nodes) n += s.node_begin;
     std::shared_ptr<std::vector<std::unique_ptr<Expression>>> value(
         new std::vector<std::unique_ptr<Expression>>(read_components(load, "value", model.dim, false)));
+    for (const auto& e : *value)
+      if (e->uses_position())
+        load.fail("value", fmt::format("\"{}\": load values are functions of t only (x, y, z are for Dirichlet values)", e->text()));
     l.value = [value](Real t) {
       Vec3 v = Vec3::Zero();
       for (size_t k = 0; k < value->size(); ++k) v[k] = (*(*value)[k])(t);
@@ -271,6 +274,8 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
     bj.finish();
     problem.rigid_bodies.push_back(std::move(rb));
   }
+  if (!problem.rigid_bodies.empty() && model.dim == 2)
+    top.fail("rigid_bodies", "rigid bodies are 3D; a scene with 2D (rectangle) solids cannot have them");
   if (!problem.rigid_bodies.empty() && problem.integrator == FemIntegrator::static_load_steps)
     top.fail("rigid_bodies", "rigid bodies need a dynamic integrator (\"midpoint\" or \"energy_momentum\")");
   problem.gravity = gravity;
