@@ -11,27 +11,14 @@
 namespace moreau {
 namespace {
 
-// An L of two 1 m x 0.25 m arms meeting at the origin, in 0.05 m plane-strain quads: the cells of
-// a 20 x 20 grid on [0, 1]^2 with x < 0.25 or y < 0.25, unused nodes dropped.
+// An L of two 1 m x 0.25 m arms meeting at the origin, in 0.05 m plane-strain quads: a 20 x 20
+// grid on [0, 1]^2 without the cells of x > 0.25 and y > 0.25.
 FemMesh l_shape_mesh() {
-  const FemMesh square = make_rectangle_mesh(Vec2(0, 0), Vec2(1, 1), {20, 20}, ElementType::quad4);
-  FemMesh mesh;
-  mesh.dim = 2;
-  mesh.element = ElementType::quad4;
-  std::vector<Index> renumber(square.node_count(), -1);
-  for (Index e = 0; e < square.cell_count(); ++e) {
-    Vec3 centre = Vec3::Zero();
-    for (int a = 0; a < 4; ++a) centre += 0.25 * square.nodes[square.cell(e)[a]];
-    if (centre.x() > 0.25 && centre.y() > 0.25) continue;
-    for (int a = 0; a < 4; ++a) {
-      Index& n = renumber[square.cell(e)[a]];
-      if (n < 0) {
-        n = mesh.node_count();
-        mesh.nodes.push_back(square.nodes[square.cell(e)[a]]);
-      }
-      mesh.cells.push_back(n);
-    }
-  }
+  FemMesh mesh = make_rectangle_mesh(Vec2(0, 0), Vec2(1, 1), {20, 20}, ElementType::quad4);
+  remove_cells(mesh, {{Vec3(0.25, 0.25, -1), Vec3(2, 2, 1)}}, Vec3(0, 0, 0), Vec3(1, 1, 0));
+  EXPECT_EQ(mesh.cell_count(), 175);
+  EXPECT_EQ(mesh.boundary_nodes("right").size(), 6u);  // the horizontal arm's end
+  EXPECT_EQ(mesh.boundary_nodes("cut").size(), 31u);   // the two inner edges, 15 cells each
   return mesh;
 }
 

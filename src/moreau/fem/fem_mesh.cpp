@@ -157,6 +157,55 @@ FemMesh make_box_mesh(const Vec3& min, const Vec3& max, const std::array<int, 3>
   return mesh;
 }
 
+void remove_cells(FemMesh& mesh, const std::vector<std::array<Vec3, 2>>& boxes, const Vec3& min, const Vec3& max) {
+  const int per = mesh.nodes_per_cell();
+  std::vector<Index> kept_cells;
+  std::vector<Index> renumber(mesh.node_count(), -1);
+  std::vector<Vec3> nodes;
+  for (Index e = 0; e < mesh.cell_count(); ++e) {
+    Vec3 centre = Vec3::Zero();
+    for (int a = 0; a < per; ++a) centre += mesh.nodes[mesh.cell(e)[a]] / per;
+    bool inside_any = false;
+    for (const auto& box : boxes) {
+      bool inside = true;
+      for (int k = 0; k < mesh.dim; ++k) inside = inside && centre[k] > box[0][k] && centre[k] < box[1][k];
+      inside_any = inside_any || inside;
+    }
+    if (inside_any) continue;
+    for (int a = 0; a < per; ++a) {
+      Index& n = renumber[mesh.cell(e)[a]];
+      if (n < 0) {
+        n = static_cast<Index>(nodes.size());
+        nodes.push_back(mesh.nodes[mesh.cell(e)[a]]);
+      }
+      kept_cells.push_back(n);
+    }
+  }
+  mesh.nodes = std::move(nodes);
+  mesh.cells = std::move(kept_cells);
+  mesh.boundaries.clear();
+  add_box_sides(mesh, min, max);
+  // The facets on no side of the original domain were opened by the removal.
+  std::vector<std::vector<Index>> named;
+  const int facet = element_node_count(facet_type(mesh.element));
+  for (const FemBoundary& b : mesh.boundaries)
+    for (size_t f = 0; f < b.facets.size(); f += facet) {
+      std::vector<Index> key(b.facets.begin() + f, b.facets.begin() + f + facet);
+      std::sort(key.begin(), key.end());
+      named.push_back(key);
+    }
+  std::sort(named.begin(), named.end());
+  FemBoundary cut{"cut", {}};
+  const std::vector<Index> exterior = exterior_facets(mesh);
+  for (size_t f = 0; f < exterior.size(); f += facet) {
+    std::vector<Index> key(exterior.begin() + f, exterior.begin() + f + facet);
+    std::sort(key.begin(), key.end());
+    if (!std::binary_search(named.begin(), named.end(), key))
+      cut.facets.insert(cut.facets.end(), exterior.begin() + f, exterior.begin() + f + facet);
+  }
+  mesh.boundaries.push_back(std::move(cut));
+}
+
 void orient_and_validate_cells(FemMesh& mesh, const std::string& source) {
   Index negative = 0, degenerate = 0;
   Vec3 lo = Vec3::Constant(1e300), hi = Vec3::Constant(-1e300);

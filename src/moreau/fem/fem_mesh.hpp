@@ -2,6 +2,7 @@
 // The mesh of the FEM engine: nodes, cells of one element type, and named boundaries (sets of
 // facets) and regions (sets of cells) that scenes refer to by name. 2D meshes lie in the xy plane
 // (z = 0) and carry two degrees of freedom per node.
+#include <array>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,12 @@ FemMesh make_rectangle_mesh(const Vec2& min, const Vec2& max, const std::array<i
 /// Boundaries "left"/"right" (x), "bottom"/"top" (y), "back"/"front" (z = min / max).
 /// Node (i, j, k) is (i (cells[1] + 1) + j)(cells[2] + 1) + k.
 FemMesh make_box_mesh(const Vec3& min, const Vec3& max, const std::array<int, 3>& cells, ElementType element);
+
+/// Removes the cells whose centre lies inside any of `boxes` (min, max corners; in 2D z is
+/// ignored) from a mesh generated on the rectangle or box [min, max]: an L, a frame, a plate with
+/// a slot. Nodes no cell uses are dropped. Boundaries are rebuilt: the generator's sides keep
+/// their names for the facets that remain on them, and the newly exposed facets form "cut".
+void remove_cells(FemMesh& mesh, const std::vector<std::array<Vec3, 2>>& boxes, const Vec3& min, const Vec3& max);
 
 /// A FEM mesh from a Gmsh MSH 4.1 file (fem/gmsh_mesh.cpp): the cells are the elements of the
 /// highest dimension (tri3 or quad4: a 2D mesh in the xy plane; tet4 or hex8: 3D), one type per

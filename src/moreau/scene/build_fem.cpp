@@ -22,6 +22,18 @@ Vec3 read_point(const JsonObject& j, const std::string& key, int dim) {
   return Vec3(p.x(), p.y(), 0);
 }
 
+// "remove": [{"min": [...], "max": [...]}, ...]: cells whose centre lies in a box are dropped.
+void remove_boxes(const JsonObject& mesh, FemMesh& result, const Vec3& lo, const Vec3& hi) {
+  if (!mesh.has("remove")) return;
+  std::vector<std::array<Vec3, 2>> boxes;
+  for (const JsonObject& box : mesh.object_list("remove")) {
+    boxes.push_back({read_point(box, "min", result.dim), read_point(box, "max", result.dim)});
+    box.finish();
+  }
+  remove_cells(result, boxes, lo, hi);
+  if (result.cell_count() == 0) mesh.fail("remove", "removes every cell of the mesh");
+}
+
 FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where) {
   const std::string type = mesh.choice("type", {"box", "rectangle", "msh"});
   FemMesh result;
@@ -36,12 +48,14 @@ FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where) {
     const auto cells = mesh.integers("cells", 3, 1);
     const ElementType element = mesh.choice("element", "hex8", {"hex8", "tet4"}) == "hex8" ? ElementType::hex8 : ElementType::tet4;
     result = make_box_mesh(lo, hi, {cells[0], cells[1], cells[2]}, element);
+    remove_boxes(mesh, result, lo, hi);
   } else {
     const Vec2 lo = mesh.vec2("min", Range::any()), hi = mesh.vec2("max", Range::any());
     if (!((hi - lo).array() > 0).all()) mesh.fail("max", "every component of max must exceed min");
     const auto cells = mesh.integers("cells", 2, 1);
     const ElementType element = mesh.choice("element", "quad4", {"quad4", "tri3"}) == "quad4" ? ElementType::quad4 : ElementType::tri3;
     result = make_rectangle_mesh(lo, hi, {cells[0], cells[1]}, element);
+    remove_boxes(mesh, result, Vec3(lo.x(), lo.y(), 0), Vec3(hi.x(), hi.y(), 0));
   }
   mesh.finish();
   orient_and_validate_cells(result, where);
