@@ -10,7 +10,7 @@ namespace moreau {
 
 namespace {
 
-using Vec12 = Eigen::Matrix<Real, 12, 1>;
+using Vec12 = DirectorVector;
 
 // The director pairs of the six constraints: (i, i) for |d_i|^2/2 and (i, j) for d_i . d_j.
 constexpr int kPairs[6][2] = {{0, 0}, {1, 1}, {2, 2}, {0, 1}, {0, 2}, {1, 2}};
@@ -21,16 +21,20 @@ Vec12 pack(const Vec3& phi, const std::array<Vec3, 3>& d) {
   return q;
 }
 
-Vec12 mass_diagonal(const DirectorBody& b) {
+Vec3 director(const Vec12& q, int i) { return q.segment<3>(3 + 3 * i); }
+
+}  // namespace
+
+DirectorVector director_configuration(const DirectorState& s) { return pack(s.phi, s.d); }
+DirectorVector director_velocities(const DirectorState& s) { return pack(s.v_phi, s.v_d); }
+
+DirectorVector director_mass(const DirectorBody& b) {
   Vec12 m;
   m << Vec3::Constant(b.mass), Vec3::Constant(b.euler[0]), Vec3::Constant(b.euler[1]), Vec3::Constant(b.euler[2]);
   return m;
 }
 
-Vec3 director(const Vec12& q, int i) { return q.segment<3>(3 + 3 * i); }
-
-// g(q) and its Jacobian G(q) (6 x 12).
-Eigen::Matrix<Real, 6, 1> constraints(const Vec12& q) {
+Eigen::Matrix<Real, 6, 1> director_constraints(const DirectorVector& q) {
   Eigen::Matrix<Real, 6, 1> g;
   for (int k = 0; k < 6; ++k) {
     const int i = kPairs[k][0], j = kPairs[k][1];
@@ -39,7 +43,7 @@ Eigen::Matrix<Real, 6, 1> constraints(const Vec12& q) {
   return g;
 }
 
-Eigen::Matrix<Real, 6, 12> constraint_jacobian(const Vec12& q) {
+Eigen::Matrix<Real, 6, 12> director_constraint_jacobian(const DirectorVector& q) {
   Eigen::Matrix<Real, 6, 12> G = Eigen::Matrix<Real, 6, 12>::Zero();
   for (int k = 0; k < 6; ++k) {
     const int i = kPairs[k][0], j = kPairs[k][1];
@@ -53,11 +57,20 @@ Eigen::Matrix<Real, 6, 12> constraint_jacobian(const Vec12& q) {
   return G;
 }
 
+void add_director_constraint_hessian(const Eigen::Matrix<Real, 6, 1>& lambda, Real scale, Eigen::Ref<Eigen::Matrix<Real, 12, 12>> A) {
+  for (int k = 0; k < 6; ++k) {
+    const int i = kPairs[k][0], j = kPairs[k][1];
+    const Real c = scale * lambda[k];
+    A.block<3, 3>(3 + 3 * i, 3 + 3 * j).diagonal().array() += c;
+    if (i != j) A.block<3, 3>(3 + 3 * j, 3 + 3 * i).diagonal().array() += c;
+  }
+}
+
 // Generalised external force at the midpoint: the force on phi and director forces
 // f_i = t x d_i / 2 with the moment sum_i d_i x f_i = S t, S = (1/2) sum_i (|d_i|^2 I - d_i d_i^T).
 // The midpoint directors are not orthonormal (S = I only up to O((w h)^2)), so t = S^-1 tau makes
 // the moment exactly tau: the angular momentum then grows by exactly h tau per step.
-Vec12 external_force(const Vec12& q_mid, const Vec3& force, const Vec3& torque) {
+DirectorVector director_external_force(const DirectorVector& q_mid, const Vec3& force, const Vec3& torque) {
   Mat3 S = Mat3::Zero();
   for (int i = 0; i < 3; ++i)
     S += 0.5 * (director(q_mid, i).squaredNorm() * Mat3::Identity() - director(q_mid, i) * director(q_mid, i).transpose());
@@ -67,7 +80,8 @@ Vec12 external_force(const Vec12& q_mid, const Vec3& force, const Vec3& torque) 
   return f;
 }
 
-void finish_step(const Vec12& q0, const Vec12& v0, const Vec12& q1, Real h, DirectorState& s) {
+void set_director_step(const DirectorVector& q0, const DirectorVector& v0, const DirectorVector& q1, Real h,
+                       DirectorState& s) {
   const Vec12 v1 = (2 / h) * (q1 - q0) - v0;
   s.phi = q1.head<3>();
   s.v_phi = v1.head<3>();
@@ -77,7 +91,7 @@ void finish_step(const Vec12& q0, const Vec12& v0, const Vec12& q1, Real h, Dire
   }
 }
 
-Vec12 velocities(const DirectorState& s) { return pack(s.v_phi, s.v_d); }
+namespace {
 
 // Rodrigues: exp(theta^) = I + sin|t|/|t| t^ + (1 - cos|t|)/|t|^2 t^ t^.
 Mat3 rotation(const Vec3& theta) {
@@ -139,8 +153,8 @@ DirectorState director_state_at_rest_pose(const DirectorBody& body, const Vec3& 
 NewtonResult step_director_body(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
                                 DirectorState& state, const NewtonSettings& settings) {
   NewtonResult result;
-  const Vec12 M = mass_diagonal(body);
-  const Vec12 q0 = pack(state.phi, state.d), v0 = velocities(state);
+  const Vec12 M = director_mass(body);
+  const Vec12 q0 = pack(state.phi, state.d), v0 = director_velocities(state);
   Vec12 q1 = q0 + h * v0;
   Eigen::Matrix<Real, 6, 1> lambda = Eigen::Matrix<Real, 6, 1>::Zero();
   const Real scale = std::max({(M.asDiagonal() * (2 * v0)).norm(), h * force.norm(), h * torque.norm(), Real(1e-300)});
@@ -148,11 +162,11 @@ NewtonResult step_director_body(const DirectorBody& body, Real h, const Vec3& fo
   using Vec18 = Eigen::Matrix<Real, 18, 1>;
   for (;;) {
     const Vec12 qm = 0.5 * (q0 + q1);
-    const Eigen::Matrix<Real, 6, 12> Gm = constraint_jacobian(qm);
+    const Eigen::Matrix<Real, 6, 12> Gm = director_constraint_jacobian(qm);
     Vec18 R;
     R.head<12>() = M.asDiagonal() * ((2 / h) * (q1 - q0) - 2 * v0) + h * Gm.transpose() * lambda -
-                   h * external_force(qm, force, torque);
-    R.tail<6>() = constraints(q1);
+                   h * director_external_force(qm, force, torque);
+    R.tail<6>() = director_constraints(q1);
     const Real momentum_norm = R.head<12>().norm(), constraint_norm = R.tail<6>().norm();
     result.residual_norms.push_back(momentum_norm / scale + constraint_norm);
     if (momentum_norm <= settings.tolerance * scale && constraint_norm <= settings.tolerance) break;
@@ -166,15 +180,10 @@ NewtonResult step_director_body(const DirectorBody& body, Real h, const Vec3& fo
     // is h G(q_m)^T; the constraint rows' derivative is G(q1).
     Mat18 A = Mat18::Zero();
     A.topLeftCorner<12, 12>().diagonal() = (2 / h) * M;
-    for (int k = 0; k < 6; ++k) {
-      const int i = kPairs[k][0], j = kPairs[k][1];
-      const Real c = 0.5 * h * lambda[k];
-      A.block<3, 3>(3 + 3 * i, 3 + 3 * j).diagonal().array() += c;
-      if (i != j) A.block<3, 3>(3 + 3 * j, 3 + 3 * i).diagonal().array() += c;
-    }
+    add_director_constraint_hessian(lambda, 0.5 * h, A.topLeftCorner<12, 12>());
     for (int i = 0; i < 3; ++i) A.block<3, 3>(3 + 3 * i, 3 + 3 * i) -= 0.25 * h * cross_matrix(torque);
     A.topRightCorner<12, 6>() = h * Gm.transpose();
-    A.bottomLeftCorner<6, 12>() = constraint_jacobian(q1);
+    A.bottomLeftCorner<6, 12>() = director_constraint_jacobian(q1);
     const Vec18 dx = A.partialPivLu().solve(-R);
     ++result.iterations;
     q1 += dx.head<12>();
@@ -182,15 +191,15 @@ NewtonResult step_director_body(const DirectorBody& body, Real h, const Vec3& fo
     if (dx.head<12>().norm() <= 1e-3 * settings.tolerance * (q1 - q0).norm() && constraint_norm <= settings.tolerance) break;
   }
   result.converged = true;
-  finish_step(q0, v0, q1, h, state);
+  set_director_step(q0, v0, q1, h, state);
   return result;
 }
 
 NewtonResult step_director_body_reduced(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
                                         DirectorState& state, const NewtonSettings& settings) {
   NewtonResult result;
-  const Vec12 M = mass_diagonal(body);
-  const Vec12 q0 = pack(state.phi, state.d), v0 = velocities(state);
+  const Vec12 M = director_mass(body);
+  const Vec12 q0 = pack(state.phi, state.d), v0 = director_velocities(state);
   // q1(u): phi + u_phi, exp(theta^) d_i; exact on the constraint manifold.
   auto configuration = [&](const Eigen::Matrix<Real, 6, 1>& u) {
     const Mat3 R = rotation(u.tail<3>());
@@ -199,7 +208,7 @@ NewtonResult step_director_body_reduced(const DirectorBody& body, Real h, const 
   // P(q_m)^T times the momentum balance: the force balance and sum_i d_i,m x r_i.
   auto reduced_residual = [&](const Eigen::Matrix<Real, 6, 1>& u) {
     const Vec12 q1 = configuration(u), qm = 0.5 * (q0 + q1);
-    const Vec12 r = M.asDiagonal() * ((2 / h) * (q1 - q0) - 2 * v0) - h * external_force(qm, force, torque);
+    const Vec12 r = M.asDiagonal() * ((2 / h) * (q1 - q0) - 2 * v0) - h * director_external_force(qm, force, torque);
     Eigen::Matrix<Real, 6, 1> out;
     out.head<3>() = r.head<3>();
     out.tail<3>() = Vec3::Zero();
@@ -234,7 +243,7 @@ NewtonResult step_director_body_reduced(const DirectorBody& body, Real h, const 
     if (du.norm() <= 1e-3 * settings.tolerance * u.norm()) break;
   }
   result.converged = true;
-  finish_step(q0, v0, configuration(u), h, state);
+  set_director_step(q0, v0, configuration(u), h, state);
   return result;
 }
 
@@ -256,6 +265,6 @@ Vec3 angular_velocity(const DirectorState& s) {
   return w;
 }
 
-Real director_constraint_error(const DirectorState& s) { return constraints(pack(s.phi, s.d)).cwiseAbs().maxCoeff(); }
+Real director_constraint_error(const DirectorState& s) { return director_constraints(pack(s.phi, s.d)).cwiseAbs().maxCoeff(); }
 
 }  // namespace moreau

@@ -62,6 +62,23 @@ NewtonResult step_director_body(const DirectorBody& body, Real h, const Vec3& fo
 NewtonResult step_director_body_reduced(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
                                         DirectorState& state, const NewtonSettings& settings = {});
 
+// Building blocks shared with the coupled step (coupled_step.cpp): q and v packed as 12-vectors
+// (phi, d1, d2, d3), the diagonal of M, the internal constraints g(q), their Jacobian G(q) and
+// lambda . Hess g (constant: I on the director blocks of each pair), and the generalised force.
+using DirectorVector = Eigen::Matrix<Real, 12, 1>;
+DirectorVector director_configuration(const DirectorState& state);
+DirectorVector director_velocities(const DirectorState& state);
+DirectorVector director_mass(const DirectorBody& body);
+Eigen::Matrix<Real, 6, 1> director_constraints(const DirectorVector& q);
+Eigen::Matrix<Real, 6, 12> director_constraint_jacobian(const DirectorVector& q);
+/// A += scale * sum_k lambda_k Hess(g_k).
+void add_director_constraint_hessian(const Eigen::Matrix<Real, 6, 1>& lambda, Real scale,
+                                     Eigen::Ref<Eigen::Matrix<Real, 12, 12>> A);
+DirectorVector director_external_force(const DirectorVector& q_mid, const Vec3& force, const Vec3& torque);
+/// The state after a step from (q0, v0) to q1: v1 = 2 (q1 - q0)/h - v0.
+void set_director_step(const DirectorVector& q0, const DirectorVector& v0, const DirectorVector& q1, Real h,
+                       DirectorState& state);
+
 Real kinetic_energy(const DirectorBody& body, const DirectorState& state);
 /// L = phi x m v_phi + sum_i d_i x E_i v_d_i (about the origin).
 Vec3 angular_momentum(const DirectorBody& body, const DirectorState& state);

@@ -18,8 +18,6 @@ FemDynamicState initial_dynamic_state(const FemModel& model) {
   return s;
 }
 
-namespace {
-
 // Predictor of a step. A solid without prescribed dofs moves its nodes by the rigid motion that
 // fits its velocities (the centre's velocity and w = I^-1 L about the centre, with the row sums
 // of the consistent mass as node masses), rotating them by exp(h w). Moving along straight lines
@@ -28,7 +26,7 @@ namespace {
 // part stretches it by O(h^2 w^2); a stiff body answers either with stresses so large that
 // Newton's linearised rotations cannot recover. The elastic part of the motion is left to Newton.
 // Held solids use u0 + h v0.
-VectorX step_predictor(const FemModel& model, const VectorX& u0, const VectorX& v0, Real h) {
+VectorX dynamic_step_predictor(const FemModel& model, const VectorX& u0, const VectorX& v0, Real h) {
   VectorX u1 = u0 + h * v0;
   if (model.dim != 3) return u1;
   const VectorX lumped = mass_times(model, VectorX::Ones(model.dof_count()));
@@ -67,15 +65,13 @@ VectorX step_predictor(const FemModel& model, const VectorX& u0, const VectorX& 
   return u1;
 }
 
-}  // namespace
-
 NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepRule rule, Real h,
                           FemDynamicState& state, SparseSymmetricSolver& solver, const NewtonSettings& settings) {
   NewtonResult result;
   const VectorX& u0 = state.u;
   const VectorX& v0 = state.v;
   const VectorX f_ext = external_forces(model, state.time + 0.5 * h);
-  VectorX u1 = step_predictor(model, u0, v0, h);
+  VectorX u1 = dynamic_step_predictor(model, u0, v0, h);
   apply_prescribed(model, state.time + h, u1);
   VectorX f;
   SparseMatrix K;

@@ -27,6 +27,10 @@ struct FemDynamicState {
 /// at t = 0).
 FemDynamicState initial_dynamic_state(const FemModel& model);
 
+/// The starting guess of a step's u_n+1 (free solids: their fitted rigid motion, rotated by
+/// exp(h w); held solids: u_n + h v_n). Prescribed dofs are the caller's.
+VectorX dynamic_step_predictor(const FemModel& model, const VectorX& u0, const VectorX& v0, Real h);
+
 /// Advances `state` by h. `mass` is assemble_mass_matrix(model). On failure the state is unchanged.
 NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepRule rule, Real h,
                           FemDynamicState& state, SparseSymmetricSolver& solver, const NewtonSettings& settings = {});

@@ -5,6 +5,7 @@
 
 #include "moreau/fem/director_body.hpp"
 #include "moreau/fem/dynamic_solver.hpp"
+#include "moreau/fem/fem_joints.hpp"
 #include "moreau/fem/fem_model.hpp"
 #include "moreau/fem/static_solver.hpp"
 
@@ -43,6 +44,7 @@ struct FemProblem {
   NewtonSettings newton;
   VectorX initial_velocity;  // per dof
   std::vector<FemRigidBody> rigid_bodies;
+  std::vector<FemJoint> joints;
   Vec3 gravity = Vec3::Zero();  // m/s^2, acts on the rigid bodies (on the solids it is a load)
   std::vector<FemProbe> probes;
 };
