@@ -7,6 +7,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "moreau/fem/coupled_step.hpp"
 #include "moreau/fem/fem_assembly.hpp"
 #include "moreau/fem/fem_output.hpp"
 #include "moreau/io/frame_writer.hpp"
@@ -40,6 +41,7 @@ std::string fem_summary(const Scene& scene) {
   for (const FemRigidBody& b : p.rigid_bodies)
     s += fmt::format("  rigid body {:<11} {} nodes, mass {:.6g} kg, Euler tensor ({:.4g}, {:.4g}, {:.4g}) kg m^2 (director frame)\n",
                      b.name, b.mesh.node_count(), b.body.mass, b.body.euler[0], b.body.euler[1], b.body.euler[2]);
+  for (const FemJoint& j : p.joints) s += fmt::format("  joint {:<16} {} constraint rows\n", j.name, j.row_count());
   s += fmt::format("  dofs {} ({} free, {} prescribed), loads {}, tangent nonzeros {}\n", m.dof_count(), m.free_count,
                    m.dof_count() - m.free_count, m.loads.size(), m.pattern.nonZeros());
   s += fmt::format("  probes: {}\n", p.probes.size());
@@ -96,6 +98,7 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
 
   const SparseMatrix mass = problem.integrator == FemIntegrator::static_load_steps ? SparseMatrix() : assemble_mass_matrix(model);
   SparseSymmetricSolver solver;
+  CoupledSolver coupled;
   const long steps = std::max<long>(1, std::lround(duration / dt));
   ProgressBar progress(options.progress, duration);
   sample();
@@ -112,7 +115,10 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
       }
     } else {
       const StepRule rule = problem.integrator == FemIntegrator::midpoint ? StepRule::midpoint : StepRule::energy_momentum;
-      if (model.dof_count() > 0) {
+      if (!problem.joints.empty()) {
+        // Joints couple solids and bodies: one Newton system for everything.
+        r = step_coupled(problem, mass, rule, dt, run, coupled, problem.newton);
+      } else if (model.dof_count() > 0) {
         r = step_dynamic(model, mass, rule, dt, state, solver, problem.newton);
       } else {
         r.converged = true;
@@ -120,7 +126,7 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
       }
       // Rigid bodies: the constrained midpoint step (energy and angular momentum conserving for
       // either integrator), under gravity.
-      for (size_t b = 0; b < run.bodies.size() && r.converged; ++b) {
+      for (size_t b = 0; b < run.bodies.size() && r.converged && problem.joints.empty(); ++b) {
         const DirectorBody& body = problem.rigid_bodies[b].body;
         const NewtonResult rb = step_director_body(body, dt, body.mass * problem.gravity, Vec3::Zero(), run.bodies[b], problem.newton);
         if (!rb.converged) {
@@ -163,14 +169,14 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   j["wall_time_s"] = wall;
   Index cells = 0;
   for (const FemSolid& s : model.solids) cells += s.mesh.cell_count();
-  j["counts"] = {{"solids", model.solids.size()}, {"rigid_bodies", problem.rigid_bodies.size()}, {"nodes", model.node_count}, {"cells", cells},
+  j["counts"] = {{"solids", model.solids.size()}, {"rigid_bodies", problem.rigid_bodies.size()}, {"joints", problem.joints.size()}, {"nodes", model.node_count}, {"cells", cells},
                  {"dofs", model.dof_count()},     {"free_dofs", model.free_count}};
   j["newton"] = {{"iterations", total_iterations},
                  {"max_iterations_per_step", max_iterations},
                  {"tolerance", problem.newton.tolerance},
                  {"assembly_s", assembly_s},
                  {"solve_s", solve_s},
-                 {"last_linear_solver", solver.method()}};
+                 {"last_linear_solver", problem.joints.empty() ? solver.method() : std::string("umfpack (coupled)")}};
   if (status == "completed")
   {
     Real kinetic = kinetic_energy(model, state.v);

@@ -2,6 +2,9 @@
 
 #include <algorithm>
 
+#include "moreau/fem/coupled_step.hpp"
+#include "moreau/fem/fem_assembly.hpp"
+
 namespace moreau {
 
 std::vector<std::string> fem_probe_columns(const FemProbe& p, int dim) {
@@ -47,9 +50,23 @@ void evaluate_fem_probe(const FemProbe& p, const FemProblem& problem, const FemR
       break;
     }
     case FemProbeType::energy: {
-      Real kinetic = kinetic_energy(model, state.v);
-      for (size_t b = 0; b < run.bodies.size(); ++b) kinetic += kinetic_energy(problem.rigid_bodies[b].body, run.bodies[b]);
-      values.push_back(p.quantity == "kinetic" ? kinetic : p.quantity == "strain" ? state.energy : kinetic + state.energy);
+      Real kinetic = kinetic_energy(model, state.v), potential = 0;
+      // Gravity's potential -sum m_a g . x_a, with the solids' node masses the consistent mass's
+      // row sums (the integrals of rho N_a).
+      if (model.dof_count() > 0 && problem.gravity.squaredNorm() > 0) {
+        const VectorX node_mass = mass_times(model, VectorX::Ones(model.dof_count()));
+        for (Index n = 0; n < model.node_count; ++n)
+          for (int k = 0; k < dim; ++k)
+            potential -= node_mass[model.dof(n, k)] * problem.gravity[k] * (model.reference_position(n)[k] + state.u[model.dof(n, k)]);
+      }
+      for (size_t b = 0; b < run.bodies.size(); ++b) {
+        kinetic += kinetic_energy(problem.rigid_bodies[b].body, run.bodies[b]);
+        potential -= problem.rigid_bodies[b].body.mass * problem.gravity.dot(run.bodies[b].phi);
+      }
+      values.push_back(p.quantity == "kinetic"     ? kinetic
+                       : p.quantity == "strain"    ? state.energy
+                       : p.quantity == "potential" ? potential
+                                                   : kinetic + state.energy + potential);
       break;
     }
     case FemProbeType::momentum: {
@@ -77,6 +94,7 @@ void evaluate_fem_probe(const FemProbe& p, const FemProblem& problem, const FemR
     case FemProbeType::constraint_error: {
       Real worst = 0;
       for (const DirectorState& b : run.bodies) worst = std::max(worst, director_constraint_error(b));
+      for (const FemJoint& j : problem.joints) worst = std::max(worst, joint_violation(problem, run, j));
       values.push_back(worst);
       break;
     }

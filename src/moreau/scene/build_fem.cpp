@@ -187,6 +187,110 @@ void read_dirichlet(const JsonObject& solid_json, FemModel& model, Index solid) 
   }
 }
 
+// One end of a joint: "world", a rigid body or a solid, by name.
+struct EndRef {
+  FemJointEndKind kind = FemJointEndKind::world;
+  Index index = -1;  // body, or solid
+};
+
+EndRef read_end(const JsonObject& j, const std::string& name, const FemProblem& problem) {
+  if (name == "world") return {};
+  for (size_t b = 0; b < problem.rigid_bodies.size(); ++b)
+    if (problem.rigid_bodies[b].name == name) return {FemJointEndKind::body, static_cast<Index>(b)};
+  for (size_t s = 0; s < problem.model.solids.size(); ++s)
+    if (problem.model.solids[s].name == name) return {FemJointEndKind::node, static_cast<Index>(s)};
+  j.fail("bodies", fmt::format("'{}' is not \"world\", a rigid body or a solid of this scene", name));
+}
+
+// The end's point at a world position (bodies: coordinates along the reference directors).
+FemJointEnd point_end(const EndRef& e, const FemProblem& problem, const Vec3& at, Index node = -1) {
+  switch (e.kind) {
+    case FemJointEndKind::world: return {FemJointEndKind::world, -1, at};
+    case FemJointEndKind::body: {
+      const DirectorBody& b = problem.rigid_bodies[e.index].body;
+      return {FemJointEndKind::body, e.index, b.axes.transpose() * (at - b.centre)};
+    }
+    case FemJointEndKind::node: return {FemJointEndKind::node, node, Vec3::Zero()};
+  }
+  return {};
+}
+
+// A direction fixed in an end: coordinates along a body's reference directors, or a world vector.
+Vec3 end_direction(const EndRef& e, const FemProblem& problem, const Vec3& direction) {
+  if (e.kind == FemJointEndKind::body) return problem.rigid_bodies[e.index].body.axes.transpose() * direction;
+  return direction;
+}
+
+FemJoint read_fem_joint(const JsonObject& j, const FemProblem& problem) {
+  FemJoint joint;
+  joint.name = j.string("name");
+  const std::string type = j.choice("type", {"spherical", "revolute"});
+  const auto& bodies = j.raw("bodies");
+  if (!bodies.is_array() || bodies.size() != 2 || !bodies[0].is_string() || !bodies[1].is_string())
+    j.fail("bodies", "expected two names: [\"a\", \"b\"] (\"world\", a rigid body or a solid)");
+  EndRef ends[2] = {read_end(j, bodies[0].get<std::string>(), problem), read_end(j, bodies[1].get<std::string>(), problem)};
+  if (ends[0].kind == FemJointEndKind::world && ends[1].kind == FemJointEndKind::world)
+    j.fail("bodies", "a joint needs an end that is not the world");
+  if (ends[0].kind == ends[1].kind && ends[0].index == ends[1].index) j.fail("bodies", "a joint cannot join an end to itself");
+  const Vec3 anchor = j.vec3("anchor");
+  // A solid end holds its node nearest to the anchor (spherical) or every node on the hinge axis
+  // (revolute).
+  auto nearest_node = [&](Index solid) {
+    const FemSolid& s = problem.model.solids[solid];
+    Index best = 0;
+    for (Index n = 1; n < s.mesh.node_count(); ++n)
+      if ((s.mesh.nodes[n] - anchor).norm() < (s.mesh.nodes[best] - anchor).norm()) best = n;
+    return s.node_begin + best;
+  };
+  if (type == "spherical") {
+    Index node[2] = {-1, -1};
+    for (int k = 0; k < 2; ++k)
+      if (ends[k].kind == FemJointEndKind::node) node[k] = nearest_node(ends[k].index);
+    const Vec3 at = node[0] >= 0 ? problem.model.reference_position(node[0])
+                                 : node[1] >= 0 ? problem.model.reference_position(node[1]) : anchor;
+    joint.rows.push_back({FemJointRows::Kind::coincide, point_end(ends[0], problem, at, node[0]),
+                          point_end(ends[1], problem, at, node[1])});
+    j.finish();
+    return joint;
+  }
+  const Vec3 axis_in = j.vec3("axis");
+  if (axis_in.norm() <= 0) j.fail("axis", "the hinge axis must not be zero");
+  const Vec3 axis = axis_in.normalized();
+  if (ends[0].kind == FemJointEndKind::node && ends[1].kind == FemJointEndKind::node)
+    j.fail("bodies", "a revolute joint joins a rigid body (or the world) to another body, the world or a solid");
+  if (ends[0].kind == FemJointEndKind::node) std::swap(ends[0], ends[1]);
+  if (ends[1].kind == FemJointEndKind::node) {
+    // Every node of the solid on the axis line through the anchor is held to end a's point there.
+    const FemSolid& s = problem.model.solids[ends[1].index];
+    Real size = 0;
+    for (const Vec3& x : s.mesh.nodes) size = std::max(size, (x - s.mesh.nodes[0]).norm());
+    for (Index n = 0; n < s.mesh.node_count(); ++n) {
+      const Vec3 r = s.mesh.nodes[n] - anchor;
+      if ((r - r.dot(axis) * axis).norm() > 1e-9 * size) continue;
+      joint.rows.push_back({FemJointRows::Kind::coincide, point_end(ends[0], problem, s.mesh.nodes[n]),
+                            point_end(ends[1], problem, s.mesh.nodes[n], s.node_begin + n)});
+    }
+    if (joint.rows.size() < 2)
+      j.fail("anchor", fmt::format("solid '{}' has {} node(s) on the hinge axis through the anchor; a revolute joint to a "
+                                   "solid needs at least two (place the axis along a mesh edge)",
+                                   s.name, joint.rows.size()));
+    j.finish();
+    return joint;
+  }
+  // Between bodies or a body and the world: the anchor, and the axis of end a normal to two
+  // directions of end b that are normal to the axis.
+  joint.rows.push_back({FemJointRows::Kind::coincide, point_end(ends[0], problem, anchor), point_end(ends[1], problem, anchor)});
+  const Vec3 e1 = (std::abs(axis.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY()).cross(axis).normalized(), e2 = axis.cross(e1);
+  for (const Vec3& e : {e1, e2}) {
+    FemJointRows row{FemJointRows::Kind::perpendicular, point_end(ends[0], problem, anchor), point_end(ends[1], problem, anchor)};
+    row.direction_a = end_direction(ends[0], problem, axis);
+    row.direction_b = end_direction(ends[1], problem, e);
+    joint.rows.push_back(row);
+  }
+  j.finish();
+  return joint;
+}
+
 FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
   FemProbe p;
   p.name = j.string("name");
@@ -210,7 +314,7 @@ FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
     p.type = q == "displacement" ? FemProbeType::displacement : q == "position" ? FemProbeType::position : FemProbeType::velocity;
   } else if (type == "energy") {
     p.type = FemProbeType::energy;
-    p.quantity = j.choice("quantity", "total", {"kinetic", "strain", "total"});
+    p.quantity = j.choice("quantity", "total", {"kinetic", "strain", "potential", "total"});
     j.allow("object");
   } else if (type == "momentum") {
     p.type = FemProbeType::momentum;
@@ -249,8 +353,8 @@ void read_fem_settings(const JsonObject& settings, FemProblem& problem) {
 void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gravity, int threads) {
   FemModel& model = problem.model;
   model.threads = threads;
-  for (const char* key : {"objects", "joints"})
-    if (top.has(key)) top.fail(key, "a \"solver\": \"fem\" scene has \"solids\" (and \"probes\"), not objects or joints");
+  if (top.has("objects"))
+    top.fail("objects", "a \"solver\": \"fem\" scene has \"solids\", \"rigid_bodies\", \"joints\" and \"probes\", not objects");
   const auto solids = top.object_list("solids");
   const auto bodies = top.object_list("rigid_bodies");
   if (solids.empty() && bodies.empty())
@@ -308,6 +412,9 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
   for (size_t i = 0; i < model.solids.size(); ++i)
     for (Index n = 0; n < model.solids[i].mesh.node_count(); ++n)
       for (int k = 0; k < model.dim; ++k) problem.initial_velocity[model.dof(model.solids[i].node_begin + n, k)] = velocities[i][k];
+  for (const JsonObject& joint : top.object_list("joints")) problem.joints.push_back(read_fem_joint(joint, problem));
+  if (!problem.joints.empty() && problem.integrator == FemIntegrator::static_load_steps)
+    top.fail("joints", "joints need a dynamic integrator (\"midpoint\" or \"energy_momentum\")");
   for (const JsonObject& probe : top.object_list("probes")) problem.probes.push_back(read_fem_probe(probe, problem));
 }
 
