@@ -127,7 +127,8 @@ TEST(FemJoints, TwoBodiesOnARevoluteJointKeepEnergyMomentaAndTheAxis) {
   FemJoint j;
   j.name = "hinge";
   j.rows.push_back({FemJointRows::Kind::coincide, body_point(a, 0, Vec3::Zero()), body_point(b, 1, Vec3::Zero())});
-  for (const Vec3 e : {Vec3(Vec3::UnitX()), Vec3(Vec3::UnitY())}) {
+  const Vec3 normals[2] = {Vec3::UnitX(), Vec3::UnitY()};
+  for (const Vec3& e : normals) {
     FemJointRows row{FemJointRows::Kind::perpendicular, body_point(a, 0, Vec3::Zero()), body_point(b, 1, Vec3::Zero())};
     row.direction_a = a.body.axes.transpose() * Vec3::UnitZ();
     row.direction_b = b.body.axes.transpose() * e;
