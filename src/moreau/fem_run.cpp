@@ -124,11 +124,13 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
         r.converged = true;
         state.time += dt;
       }
-      // Rigid bodies: the constrained midpoint step (energy and angular momentum conserving for
-      // either integrator), under gravity.
+      // Free rigid bodies: the constrained midpoint step (energy and angular momentum conserving
+      // for either integrator) under gravity, by the discrete null-space form (six unknowns per
+      // body; tested against the multiplier form, which the coupled step with joints uses).
       for (size_t b = 0; b < run.bodies.size() && r.converged && problem.joints.empty(); ++b) {
         const DirectorBody& body = problem.rigid_bodies[b].body;
-        const NewtonResult rb = step_director_body(body, dt, body.mass * problem.gravity, Vec3::Zero(), run.bodies[b], problem.newton);
+        const NewtonResult rb =
+            step_director_body_reduced(body, dt, body.mass * problem.gravity, Vec3::Zero(), run.bodies[b], problem.newton);
         if (!rb.converged) {
           r.converged = false;
           r.failure = fmt::format("rigid body '{}': {}", problem.rigid_bodies[b].name, rb.failure);
