@@ -64,4 +64,32 @@ inline void add_traction(FemModel& model, Index solid, const std::string& name, 
   model.loads.push_back(std::move(load));
 }
 
+/// The largest entry of J - dR/dx, the derivative taken by central differences of step h: how
+/// far a Jacobian is from the derivative of its residual.
+template <class Residual>
+Real jacobian_error(const Eigen::MatrixXd& J, const VectorX& x, Real h, Residual residual) {
+  Real worst = 0;
+  for (Index j = 0; j < x.size(); ++j) {
+    VectorX xp = x, xm = x;
+    xp[j] += h;
+    xm[j] -= h;
+    worst = std::max(worst, (J.col(j) - (residual(xp) - residual(xm)) / (2 * h)).cwiseAbs().maxCoeff());
+  }
+  return worst;
+}
+
+/// Solves a two-unknown residual(a, b) = 0 by Newton with a finite-difference Jacobian (the
+/// exact stretches of homogeneous deformations in tests).
+template <class Residual>
+Vec2 solve_two(Residual residual, Vec2 x) {
+  for (int it = 0; it < 50; ++it) {
+    const Real h = 1e-7;
+    Eigen::Matrix2d J;
+    J.col(0) = (residual(x.x() + h, x.y()) - residual(x.x() - h, x.y())) / (2 * h);
+    J.col(1) = (residual(x.x(), x.y() + h) - residual(x.x(), x.y() - h)) / (2 * h);
+    x -= J.partialPivLu().solve(residual(x.x(), x.y()));
+  }
+  return x;
+}
+
 }  // namespace moreau::test

@@ -2,6 +2,7 @@
 // Measurements of particle fluids shared by the fluid tests.
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "moreau/fluids/fluid_state.hpp"
@@ -30,6 +31,18 @@ Real median_column_top(const FluidState& f, Real half, Real r, Keep&& keep) {
 
 inline Real median_column_top(const FluidState& f, Real half, Real r) {
   return median_column_top(f, half, r, [](const Vec3&) { return true; });
+}
+
+/// The slab-flotation scene: 0.1 m of water (r = 6.25 mm, 2,888 particles) in a 0.24 m square
+/// tank, dt = 4 ms in 8 substeps, and `slab`, the JSON object of the floating body (named "slab").
+inline std::string slab_tank_scene(const std::string& slab) {
+  return R"({"name": "slab", "settings": {"dt": 0.004, "substeps": 8, "iterations": 1},
+    "objects": [
+      {"name": "tank", "kind": "collider", "inside": true,
+       "shape": {"type": "box", "center": [0, 0.2, 0], "half_extents": [0.12, 0.2, 0.12]}},
+      {"name": "water", "kind": "fluid", "particle_radius": 0.00625,
+       "block": {"min": [-0.12, 0, -0.12], "max": [0.12, 0.1, 0.12]}},
+      )" + slab + "]}";
 }
 
 /// The free surface of the slab-flotation tanks (0.24 m square, r = 6.25 mm) away from a floating

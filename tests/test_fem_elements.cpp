@@ -156,20 +156,14 @@ TEST(FemAssembly, TangentIsTheDerivativeOfTheInternalForces) {
       std::uniform_real_distribution<Real> dist(-0.03, 0.03);
       VectorX u(model.dof_count());
       for (Index i = 0; i < u.size(); ++i) u[i] = dist(rng);
-      VectorX f, fp, fm;
+      VectorX f, fp;
       SparseMatrix K;
       ASSERT_TRUE(assemble_internal_forces(model, u, f, &K).valid);
       const Eigen::MatrixXd Kd = Eigen::MatrixXd(K);
-      const Real h = 1e-7;
-      Real worst = 0;
-      for (Index j = 0; j < u.size(); ++j) {
-        VectorX up = u, um = u;
-        up[j] += h;
-        um[j] -= h;
-        assemble_internal_forces(model, up, fp, nullptr);
-        assemble_internal_forces(model, um, fm, nullptr);
-        worst = std::max(worst, (Kd.col(j) - (fp - fm) / (2 * h)).cwiseAbs().maxCoeff());
-      }
+      const Real worst = test::jacobian_error(Kd, u, 1e-7, [&](const VectorX& v) {
+        assemble_internal_forces(model, v, fp, nullptr);
+        return fp;
+      });
       EXPECT_LT(worst, 1e-6 * Kd.cwiseAbs().maxCoeff()) << element_name(type) << " " << static_cast<int>(law);
       EXPECT_LT((Kd - Kd.transpose()).cwiseAbs().maxCoeff(), 1e-9 * Kd.cwiseAbs().maxCoeff());
     }
@@ -190,20 +184,14 @@ TEST(FemAssembly, StepTangentsAreDerivativesOfTheStepForces) {
       std::uniform_real_distribution<Real> dist(-0.03, 0.03);
       VectorX u0(model.dof_count()), u1(model.dof_count());
       for (Index i = 0; i < u0.size(); ++i) u0[i] = dist(rng), u1[i] = dist(rng);
-      VectorX f, fp, fm;
+      VectorX f, fp;
       SparseMatrix K;
       ASSERT_TRUE(assemble_step_forces(model, u0, u1, rule, f, &K).valid);
       const Eigen::MatrixXd Kd = Eigen::MatrixXd(K);
-      const Real h = 1e-7;
-      Real worst = 0;
-      for (Index j = 0; j < u1.size(); ++j) {
-        VectorX up = u1, um = u1;
-        up[j] += h;
-        um[j] -= h;
-        assemble_step_forces(model, u0, up, rule, fp, nullptr);
-        assemble_step_forces(model, u0, um, rule, fm, nullptr);
-        worst = std::max(worst, (Kd.col(j) - (fp - fm) / (2 * h)).cwiseAbs().maxCoeff());
-      }
+      const Real worst = test::jacobian_error(Kd, u1, 1e-7, [&](const VectorX& v) {
+        assemble_step_forces(model, u0, v, rule, fp, nullptr);
+        return fp;
+      });
       EXPECT_LT(worst, 1e-6 * Kd.cwiseAbs().maxCoeff()) << element_name(type) << " rule " << static_cast<int>(rule);
     }
 }

@@ -44,7 +44,7 @@ TEST(FemJoints, CoupledStepOfAFreeBodyIsTheBodysStep) {
   p.gravity = Vec3(0, -9.81, 0);
   FemRunState run = start(p);
   DirectorState alone = p.rigid_bodies[0].initial;
-  CoupledSolver solver;
+  SparseLuSolver solver;
   for (int k = 0; k < 100; ++k) {
     const NewtonResult r = step_coupled(p, SparseMatrix(), StepRule::energy_momentum, 0.01, run, solver, {.tolerance = 1e-13});
     ASSERT_TRUE(r.converged) << r.failure;
@@ -79,7 +79,7 @@ TEST(FemJoints, CompoundPendulumOnASphericalJoint) {
   p.joints.push_back(j);
   p.gravity = Vec3(0, -9.81, 0);
   FemRunState run = start(p);
-  CoupledSolver solver;
+  SparseLuSolver solver;
   const Real m = b.body.mass, h = 0.005;
   auto energy = [&] { return kinetic_energy(b.body, run.bodies[0]) - m * p.gravity.dot(run.bodies[0].phi); };
   const Real E0 = energy();
@@ -136,7 +136,7 @@ TEST(FemJoints, TwoBodiesOnARevoluteJointKeepEnergyMomentaAndTheAxis) {
   }
   p.joints.push_back(j);
   FemRunState run = start(p);
-  CoupledSolver solver;
+  SparseLuSolver solver;
   auto energy = [&] { return kinetic_energy(a.body, run.bodies[0]) + kinetic_energy(b.body, run.bodies[1]); };
   auto momentum = [&] { return Vec3(angular_momentum(a.body, run.bodies[0]) + angular_momentum(b.body, run.bodies[1])); };
   const Real E0 = energy();
@@ -186,7 +186,7 @@ TEST(FemJoints, SoftBeamPinnedToAFreeBodyKeepsEnergyAndMomenta) {
   FemRunState run = start(p);
   // The box spins about its centre; the pinned beam node starts with the box's point velocity.
   run.solids.v.segment<3>(3 * node) = Vec3(0, 0, 3).cross(-box.body.centre);
-  CoupledSolver solver;
+  SparseLuSolver solver;
   auto totals = [&](Real& energy, Vec3& linear, Vec3& angular) {
     momenta(p.model, run.solids.u, run.solids.v, linear, angular);
     linear += box.body.mass * run.bodies[0].v_phi;

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "moreau/materials/hyperelastic.hpp"
+#include "fem_test_helpers.hpp"
 #include "test_helpers.hpp"
 
 namespace moreau {
@@ -37,6 +38,14 @@ std::vector<std::vector<Real>> read_probes(const std::string& dir) {
   return rows;
 }
 
+// Runs a scene through the command line into `out` and returns its probe rows (none, with the
+// failure recorded, if the run does not succeed).
+std::vector<std::vector<Real>> run_scene(const std::string& scene, const std::string& out, const std::string& extra = "") {
+  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet {}", scene, out, extra));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  return r.exit_code == 0 ? read_probes(out) : std::vector<std::vector<Real>>{};
+}
+
 TEST(FemScenes, StaticUniaxialTensionMatchesTheHomogeneousSolution) {
   // A 1 x 0.2 x 0.2 m Neo-Hookean block on rollers (u_x = 0 on the left, u_y = 0 on the bottom,
   // u_z = 0 at the back; the other components free) pulled by a reference traction P on its right
@@ -59,8 +68,7 @@ TEST(FemScenes, StaticUniaxialTensionMatchesTheHomogeneousSolution) {
                {{"name": "newton", "type": "newton_iterations"}}]}})",
                                                                    E, nu, P));
   const std::string out = fs::path(scene).parent_path() / "out";
-  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", scene, out));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = run_scene(scene, out);
   // The exact stretches by Newton on (P_11 - P, S_22).
   const LameParameters lame = lame_from_youngs(E, nu);
   auto residual = [&](Real l1, Real l2) {
@@ -69,16 +77,8 @@ TEST(FemScenes, StaticUniaxialTensionMatchesTheHomogeneousSolution) {
     const Real S22 = lame.mu * (1 - 1 / (l2 * l2)) + lame.lambda * lnJ / (l2 * l2);
     return Vec2(l1 * S11 - P, S22);
   };
-  Vec2 l(1.2, 0.95);
-  for (int it = 0; it < 50; ++it) {
-    const Real h = 1e-7;
-    Eigen::Matrix2d J;
-    J.col(0) = (residual(l.x() + h, l.y()) - residual(l.x() - h, l.y())) / (2 * h);
-    J.col(1) = (residual(l.x(), l.y() + h) - residual(l.x(), l.y() - h)) / (2 * h);
-    l -= J.partialPivLu().solve(residual(l.x(), l.y()));
-  }
+  const Vec2 l = test::solve_two(residual, Vec2(1.2, 0.95));
   ASSERT_LT(residual(l.x(), l.y()).norm(), 1e-6);
-  const auto rows = read_probes(out);
   ASSERT_EQ(rows.size(), 5u);  // t = 0 and four load steps
   EXPECT_NEAR(rows.back()[1], l.x() - 1, 1e-9);
   EXPECT_NEAR(rows.back()[2], 0.2 * (l.y() - 1), 1e-9);
@@ -153,24 +153,14 @@ $EndElements
                               {{"where": {{"box": {{"min": [-0.1, -0.1], "max": [0.1, 0.1]}}}}, "value": [null, 0]}}]}}],
     "probes": [{{"name": "corner", "type": "point", "object": "plate", "nearest": [2, 1]}}]}})",
                                       E, nu, P);
-  const std::string out = dir + "/out";
-  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", scene, out));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto rows = run_scene(scene, dir + "/out");
   const LameParameters lame = lame_from_youngs(E, nu);
   auto residual = [&](Real l1, Real l2) {
     const Real lnJ = std::log(l1 * l2);
     return Vec2(l1 * (lame.mu * (1 - 1 / (l1 * l1)) + lame.lambda * lnJ / (l1 * l1)) - P,
                 lame.mu * (1 - 1 / (l2 * l2)) + lame.lambda * lnJ / (l2 * l2));
   };
-  Vec2 l(1.2, 0.95);
-  for (int it = 0; it < 50; ++it) {
-    const Real h = 1e-7;
-    Eigen::Matrix2d J;
-    J.col(0) = (residual(l.x() + h, l.y()) - residual(l.x() - h, l.y())) / (2 * h);
-    J.col(1) = (residual(l.x(), l.y() + h) - residual(l.x(), l.y() - h)) / (2 * h);
-    l -= J.partialPivLu().solve(residual(l.x(), l.y()));
-  }
-  const auto rows = read_probes(out);
+  const Vec2 l = test::solve_two(residual, Vec2(1.2, 0.95));
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_NEAR(rows.back()[1], 2 * (l.x() - 1), 1e-9);
   EXPECT_NEAR(rows.back()[2], l.y() - 1, 1e-9);
@@ -197,9 +187,7 @@ TEST(FemScenes, DynamicRunKeepsEnergyAfterAPulse) {
     "probes": [{"name": "E", "type": "energy", "quantity": "total"}, {"name": "tip", "type": "point", "object": "beam",
                 "nearest": [1, 0.05, 0.05], "quantity": "velocity"}]})J");
   const std::string out = fs::path(scene).parent_path() / "out";
-  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", scene, out));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto rows = read_probes(out);
+  const auto rows = run_scene(scene, out);
   ASSERT_EQ(rows.size(), 101u);
   Real reference = 0, drift = 0, speed = 0;
   for (const auto& row : rows) {
@@ -244,9 +232,7 @@ TEST(FemScenes, RigidBodyShowcaseFlipsWithEnergyAndOrthonormalityKept) {
   // directors orthonormal to 1e-10.
   const std::string scene = (fs::path(MOREAU_SOURCE_DIR) / "scenes" / "fem_dzhanibekov.json").string();
   const std::string out = test::temp_dir("fem_dzhanibekov") + "/out";
-  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet --duration 4", scene, out));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto rows = read_probes(out);
+  const auto rows = run_scene(scene, out, "--duration 4");
   ASSERT_GT(rows.size(), 50u);
   Real flip = -1, energy_drift = 0, orthonormality = 0;
   for (size_t k = 1; k < rows.size(); ++k) {
@@ -267,9 +253,7 @@ TEST(FemScenes, HingedBeamShowcaseKeepsEnergyAndJoints) {
   // 1e-8 J, the joints hold to 1e-10, and the hub turns about the axle (z) only.
   const std::string scene = (fs::path(MOREAU_SOURCE_DIR) / "scenes" / "fem_hinged_beam.json").string();
   const std::string out = test::temp_dir("fem_hinged") + "/out";
-  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet --duration 1", scene, out));
-  ASSERT_EQ(r.exit_code, 0) << r.output;
-  const auto rows = read_probes(out);
+  const auto rows = run_scene(scene, out, "--duration 1");
   ASSERT_EQ(rows.size(), 51u);
   Real drift = 0, joints = 0, wobble = 0, spin = 0, drop = 0;
   for (const auto& row : rows) {

@@ -21,16 +21,10 @@ using test::scene_from_json;
 // Soft bodies this stiff (E = 1 MPa, element 4 cm) need substeps of 0.5 ms: at 1 ms the
 // Neo-Hookean Gauss-Seidel sweep does not converge and the slab rings even in free flight.
 std::string slab_scene(Real density) {
-  return fmt::format(R"({{"name": "slab", "settings": {{"dt": 0.004, "substeps": 8, "iterations": 1}},
-    "objects": [
-      {{"name": "tank", "kind": "collider", "inside": true,
-       "shape": {{"type": "box", "center": [0, 0.2, 0], "half_extents": [0.12, 0.2, 0.12]}}}},
-      {{"name": "water", "kind": "fluid", "particle_radius": 0.00625,
-       "block": {{"min": [-0.12, 0, -0.12], "max": [0.12, 0.1, 0.12]}}}},
-      {{"name": "slab", "kind": "soft_body",
+  return test::slab_tank_scene(fmt::format(R"({{"name": "slab", "kind": "soft_body",
        "mesh": {{"type": "box", "min": [-0.06, 0.102, -0.06], "max": [0.06, 0.162, 0.06], "cells": [3, 2, 3]}},
-       "material": {{"youngs_modulus": 1e6, "poisson_ratio": 0.3, "density": {}}}}}]}})",
-                     density);
+       "material": {{"youngs_modulus": 1e6, "poisson_ratio": 0.3, "density": {}}}}})",
+                                           density));
 }
 
 // Mean height of the slab's bottom-face vertices (rest y = 0.102).

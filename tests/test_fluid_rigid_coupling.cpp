@@ -18,15 +18,9 @@ using test::scene_from_json;
 // A rigid slab (0.12 x 0.06 x 0.12 m) dropped onto 0.1 m of water in a 0.24 m square tank, as the
 // soft slab of test_fluid_coupling.cpp (r = 6.25 mm, 2,888 particles); a wide slab floats flat.
 std::string rigid_slab_scene(Real density) {
-  return fmt::format(R"({{"name": "slab", "settings": {{"dt": 0.004, "substeps": 8, "iterations": 1}},
-    "objects": [
-      {{"name": "tank", "kind": "collider", "inside": true,
-       "shape": {{"type": "box", "center": [0, 0.2, 0], "half_extents": [0.12, 0.2, 0.12]}}}},
-      {{"name": "water", "kind": "fluid", "particle_radius": 0.00625,
-       "block": {{"min": [-0.12, 0, -0.12], "max": [0.12, 0.1, 0.12]}}}},
-      {{"name": "slab", "kind": "rigid_body", "shape": {{"type": "box", "half_extents": [0.06, 0.03, 0.06]}},
-       "position": [0, 0.132, 0], "density": {}}}]}})",
-                     density);
+  return test::slab_tank_scene(fmt::format(R"({{"name": "slab", "kind": "rigid_body",
+       "shape": {{"type": "box", "half_extents": [0.06, 0.03, 0.06]}}, "position": [0, 0.132, 0], "density": {}}})",
+                                           density));
 }
 
 TEST(FluidRigidCoupling, BoxOfHalfTheWaterDensityFloatsHalfSubmerged) {

@@ -7,6 +7,7 @@
 #include <random>
 
 #include "data/ghia1982_re100.hpp"
+#include "fem_test_helpers.hpp"
 #include "moreau/fem/navier_stokes.hpp"
 
 namespace moreau {
@@ -43,20 +44,14 @@ TEST(NavierStokes, JacobianIsTheDerivativeOfTheResidual) {
     std::uniform_real_distribution<Real> dist(-1, 1);
     VectorX x(m.dof_count()), x_old(m.dof_count());
     for (Index i = 0; i < x.size(); ++i) x[i] = dist(rng), x_old[i] = dist(rng);
-    VectorX R, Rp, Rm;
+    VectorX R, Rp;
     SparseMatrix J;
     assemble_flow(m, x, dt > 0 ? &x_old : nullptr, dt, R, &J);
     const Eigen::MatrixXd Jd(J);
-    const Real h = 1e-6;
-    Real worst = 0;
-    for (Index j = 0; j < x.size(); ++j) {
-      VectorX xp = x, xm = x;
-      xp[j] += h;
-      xm[j] -= h;
-      assemble_flow(m, xp, dt > 0 ? &x_old : nullptr, dt, Rp, nullptr);
-      assemble_flow(m, xm, dt > 0 ? &x_old : nullptr, dt, Rm, nullptr);
-      worst = std::max(worst, (Jd.col(j) - (Rp - Rm) / (2 * h)).cwiseAbs().maxCoeff());
-    }
+    const Real worst = test::jacobian_error(Jd, x, 1e-6, [&](const VectorX& v) {
+      assemble_flow(m, v, dt > 0 ? &x_old : nullptr, dt, Rp, nullptr);
+      return Rp;
+    });
     EXPECT_LT(worst, 1e-7 * Jd.cwiseAbs().maxCoeff()) << "dt " << dt;
   }
 }
@@ -82,7 +77,7 @@ TEST(NavierStokes, PoiseuilleFlowConvergesAtSecondOrder) {
     fix_pressure(m, 2 * n);  // (2, 0)
     setup_navier_stokes(m);
     VectorX x = VectorX::Zero(m.dof_count());
-    NavierStokesSolver solver;
+    SparseLuSolver solver;
     const NewtonResult r = solve_navier_stokes(m, 0, 0, x, x, solver, {.tolerance = 1e-10, .max_iterations = 20});
     ASSERT_TRUE(r.converged) << r.failure;
     Vec3 centre, left;
@@ -93,7 +88,9 @@ TEST(NavierStokes, PoiseuilleFlowConvergesAtSecondOrder) {
     const Real gradient = (p_mid - p_left) / 0.5;
     std::printf("Poiseuille %2d cells across: centre velocity error %.3e, dp/dx %.5f (exact %.5f), %d Newton\n", n,
                 errors.back(), gradient, -0.8, r.iterations);
-    if (n == 32) EXPECT_NEAR(gradient, -0.8, 0.005 * 0.8);
+    if (n == 32) {
+      EXPECT_NEAR(gradient, -0.8, 0.005 * 0.8);
+    }
   }
   for (size_t k = 1; k < errors.size(); ++k) EXPECT_GT(std::log2(errors[k - 1] / errors[k]), 1.7);
   EXPECT_GT(std::log2(errors[2] / errors[3]), 1.9);
@@ -115,7 +112,7 @@ TEST(NavierStokes, LidDrivenCavityAtRe100MatchesGhia) {
   fix_pressure(m, 0);
   setup_navier_stokes(m);
   VectorX x = VectorX::Zero(m.dof_count());
-  NavierStokesSolver solver;
+  SparseLuSolver solver;
   const NewtonResult r = solve_navier_stokes(m, 0, 0, x, x, solver, {.tolerance = 1e-10, .max_iterations = 30});
   ASSERT_TRUE(r.converged) << r.failure;
   Real worst_u = 0, worst_v = 0;

@@ -12,6 +12,7 @@
 #include "moreau/fem/fem_output.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/progress_bar.hpp"
+#include "moreau/io/run_summary.hpp"
 
 namespace moreau {
 
@@ -98,7 +99,7 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
 
   const SparseMatrix mass = problem.integrator == FemIntegrator::static_load_steps ? SparseMatrix() : assemble_mass_matrix(model);
   SparseSymmetricSolver solver;
-  CoupledSolver coupled;
+  SparseLuSolver coupled;
   const long steps = std::max<long>(1, std::lround(duration / dt));
   ProgressBar progress(options.progress, duration);
   sample();
@@ -156,19 +157,9 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   progress.finish();
   result.wall_time_s = wall;
 
-  nlohmann::json j;
-  j["moreau_version"] = version();
-  j["scene"] = scene.name;
-  j["scene_file"] = scene.file;
-  j["status"] = status;
-  if (!message.empty()) j["message"] = message;
-  j["solver"] = "fem";
+  nlohmann::json j =
+      run_summary_json({scene.name, scene.file, "fem", status, message, dt, state.time, wall, threads, result.steps});
   j["integrator"] = integrator_name(problem.integrator);
-  j["dt"] = dt;
-  j["threads"] = threads;
-  j["steps"] = result.steps;
-  j["simulated_time_s"] = state.time;
-  j["wall_time_s"] = wall;
   Index cells = 0;
   for (const FemSolid& s : model.solids) cells += s.mesh.cell_count();
   j["counts"] = {{"solids", model.solids.size()}, {"rigid_bodies", problem.rigid_bodies.size()}, {"joints", problem.joints.size()}, {"nodes", model.node_count}, {"cells", cells},

@@ -12,6 +12,7 @@
 
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/progress_bar.hpp"
+#include "moreau/io/run_summary.hpp"
 #include "moreau/model/diagnostics.hpp"
 #include "moreau/moreau.hpp"
 #include "moreau/scene/scene.hpp"
@@ -101,23 +102,13 @@ std::string Simulation::summary() const {
 
 namespace {
 
-nlohmann::json run_summary_json(const Scene& scene, const StageTimer& timer, const State& state, long steps,
+nlohmann::json xpbd_run_summary_json(const Scene& scene, const StageTimer& timer, const State& state, long steps,
                                 double wall_time, int threads, const std::string& status, const std::string& message) {
   const Model& m = scene.model;
-  nlohmann::json j;
-  j["moreau_version"] = version();
-  j["scene"] = scene.name;
-  j["scene_file"] = scene.file;
-  j["status"] = status;
-  if (!message.empty()) j["message"] = message;
-  j["solver"] = scene.solver;
-  j["dt"] = m.settings.dt;
+  nlohmann::json j = run_summary_json(
+      {scene.name, scene.file, scene.solver, status, message, m.settings.dt, state.time, wall_time, threads, steps});
   j["substeps"] = m.settings.substeps;
   j["iterations"] = m.settings.iterations;
-  j["threads"] = threads;
-  j["steps"] = steps;
-  j["simulated_time_s"] = state.time;
-  j["wall_time_s"] = wall_time;
   j["counts"] = {{"particles", m.particle_count()},
                  {"fluid_particles", state.fluid.count},
                  {"objects", m.objects.size()},
@@ -209,7 +200,7 @@ RunResult Simulation::run(const RunOptions& options) {
                "too long for the fastest particles: lower settings.dt or raise settings.substeps\n",
                state.fluid.max_cfl, model.fluid.cfl_limit, state.fluid.cfl_violations);
   result.wall_time_s = wall;
-  std::ofstream(dir / "run.json") << run_summary_json(scene, timer, state, result.steps, wall, threads, status, message).dump(2)
+  std::ofstream(dir / "run.json") << xpbd_run_summary_json(scene, timer, state, result.steps, wall, threads, status, message).dump(2)
                                   << '\n';
   if (status != "completed") throw NumericalError(message);
   return result;

@@ -117,7 +117,7 @@ Real joint_violation(const FemProblem& problem, const FemRunState& run, const Fe
 }
 
 NewtonResult step_coupled(const FemProblem& problem, const SparseMatrix& mass, StepRule rule, Real h, FemRunState& run,
-                          CoupledSolver& solver, const NewtonSettings& settings) {
+                          SparseLuSolver& solver, const NewtonSettings& settings) {
   const FemModel& model = problem.model;
   NewtonResult result;
   Layout layout;
@@ -129,11 +129,10 @@ NewtonResult step_coupled(const FemProblem& problem, const SparseMatrix& mass, S
   const FemDynamicState& s0 = run.solids;
   const Real t_mid = s0.time + 0.5 * h, c = 2 / (h * h);
   const VectorX f_ext = model.dof_count() > 0 ? external_forces(model, t_mid) : VectorX();
-  std::vector<DirectorVector> q0, v0, M;
+  std::vector<DirectorVector> q0, v0;
   for (Index b = 0; b < layout.bodies; ++b) {
     q0.push_back(director_configuration(run.bodies[b]));
     v0.push_back(director_velocities(run.bodies[b]));
-    M.push_back(director_mass(problem.rigid_bodies[b].body));
   }
   // Predictor; multipliers start at zero.
   Configuration z{dynamic_step_predictor(model, s0.u, s0.v, h), {}};
@@ -168,13 +167,13 @@ NewtonResult step_coupled(const FemProblem& problem, const SparseMatrix& mass, S
       R.head(layout.free) = free_part(model, inertia + f - f_ext);
       force_scale = std::max({force_scale, inertia.norm(), f.norm(), f_ext.norm()});
     }
+    std::vector<DirectorStepRows> body_rows;
     for (Index b = 0; b < layout.bodies; ++b) {
-      const DirectorVector qm = mid.q[b];
-      const DirectorVector inertia = M[b].asDiagonal() * (c * (z.q[b] - q0[b]) - (2 / h) * v0[b]);
-      const DirectorVector fb = director_external_force(qm, problem.rigid_bodies[b].body.mass * problem.gravity, Vec3::Zero());
-      R.segment<12>(layout.body(b)) = inertia + director_constraint_jacobian(qm).transpose() * internal(b) - fb;
-      R.segment<6>(layout.body(b) + 12) = director_constraints(z.q[b]);
-      force_scale = std::max({force_scale, inertia.norm(), fb.norm()});
+      const DirectorBody& body = problem.rigid_bodies[b].body;
+      body_rows.push_back(
+          director_step_rows(body, q0[b], v0[b], h, body.mass * problem.gravity, Vec3::Zero(), z.q[b], internal(b), true));
+      R.segment<18>(layout.body(b)) = body_rows.back().residual;
+      force_scale = std::max(force_scale, body_rows.back().force_scale);
     }
     // Joint forces J(z_mid)^T lambda_j on the momentum rows; joint rows g(z1).
     for (Index r = 0; r < layout.joint_rows; ++r) {
@@ -205,22 +204,11 @@ NewtonResult step_coupled(const FemProblem& problem, const SparseMatrix& mass, S
       for (int col = 0; col < Mf.outerSize(); ++col)
         for (SparseMatrix::InnerIterator it(Mf, col); it; ++it) triplets.emplace_back(it.row(), col, c * it.value());
     }
-    for (Index b = 0; b < layout.bodies; ++b) {
-      Eigen::Matrix<Real, 12, 12> A = Eigen::Matrix<Real, 12, 12>::Zero();
-      A.diagonal() = c * M[b];
-      add_director_constraint_hessian(internal(b), 0.5, A);
-      const Eigen::Matrix<Real, 6, 12> Gm = director_constraint_jacobian(mid.q[b]), G1 = director_constraint_jacobian(z.q[b]);
-      const Index o = layout.body(b);
-      // Every entry of the blocks is inserted, zero or not: the sparsity must not change between
-      // iterations, since UMFPACK's symbolic analysis is reused.
-      for (int i = 0; i < 12; ++i) {
-        for (int j = 0; j < 12; ++j) triplets.emplace_back(o + i, o + j, A(i, j));
-        for (int k = 0; k < 6; ++k) {
-          triplets.emplace_back(o + i, o + 12 + k, Gm(k, i));
-          triplets.emplace_back(o + 12 + k, o + i, G1(k, i));
-        }
-      }
-    }
+    // Every entry of a body's 18 x 18 block is inserted, zero or not: the sparsity must not change
+    // between iterations, since UMFPACK's symbolic analysis is reused.
+    for (Index b = 0; b < layout.bodies; ++b)
+      for (int i = 0; i < 18; ++i)
+        for (int j = 0; j < 18; ++j) triplets.emplace_back(layout.body(b) + i, layout.body(b) + j, body_rows[b].jacobian(i, j));
     Index r = 0;
     for (const FemJoint& joint : problem.joints)
       for (const FemJointRows& group : joint.rows) {
@@ -246,20 +234,13 @@ NewtonResult step_coupled(const FemProblem& problem, const SparseMatrix& mass, S
     SparseMatrix A(n, n);
     A.setFromTriplets(triplets.begin(), triplets.end());
     A.makeCompressed();
-    const bool factored = timed(result.solve_s, [&] {
-      if (!solver.analyzed) {
-        solver.lu.analyzePattern(A);
-        solver.analyzed = true;
-      }
-      solver.lu.factorize(A);
-      return solver.lu.info() == Eigen::Success;
-    });
+    const bool factored = timed(result.solve_s, [&] { return solver.factorize(A); });
     if (!factored) {
       result.failure = "the coupled step's Jacobian is singular (a joint repeated, or a body held twice?)";
       return result;
     }
     const VectorX rhs = -R;
-    const VectorX dz = timed(result.solve_s, [&] { return VectorX(solver.lu.solve(rhs)); });
+    const VectorX dz = timed(result.solve_s, [&] { return solver.solve(rhs); });
     ++result.iterations;
     Real alpha = 1;
     Configuration trial;

@@ -6,23 +6,18 @@
 //   bodies  M_b (2/h^2 (q1 - q0) - 2/h v0) + G(q_m)^T lambda_int - f_b + J_q(q_m)^T lambda_j
 //   internal constraints g(q1) = 0, joints g_j(u1, q1) = 0
 // The Jacobian is not symmetric (UMFPACK). Rigid bodies without joints are stepped the same way.
-#include <Eigen/UmfPackSupport>
 #include <vector>
 
 #include "moreau/fem/fem_joints.hpp"
 #include "moreau/fem/fem_problem.hpp"
+#include "moreau/fem/linear_solver.hpp"
 
 namespace moreau {
 
-/// Reusable factorization of the coupled system (its sparsity is analysed once).
-struct CoupledSolver {
-  Eigen::UmfPackLU<SparseMatrix> lu;
-  bool analyzed = false;
-};
-
-/// Advances solids and bodies together by h; on failure the state is unchanged.
+/// Advances solids and bodies together by h; on failure the state is unchanged. `solver` keeps
+/// the coupled system's symbolic analysis between steps (its sparsity does not change).
 NewtonResult step_coupled(const FemProblem& problem, const SparseMatrix& mass, StepRule rule, Real h,
-                          FemRunState& run, CoupledSolver& solver, const NewtonSettings& settings);
+                          FemRunState& run, SparseLuSolver& solver, const NewtonSettings& settings);
 
 /// Largest violation of a joint's rows at the current state (m, or the cosine for axis rows).
 Real joint_violation(const FemProblem& problem, const FemRunState& run, const FemJoint& joint);

@@ -150,45 +150,54 @@ DirectorState director_state_at_rest_pose(const DirectorBody& body, const Vec3& 
   return s;
 }
 
+DirectorStepRows director_step_rows(const DirectorBody& body, const DirectorVector& q0, const DirectorVector& v0, Real h,
+                                    const Vec3& force, const Vec3& torque, const DirectorVector& q1,
+                                    const Eigen::Matrix<Real, 6, 1>& lambda, bool with_jacobian) {
+  const Vec12 M = director_mass(body);
+  const Vec12 qm = 0.5 * (q0 + q1);
+  const Eigen::Matrix<Real, 6, 12> Gm = director_constraint_jacobian(qm);
+  DirectorStepRows rows;
+  const Vec12 inertia = M.asDiagonal() * ((2 / (h * h)) * (q1 - q0) - (2 / h) * v0);
+  const Vec12 external = director_external_force(qm, force, torque);
+  rows.residual.head<12>() = inertia + Gm.transpose() * lambda - external;
+  rows.residual.tail<6>() = director_constraints(q1);
+  rows.force_scale = std::max({inertia.norm(), external.norm(), Real(1e-300)});
+  if (!with_jacobian) return rows;
+  auto& A = rows.jacobian;
+  A.setZero();
+  A.topLeftCorner<12, 12>().diagonal() = (2 / (h * h)) * M;
+  add_director_constraint_hessian(lambda, 0.5, A.topLeftCorner<12, 12>());
+  for (int i = 0; i < 3; ++i) A.block<3, 3>(3 + 3 * i, 3 + 3 * i) -= 0.25 * cross_matrix(torque);
+  A.topRightCorner<12, 6>() = Gm.transpose();
+  A.bottomLeftCorner<6, 12>() = director_constraint_jacobian(q1);
+  return rows;
+}
+
 NewtonResult step_director_body(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
                                 DirectorState& state, const NewtonSettings& settings) {
   NewtonResult result;
-  const Vec12 M = director_mass(body);
   const Vec12 q0 = pack(state.phi, state.d), v0 = director_velocities(state);
   Vec12 q1 = q0 + h * v0;
   Eigen::Matrix<Real, 6, 1> lambda = Eigen::Matrix<Real, 6, 1>::Zero();
-  const Real scale = std::max({(M.asDiagonal() * (2 * v0)).norm(), h * force.norm(), h * torque.norm(), Real(1e-300)});
-  using Mat18 = Eigen::Matrix<Real, 18, 18>;
-  using Vec18 = Eigen::Matrix<Real, 18, 1>;
   for (;;) {
-    const Vec12 qm = 0.5 * (q0 + q1);
-    const Eigen::Matrix<Real, 6, 12> Gm = director_constraint_jacobian(qm);
-    Vec18 R;
-    R.head<12>() = M.asDiagonal() * ((2 / h) * (q1 - q0) - 2 * v0) + h * Gm.transpose() * lambda -
-                   h * director_external_force(qm, force, torque);
-    R.tail<6>() = director_constraints(q1);
-    const Real momentum_norm = R.head<12>().norm(), constraint_norm = R.tail<6>().norm();
-    result.residual_norms.push_back(momentum_norm / scale + constraint_norm);
-    if (momentum_norm <= settings.tolerance * scale && constraint_norm <= settings.tolerance) break;
+    const DirectorStepRows rows = director_step_rows(body, q0, v0, h, force, torque, q1, lambda, true);
+    const Real momentum_norm = rows.residual.head<12>().norm(), constraint_norm = rows.residual.tail<6>().norm();
+    result.residual_norms.push_back(momentum_norm / rows.force_scale + constraint_norm);
+    if (momentum_norm <= settings.tolerance * rows.force_scale && constraint_norm <= settings.tolerance) break;
     if (result.iterations == settings.max_iterations) {
       result.failure = "the director body's step did not converge";
       return result;
     }
-    // Jacobian: d/dq1 of the momentum rows is 2/h M + h/2 sum_k lambda_k Hess(g_k) (constant
-    // Hessians: I on the director blocks of each pair) minus the torque forces' h/4 [tau]x (their
-    // dependence through S^-1 is left out: a second-order term); d/dlambda
-    // is h G(q_m)^T; the constraint rows' derivative is G(q1).
-    Mat18 A = Mat18::Zero();
-    A.topLeftCorner<12, 12>().diagonal() = (2 / h) * M;
-    add_director_constraint_hessian(lambda, 0.5 * h, A.topLeftCorner<12, 12>());
-    for (int i = 0; i < 3; ++i) A.block<3, 3>(3 + 3 * i, 3 + 3 * i) -= 0.25 * h * cross_matrix(torque);
-    A.topRightCorner<12, 6>() = h * Gm.transpose();
-    A.bottomLeftCorner<6, 12>() = director_constraint_jacobian(q1);
-    const Vec18 dx = A.partialPivLu().solve(-R);
+    const Eigen::Matrix<Real, 18, 1> dx = rows.jacobian.partialPivLu().solve(-rows.residual);
     ++result.iterations;
     q1 += dx.head<12>();
     lambda += dx.tail<6>();
-    if (dx.head<12>().norm() <= 1e-3 * settings.tolerance * (q1 - q0).norm() && constraint_norm <= settings.tolerance) break;
+    // On the residual's round-off floor (it has stopped falling), a correction below tolerance
+    // times the step's motion is convergence, as in the solids' steps.
+    const auto& norms = result.residual_norms;
+    const bool stagnating = norms.size() >= 2 && norms.back() > 0.5 * norms[norms.size() - 2];
+    if (stagnating && dx.head<12>().norm() <= settings.tolerance * (q1 - q0).norm() && constraint_norm <= settings.tolerance)
+      break;
   }
   result.converged = true;
   set_director_step(q0, v0, q1, h, state);

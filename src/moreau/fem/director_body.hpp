@@ -75,6 +75,21 @@ Eigen::Matrix<Real, 6, 12> director_constraint_jacobian(const DirectorVector& q)
 void add_director_constraint_hessian(const Eigen::Matrix<Real, 6, 1>& lambda, Real scale,
                                      Eigen::Ref<Eigen::Matrix<Real, 12, 12>> A);
 DirectorVector director_external_force(const DirectorVector& q_mid, const Vec3& force, const Vec3& torque);
+/// One body's rows of the constrained midpoint step, in force units, at the trial q1 and internal
+/// multipliers lambda (shared by step_director_body and the coupled step):
+///   residual = [M (2/h^2 (q1 - q0) - 2/h v0) + G(q_m)^T lambda - f(q_m);  g(q1)],  q_m = (q0 + q1)/2
+///   jacobian = [2/h^2 M + 1/2 lambda . Hess g - 1/4 [tau]x on each director,  G(q_m)^T;  G(q1),  0]
+/// (the torque forces' dependence through S^-1 is left out of the Jacobian: second order), and
+/// force_scale = max(|inertia term|, |f(q_m)|), the scale of the momentum rows (as for the solids).
+struct DirectorStepRows {
+  Eigen::Matrix<Real, 18, 1> residual;
+  Eigen::Matrix<Real, 18, 18> jacobian;
+  Real force_scale = 0;
+};
+DirectorStepRows director_step_rows(const DirectorBody& body, const DirectorVector& q0, const DirectorVector& v0, Real h,
+                                    const Vec3& force, const Vec3& torque, const DirectorVector& q1,
+                                    const Eigen::Matrix<Real, 6, 1>& lambda, bool with_jacobian);
+
 /// The state after a step from (q0, v0) to q1: v1 = 2 (q1 - q0)/h - v0.
 void set_director_step(const DirectorVector& q0, const DirectorVector& v0, const DirectorVector& q1, Real h,
                        DirectorState& state);

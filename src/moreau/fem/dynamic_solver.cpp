@@ -19,8 +19,8 @@ FemDynamicState initial_dynamic_state(const FemModel& model) {
 }
 
 // Predictor of a step. A solid without prescribed dofs moves its nodes by the rigid motion that
-// fits its velocities (the centre's velocity and w = I^-1 L about the centre, with the row sums
-// of the consistent mass as node masses), rotating them by exp(h w). Moving along straight lines
+// fits its velocities (the centre's velocity and w = I^-1 L about the centre, with the node
+// masses, the row sums of the consistent mass), rotating them by exp(h w). Moving along straight lines
 // instead (u0 + h v0) stretches a spinning body by (w h)^2 / 2, and the midpoint rule's end
 // velocities are not a rigid field even for a rigid motion, so adding h times their non-rigid
 // part stretches it by O(h^2 w^2); a stiff body answers either with stresses so large that
@@ -29,7 +29,7 @@ FemDynamicState initial_dynamic_state(const FemModel& model) {
 VectorX dynamic_step_predictor(const FemModel& model, const VectorX& u0, const VectorX& v0, Real h) {
   VectorX u1 = u0 + h * v0;
   if (model.dim != 3) return u1;
-  const VectorX lumped = mass_times(model, VectorX::Ones(model.dof_count()));
+  const std::vector<Real>& lumped = model.node_mass;
   for (const FemSolid& s : model.solids) {
     const Index first = s.node_begin, count = s.mesh.node_count();
     bool held = false;
@@ -40,9 +40,9 @@ VectorX dynamic_step_predictor(const FemModel& model, const VectorX& u0, const V
     Real m = 0;
     Vec3 c = Vec3::Zero(), p = Vec3::Zero();
     for (Index n = first; n < first + count; ++n) {
-      m += lumped[3 * n];
-      c += lumped[3 * n] * x(n);
-      p += lumped[3 * n] * v0.segment<3>(3 * n);
+      m += lumped[n];
+      c += lumped[n] * x(n);
+      p += lumped[n] * v0.segment<3>(3 * n);
     }
     c /= m;
     const Vec3 vc = p / m;
@@ -50,8 +50,8 @@ VectorX dynamic_step_predictor(const FemModel& model, const VectorX& u0, const V
     Mat3 I = Mat3::Zero();
     for (Index n = first; n < first + count; ++n) {
       const Vec3 r = x(n) - c;
-      L += lumped[3 * n] * r.cross(v0.segment<3>(3 * n) - vc);
-      I += lumped[3 * n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+      L += lumped[n] * r.cross(v0.segment<3>(3 * n) - vc);
+      I += lumped[n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
     }
     const Vec3 w = I.ldlt().solve(L);
     const Real angle = h * w.norm();

@@ -1,7 +1,5 @@
 #include "moreau/fem/fem_assembly.hpp"
 
-#include <omp.h>
-
 #include <functional>
 
 namespace moreau {
@@ -9,34 +7,25 @@ namespace moreau {
 namespace {
 
 // For every cell of solid s: gathers its nodal values of u (and of u_next, if given), lets
-// `compute(e, local_u, local_u_next, out)` fill the element output and `visit(e, out)` scatter it;
-// colour by colour, the cells of a colour in parallel (they share no node, so visit may write the
-// nodes' global entries without races, and each entry sums its cells in colour order).
+// `compute(e, local_u, local_u_next, out)` fill the element output and `visit(e, out)` scatter it,
+// by colours (for_each_cell_by_colour: race-free and deterministic).
 template <class Compute, class Visit>
 void for_each_cell(const FemModel& model, const FemSolid& s, const VectorX& u, const VectorX* u_next, Compute compute,
                    Visit visit) {
   const int dim = model.dim, nodes = s.mesh.nodes_per_cell();
-  for (const std::vector<Index>& colour : s.colours) {
-    const Index count = static_cast<Index>(colour.size());
-#pragma omp parallel num_threads(model.threads > 0 ? model.threads : omp_get_max_threads())
-    {
-      ElementOutput out;
-      Real local_u[kMaxElementDofs], local_next[kMaxElementDofs];
-#pragma omp for schedule(static)
-      for (Index i = 0; i < count; ++i) {
-        const Index e = colour[i];
-        const Index* c = s.mesh.cell(e);
-        for (int a = 0; a < nodes; ++a)
-          for (int k = 0; k < dim; ++k) {
-            const Index d = model.dof(s.node_begin + c[a], k);
-            local_u[a * dim + k] = u[d];
-            if (u_next) local_next[a * dim + k] = (*u_next)[d];
-          }
-        compute(e, local_u, local_next, out);
-        visit(e, out);
+  for_each_cell_by_colour(s.colours, model.threads, [&](Index e) {
+    ElementOutput out;
+    Real local_u[kMaxElementDofs], local_next[kMaxElementDofs];
+    const Index* c = s.mesh.cell(e);
+    for (int a = 0; a < nodes; ++a)
+      for (int k = 0; k < dim; ++k) {
+        const Index d = model.dof(s.node_begin + c[a], k);
+        local_u[a * dim + k] = u[d];
+        if (u_next) local_next[a * dim + k] = (*u_next)[d];
       }
-    }
-  }
+    compute(e, local_u, local_next, out);
+    visit(e, out);
+  });
 }
 
 // Scatters cell outputs into the global force, tangent values and per-cell energies.
@@ -185,16 +174,8 @@ void apply_prescribed_velocity(const FemModel& model, Real t, VectorX& v) {
   for (const PrescribedDof& p : model.prescribed) v[p.dof] = (p.value(t + dt) - p.value(t - dt)) / (2 * dt);
 }
 
-VectorX free_part(const FemModel& model, const VectorX& full) {
-  VectorX free(model.free_count);
-  for (Index d = 0; d < model.dof_count(); ++d)
-    if (model.free_index[d] >= 0) free[model.free_index[d]] = full[d];
-  return free;
-}
+VectorX free_part(const FemModel& model, const VectorX& full) { return gather_free(model.free_index, model.free_count, full); }
 
-void add_free_part(const FemModel& model, const VectorX& free, VectorX& full) {
-  for (Index d = 0; d < model.dof_count(); ++d)
-    if (model.free_index[d] >= 0) full[d] += free[model.free_index[d]];
-}
+void add_free_part(const FemModel& model, const VectorX& free, VectorX& full) { add_free(model.free_index, free, full); }
 
 }  // namespace moreau

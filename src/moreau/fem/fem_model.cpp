@@ -1,5 +1,7 @@
 #include "moreau/fem/fem_model.hpp"
 
+#include "moreau/fem/cell_sparsity.hpp"
+
 #include <fmt/format.h>
 
 #include "moreau/errors.hpp"
@@ -12,26 +14,6 @@ namespace moreau {
 namespace {
 
 int stiffness_degree(ElementType type) { return type == ElementType::tri3 || type == ElementType::tet4 ? 1 : 2; }
-
-// Greedy colouring of cells: no two cells of a colour share a node. Each node keeps the list of
-// colours its cells have taken (as many as the cells around it, unbounded).
-std::vector<std::vector<Index>> colour_cells(const FemMesh& mesh) {
-  std::vector<std::vector<int>> used(mesh.node_count());
-  std::vector<std::vector<Index>> colours;
-  std::vector<char> taken;
-  for (Index e = 0; e < mesh.cell_count(); ++e) {
-    const Index* c = mesh.cell(e);
-    taken.assign(colours.size() + 1, 0);
-    for (int a = 0; a < mesh.nodes_per_cell(); ++a)
-      for (int colour : used[c[a]]) taken[colour] = 1;
-    int colour = 0;
-    while (taken[colour]) ++colour;
-    if (colour >= static_cast<int>(colours.size())) colours.resize(colour + 1);
-    colours[colour].push_back(e);
-    for (int a = 0; a < mesh.nodes_per_cell(); ++a) used[c[a]].push_back(colour);
-  }
-  return colours;
-}
 
 }  // namespace
 
@@ -86,78 +68,35 @@ void add_fem_solid(FemModel& model, FemSolid solid) {
     }
   solid.node_begin = model.node_count;
   model.node_count += mesh.node_count();
+  // Node masses: the row sums of the consistent mass, i.e. the integrals of rho N_a.
+  model.node_mass.resize(model.node_count, 0.0);
+  for (Index e = 0; e < mesh.cell_count(); ++e)
+    for (int a = 0; a < nodes; ++a)
+      for (int b = 0; b < nodes; ++b)
+        model.node_mass[solid.node_begin + mesh.cell(e)[a]] += solid.cell_mass[static_cast<size_t>(e) * nodes * nodes + a * nodes + b];
   model.solids.push_back(std::move(solid));
 }
 
-void finalize_fem_model(FemModel& model) {
-  const Index dofs = model.dof_count();
-  model.free_index.assign(dofs, 0);
-  for (const PrescribedDof& p : model.prescribed) model.free_index[p.dof] = -1;
-  model.free_count = 0;
-  for (Index d = 0; d < dofs; ++d)
-    if (model.free_index[d] >= 0) model.free_index[d] = model.free_count++;
+Index number_free_dofs(Index dof_count, const std::vector<PrescribedDof>& prescribed, std::vector<Index>& free_index) {
+  free_index.assign(dof_count, 0);
+  for (const PrescribedDof& p : prescribed) free_index[p.dof] = -1;
+  Index count = 0;
+  for (Index d = 0; d < dof_count; ++d)
+    if (free_index[d] >= 0) free_index[d] = count++;
+  return count;
+}
 
+void finalize_fem_model(FemModel& model) {
+  model.free_count = number_free_dofs(model.dof_count(), model.prescribed, model.free_index);
   std::vector<Eigen::Triplet<Real, int>> entries;
-  for (const FemSolid& s : model.solids) {
-    const int nodes = s.mesh.nodes_per_cell();
-    for (Index e = 0; e < s.mesh.cell_count(); ++e) {
-      const Index* c = s.mesh.cell(e);
-      for (int a = 0; a < nodes; ++a)
-        for (int i = 0; i < model.dim; ++i) {
-          const Index r = model.free_index[model.dof(s.node_begin + c[a], i)];
-          if (r < 0) continue;
-          for (int b = 0; b < nodes; ++b)
-            for (int j = 0; j < model.dim; ++j) {
-              const Index q = model.free_index[model.dof(s.node_begin + c[b], j)];
-              if (q >= 0) entries.emplace_back(r, q, 0.0);
-            }
-        }
-    }
-  }
+  for (const FemSolid& s : model.solids) add_cell_couplings(s.mesh, s.node_begin, model.dim, model.free_index, entries);
   model.pattern.resize(model.free_count, model.free_count);
   model.pattern.setFromTriplets(entries.begin(), entries.end());
   model.pattern.makeCompressed();
-
-  // Where each cell's local entry lands in the value array.
-  const int* outer = model.pattern.outerIndexPtr();
-  const int* inner = model.pattern.innerIndexPtr();
-  auto slot = [&](Index r, Index q) -> Index {
-    const int* begin = inner + outer[q];
-    const int* end = inner + outer[q + 1];
-    return static_cast<Index>(std::lower_bound(begin, end, r) - inner);
-  };
   for (FemSolid& s : model.solids) {
     s.colours = colour_cells(s.mesh);
-    const int nodes = s.mesh.nodes_per_cell(), n = nodes * model.dim;
-    s.slots.assign(static_cast<size_t>(s.mesh.cell_count()) * n * n, -1);
-    for (Index e = 0; e < s.mesh.cell_count(); ++e) {
-      const Index* c = s.mesh.cell(e);
-      Index* cell_slots = s.slots.data() + static_cast<size_t>(e) * n * n;
-      for (int a = 0; a < n; ++a) {
-        const Index r = model.free_index[model.dof(s.node_begin + c[a / model.dim], a % model.dim)];
-        if (r < 0) continue;
-        for (int b = 0; b < n; ++b) {
-          const Index q = model.free_index[model.dof(s.node_begin + c[b / model.dim], b % model.dim)];
-          if (q >= 0) cell_slots[a * n + b] = slot(r, q);
-        }
-      }
-    }
+    s.slots = cell_slots(s.mesh, s.node_begin, model.dim, model.free_index, model.pattern);
   }
-}
-
-std::vector<Real> cell_node_integrals(const FemSolid& solid, Real density) {
-  const FemMesh& mesh = solid.mesh;
-  const auto rule = gauss_rule(mesh.element, 2);
-  std::vector<Real> w(mesh.node_count(), 0.0);
-  Real N[kMaxElementNodes];
-  Vec3 dN[kMaxElementNodes];
-  for (Index e = 0; e < mesh.cell_count(); ++e)
-    for (const QuadraturePoint& q : rule) {
-      shape_functions(mesh.element, q.xi, N, dN);
-      const Real jw = q.weight * cell_jacobian(mesh, e, dN).determinant();
-      for (int a = 0; a < mesh.nodes_per_cell(); ++a) w[mesh.cell(e)[a]] += density * N[a] * jw;
-    }
-  return w;
 }
 
 void facet_node_integrals(const FemSolid& solid, const std::string& name, std::vector<Index>& nodes,

@@ -7,18 +7,17 @@
 // Degrees of freedom: `dim` per node, node-major over all solids (solid s owns nodes
 // [node_begin, node_begin + mesh.node_count())). The free ones are numbered 0..free_count-1 in the
 // same order; matrices (tangent, mass) live on the free ones only.
-#include <Eigen/Sparse>
 #include <functional>
 #include <string>
 #include <vector>
 
+#include "moreau/fem/cell_sparsity.hpp"
 #include "moreau/fem/fem_mesh.hpp"
 #include "moreau/fem/solid_element.hpp"
 #include "moreau/materials/hyperelastic.hpp"
 
 namespace moreau {
 
-using SparseMatrix = Eigen::SparseMatrix<Real, Eigen::ColMajor, int>;
 using VectorX = Eigen::VectorXd;
 
 struct FemSolid {
@@ -66,6 +65,7 @@ struct FemModel {
   int dim = 3;
   std::vector<FemSolid> solids;
   Index node_count = 0;
+  std::vector<Real> node_mass;    // per node, kg (2D: kg/m): the integral of rho N_a (row sums of M)
   std::vector<PrescribedDof> prescribed;
   std::vector<NodalLoad> loads;
   std::vector<Index> free_index;  // per dof; -1 if prescribed
@@ -81,16 +81,16 @@ struct FemModel {
   std::pair<const FemSolid*, Index> owner(Index node) const;
 };
 
+/// Numbers the dofs not in `prescribed` 0, 1, ... in order (free_index[d] = -1 for prescribed
+/// ones; a dof prescribed twice counts once) and returns how many are free.
+Index number_free_dofs(Index dof_count, const std::vector<PrescribedDof>& prescribed, std::vector<Index>& free_index);
+
 /// Adds a solid (its quadrature is computed here); call finalize_fem_model after the last.
 void add_fem_solid(FemModel& model, FemSolid solid);
 
 /// Numbers the free degrees of freedom (after `prescribed` is complete; a dof prescribed twice
 /// keeps its last value), colours the cells and builds the tangent's sparsity pattern.
 void finalize_fem_model(FemModel& model);
-
-/// Integral of rho N_a over the reference configuration of a solid's cells, per local node: the
-/// weights of a body load (its value an acceleration). Degree-2 Gauss rule (exact on affine cells).
-std::vector<Real> cell_node_integrals(const FemSolid& solid, Real density);
 
 /// Integral of N_a over the facets of a named boundary, per node of the boundary (sorted): the
 /// weights of a traction on it. Facets are line2 in 2D (length per unit thickness), tri3/quad4 in 3D.

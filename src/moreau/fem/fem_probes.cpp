@@ -53,12 +53,10 @@ void evaluate_fem_probe(const FemProbe& p, const FemProblem& problem, const FemR
       Real kinetic = kinetic_energy(model, state.v), potential = 0;
       // Gravity's potential -sum m_a g . x_a, with the solids' node masses the consistent mass's
       // row sums (the integrals of rho N_a).
-      if (model.dof_count() > 0 && problem.gravity.squaredNorm() > 0) {
-        const VectorX node_mass = mass_times(model, VectorX::Ones(model.dof_count()));
+      if (problem.gravity.squaredNorm() > 0)
         for (Index n = 0; n < model.node_count; ++n)
           for (int k = 0; k < dim; ++k)
-            potential -= node_mass[model.dof(n, k)] * problem.gravity[k] * (model.reference_position(n)[k] + state.u[model.dof(n, k)]);
-      }
+            potential -= model.node_mass[n] * problem.gravity[k] * (model.reference_position(n)[k] + state.u[model.dof(n, k)]);
       for (size_t b = 0; b < run.bodies.size(); ++b) {
         kinetic += kinetic_energy(problem.rigid_bodies[b].body, run.bodies[b]);
         potential -= problem.rigid_bodies[b].body.mass * problem.gravity.dot(run.bodies[b].phi);

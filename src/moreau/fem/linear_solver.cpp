@@ -17,12 +17,16 @@ bool SparseSymmetricSolver::factorize(const SparseMatrix& K, bool symmetric) {
     method_ = "cholmod";
     return true;
   }
-  if (!lu_analyzed_) {
-    lu_.analyzePattern(K);
-    lu_analyzed_ = true;
-  }
-  lu_.factorize(K);
   method_ = "umfpack";
+  return lu_.factorize(K);
+}
+
+bool SparseLuSolver::factorize(const SparseMatrix& A) {
+  if (!analyzed_) {
+    lu_.analyzePattern(A);
+    analyzed_ = true;
+  }
+  lu_.factorize(A);
   return lu_.info() == Eigen::Success;
 }
 

@@ -14,6 +14,19 @@
 
 namespace moreau {
 
+/// UMFPACK's LU of a square sparse matrix; the symbolic analysis is done for the first matrix and
+/// reused for every later one, which must have the same sparsity.
+class SparseLuSolver {
+ public:
+  /// False if the matrix is singular.
+  bool factorize(const SparseMatrix& A);
+  VectorX solve(const VectorX& b) const { return lu_.solve(b); }
+
+ private:
+  Eigen::UmfPackLU<SparseMatrix> lu_;
+  bool analyzed_ = false;
+};
+
 class SparseSymmetricSolver {
  public:
   SparseSymmetricSolver();
@@ -27,8 +40,8 @@ class SparseSymmetricSolver {
 
  private:
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholesky_;
-  Eigen::UmfPackLU<SparseMatrix> lu_;
-  bool cholesky_analyzed_ = false, lu_analyzed_ = false;
+  SparseLuSolver lu_;
+  bool cholesky_analyzed_ = false;
   std::string method_;
 };
 

@@ -1,7 +1,6 @@
 #include "moreau/fem/navier_stokes.hpp"
 
 #include <fmt/format.h>
-#include <omp.h>
 
 #include <algorithm>
 #include <cmath>
@@ -17,24 +16,6 @@ constexpr int kMaxFields = 4;
 constexpr int kMaxCellDofs = kMaxFields * kMaxElementNodes;
 using CellVector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, kMaxCellDofs, 1>;
 using CellMatrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCellDofs, kMaxCellDofs>;
-
-// Greedy colouring: no two cells of a colour share a node.
-std::vector<std::vector<Index>> colour(const FemMesh& mesh) {
-  std::vector<std::vector<int>> used(mesh.node_count());
-  std::vector<std::vector<Index>> colours;
-  std::vector<char> taken;
-  for (Index e = 0; e < mesh.cell_count(); ++e) {
-    taken.assign(colours.size() + 1, 0);
-    for (int a = 0; a < mesh.nodes_per_cell(); ++a)
-      for (int c : used[mesh.cell(e)[a]]) taken[c] = 1;
-    int c = 0;
-    while (taken[c]) ++c;
-    if (c >= static_cast<int>(colours.size())) colours.resize(c + 1);
-    colours[c].push_back(e);
-    for (int a = 0; a < mesh.nodes_per_cell(); ++a) used[mesh.cell(e)[a]].push_back(c);
-  }
-  return colours;
-}
 
 // The residual and the Jacobian (tau frozen) of one cell; local dofs node-major, fields
 // (velocity components, pressure).
@@ -120,45 +101,27 @@ void assemble_flow(const NavierStokesModel& m, const VectorX& x, const VectorX* 
     *J = m.pattern;
     std::fill(J->valuePtr(), J->valuePtr() + J->nonZeros(), 0.0);
   }
-  for (const std::vector<Index>& cells : m.colours) {
-    const Index count = static_cast<Index>(cells.size());
-#pragma omp parallel num_threads(m.threads > 0 ? m.threads : omp_get_max_threads())
-    {
-      CellVector Re;
-      CellMatrix Je;
-      Real local[kMaxCellDofs], local_old[kMaxCellDofs];
-#pragma omp for schedule(static)
-      for (Index i = 0; i < count; ++i) {
-        const Index e = cells[i];
-        const Index* c = m.mesh.cell(e);
-        for (int a = 0; a < nodes; ++a)
-          for (int f = 0; f < F; ++f) {
-            local[a * F + f] = x[m.dof(c[a], f)];
-            if (x_old) local_old[a * F + f] = (*x_old)[m.dof(c[a], f)];
-          }
-        flow_cell(m, e, local, x_old ? local_old : nullptr, dt, J != nullptr, Re, Je);
-        for (int a = 0; a < nodes; ++a)
-          for (int f = 0; f < F; ++f) R[m.dof(c[a], f)] += Re[a * F + f];
-        if (!J) continue;
-        const Index* slots = m.slots.data() + static_cast<size_t>(e) * n * n;
-        for (int r = 0; r < n; ++r)
-          for (int q = 0; q < n; ++q)
-            if (slots[r * n + q] >= 0) J->valuePtr()[slots[r * n + q]] += Je(r, q);
+  for_each_cell_by_colour(m.colours, m.threads, [&](Index e) {
+    CellVector Re;
+    CellMatrix Je;
+    Real local[kMaxCellDofs], local_old[kMaxCellDofs];
+    const Index* c = m.mesh.cell(e);
+    for (int a = 0; a < nodes; ++a)
+      for (int f = 0; f < F; ++f) {
+        local[a * F + f] = x[m.dof(c[a], f)];
+        if (x_old) local_old[a * F + f] = (*x_old)[m.dof(c[a], f)];
       }
-    }
-  }
+    flow_cell(m, e, local, x_old ? local_old : nullptr, dt, J != nullptr, Re, Je);
+    for (int a = 0; a < nodes; ++a)
+      for (int f = 0; f < F; ++f) R[m.dof(c[a], f)] += Re[a * F + f];
+    if (!J) return;
+    const Index* slots = m.slots.data() + static_cast<size_t>(e) * n * n;
+    for (int r = 0; r < n; ++r)
+      for (int q = 0; q < n; ++q)
+        if (slots[r * n + q] >= 0) J->valuePtr()[slots[r * n + q]] += Je(r, q);
+  });
 }
 
-namespace {
-
-VectorX free_rows(const NavierStokesModel& m, const VectorX& full) {
-  VectorX out(m.free_count);
-  for (Index d = 0; d < m.dof_count(); ++d)
-    if (m.free_index[d] >= 0) out[m.free_index[d]] = full[d];
-  return out;
-}
-
-}  // namespace
 
 void setup_navier_stokes(NavierStokesModel& m) {
   FemMesh& mesh = m.mesh;
@@ -195,44 +158,18 @@ void setup_navier_stokes(NavierStokesModel& m) {
     }
     m.cell_size[e] = std::pow(measure, 1.0 / m.dim);
   }
-  m.colours = colour(mesh);
-  m.free_index.assign(m.dof_count(), 0);
-  for (const PrescribedDof& p : m.prescribed) m.free_index[p.dof] = -1;
-  m.free_count = 0;
-  for (Index d = 0; d < m.dof_count(); ++d)
-    if (m.free_index[d] >= 0) m.free_index[d] = m.free_count++;
+  m.colours = colour_cells(mesh);
+  m.free_count = number_free_dofs(m.dof_count(), m.prescribed, m.free_index);
   std::vector<Eigen::Triplet<Real, int>> entries;
-  const int n = F * nodes;
-  for (Index e = 0; e < mesh.cell_count(); ++e)
-    for (int r = 0; r < n; ++r) {
-      const Index row = m.free_index[m.dof(mesh.cell(e)[r / F], r % F)];
-      if (row < 0) continue;
-      for (int q = 0; q < n; ++q) {
-        const Index col = m.free_index[m.dof(mesh.cell(e)[q / F], q % F)];
-        if (col >= 0) entries.emplace_back(row, col, 0.0);
-      }
-    }
+  add_cell_couplings(mesh, 0, F, m.free_index, entries);
   m.pattern.resize(m.free_count, m.free_count);
   m.pattern.setFromTriplets(entries.begin(), entries.end());
   m.pattern.makeCompressed();
-  m.slots.assign(static_cast<size_t>(mesh.cell_count()) * n * n, -1);
-  const int* outer = m.pattern.outerIndexPtr();
-  const int* inner = m.pattern.innerIndexPtr();
-  for (Index e = 0; e < mesh.cell_count(); ++e)
-    for (int r = 0; r < n; ++r) {
-      const Index row = m.free_index[m.dof(mesh.cell(e)[r / F], r % F)];
-      if (row < 0) continue;
-      for (int q = 0; q < n; ++q) {
-        const Index col = m.free_index[m.dof(mesh.cell(e)[q / F], q % F)];
-        if (col < 0) continue;
-        const int* at = std::lower_bound(inner + outer[col], inner + outer[col + 1], row);
-        m.slots[static_cast<size_t>(e) * n * n + r * n + q] = static_cast<Index>(at - inner);
-      }
-    }
+  m.slots = cell_slots(mesh, 0, F, m.free_index, m.pattern);
 }
 
 NewtonResult solve_navier_stokes(const NavierStokesModel& m, Real t, Real dt, const VectorX& x_old, VectorX& x,
-                                 NavierStokesSolver& solver, const NewtonSettings& settings) {
+                                 SparseLuSolver& solver, const NewtonSettings& settings) {
   NewtonResult result;
   for (const PrescribedDof& p : m.prescribed) x[p.dof] = p.value(t);
   VectorX R;
@@ -241,7 +178,7 @@ NewtonResult solve_navier_stokes(const NavierStokesModel& m, Real t, Real dt, co
   Real first = 0;
   for (;;) {
     timed(result.assembly_s, [&] { assemble_flow(m, x, old, dt, R, &J); return 0; });
-    const VectorX r = free_rows(m, R);
+    const VectorX r = gather_free(m.free_index, m.free_count, R);
     const Real norm = r.norm();
     result.residual_norms.push_back(norm);
     if (result.iterations == 0) first = std::max(norm, Real(1e-300));
@@ -251,26 +188,18 @@ NewtonResult solve_navier_stokes(const NavierStokesModel& m, Real t, Real dt, co
                                    settings.max_iterations, norm, first);
       return result;
     }
-    const bool ok = timed(result.solve_s, [&] {
-      if (!solver.analyzed) {
-        solver.lu.analyzePattern(J);
-        solver.analyzed = true;
-      }
-      solver.lu.factorize(J);
-      return solver.lu.info() == Eigen::Success;
-    });
+    const bool ok = timed(result.solve_s, [&] { return solver.factorize(J); });
     if (!ok) {
       result.failure = "the flow Jacobian is singular (is the pressure fixed somewhere, or an outflow given?)";
       return result;
     }
     const VectorX rhs = -r;
-    const VectorX dx = timed(result.solve_s, [&] { return VectorX(solver.lu.solve(rhs)); });
+    const VectorX dx = timed(result.solve_s, [&] { return solver.solve(rhs); });
     ++result.iterations;
-    for (Index d = 0; d < m.dof_count(); ++d)
-      if (m.free_index[d] >= 0) x[d] += dx[m.free_index[d]];
-    if (dx.norm() <= settings.tolerance * free_rows(m, x).norm()) {
+    add_free(m.free_index, dx, x);
+    if (dx.norm() <= settings.tolerance * gather_free(m.free_index, m.free_count, x).norm()) {
       assemble_flow(m, x, old, dt, R, nullptr);
-      result.residual_norms.push_back(free_rows(m, R).norm());
+      result.residual_norms.push_back(gather_free(m.free_index, m.free_count, R).norm());
       break;
     }
   }

@@ -14,12 +14,12 @@
 // the SUPG test function's, is linearised exactly). Time stepping: backward Euler (dt > 0);
 // dt = 0 solves the steady equations. Outflow boundaries without conditions are "do nothing"
 // (sigma n = 0 in the symmetric-gradient form).
-#include <Eigen/UmfPackSupport>
 #include <functional>
 #include <vector>
 
 #include "moreau/fem/fem_mesh.hpp"
 #include "moreau/fem/fem_model.hpp"
+#include "moreau/fem/linear_solver.hpp"
 #include "moreau/fem/static_solver.hpp"
 
 namespace moreau {
@@ -58,16 +58,11 @@ void setup_navier_stokes(NavierStokesModel& model);
 void assemble_flow(const NavierStokesModel& model, const VectorX& x, const VectorX* x_old, Real dt, VectorX& R,
                    SparseMatrix* J);
 
-struct NavierStokesSolver {
-  Eigen::UmfPackLU<SparseMatrix> lu;
-  bool analyzed = false;
-};
-
 /// Solves one backward-Euler step from x_old (dt > 0) or the steady equations (dt = 0), starting
 /// from x, whose prescribed dofs are set to their values at t. Newton with tau frozen; converged
 /// when |R| <= tolerance * |R_0| or the correction is below tolerance * |x|.
 NewtonResult solve_navier_stokes(const NavierStokesModel& model, Real t, Real dt, const VectorX& x_old, VectorX& x,
-                                 NavierStokesSolver& solver, const NewtonSettings& settings = {});
+                                 SparseLuSolver& solver, const NewtonSettings& settings = {});
 
 /// Velocity and pressure at a point (the cell containing it is found by inverting the
 /// isoparametric map); false if the point is outside the mesh.

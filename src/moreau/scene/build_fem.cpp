@@ -400,9 +400,11 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
   // Gravity acts on every solid as a body load rho g.
   if (gravity.head(model.dim).norm() > 0)
     for (const FemSolid& s : model.solids) {
-      NodalLoad g{"gravity", {}, cell_node_integrals(s, s.material.density), [gravity](Real) { return gravity; }};
-      g.nodes.resize(s.mesh.node_count());
-      for (Index n = 0; n < s.mesh.node_count(); ++n) g.nodes[n] = s.node_begin + n;
+      NodalLoad g{"gravity", {}, {}, [gravity](Real) { return gravity; }};
+      for (Index n = s.node_begin; n < s.node_begin + s.mesh.node_count(); ++n) {
+        g.nodes.push_back(n);
+        g.weights.push_back(model.node_mass[n]);
+      }
       model.loads.push_back(std::move(g));
     }
   finalize_fem_model(model);
