@@ -30,8 +30,9 @@ TEST(NavierStokes, JacobianIsTheDerivativeOfTheResidual) {
   // Newton with tau frozen: with tau and nu_LSIC held fixed (the model's test hook), the Jacobian
   // must be the exact derivative of the residual, convection, SUPG test-function and PSPG terms
   // included; checked by central differences (step 1e-6) at a random state on a 3 x 3
-  // mesh, steady and backward Euler. Tolerance 1e-7 of max|J|: truncation ~1e-12.
-  for (Real dt : {0.0, 0.01}) {
+  // mesh, steady and for every time integrator. Tolerance 1e-7 of max|J|: truncation ~1e-12.
+  for (FlowIntegrator integrator :
+       {FlowIntegrator::steady, FlowIntegrator::backward_euler, FlowIntegrator::bdf2, FlowIntegrator::midpoint}) {
     NavierStokesModel m;
     m.mesh = make_rectangle_mesh(Vec2(0, 0), Vec2(1, 1), {3, 3}, ElementType::quad4);
     m.density = 2;
@@ -42,17 +43,18 @@ TEST(NavierStokes, JacobianIsTheDerivativeOfTheResidual) {
     setup_navier_stokes(m);
     std::mt19937 rng(1);
     std::uniform_real_distribution<Real> dist(-1, 1);
-    VectorX x(m.dof_count()), x_old(m.dof_count());
-    for (Index i = 0; i < x.size(); ++i) x[i] = dist(rng), x_old[i] = dist(rng);
+    VectorX x(m.dof_count()), x1(m.dof_count()), x2(m.dof_count());
+    for (Index i = 0; i < x.size(); ++i) x[i] = dist(rng), x1[i] = dist(rng), x2[i] = dist(rng);
+    const FlowTimeStep step{integrator, 0.01, &x1, &x2};
     VectorX R, Rp;
     SparseMatrix J;
-    assemble_flow(m, x, dt > 0 ? &x_old : nullptr, dt, R, &J);
+    assemble_flow(m, x, step, R, &J);
     const Eigen::MatrixXd Jd(J);
     const Real worst = test::jacobian_error(Jd, x, 1e-6, [&](const VectorX& v) {
-      assemble_flow(m, v, dt > 0 ? &x_old : nullptr, dt, Rp, nullptr);
+      assemble_flow(m, v, step, Rp, nullptr);
       return Rp;
     });
-    EXPECT_LT(worst, 1e-7 * Jd.cwiseAbs().maxCoeff()) << "dt " << dt;
+    EXPECT_LT(worst, 1e-7 * Jd.cwiseAbs().maxCoeff()) << "integrator " << static_cast<int>(integrator);
   }
 }
 
@@ -78,7 +80,7 @@ TEST(NavierStokes, PoiseuilleFlowConvergesAtSecondOrder) {
     setup_navier_stokes(m);
     VectorX x = VectorX::Zero(m.dof_count());
     SparseLuSolver solver;
-    const NewtonResult r = solve_navier_stokes(m, 0, 0, x, x, solver, {.tolerance = 1e-10, .max_iterations = 20});
+    const NewtonResult r = solve_navier_stokes(m, 0, {}, x, solver, {.tolerance = 1e-10, .max_iterations = 20});
     ASSERT_TRUE(r.converged) << r.failure;
     Vec3 centre, left;
     Real p_mid, p_left;
@@ -113,7 +115,7 @@ TEST(NavierStokes, LidDrivenCavityAtRe100MatchesGhia) {
   setup_navier_stokes(m);
   VectorX x = VectorX::Zero(m.dof_count());
   SparseLuSolver solver;
-  const NewtonResult r = solve_navier_stokes(m, 0, 0, x, x, solver, {.tolerance = 1e-10, .max_iterations = 30});
+  const NewtonResult r = solve_navier_stokes(m, 0, {}, x, solver, {.tolerance = 1e-10, .max_iterations = 30});
   ASSERT_TRUE(r.converged) << r.failure;
   Real worst_u = 0, worst_v = 0;
   for (int k = 0; k < 17; ++k) {

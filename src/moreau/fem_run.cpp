@@ -30,6 +30,7 @@ const char* integrator_name(FemIntegrator i) {
 }  // namespace
 
 std::string fem_summary(const Scene& scene) {
+  if (scene.fem->flow) return flow_summary(scene);
   const FemProblem& p = *scene.fem;
   const FemModel& m = p.model;
   std::string s = fmt::format("scene '{}' ({}): solver fem ({}D), integrator {}, dt {} s, duration {} s\n", scene.name,
@@ -50,6 +51,7 @@ std::string fem_summary(const Scene& scene) {
 }
 
 RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
+  if (scene.fem->flow) return run_flow_scene(scene, options);
   FemProblem& problem = *scene.fem;
   FemModel& model = problem.model;
   if (options.threads) model.threads = *options.threads;

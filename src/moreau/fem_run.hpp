@@ -15,4 +15,11 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options);
 /// What a FEM scene builds: solids, nodes, cells, dofs, loads, conditions.
 std::string fem_summary(const Scene& scene);
 
+/// The run loop of a FEM scene with a "fluid" (flow_run.cpp): a steady solve with viscosity
+/// continuation, or time steps; exit-3 NumericalError naming the step and time on failure.
+RunResult run_flow_scene(Scene& scene, const RunOptions& options);
+
+/// What a fluid scene builds: mesh, material, unknowns.
+std::string flow_summary(const Scene& scene);
+
 }  // namespace moreau

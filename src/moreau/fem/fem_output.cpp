@@ -35,8 +35,6 @@ void cell_stresses(const FemModel& model, const FemSolid& s, const VectorX& u, s
   }
 }
 
-namespace {
-
 VtkCell vtk_cell(ElementType type) {
   switch (type) {
     case ElementType::line2: return VtkCell::line;
@@ -47,8 +45,6 @@ VtkCell vtk_cell(ElementType type) {
   }
   return VtkCell::triangle;
 }
-
-}  // namespace
 
 void FemFrameWriter::write(const FemRunState& run) {
   const FemDynamicState& state = run.solids;

@@ -13,6 +13,9 @@
 
 namespace moreau {
 
+/// The VTK cell type of an element type.
+VtkCell vtk_cell(ElementType type);
+
 /// Per cell of a solid: the 6 Cauchy stress components (xx, yy, zz, xy, yz, xz) and von Mises.
 void cell_stresses(const FemModel& model, const FemSolid& solid, const VectorX& u, std::vector<Real>& cauchy,
                    std::vector<Real>& von_mises);

@@ -1,5 +1,6 @@
 #pragma once
 // A scene of the FEM engine ("solver": "fem"): the model, how to step it, and what to measure.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -7,6 +8,7 @@
 #include "moreau/fem/dynamic_solver.hpp"
 #include "moreau/fem/fem_joints.hpp"
 #include "moreau/fem/fem_model.hpp"
+#include "moreau/fem/flow_problem.hpp"
 #include "moreau/fem/static_solver.hpp"
 
 namespace moreau {
@@ -47,6 +49,7 @@ struct FemProblem {
   std::vector<FemJoint> joints;
   Vec3 gravity = Vec3::Zero();  // m/s^2, acts on the rigid bodies (on the solids it is a load)
   std::vector<FemProbe> probes;
+  std::optional<FlowProblem> flow;  // a "fluid" scene (then no solids, bodies or joints)
 };
 
 /// Column names of a probe in probes.csv.

@@ -21,6 +21,13 @@ bool SparseSymmetricSolver::factorize(const SparseMatrix& K, bool symmetric) {
   return lu_.factorize(K);
 }
 
+SparseLuSolver::SparseLuSolver() {
+  // No iterative refinement: every caller is a Newton iteration, which refines by itself; the
+  // default two refinement steps cost 3x the plain solve (0.055 s vs 0.016 s on the 128^2 cavity)
+  // for a residual of 1e-15 instead of 3e-15.
+  lu_.umfpackControl()(UMFPACK_IRSTEP) = 0;
+}
+
 bool SparseLuSolver::factorize(const SparseMatrix& A) {
   if (!analyzed_) {
     lu_.analyzePattern(A);

@@ -18,6 +18,7 @@ namespace moreau {
 /// reused for every later one, which must have the same sparsity.
 class SparseLuSolver {
  public:
+  SparseLuSolver();
   /// False if the matrix is singular.
   bool factorize(const SparseMatrix& A);
   VectorX solve(const VectorX& b) const { return lu_.solve(b); }

@@ -17,13 +17,29 @@ constexpr int kMaxCellDofs = kMaxFields * kMaxElementNodes;
 using CellVector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, kMaxCellDofs, 1>;
 using CellMatrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCellDofs, kMaxCellDofs>;
 
-// The residual and the Jacobian (tau frozen) of one cell; local dofs node-major, fields
-// (velocity components, pressure).
-void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x_old, Real dt, bool with_jacobian,
-               CellVector& R, CellMatrix& J) {
+// The time scheme's coefficients (navier_stokes.hpp): du/dt = (a0 u_{n+1} + a1 u_n + a2 u_{n-1}) * ct,
+// momentum terms at theta u_{n+1} + (1 - theta) u_n.
+struct SchemeCoefficients {
+  Real a0 = 0, a1 = 0, a2 = 0, theta = 1, ct = 0;
+};
+
+SchemeCoefficients scheme_coefficients(const FlowTimeStep& step) {
+  if (!step.transient()) return {};
+  const Real ct = 1 / step.dt;
+  switch (step.integrator) {
+    case FlowIntegrator::bdf2: return {1.5, -2, 0.5, 1, ct};
+    case FlowIntegrator::midpoint: return {1, -1, 0, 0.5, ct};
+    default: return {1, -1, 0, 1, ct};
+  }
+}
+
+// The residual and the Jacobian (tau frozen; `picard`: advecting velocity frozen too) of one
+// cell; local dofs node-major, fields (velocity components, pressure). x: u_{n+1}, x1: u_n, x2:
+// u_{n-1} (null when their coefficients vanish).
+void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x1, const Real* x2,
+               const SchemeCoefficients& c, Real dt, bool with_jacobian, bool picard, CellVector& R, CellMatrix& J) {
   const int dim = m.dim, F = m.fields(), nodes = m.mesh.nodes_per_cell(), n = F * nodes;
-  const Real rho = m.density, mu = m.viscosity, nu = mu / rho;
-  const Real ct = dt > 0 ? 1 / dt : 0;
+  const Real rho = m.density, mu = m.viscosity, nu = mu / rho, theta = c.theta;
   R.setZero(n);
   if (with_jacobian) J.setZero(n, n);
   const Real h = m.cell_size[e];
@@ -33,19 +49,22 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
     const Real w = m.weight[qp];
     const Real* N = m.shape.data() + qp * nodes;
     const Vec3* dN = m.gradient.data() + qp * nodes;
-    Vec3 u = Vec3::Zero(), u_old = Vec3::Zero(), gp = Vec3::Zero();
-    Mat3 G = Mat3::Zero();  // G_ij = du_i / dx_j
-    Real p = 0;
+    // u, G (G_ij = du_i/dx_j) at theta; ut the time derivative; p, grad p and div u at n+1.
+    Vec3 u = Vec3::Zero(), ut = Vec3::Zero(), gp = Vec3::Zero();
+    Mat3 G = Mat3::Zero();
+    Real p = 0, div = 0;
     for (int a = 0; a < nodes; ++a) {
       for (int i = 0; i < dim; ++i) {
-        u[i] += N[a] * x[a * F + i];
-        if (x_old) u_old[i] += N[a] * x_old[a * F + i];
-        G.row(i) += x[a * F + i] * dN[a].transpose();
+        const Real now = x[a * F + i], before = x1 ? x1[a * F + i] : 0, older = x2 ? x2[a * F + i] : 0;
+        const Real at_theta = theta * now + (1 - theta) * before;
+        u[i] += N[a] * at_theta;
+        ut[i] += N[a] * c.ct * (c.a0 * now + c.a1 * before + c.a2 * older);
+        G.row(i) += at_theta * dN[a].transpose();
+        div += now * dN[a][i];
       }
       p += N[a] * x[a * F + dim];
       gp += x[a * F + dim] * dN[a];
     }
-    const Vec3 ut = ct * (u - u_old);
     // Strong momentum residual (gradients have zero components past dim, so 3-vector dot
     // products below are the dim-dimensional ones).
     const Vec3 r = rho * (ut + G * u - m.body_force) + gp;
@@ -56,31 +75,33 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
     }
     // tau = (tau1^-2 + tau2^-2 + tau3^-2)^-1/2 with tau1^-1 = sum_a |u . grad N_a|, tau2 = dt/2,
     // tau3 = h^2 / (4 nu).
-    const Real inv = s1 * s1 + (dt > 0 ? 4 * ct * ct : 0) + std::pow(4 * nu / (h * h), 2);
+    const Real inv = s1 * s1 + (dt > 0 ? 4 / (dt * dt) : 0) + std::pow(4 * nu / (h * h), 2);
     const Real tau = m.fixed_tau > 0 ? m.fixed_tau : 1 / std::sqrt(inv);
     const Real nu_lsic = m.fixed_tau > 0 ? m.fixed_lsic : tau * u.squaredNorm();
-    const Real div = G.trace();
     for (int a = 0; a < nodes; ++a) {
       for (int i = 0; i < dim; ++i) {
         Real viscous = 0;
         for (int k = 0; k < dim; ++k) viscous += (G(i, k) + G(k, i)) * dN[a][k];
-        R[a * F + i] += w * (N[a] * rho * (ut[i] + (G * u)[i] - m.body_force[i]) + mu * viscous - p * dN[a][i] +
-                             tau * adv[a] * r[i] + nu_lsic * rho * dN[a][i] * div);
+        R[a * F + i] += w * (N[a] * (r[i] - gp[i]) + mu * viscous - p * dN[a][i] + tau * adv[a] * r[i] +
+                             nu_lsic * rho * dN[a][i] * div);
       }
       R[a * F + dim] += w * (N[a] * div + tau / rho * dN[a].dot(r));
     }
     if (!with_jacobian) continue;
+    // Newton: d u_theta / d u_{n+1} = theta, d ut / d u_{n+1} = a0 / dt. Picard drops the
+    // derivatives through the advecting velocity (the G N_b term and the SUPG test function's).
+    const Real frozen = picard ? 0 : 1;
     for (int a = 0; a < nodes; ++a)
       for (int b = 0; b < nodes; ++b) {
-        const Real mass_adv = N[b] * ct + adv[b];
+        const Real mass_adv = c.a0 * c.ct * N[b] + theta * adv[b];
         const Real grad_dot = dN[a].dot(dN[b]);
         for (int j = 0; j < dim; ++j) {
-          // d r_i / d u_bj = rho ((N_b / dt + u . grad N_b) delta_ij + G_ij N_b)
-          Vec3 dr = rho * G.col(j) * N[b];
+          // d r_i / d u_bj = rho ((a0 N_b / dt + theta u . grad N_b) delta_ij + theta G_ij N_b)
+          Vec3 dr = frozen * theta * rho * G.col(j) * N[b];
           dr[j] += rho * mass_adv;
           for (int i = 0; i < dim; ++i) {
-            Real v = N[a] * dr[i] + mu * ((i == j ? grad_dot : 0) + dN[a][j] * dN[b][i]) + tau * adv[a] * dr[i] +
-                     tau * N[b] * dN[a][j] * r[i] + nu_lsic * rho * dN[a][i] * dN[b][j];
+            Real v = N[a] * dr[i] + theta * mu * ((i == j ? grad_dot : 0) + dN[a][j] * dN[b][i]) + tau * adv[a] * dr[i] +
+                     frozen * theta * tau * N[b] * dN[a][j] * r[i] + nu_lsic * rho * dN[a][i] * dN[b][j];
             J(a * F + i, b * F + j) += w * v;
           }
           J(a * F + dim, b * F + j) += w * (N[a] * dN[b][j] + tau / rho * dN[a].dot(dr));
@@ -93,9 +114,16 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
 
 }  // namespace
 
-void assemble_flow(const NavierStokesModel& m, const VectorX& x, const VectorX* x_old, Real dt, VectorX& R,
-                   SparseMatrix* J) {
+void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeStep& step, VectorX& R, SparseMatrix* J,
+                   bool picard) {
   const int F = m.fields(), nodes = m.mesh.nodes_per_cell(), n = F * nodes;
+  const SchemeCoefficients coefficients = scheme_coefficients(step);
+  if (step.transient() && !(step.dt > 0)) throw std::invalid_argument("assemble_flow: a transient step needs dt > 0");
+  if (step.transient() && !step.previous) throw std::invalid_argument("assemble_flow: a transient step needs x_n");
+  if (coefficients.a2 != 0 && !step.before_previous) throw std::invalid_argument("assemble_flow: BDF2 needs x_{n-1}");
+  const VectorX* x1 = step.transient() ? step.previous : nullptr;
+  const VectorX* x2 = coefficients.a2 != 0 ? step.before_previous : nullptr;
+  const Real dt = step.transient() ? step.dt : 0;
   R.setZero(m.dof_count());
   if (J) {
     *J = m.pattern;
@@ -104,16 +132,18 @@ void assemble_flow(const NavierStokesModel& m, const VectorX& x, const VectorX* 
   for_each_cell_by_colour(m.colours, m.threads, [&](Index e) {
     CellVector Re;
     CellMatrix Je;
-    Real local[kMaxCellDofs], local_old[kMaxCellDofs];
-    const Index* c = m.mesh.cell(e);
+    Real local[kMaxCellDofs], local1[kMaxCellDofs], local2[kMaxCellDofs];
+    const Index* cell = m.mesh.cell(e);
     for (int a = 0; a < nodes; ++a)
       for (int f = 0; f < F; ++f) {
-        local[a * F + f] = x[m.dof(c[a], f)];
-        if (x_old) local_old[a * F + f] = (*x_old)[m.dof(c[a], f)];
+        const Index d = m.dof(cell[a], f);
+        local[a * F + f] = x[d];
+        if (x1) local1[a * F + f] = (*x1)[d];
+        if (x2) local2[a * F + f] = (*x2)[d];
       }
-    flow_cell(m, e, local, x_old ? local_old : nullptr, dt, J != nullptr, Re, Je);
+    flow_cell(m, e, local, x1 ? local1 : nullptr, x2 ? local2 : nullptr, coefficients, dt, J != nullptr, picard, Re, Je);
     for (int a = 0; a < nodes; ++a)
-      for (int f = 0; f < F; ++f) R[m.dof(c[a], f)] += Re[a * F + f];
+      for (int f = 0; f < F; ++f) R[m.dof(cell[a], f)] += Re[a * F + f];
     if (!J) return;
     const Index* slots = m.slots.data() + static_cast<size_t>(e) * n * n;
     for (int r = 0; r < n; ++r)
@@ -168,40 +198,70 @@ void setup_navier_stokes(NavierStokesModel& m) {
   m.slots = cell_slots(mesh, 0, F, m.free_index, m.pattern);
 }
 
-NewtonResult solve_navier_stokes(const NavierStokesModel& m, Real t, Real dt, const VectorX& x_old, VectorX& x,
-                                 SparseLuSolver& solver, const NewtonSettings& settings) {
-  NewtonResult result;
-  for (const PrescribedDof& p : m.prescribed) x[p.dof] = p.value(t);
+namespace {
+
+// Newton (or Picard) iterations from x until |R| <= stop * |R_0| (or the correction is below
+// tolerance * |x|), at most `limit` linear solves; false on failure, with result.failure set.
+// Divergence (|R| above 1e6 |R_0|, or not finite) stops early.
+bool iterate_flow(const NavierStokesModel& m, const FlowTimeStep& step, VectorX& x, SparseLuSolver& solver, bool picard,
+                  Real stop, Real tolerance, int limit, FlowSolveResult& result, int& count) {
   VectorX R;
   SparseMatrix J;
-  const VectorX* old = dt > 0 ? &x_old : nullptr;
   Real first = 0;
-  for (;;) {
-    timed(result.assembly_s, [&] { assemble_flow(m, x, old, dt, R, &J); return 0; });
-    const VectorX r = gather_free(m.free_index, m.free_count, R);
-    const Real norm = r.norm();
+  for (int it = 0;; ++it) {
+    timed(result.assembly_s, [&] { assemble_flow(m, x, step, R, &J, picard); return 0; });
+    const Real norm = gather_free(m.free_index, m.free_count, R).norm();
     result.residual_norms.push_back(norm);
-    if (result.iterations == 0) first = std::max(norm, Real(1e-300));
-    if (norm <= settings.tolerance * first || norm == 0) break;
-    if (result.iterations == settings.max_iterations) {
-      result.failure = fmt::format("the flow solve did not converge in {} Newton iterations (|R| = {:.3e}, first {:.3e})",
-                                   settings.max_iterations, norm, first);
-      return result;
+    if (it == 0) first = std::max(norm, Real(1e-300));
+    if (norm <= stop * first || norm == 0) return true;
+    const char* method = picard ? "Picard" : "Newton";
+    if (!std::isfinite(norm) || norm > 1e6 * first) {
+      result.failure = fmt::format("{} diverged (|R| = {:.3e}, first {:.3e})", method, norm, first);
+      return false;
     }
-    const bool ok = timed(result.solve_s, [&] { return solver.factorize(J); });
-    if (!ok) {
+    if (it == limit) {
+      result.failure = fmt::format("{} did not converge in {} iterations (|R| = {:.3e}, first {:.3e})", method, limit, norm, first);
+      return false;
+    }
+    if (!timed(result.solve_s, [&] { return solver.factorize(J); })) {
       result.failure = "the flow Jacobian is singular (is the pressure fixed somewhere, or an outflow given?)";
-      return result;
+      return false;
     }
-    const VectorX rhs = -r;
+    const VectorX rhs = -gather_free(m.free_index, m.free_count, R);
     const VectorX dx = timed(result.solve_s, [&] { return solver.solve(rhs); });
-    ++result.iterations;
+    ++count;
     add_free(m.free_index, dx, x);
-    if (dx.norm() <= settings.tolerance * gather_free(m.free_index, m.free_count, x).norm()) {
-      assemble_flow(m, x, old, dt, R, nullptr);
+    if (!picard && dx.norm() <= tolerance * gather_free(m.free_index, m.free_count, x).norm()) {
+      assemble_flow(m, x, step, R, nullptr);
       result.residual_norms.push_back(gather_free(m.free_index, m.free_count, R).norm());
-      break;
+      return true;
     }
+  }
+}
+
+}  // namespace
+
+FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const FlowTimeStep& step, VectorX& x,
+                                    SparseLuSolver& solver, const FlowSolveSettings& settings) {
+  FlowSolveResult result;
+  for (const PrescribedDof& p : m.prescribed) x[p.dof] = p.value(t);
+  const VectorX start = x;
+  if (iterate_flow(m, step, x, solver, false, settings.tolerance, settings.tolerance, settings.max_iterations, result,
+                   result.iterations)) {
+    result.converged = true;
+    return result;
+  }
+  if (!settings.picard_fallback) return result;
+  // Picard from the same start (robust, linearly convergent), then Newton from where it got.
+  const std::string newton_failure = result.failure;
+  x = start;
+  if (!iterate_flow(m, step, x, solver, true, settings.picard_reduction, settings.tolerance,
+                    settings.max_picard_iterations, result, result.picard_iterations) ||
+      !iterate_flow(m, step, x, solver, false, settings.tolerance * result.residual_norms.front() /
+                                                   std::max(result.residual_norms.back(), Real(1e-300)),
+                    settings.tolerance, settings.max_iterations, result, result.iterations)) {
+    result.failure = fmt::format("Newton failed ({}), and so did the Picard fallback: {}", newton_failure, result.failure);
+    return result;
   }
   result.converged = true;
   return result;

@@ -11,9 +11,15 @@
 //   tau2 = dt / 2 (transient only),  tau3 = h^2 / (4 nu) with h the cell's size (area^(1/2),
 //   volume^(1/3)),  tau_PSPG = tau_SUPG = tau,  nu_LSIC = tau |u|^2.
 // Newton's method with tau frozen at the current iterate (every other dependence on u, including
-// the SUPG test function's, is linearised exactly). Time stepping: backward Euler (dt > 0);
-// dt = 0 solves the steady equations. Outflow boundaries without conditions are "do nothing"
+// the SUPG test function's, is linearised exactly); Picard (advecting velocity frozen too) as the
+// fallback when Newton fails. Outflow boundaries without conditions are "do nothing"
 // (sigma n = 0 in the symmetric-gradient form).
+// Time stepping (FlowIntegrator): du/dt ~ (a0 u_{n+1} + a1 u_n + a2 u_{n-1}) / dt, and the
+// momentum terms (convection, viscosity, SUPG) at u_theta = theta u_{n+1} + (1 - theta) u_n:
+//   backward Euler a = (1, -1, 0), theta = 1;    BDF2 a = (3/2, -2, 1/2), theta = 1;
+//   midpoint (Crank-Nicolson) a = (1, -1, 0), theta = 1/2.
+// Continuity, LSIC and the pressure act at n+1; with the midpoint rule the pressure unknown is
+// the pressure at t_{n+1/2} (it is the multiplier of the midpoint momentum balance).
 #include <functional>
 #include <vector>
 
@@ -23,6 +29,27 @@
 #include "moreau/fem/static_solver.hpp"
 
 namespace moreau {
+
+enum class FlowIntegrator { steady, backward_euler, bdf2, midpoint };
+
+/// One step of a flow integrator: the scheme, dt and the previous states it needs.
+struct FlowTimeStep {
+  FlowIntegrator integrator = FlowIntegrator::steady;
+  Real dt = 0;                               // s; ignored when steady
+  const VectorX* previous = nullptr;         // x_n (every transient scheme)
+  const VectorX* before_previous = nullptr;  // x_{n-1} (BDF2)
+  bool transient() const { return integrator != FlowIntegrator::steady; }
+};
+
+/// The nonlinear solve's settings: Newton, then (if it fails) Picard from the same start until the
+/// residual has dropped by picard_reduction, then Newton again.
+struct FlowSolveSettings {
+  Real tolerance = 1e-8;        // relative to the first residual, or to |x| for the correction
+  int max_iterations = 25;      // Newton iterations per attempt
+  bool picard_fallback = true;
+  int max_picard_iterations = 100;
+  Real picard_reduction = 1e-3;
+};
 
 struct NavierStokesModel {
   FemMesh mesh;                  // quad4 or hex8
@@ -53,16 +80,21 @@ struct NavierStokesModel {
 /// Quadrature, colours, the free dofs and the Jacobian's sparsity; after `prescribed` is set.
 void setup_navier_stokes(NavierStokesModel& model);
 
-/// The residual on all dofs and, if `J` is given, its Jacobian (tau frozen) on the free dofs, at x
-/// (x_old and dt > 0: backward Euler; dt = 0: steady). Cells in parallel by colours, deterministic.
-void assemble_flow(const NavierStokesModel& model, const VectorX& x, const VectorX* x_old, Real dt, VectorX& R,
-                   SparseMatrix* J);
+/// The residual on all dofs at x (the state at t_{n+1}) and, if `J` is given, its Jacobian (tau
+/// frozen; `picard`: the advecting velocity frozen too) on the free dofs. Cells in parallel by
+/// colours, deterministic.
+void assemble_flow(const NavierStokesModel& model, const VectorX& x, const FlowTimeStep& step, VectorX& R,
+                   SparseMatrix* J, bool picard = false);
 
-/// Solves one backward-Euler step from x_old (dt > 0) or the steady equations (dt = 0), starting
-/// from x, whose prescribed dofs are set to their values at t. Newton with tau frozen; converged
-/// when |R| <= tolerance * |R_0| or the correction is below tolerance * |x|.
-NewtonResult solve_navier_stokes(const NavierStokesModel& model, Real t, Real dt, const VectorX& x_old, VectorX& x,
-                                 SparseLuSolver& solver, const NewtonSettings& settings = {});
+struct FlowSolveResult : NewtonResult {
+  int picard_iterations = 0;
+};
+
+/// Solves one step (or the steady equations) starting from x, whose prescribed dofs are first set
+/// to their values at t. Converged when |R| <= tolerance * |R_0| or the correction is below
+/// tolerance * |x|.
+FlowSolveResult solve_navier_stokes(const NavierStokesModel& model, Real t, const FlowTimeStep& step, VectorX& x,
+                                    SparseLuSolver& solver, const FlowSolveSettings& settings = {});
 
 /// Velocity and pressure at a point (the cell containing it is found by inverting the
 /// isoparametric map); false if the point is outside the mesh.

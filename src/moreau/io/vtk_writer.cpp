@@ -74,7 +74,7 @@ void write_vtp(const std::string& path, const std::vector<Vec3>& points, const s
 
 void write_vtu(const std::string& path, const std::vector<Vec3>& points, const std::vector<Index>& connectivity,
                int nodes_per_cell, VtkCell cell_type, const std::vector<VtkPointArray>& point_arrays,
-               const std::vector<VtkCellArray>& cell_arrays) {
+               const std::vector<VtkCellArray>& cell_arrays, const std::vector<VtkScalarArray>& point_scalars) {
   const size_t cells = connectivity.size() / nodes_per_cell;
   AppendedData data;
   std::string xml;
@@ -86,6 +86,9 @@ void write_vtu(const std::string& path, const std::vector<Vec3>& points, const s
   for (const auto& a : point_arrays)
     xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n",
                        a.name, data.add(flatten(a.values)));
+  for (const auto& a : point_scalars)
+    xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"1\" format=\"appended\" offset=\"{}\"/>\n",
+                       a.name, data.add(std::vector<double>(a.values.begin(), a.values.end())));
   xml += "</PointData>\n<CellData>\n";
   for (const auto& a : cell_arrays)
     xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{}\"/>\n",

@@ -33,7 +33,8 @@ struct VtkCellArray {
 /// Writes an unstructured grid of one cell type with 3-component point arrays and cell arrays.
 void write_vtu(const std::string& path, const std::vector<Vec3>& points, const std::vector<Index>& connectivity,
                int nodes_per_cell, VtkCell cell_type, const std::vector<VtkPointArray>& point_arrays,
-               const std::vector<VtkCellArray>& cell_arrays = {});
+               const std::vector<VtkCellArray>& cell_arrays = {},
+               const std::vector<VtkScalarArray>& point_scalars = {});
 
 /// Writes particles as a poly-data file (.vtp): one vertex cell per point, so ParaView shows them
 /// without a filter (use "Point Gaussian" with the `radius` array for spheres).

@@ -15,53 +15,6 @@ namespace moreau {
 
 namespace {
 
-// A point of `dim` numbers (z = 0 in 2D).
-Vec3 read_point(const JsonObject& j, const std::string& key, int dim) {
-  if (dim == 3) return j.vec3(key);
-  const Vec2 p = j.vec2(key, Range::any());
-  return Vec3(p.x(), p.y(), 0);
-}
-
-// "remove": [{"min": [...], "max": [...]}, ...]: cells whose centre lies in a box are dropped.
-void remove_boxes(const JsonObject& mesh, FemMesh& result, const Vec3& lo, const Vec3& hi) {
-  if (!mesh.has("remove")) return;
-  std::vector<std::array<Vec3, 2>> boxes;
-  for (const JsonObject& box : mesh.object_list("remove")) {
-    boxes.push_back({read_point(box, "min", result.dim), read_point(box, "max", result.dim)});
-    box.finish();
-  }
-  remove_cells(result, boxes, lo, hi);
-  if (result.cell_count() == 0) mesh.fail("remove", "removes every cell of the mesh");
-}
-
-FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where) {
-  const std::string type = mesh.choice("type", {"box", "rectangle", "msh"});
-  FemMesh result;
-  if (type == "msh") {
-    const std::filesystem::path file = mesh.string("file");
-    const std::filesystem::path resolved =
-        file.is_absolute() ? file : std::filesystem::absolute(mesh.file()).parent_path() / file;
-    result = read_gmsh_fem_mesh(resolved.string());
-  } else if (type == "box") {
-    const Vec3 lo = mesh.vec3("min"), hi = mesh.vec3("max");
-    if (!((hi - lo).array() > 0).all()) mesh.fail("max", "every component of max must exceed min");
-    const auto cells = mesh.integers("cells", 3, 1);
-    const ElementType element = mesh.choice("element", "hex8", {"hex8", "tet4"}) == "hex8" ? ElementType::hex8 : ElementType::tet4;
-    result = make_box_mesh(lo, hi, {cells[0], cells[1], cells[2]}, element);
-    remove_boxes(mesh, result, lo, hi);
-  } else {
-    const Vec2 lo = mesh.vec2("min", Range::any()), hi = mesh.vec2("max", Range::any());
-    if (!((hi - lo).array() > 0).all()) mesh.fail("max", "every component of max must exceed min");
-    const auto cells = mesh.integers("cells", 2, 1);
-    const ElementType element = mesh.choice("element", "quad4", {"quad4", "tri3"}) == "quad4" ? ElementType::quad4 : ElementType::tri3;
-    result = make_rectangle_mesh(lo, hi, {cells[0], cells[1]}, element);
-    remove_boxes(mesh, result, Vec3(lo.x(), lo.y(), 0), Vec3(hi.x(), hi.y(), 0));
-  }
-  mesh.finish();
-  orient_and_validate_cells(result, where);
-  return result;
-}
-
 HyperelasticMaterial read_fem_material(const JsonObject& m) {
   HyperelasticMaterial material;
   material.model = m.choice("model", "neo_hookean", {"neo_hookean", "st_venant_kirchhoff"}) == "neo_hookean"
@@ -80,64 +33,6 @@ HyperelasticMaterial read_fem_material(const JsonObject& m) {
   material.density = m.number("density", Range::positive());
   m.finish();
   return material;
-}
-
-// One expression per component: a number, a string, or (if `allow_null`) null for "not given".
-std::vector<std::unique_ptr<Expression>> read_components(const JsonObject& j, const std::string& key, int dim,
-                                                         bool allow_null) {
-  const auto& raw = j.raw(key);
-  const std::string expected = fmt::format("an array of {} entries, each a number or an expression of t, x, y, z{}", dim,
-                                           allow_null ? " (or null to leave that component free)" : "");
-  if (!raw.is_array() || static_cast<int>(raw.size()) != dim) j.fail(key, "expected " + expected);
-  std::vector<std::unique_ptr<Expression>> out;
-  for (int k = 0; k < dim; ++k) {
-    const auto& v = raw[k];
-    if (v.is_null() && allow_null) {
-      out.push_back(nullptr);
-    } else if (v.is_number()) {
-      out.push_back(std::make_unique<Expression>(v.get<Real>()));
-    } else if (v.is_string()) {
-      try {
-        out.push_back(std::make_unique<Expression>(v.get<std::string>()));
-      } catch (const std::invalid_argument& e) {
-        j.fail(key, fmt::format("entry {} \"{}\" is not a valid expression: {}", k, v.get<std::string>(), e.what()));
-      }
-    } else {
-      j.fail(key, fmt::format("entry {} is {}; expected {}", k, v.dump(), expected));
-    }
-  }
-  return out;
-}
-
-// The nodes (local to the solid) that a "where" selects: {"box": {"min", "max"}} or
-// {"boundary": "<name>"}; `boundary_name` is set for the latter.
-std::vector<Index> select_nodes(const JsonObject& where, const FemMesh& mesh, std::string* boundary_name) {
-  if (where.has("box") == where.has("boundary"))
-    where.fail("box", "give exactly one of \"box\": {\"min\": [...], \"max\": [...]} or \"boundary\": \"<name>\"");
-  std::vector<Index> nodes;
-  if (where.has("boundary")) {
-    const std::string name = where.string("boundary");
-    if (!mesh.boundary(name)) {
-      std::string names;
-      for (const auto& b : mesh.boundaries) names += (names.empty() ? "" : ", ") + b.name;
-      where.fail("boundary", fmt::format("no boundary named '{}'; allowed: {}", name, names));
-    }
-    nodes = mesh.boundary_nodes(name);
-    if (boundary_name) *boundary_name = name;
-  } else {
-    const JsonObject box = where.object("box");
-    const Vec3 lo = read_point(box, "min", mesh.dim), hi = read_point(box, "max", mesh.dim);
-    box.finish();
-    for (Index n = 0; n < mesh.node_count(); ++n) {
-      const Vec3& X = mesh.nodes[n];
-      if ((X.head(mesh.dim).array() >= lo.head(mesh.dim).array()).all() &&
-          (X.head(mesh.dim).array() <= hi.head(mesh.dim).array()).all())
-        nodes.push_back(n);
-    }
-  }
-  where.finish();
-  if (nodes.empty()) where.fail(where.has("box") ? "box" : "boundary", "selects no node of the mesh");
-  return nodes;
 }
 
 void read_loads(const JsonObject& solid_json, FemModel& model, Index solid) {
@@ -338,7 +233,15 @@ FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
 
 }  // namespace
 
-void read_fem_settings(const JsonObject& settings, FemProblem& problem) {
+void allow_fem_settings(const JsonObject& settings) {
+  settings.allow("integrator");
+  settings.allow("newton");
+}
+
+namespace {
+
+// The solids' "integrator" and "newton" settings.
+void read_solid_settings(const JsonObject& settings, FemProblem& problem) {
   const std::string integrator = settings.choice("integrator", "energy_momentum", {"static", "midpoint", "energy_momentum"});
   problem.integrator = integrator == "static"     ? FemIntegrator::static_load_steps
                        : integrator == "midpoint" ? FemIntegrator::midpoint
@@ -350,7 +253,19 @@ void read_fem_settings(const JsonObject& settings, FemProblem& problem) {
   }
 }
 
+}  // namespace
+
 void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gravity, int threads) {
+  const std::optional<JsonObject> settings = top.optional_object("settings");
+  if (top.has("fluid")) {
+    for (const char* key : {"solids", "rigid_bodies", "joints"})
+      if (top.has(key))
+        top.fail(key, "a scene with a \"fluid\" has no solids, rigid bodies or joints yet (fluid-structure interaction is "
+                      "not available in this version)");
+    build_flow_scene(top, settings ? &*settings : nullptr, problem, gravity, threads);
+    return;
+  }
+  if (settings) read_solid_settings(*settings, problem);
   FemModel& model = problem.model;
   model.threads = threads;
   if (top.has("objects"))

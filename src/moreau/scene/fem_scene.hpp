@@ -1,15 +1,42 @@
 #pragma once
-// Reading "solver": "fem" scenes (build_fem.cpp).
+// Reading "solver": "fem" scenes: solids, rigid bodies and joints (build_fem.cpp), a fluid
+// (build_flow.cpp) and what both read alike (build_fem_common.cpp).
+#include <memory>
+#include <string>
+#include <vector>
+
 #include "moreau/fem/fem_problem.hpp"
+#include "moreau/math/expression.hpp"
 #include "moreau/scene/json_reader.hpp"
 
 namespace moreau {
 
-/// The FEM keys of "settings": integrator and newton.
-void read_fem_settings(const JsonObject& settings, FemProblem& problem);
+/// Marks the FEM keys of "settings" (integrator, newton) as known; build_fem_scene reads them.
+void allow_fem_settings(const JsonObject& settings);
 
-/// "solids", "rigid_bodies" and "probes" of a FEM scene; gravity (m/s^2) becomes a body load on
-/// every solid and a force m g on every rigid body.
+/// "solids", "rigid_bodies", "joints", "probes" or a "fluid", and the FEM settings; gravity
+/// (m/s^2) becomes a body load on every solid and fluid and a force m g on every rigid body.
 void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gravity, int threads);
+
+/// The "fluid" of a FEM scene (settings: the scene's "settings", if any).
+void build_flow_scene(const JsonObject& top, const JsonObject* settings, FemProblem& problem, const Vec3& gravity,
+                      int threads);
+
+// --- shared readers ---
+
+/// A point of `dim` numbers (z = 0 in 2D).
+Vec3 read_point(const JsonObject& j, const std::string& key, int dim);
+
+/// A mesh: "rectangle" / "box" (with optional "grading" and "remove"), "msh" (Gmsh MSH 4.1) or
+/// "geo" (meshed by Gmsh); cells are oriented and validated (`where` names it in errors).
+FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where);
+
+/// One expression of t, x, y, z per component: a number, a string, or (if `allow_null`) null.
+std::vector<std::unique_ptr<Expression>> read_components(const JsonObject& j, const std::string& key, int dim,
+                                                         bool allow_null);
+
+/// The nodes a "where" selects: {"boundary" | "side" | "tag": name or [names]} or {"box": {"min",
+/// "max"}}; sorted, unique. `boundary_name` is set when exactly one boundary is named.
+std::vector<Index> select_nodes(const JsonObject& where, const FemMesh& mesh, std::string* boundary_name);
 
 }  // namespace moreau

@@ -20,7 +20,7 @@ void read_settings(const JsonObject& settings, Scene& scene) {
   scene.solver = solver;
   if (solver == "fem") {
     scene.fem = std::make_unique<FemProblem>();
-    read_fem_settings(settings, *scene.fem);
+    allow_fem_settings(settings);
   }
   s.dt = settings.number("dt", s.dt, Range::positive());
   s.substeps = settings.integer("substeps", s.substeps, 1, 100000);

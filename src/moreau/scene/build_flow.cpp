@@ -1,0 +1,215 @@
+// The "fluid" of a "solver": "fem" scene: an incompressible Navier-Stokes flow on a quad4/hex8
+// mesh with velocity boundaries, outflows, a pressure reference and flow probes
+// (docs/scene-format.md, "Fluids of the FEM engine").
+#include <fmt/format.h>
+
+#include <limits>
+#include <map>
+#include <memory>
+
+#include "moreau/scene/fem_scene.hpp"
+
+namespace moreau {
+
+namespace {
+
+using Components = std::shared_ptr<std::vector<std::unique_ptr<Expression>>>;
+
+Index nearest_node(const FemMesh& mesh, const Vec3& at) {
+  Index best = 0;
+  for (Index n = 1; n < mesh.node_count(); ++n)
+    if ((mesh.nodes[n] - at).squaredNorm() < (mesh.nodes[best] - at).squaredNorm()) best = n;
+  return best;
+}
+
+// "boundaries": velocity conditions (later entries override earlier ones on shared nodes) and
+// outflows; returns the velocity expression of each prescribed velocity dof.
+std::map<Index, std::pair<Components, int>> read_flow_boundaries(const JsonObject& fluid, const NavierStokesModel& m) {
+  std::map<Index, std::pair<Components, int>> velocity;
+  for (const JsonObject& b : fluid.object_list("boundaries")) {
+    const std::string type = b.choice("type", b.has("velocity") ? "velocity" : "no_slip", {"velocity", "no_slip", "outflow"});
+    const std::vector<Index> nodes = select_nodes(b.object("where"), m.mesh, nullptr);
+    if (type == "outflow") {
+      // Do nothing: sigma n = 0 is the natural condition of the weak form.
+      if (b.has("velocity")) b.fail("velocity", "an outflow boundary has no velocity (its traction sigma n is zero)");
+      b.finish();
+      continue;
+    }
+    Components value;
+    if (type == "no_slip") {
+      if (b.has("velocity")) b.fail("velocity", "a no_slip boundary has zero velocity; use \"type\": \"velocity\" to give one");
+      value = std::make_shared<std::vector<std::unique_ptr<Expression>>>();
+      for (int k = 0; k < m.dim; ++k) value->push_back(std::make_unique<Expression>(0.0));
+    } else {
+      value = std::make_shared<std::vector<std::unique_ptr<Expression>>>(read_components(b, "velocity", m.dim, true));
+    }
+    b.finish();
+    for (Index n : nodes)
+      for (int k = 0; k < m.dim; ++k)
+        if ((*value)[k]) velocity[m.dof(n, k)] = {value, k};
+  }
+  return velocity;
+}
+
+// True if every exterior facet has all its nodes' velocities prescribed: no natural boundary is
+// left, so the pressure is determined only up to a constant.
+bool velocity_everywhere_on_boundary(const NavierStokesModel& m, const std::map<Index, std::pair<Components, int>>& velocity) {
+  for (Index n : exterior_facets(m.mesh))
+    for (int k = 0; k < m.dim; ++k)
+      if (!velocity.count(m.dof(n, k))) return false;
+  return true;
+}
+
+FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
+  const NavierStokesModel& m = problem.model;
+  FlowProbe p;
+  p.name = j.string("name");
+  const std::string type = j.choice("type", {"point", "line", "boundary_force", "pressure_difference", "kinetic_energy",
+                                             "newton_iterations"});
+  auto inside = [&](const std::string& key, const Vec3& at) {
+    Vec3 u;
+    Real pressure;
+    if (!sample_flow(m, problem.initial, at, u, pressure)) j.fail(key, "the point is outside the fluid mesh");
+  };
+  if (type == "point") {
+    p.type = FlowProbeType::point;
+    p.a = read_point(j, "at", m.dim);
+    inside("at", p.a);
+  } else if (type == "line") {
+    p.type = FlowProbeType::line;
+    p.a = read_point(j, "from", m.dim);
+    p.b = read_point(j, "to", m.dim);
+    p.samples = j.integer("samples", 101, 2, 1000000);
+  } else if (type == "pressure_difference") {
+    p.type = FlowProbeType::pressure_difference;
+    p.a = read_point(j, "from", m.dim);
+    p.b = read_point(j, "to", m.dim);
+    inside("from", p.a);
+    inside("to", p.b);
+  } else if (type == "boundary_force") {
+    p.type = FlowProbeType::boundary_force;
+    p.nodes = select_nodes(j.object("where"), m.mesh, nullptr);
+    if (auto reference = j.optional_object("reference")) {
+      // Coefficients 2 F / (rho U^2 L) per unit depth in 2D, 2 F / (rho U^2 A) in 3D.
+      const Real speed = reference->number("velocity", Range::positive());
+      const Real size = m.dim == 2 ? reference->number("length", Range::positive()) : reference->number("area", Range::positive());
+      reference->finish();
+      p.coefficient_scale = 2 / (m.density * speed * speed * size);
+    }
+  } else if (type == "kinetic_energy") {
+    p.type = FlowProbeType::kinetic_energy;
+  } else {
+    p.type = FlowProbeType::newton_iterations;
+  }
+  j.finish();
+  return p;
+}
+
+void read_flow_settings(const JsonObject* settings, const JsonObject& fluid, FlowProblem& problem) {
+  std::string integrator = "midpoint";
+  if (settings) integrator = settings->choice("integrator", integrator, {"steady", "midpoint", "backward_euler", "bdf2"});
+  if (fluid.boolean("steady", false)) {
+    if (settings && settings->has("integrator") && integrator != "steady")
+      fluid.fail("steady", fmt::format("\"steady\": true contradicts \"integrator\": \"{}\"", integrator));
+    integrator = "steady";
+  }
+  problem.integrator = integrator == "steady"           ? FlowIntegrator::steady
+                       : integrator == "backward_euler" ? FlowIntegrator::backward_euler
+                       : integrator == "bdf2"           ? FlowIntegrator::bdf2
+                                                        : FlowIntegrator::midpoint;
+  if (!settings) return;
+  if (auto newton = settings->optional_object("newton")) {
+    FlowSolveSettings& s = problem.solve;
+    s.tolerance = newton->number("tolerance", s.tolerance, Range::open(0, 1));
+    s.max_iterations = newton->integer("max_iterations", s.max_iterations, 1, 1000);
+    s.picard_fallback = newton->boolean("picard_fallback", s.picard_fallback);
+    s.max_picard_iterations = newton->integer("max_picard_iterations", s.max_picard_iterations, 1, 100000);
+    newton->finish();
+  }
+}
+
+}  // namespace
+
+void build_flow_scene(const JsonObject& top, const JsonObject* settings, FemProblem& fem, const Vec3& gravity,
+                      int threads) {
+  const JsonObject fluid = top.object("fluid");
+  FlowProblem& problem = fem.flow.emplace();
+  read_flow_settings(settings, fluid, problem);
+  NavierStokesModel& m = problem.model;
+  m.threads = threads;
+  m.mesh = read_fem_mesh(fluid.object("mesh"), top.file() + ": " + fluid.path_of("mesh"));
+  if (m.mesh.element != ElementType::quad4 && m.mesh.element != ElementType::hex8)
+    fluid.fail("mesh", fmt::format("the fluid needs quadrilateral (2D) or hexahedral (3D) cells, not {}; with Gmsh, "
+                                   "recombine the mesh (\"Recombine Surface{{...}};\" in the .geo file)",
+                                   element_name(m.mesh.element)));
+  m.dim = m.mesh.dim;
+  fem.model.dim = m.dim;
+  m.density = fluid.number("density", Range::positive());
+  m.viscosity = fluid.number("viscosity", Range::positive());
+  m.body_force = gravity;
+  if (m.dim == 2) m.body_force.z() = 0;
+  if (fluid.has("body_force")) m.body_force += read_point(fluid, "body_force", m.dim);
+
+  const auto velocity = read_flow_boundaries(fluid, m);
+  for (const auto& [dof, expression] : velocity) {
+    const Vec3 X = m.mesh.nodes[dof / m.fields()];
+    const Components value = expression.first;
+    const int k = expression.second;
+    m.prescribed.push_back({dof, [value, k, X](Real t) { return (*(*value)[k])(t, X); }});
+  }
+  const bool closed = velocity_everywhere_on_boundary(m, velocity);
+  if (auto reference = fluid.optional_object("pressure_reference")) {
+    if (!closed)
+      fluid.fail("pressure_reference",
+                 "the fluid has a boundary without a prescribed velocity (an outflow, a do-nothing boundary), which "
+                 "already fixes the pressure; remove \"pressure_reference\"");
+    if (reference->has("point") == reference->has("mean"))
+      reference->fail("point", "give either \"point\": [...] with \"value\", or \"mean\": <value>");
+    if (reference->has("point")) {
+      const Index node = nearest_node(m.mesh, read_point(*reference, "point", m.dim));
+      const Real value = reference->number("value", 0.0);
+      m.prescribed.push_back({m.dof(node, m.dim), [value](Real) { return value; }});
+    } else {
+      problem.mean_pressure = reference->number("mean");
+      problem.mean_pressure_node = 0;
+      m.prescribed.push_back({m.dof(0, m.dim), [](Real) { return 0.0; }});
+    }
+    reference->finish();
+  } else if (closed) {
+    fluid.fail("boundaries",
+               "every boundary has a prescribed velocity, so the pressure is determined only up to a constant; add "
+               "\"pressure_reference\": {\"point\": [...], \"value\": 0} or {\"mean\": 0}");
+  }
+
+  if (fluid.has("continuation")) {
+    if (problem.integrator != FlowIntegrator::steady)
+      fluid.fail("continuation", "continuation is for steady solves (\"steady\": true or \"integrator\": \"steady\")");
+    const JsonObject continuation = fluid.object("continuation");
+    const auto& raw = continuation.raw("viscosity");
+    if (!raw.is_array() || raw.empty()) continuation.fail("viscosity", "expected a list of viscosities (Pa s), largest first");
+    for (const auto& v : raw) {
+      if (!v.is_number() || !(v.get<Real>() > 0)) continuation.fail("viscosity", fmt::format("{} is not a positive viscosity", v.dump()));
+      problem.continuation.push_back(v.get<Real>());
+    }
+    problem.continuation_tolerance = continuation.number("tolerance", problem.continuation_tolerance, Range::open(0, 1));
+    continuation.finish();
+  }
+
+  setup_navier_stokes(m);
+  problem.initial = VectorX::Zero(m.dof_count());
+  if (fluid.has("initial_velocity")) {
+    const auto initial = read_components(fluid, "initial_velocity", m.dim, false);
+    for (Index n = 0; n < m.mesh.node_count(); ++n)
+      for (int k = 0; k < m.dim; ++k) problem.initial[m.dof(n, k)] = (*initial[k])(0, m.mesh.nodes[n]);
+  }
+  for (const PrescribedDof& p : m.prescribed) problem.initial[p.dof] = p.value(0);
+  fluid.finish();
+  for (const JsonObject& probe : top.object_list("probes")) {
+    problem.probes.push_back(read_flow_probe(probe, problem));
+    for (size_t i = 0; i + 1 < problem.probes.size(); ++i)
+      if (problem.probes[i].name == problem.probes.back().name)
+        probe.fail("name", fmt::format("another probe is already named '{}'", problem.probes.back().name));
+  }
+}
+
+}  // namespace moreau
