@@ -8,23 +8,14 @@
 
 #include "data/ghia1982_re100.hpp"
 #include "fem_test_helpers.hpp"
+#include "flow_test_helpers.hpp"
 #include "moreau/fem/navier_stokes.hpp"
 
 namespace moreau {
 namespace {
 
-// Every velocity component of a boundary's nodes set by value(X); later calls override.
-template <class F>
-void prescribe_velocity(NavierStokesModel& m, const std::string& boundary, F value) {
-  for (Index n : m.mesh.boundary_nodes(boundary)) {
-    const Vec3 v = value(m.mesh.nodes[n]);
-    for (int k = 0; k < m.mesh.dim; ++k) m.prescribed.push_back({m.dof(n, k), [c = v[k]](Real) { return c; }});
-  }
-}
-
-void fix_pressure(NavierStokesModel& m, Index node) {
-  m.prescribed.push_back({m.dof(node, m.mesh.dim), [](Real) { return 0.0; }});
-}
+using test::fix_pressure;
+using test::prescribe_velocity;
 
 TEST(NavierStokes, JacobianIsTheDerivativeOfTheResidual) {
   // Newton with tau frozen: with tau and nu_LSIC held fixed (the model's test hook), the Jacobian

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "moreau/fem/fem_output.hpp"
+#include "moreau/fem/flow_stepper.hpp"
 #include "moreau/fem_run.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/progress_bar.hpp"
@@ -109,17 +110,19 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
     for (const auto& c : flow_probe_columns(p, model.dim)) csv << ',' << c;
   csv << '\n';
 
-  VectorX x = problem.initial, previous = x, before_previous = x;
+  VectorX x = problem.initial;
   Real time = 0;
   int last_iterations = 0;
   long total_iterations = 0, picard_iterations = 0;
   int max_iterations = 0;
   double assembly_s = 0, solve_s = 0, wall = 0;
-  FlowTimeStep step{problem.integrator, dt, &previous, &before_previous};
+  FlowStepper stepper(problem.integrator);
+  const FlowTimeStep steady_step;
+  const FlowTimeStep* step = &steady_step;  // the last step's scheme, for the reactions of boundary_force
   std::vector<Real> values;
   auto sample = [&] {
     values.clear();
-    for (const FlowProbe& p : problem.probes) evaluate_flow_probe(p, problem, x, step, last_iterations, values);
+    for (const FlowProbe& p : problem.probes) evaluate_flow_probe(p, problem, x, *step, last_iterations, values);
     csv << fmt::format("{:.9g}", time);
     for (Real v : values) csv << fmt::format(",{:.17g}", v);
     csv << '\n';
@@ -148,7 +151,7 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
       FlowSolveSettings settings = problem.solve;
       if (stage + 1 < viscosities.size()) settings.tolerance = std::max(settings.tolerance, problem.continuation_tolerance);
       const auto t0 = std::chrono::steady_clock::now();
-      const FlowSolveResult r = solve_navier_stokes(model, 0, step, x, solver, settings);
+      const FlowSolveResult r = stepper.step(model, 0, 0, x, solver, settings);
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       account(r);
       stages.push_back({{"viscosity", mu}, {"newton_iterations", r.iterations}, {"picard_iterations", r.picard_iterations}});
@@ -169,19 +172,16 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
     ProgressBar progress(options.progress, duration);
     sample();
     for (long s = 0; s < steps; ++s) {
-      // BDF2 starts with a backward-Euler step (it needs two previous states).
-      step.integrator = problem.integrator == FlowIntegrator::bdf2 && s == 0 ? FlowIntegrator::backward_euler
-                                                                             : problem.integrator;
-      before_previous = previous;
-      previous = x;
+      const VectorX start = x;
       const auto t0 = std::chrono::steady_clock::now();
-      const FlowSolveResult r = solve_navier_stokes(model, time + dt, step, x, solver, problem.solve);
+      const FlowSolveResult r = stepper.step(model, time, dt, x, solver, problem.solve);
+      step = &stepper.last_step();
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (!r.converged || !x.allFinite()) {
         status = "failed";
         message = fmt::format("step {} (t = {:.6g} s to {:.6g} s) failed: fluid: {}", s + 1, time, time + dt,
                               r.converged ? "the velocity or pressure is not finite" : r.failure);
-        x = previous;
+        x = start;
         break;
       }
       account(r);

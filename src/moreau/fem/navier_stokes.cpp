@@ -49,7 +49,8 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
     const Real w = m.weight[qp];
     const Real* N = m.shape.data() + qp * nodes;
     const Vec3* dN = m.gradient.data() + qp * nodes;
-    // u, G (G_ij = du_i/dx_j) at theta; ut the time derivative; p, grad p and div u at n+1.
+    // u, G (G_ij = du_i/dx_j) and div u at theta; ut the time derivative; p and grad p the
+    // unknown pressure (at t_{n+theta}).
     Vec3 u = Vec3::Zero(), ut = Vec3::Zero(), gp = Vec3::Zero();
     Mat3 G = Mat3::Zero();
     Real p = 0, div = 0;
@@ -60,7 +61,7 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
         u[i] += N[a] * at_theta;
         ut[i] += N[a] * c.ct * (c.a0 * now + c.a1 * before + c.a2 * older);
         G.row(i) += at_theta * dN[a].transpose();
-        div += now * dN[a][i];
+        div += at_theta * dN[a][i];
       }
       p += N[a] * x[a * F + dim];
       gp += x[a * F + dim] * dN[a];
@@ -101,10 +102,10 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
           dr[j] += rho * mass_adv;
           for (int i = 0; i < dim; ++i) {
             Real v = N[a] * dr[i] + theta * mu * ((i == j ? grad_dot : 0) + dN[a][j] * dN[b][i]) + tau * adv[a] * dr[i] +
-                     frozen * theta * tau * N[b] * dN[a][j] * r[i] + nu_lsic * rho * dN[a][i] * dN[b][j];
+                     frozen * theta * tau * N[b] * dN[a][j] * r[i] + theta * nu_lsic * rho * dN[a][i] * dN[b][j];
             J(a * F + i, b * F + j) += w * v;
           }
-          J(a * F + dim, b * F + j) += w * (N[a] * dN[b][j] + tau / rho * dN[a].dot(dr));
+          J(a * F + dim, b * F + j) += w * (theta * N[a] * dN[b][j] + tau / rho * dN[a].dot(dr));
         }
         for (int i = 0; i < dim; ++i) J(a * F + i, b * F + dim) += w * (-dN[a][i] * N[b] + tau * adv[a] * dN[b][i]);
         J(a * F + dim, b * F + dim) += w * tau / rho * grad_dot;

@@ -18,8 +18,10 @@
 // momentum terms (convection, viscosity, SUPG) at u_theta = theta u_{n+1} + (1 - theta) u_n:
 //   backward Euler a = (1, -1, 0), theta = 1;    BDF2 a = (3/2, -2, 1/2), theta = 1;
 //   midpoint (Crank-Nicolson) a = (1, -1, 0), theta = 1/2.
-// Continuity, LSIC and the pressure act at n+1; with the midpoint rule the pressure unknown is
-// the pressure at t_{n+1/2} (it is the multiplier of the midpoint momentum balance).
+// The whole system, continuity and PSPG included, is evaluated at n + theta: with the midpoint
+// rule the pressure unknown is the pressure at t_{n+1/2} (the multiplier of the midpoint momentum
+// balance), and the PSPG-modified continuity holds at t_{n+1/2} too. (Continuity at n+1 with the
+// PSPG residual at n+1/2 mixes time levels in one equation and was measured first order.)
 #include <functional>
 #include <vector>
 

@@ -1,0 +1,158 @@
+// Stabilized Q1Q1 Navier-Stokes against exact solutions: Kovasznay flow (spatial convergence of
+// velocity and pressure), the Taylor-Green vortex (decay rate), and the orders of the time
+// integrators.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "flow_test_helpers.hpp"
+#include "moreau/fem/flow_stepper.hpp"
+
+namespace moreau {
+namespace {
+
+using test::ExactFlow;
+
+// Kovasznay (1948): steady flow behind a grid, an exact solution of the Navier-Stokes equations,
+// u = 1 - e^(l x) cos(2 pi y), v = l/(2 pi) e^(l x) sin(2 pi y), p = (1 - e^(2 l x)) / 2, with
+// l = Re/2 - sqrt(Re^2/4 + 4 pi^2), nu = 1/Re, rho = 1.
+ExactFlow kovasznay(Real reynolds) {
+  const Real l = reynolds / 2 - std::sqrt(reynolds * reynolds / 4 + 4 * M_PI * M_PI);
+  return {[l](const Vec3& X, Real) {
+            const Real e = std::exp(l * X.x());
+            return Vec3(1 - e * std::cos(2 * M_PI * X.y()), l / (2 * M_PI) * e * std::sin(2 * M_PI * X.y()), 0);
+          },
+          [l](const Vec3& X, Real) { return 0.5 * (1 - std::exp(2 * l * X.x())); }};
+}
+
+// Taylor-Green vortex in 2D: u = (-cos x sin y, sin x cos y) e^(-2 nu t),
+// p = -(cos 2x + cos 2y) e^(-4 nu t) / 4 (rho = 1); kinetic energy decays as e^(-4 nu t).
+ExactFlow taylor_green(Real nu) {
+  return {[nu](const Vec3& X, Real t) {
+            const Real f = std::exp(-2 * nu * t);
+            return Vec3(-std::cos(X.x()) * std::sin(X.y()) * f, std::sin(X.x()) * std::cos(X.y()) * f, 0);
+          },
+          [nu](const Vec3& X, Real t) { return -0.25 * (std::cos(2 * X.x()) + std::cos(2 * X.y())) * std::exp(-4 * nu * t); }};
+}
+
+TEST(NavierStokesValidation, KovasznayFlowConvergesInVelocityAndPressure) {
+  // Re = 40 on [-0.5, 1] x [-0.5, 1.5] (the usual domain), the exact velocity on the boundary,
+  // the pressure pinned at a corner (errors compare mean-free pressures), steady Newton.
+  // Q1 velocity interpolation is O(h^2) in L2; the stabilized pressure is expected at O(h^1.5)
+  // or better. Measured (12x16 .. 96x128): velocity rates 1.67, 1.72, 1.80 (rising toward 2; the
+  // PSPG/SUPG residual lacks the viscous term, an O(tau nu) consistency error that shrinks with
+  // h^2 once tau ~ h^2/nu), pressure 1.55, 1.66, 1.75. Asserted: every velocity rate > 1.6,
+  // pressure > 1.45, and the finest velocity error below 4e-3 (measured 3.0e-3).
+  const ExactFlow exact = kovasznay(40);
+  std::vector<test::FlowErrors> errors;
+  for (int k : {4, 8, 16, 32}) {
+    NavierStokesModel m;
+    m.mesh = make_rectangle_mesh(Vec2(-0.5, -0.5), Vec2(1, 1.5), {3 * k, 4 * k}, ElementType::quad4);
+    m.viscosity = 1.0 / 40;
+    test::prescribe_exact_velocity(m, exact);
+    test::fix_pressure(m, 0);
+    setup_navier_stokes(m);
+    VectorX x = VectorX::Zero(m.dof_count());
+    SparseLuSolver solver;
+    const FlowSolveResult r = solve_navier_stokes(m, 0, {}, x, solver, {.tolerance = 1e-10});
+    ASSERT_TRUE(r.converged) << r.failure;
+    errors.push_back(test::flow_errors(m, x, exact, 0));
+    std::printf("Kovasznay %3d x %3d: L2 velocity error %.3e, pressure %.3e, %d Newton\n", 3 * k, 4 * k,
+                errors.back().velocity, errors.back().pressure, r.iterations);
+  }
+  for (size_t i = 1; i < errors.size(); ++i) {
+    const Real ru = std::log2(errors[i - 1].velocity / errors[i].velocity);
+    const Real rp = std::log2(errors[i - 1].pressure / errors[i].pressure);
+    std::printf("  rates velocity %.2f, pressure %.2f\n", ru, rp);
+    EXPECT_GT(ru, 1.6);
+    EXPECT_GT(rp, 1.45);
+  }
+  EXPECT_LT(errors.back().velocity, 4e-3);
+}
+
+// Runs the Taylor-Green vortex on [0, 2 pi]^2 (exact velocity on the boundary) to time T.
+VectorX run_taylor_green(int cells, Real nu, FlowIntegrator integrator, Real dt, Real T, Real fixed_tau,
+                         NavierStokesModel& m) {
+  const ExactFlow exact = taylor_green(nu);
+  m = NavierStokesModel();
+  m.mesh = make_rectangle_mesh(Vec2(0, 0), Vec2(2 * M_PI, 2 * M_PI), {cells, cells}, ElementType::quad4);
+  m.viscosity = nu;
+  m.fixed_tau = fixed_tau;
+  m.fixed_lsic = fixed_tau > 0 ? 0.01 : 0;
+  test::prescribe_exact_velocity(m, exact);
+  test::fix_pressure(m, 0);
+  setup_navier_stokes(m);
+  VectorX x = test::exact_state(m, exact, 0);
+  SparseLuSolver solver;
+  FlowStepper stepper(integrator);
+  const long steps = std::lround(T / dt);
+  for (long s = 0; s < steps; ++s) {
+    const FlowSolveResult r = stepper.step(m, s * dt, dt, x, solver, {.tolerance = 1e-11});
+    EXPECT_TRUE(r.converged) << r.failure;
+  }
+  return x;
+}
+
+Real kinetic_energy(const NavierStokesModel& m, const VectorX& x) {
+  Real e = 0;
+  for (Index c = 0; c < m.mesh.cell_count(); ++c)
+    for (int q = 0; q < m.points; ++q) {
+      const size_t qp = static_cast<size_t>(c) * m.points + q;
+      Vec3 u = Vec3::Zero();
+      for (int a = 0; a < 4; ++a)
+        for (int k = 0; k < 2; ++k) u[k] += m.shape[qp * 4 + a] * x[m.dof(m.mesh.cell(c)[a], k)];
+      e += 0.5 * m.weight[qp] * u.squaredNorm();
+    }
+  return e;
+}
+
+TEST(NavierStokesValidation, TaylorGreenVortexDecaysAtTheViscousRate) {
+  // nu = 0.1, the midpoint rule with dt = 0.05 to T = 1: the kinetic energy decays as
+  // e^(-4 nu t), rate 0.4. Measured: 0.4030 on 32^2 and 0.4037 on 64^2 (+0.75 %, +0.91 %). The
+  // excess does not fall with h: for this flow the strong residual without its viscous term is
+  // r_M = du/dt = -2 nu u (convection balances the pressure gradient exactly), so SUPG/PSPG add
+  // an O(tau nu) dissipation with tau limited by dt/2 and h/(2|u|), not by h^2/(4 nu); the same
+  // term makes the L2 velocity error fall only at first order here (2.9e-2, 1.4e-2). Restoring the
+  // viscous term by a recovered Laplacian (Jansen et al. 1999) is the known remedy, not done yet.
+  // Asserted: the rate within 1.5 % of 4 nu on both meshes.
+  const Real nu = 0.1, T = 1;
+  std::vector<Real> excess;
+  for (int cells : {32, 64}) {
+    NavierStokesModel m;
+    const VectorX x = run_taylor_green(cells, nu, FlowIntegrator::midpoint, 0.05, T, 0, m);
+    const NavierStokesModel& model = m;
+    const VectorX x0 = test::exact_state(model, taylor_green(nu), 0);
+    const Real rate = -std::log(kinetic_energy(m, x) / kinetic_energy(m, x0)) / T;
+    excess.push_back(rate / (4 * nu) - 1);
+    std::printf("Taylor-Green %d^2: energy decay rate %.5f (exact %.5f), %+.2f %%, L2 velocity error %.3e\n", cells,
+                rate, 4 * nu, 100 * excess.back(), test::flow_errors(m, x, taylor_green(nu), T).velocity);
+  }
+  EXPECT_LT(std::abs(excess[0]), 0.015);
+  EXPECT_LT(std::abs(excess[1]), 0.015);
+}
+
+TEST(NavierStokesValidation, TimeIntegratorsConvergeAtTheirOrders) {
+  // The temporal order, free of spatial error: on a fixed 12^2 Taylor-Green mesh with tau fixed
+  // (tau otherwise depends on dt through tau2 = dt/2, which would change the spatial
+  // discretization with dt), the solutions at T = 1 for dt, dt/2, dt/4 give the observed order
+  // log2(|x_dt - x_dt/2| / |x_dt/2 - x_dt/4|): 1 for backward Euler, 2 for BDF2 and the
+  // midpoint rule (with its damped start; see flow_stepper.hpp). Measured 0.994, 2.005, 2.002 for
+  // dt = 0.05, 0.025, 0.0125. Asserted within 0.15 of those.
+  const Real nu = 0.1, T = 1;
+  for (auto [integrator, order] : {std::pair{FlowIntegrator::backward_euler, 1.0}, std::pair{FlowIntegrator::bdf2, 2.0},
+                                   std::pair{FlowIntegrator::midpoint, 2.0}}) {
+    NavierStokesModel m;
+    VectorX x[3];
+    for (int i = 0; i < 3; ++i) x[i] = run_taylor_green(12, nu, integrator, 0.05 / (1 << i), T, 0.05, m);
+    // Compare the velocities only (the midpoint rule's pressure lives at t_{n+1/2}).
+    VectorX d01 = x[0] - x[1], d12 = x[1] - x[2];
+    for (Index n = 0; n < m.mesh.node_count(); ++n) d01[m.dof(n, 2)] = d12[m.dof(n, 2)] = 0;
+    const Real observed = std::log2(d01.norm() / d12.norm());
+    std::printf("integrator %d: observed temporal order %.3f (expected %.0f), differences %.3e, %.3e\n", static_cast<int>(integrator), observed, order, d01.norm(), d12.norm());
+    EXPECT_NEAR(observed, order, 0.15);
+  }
+}
+
+}  // namespace
+}  // namespace moreau
