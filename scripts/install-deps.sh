@@ -16,6 +16,7 @@ packages=(
   libmuparser-dev      # time functions in boundary conditions
   libtinyobjloader-dev # OBJ meshes
   tetgen               # tetrahedralizing OBJ surfaces for soft bodies
+  gmsh                 # meshing .geo files for FEM solids and fluids (the cylinder benchmark)
   libqhull-dev         # convex hulls of rigid bodies
   libccd-dev           # convex-convex contacts (Minkowski portal refinement)
   libgtest-dev libgmock-dev libbenchmark-dev

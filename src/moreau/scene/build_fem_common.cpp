@@ -2,6 +2,8 @@
 // or .geo), per-component expressions and node selections (docs/scene-format.md, "FEM scenes").
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -76,15 +78,27 @@ void grade_mesh(const JsonObject& mesh, FemMesh& result, const Vec3& lo, const V
   }
 }
 
-// A .geo file meshed by Gmsh (in dim dimensions) into a temporary MSH 4.1 file.
+// A .geo file meshed by Gmsh (in dim dimensions) into a temporary MSH 4.1 file; "parameters":
+// {"name": number, ...} are passed as -setnumber (the .geo's DefineConstant values).
 std::string mesh_geo_file(const JsonObject& mesh, const std::filesystem::path& geo, int dim) {
+  std::string numbers;
+  if (mesh.has("parameters")) {
+    const auto& raw = mesh.raw("parameters");
+    if (!raw.is_object()) mesh.fail("parameters", "expected an object of numbers, e.g. {\"N\": 4}");
+    for (const auto& [name, value] : raw.items()) {
+      const bool word = !name.empty() && std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+      if (!word || !value.is_number())
+        mesh.fail("parameters", fmt::format("\"{}\": {} is not a parameter name with a number", name, value.dump()));
+      numbers += fmt::format(" -setnumber {} {}", name, value.get<Real>());
+    }
+  }
   if (std::system("command -v gmsh > /dev/null 2>&1") != 0)
     mesh.fail("file", "meshing a .geo file needs Gmsh on the PATH (Debian: apt-get install gmsh); or give a .msh file");
   const std::filesystem::path out = std::filesystem::temp_directory_path() /
                                     fmt::format("moreau-{}-{}.msh", std::hash<std::string>{}(geo.string()), ::getpid());
   const std::filesystem::path log = out.string() + ".log";
-  const std::string command = fmt::format("gmsh -{} -format msh41 -v 2 '{}' -o '{}' > '{}' 2>&1", dim, geo.string(),
-                                          out.string(), log.string());
+  const std::string command = fmt::format("gmsh -{} -format msh41 -v 2{} '{}' -o '{}' > '{}' 2>&1", dim, numbers,
+                                          geo.string(), out.string(), log.string());
   const int status = std::system(command.c_str());
   std::string output;
   {
