@@ -11,6 +11,7 @@
 #include "moreau/fem/fem_assembly.hpp"
 #include "moreau/fem/fem_output.hpp"
 #include "moreau/io/frame_writer.hpp"
+#include "moreau/io/probe_csv.hpp"
 #include "moreau/io/progress_bar.hpp"
 #include "moreau/io/run_summary.hpp"
 
@@ -60,14 +61,11 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   const Real dt = scene.model.settings.dt;
 
   RunResult result;
-  result.out_dir = options.out_dir.empty() ? "out/" + safe_file_name(scene.name) : options.out_dir;
-  prepare_output_directory(result.out_dir);
+  result.out_dir = run_output_directory(options.out_dir, scene.name);
   FemFrameWriter frames(problem, result.out_dir, scene.name);
-  std::ofstream csv(result.out_dir + "/probes.csv");
-  csv << "time";
-  for (const FemProbe& p : problem.probes)
-    for (const auto& c : fem_probe_columns(p, model.dim)) csv << ',' << c;
-  csv << '\n';
+  ProbeCsv csv(result.out_dir, probe_table_columns(problem.probes, [&](const FemProbe& p) {
+                 return fem_probe_columns(p, model.dim);
+               }));
 
   FemRunState run;
   for (const FemRigidBody& b : problem.rigid_bodies) run.bodies.push_back(b.initial);
@@ -93,9 +91,7 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   auto sample = [&] {
     values.clear();
     for (const FemProbe& p : problem.probes) evaluate_fem_probe(p, problem, run, last_iterations, values);
-    csv << fmt::format("{:.9g}", state.time);
-    for (Real v : values) csv << fmt::format(",{:.17g}", v);
-    csv << '\n';
+    csv.write_row(state.time, values);
     if (scene.output.write_vtk) frames.write(run);
   };
 

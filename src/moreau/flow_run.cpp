@@ -12,6 +12,7 @@
 #include "moreau/fem/flow_stepper.hpp"
 #include "moreau/fem_run.hpp"
 #include "moreau/io/frame_writer.hpp"
+#include "moreau/io/probe_csv.hpp"
 #include "moreau/io/progress_bar.hpp"
 #include "moreau/io/run_summary.hpp"
 
@@ -101,14 +102,11 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
   const double duration = options.duration.value_or(scene.duration);
 
   RunResult result;
-  result.out_dir = options.out_dir.empty() ? "out/" + safe_file_name(scene.name) : options.out_dir;
-  prepare_output_directory(result.out_dir);
+  result.out_dir = run_output_directory(options.out_dir, scene.name);
   FlowFrameWriter frames(problem, result.out_dir, scene.name);
-  std::ofstream csv(result.out_dir + "/probes.csv");
-  csv << "time";
-  for (const FlowProbe& p : problem.probes)
-    for (const auto& c : flow_probe_columns(p, model.dim)) csv << ',' << c;
-  csv << '\n';
+  ProbeCsv csv(result.out_dir, probe_table_columns(problem.probes, [&](const FlowProbe& p) {
+                 return flow_probe_columns(p, model.dim);
+               }));
 
   VectorX x = problem.initial;
   Real time = 0;
@@ -123,9 +121,7 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
   auto sample = [&] {
     values.clear();
     for (const FlowProbe& p : problem.probes) evaluate_flow_probe(p, problem, x, *step, last_iterations, values);
-    csv << fmt::format("{:.9g}", time);
-    for (Real v : values) csv << fmt::format(",{:.17g}", v);
-    csv << '\n';
+    csv.write_row(time, values);
     if (scene.output.write_vtk) frames.write(x, time);
   };
   auto account = [&](const FlowSolveResult& r) {

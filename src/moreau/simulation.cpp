@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "moreau/io/frame_writer.hpp"
+#include "moreau/io/probe_csv.hpp"
 #include "moreau/io/progress_bar.hpp"
 #include "moreau/io/run_summary.hpp"
 #include "moreau/model/diagnostics.hpp"
@@ -153,24 +154,17 @@ RunResult Simulation::run(const RunOptions& options) {
   const int threads = solver_thread_count(model);
 
   RunResult result;
-  result.out_dir = options.out_dir.empty() ? "out/" + safe_file_name(scene.name) : options.out_dir;
+  result.out_dir = run_output_directory(options.out_dir, scene.name);
   const fs::path dir(result.out_dir);
-  prepare_output_directory(result.out_dir);
 
   State& state = scene.state;
   FrameWriter frames(model, result.out_dir, scene.name);
-  std::ofstream csv(dir / "probes.csv");
-  csv << "time";
-  for (const auto& p : scene.probes)
-    for (const auto& c : probe_columns(p)) csv << ',' << c;
-  csv << '\n';
+  ProbeCsv csv(result.out_dir, probe_table_columns(scene.probes, [](const auto& p) { return probe_columns(p); }));
   std::vector<Real> values;
   auto sample = [&] {
     values.clear();
     for (const auto& p : scene.probes) evaluate_probe(p, model, state, values);
-    csv << fmt::format("{:.9g}", state.time);
-    for (Real v : values) csv << fmt::format(",{:.17g}", v);
-    csv << '\n';
+    csv.write_row(state.time, values);
     if (scene.output.write_vtk) frames.write(state);
   };
 

@@ -141,4 +141,10 @@ void prepare_output_directory(const std::string& out_dir) {
     if (entry.path().extension() == ".pvd") fs::remove(entry.path());
 }
 
+std::string run_output_directory(const std::string& requested, const std::string& scene_name) {
+  const std::string dir = requested.empty() ? "out/" + safe_file_name(scene_name) : requested;
+  prepare_output_directory(dir);
+  return dir;
+}
+
 }  // namespace moreau

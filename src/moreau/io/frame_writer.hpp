@@ -34,4 +34,7 @@ std::string safe_file_name(const std::string& name);
 /// Creates the output directory and clears the frames and .pvd files of an earlier run.
 void prepare_output_directory(const std::string& dir);
 
+/// A run's output directory, `requested` or out/<scene name>, prepared for the run.
+std::string run_output_directory(const std::string& requested, const std::string& scene_name);
+
 }  // namespace moreau

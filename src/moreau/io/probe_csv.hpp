@@ -1,0 +1,31 @@
+#pragma once
+// probes.csv: the time series of a run's probes, one row per sample (every engine writes it).
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "moreau/math/types.hpp"
+
+namespace moreau {
+
+/// Every probe's column names in order, columns_of(probe) giving one probe's.
+template <class Probe, class ColumnsOf>
+std::vector<std::string> probe_table_columns(const std::vector<Probe>& probes, ColumnsOf columns_of) {
+  std::vector<std::string> columns;
+  for (const Probe& p : probes)
+    for (std::string& c : columns_of(p)) columns.push_back(std::move(c));
+  return columns;
+}
+
+class ProbeCsv {
+ public:
+  /// Creates dir/probes.csv with the header "time,<columns>".
+  ProbeCsv(const std::string& dir, const std::vector<std::string>& columns);
+  /// One row: the time (9 significant digits) and the values (17, round-trip exact).
+  void write_row(double time, const std::vector<Real>& values);
+
+ private:
+  std::ofstream out_;
+};
+
+}  // namespace moreau
