@@ -49,6 +49,35 @@ TEST(NavierStokes, JacobianIsTheDerivativeOfTheResidual) {
   }
 }
 
+TEST(NavierStokes, JacobianIsTheDerivativeOfTheResidualIn3D) {
+  // The same check on a 2 x 2 x 2 hex8 mesh (trilinear cells, four fields per node), backward
+  // Euler and the midpoint rule.
+  for (FlowIntegrator integrator : {FlowIntegrator::backward_euler, FlowIntegrator::midpoint}) {
+    NavierStokesModel m;
+    m.mesh = make_box_mesh(Vec3(0, 0, 0), Vec3(1, 0.8, 1.2), {2, 2, 2}, ElementType::hex8);
+    m.density = 1.5;
+    m.viscosity = 0.02;
+    m.body_force = Vec3(0.3, -1, 0.2);
+    m.fixed_tau = 0.05;
+    m.fixed_lsic = 0.02;
+    setup_navier_stokes(m);
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<Real> dist(-1, 1);
+    VectorX x(m.dof_count()), x1(m.dof_count());
+    for (Index i = 0; i < x.size(); ++i) x[i] = dist(rng), x1[i] = dist(rng);
+    const FlowTimeStep step{integrator, 0.01, &x1, &x1};
+    VectorX R, Rp;
+    SparseMatrix J;
+    assemble_flow(m, x, step, R, &J);
+    const Eigen::MatrixXd Jd(J);
+    const Real worst = test::jacobian_error(Jd, x, 1e-6, [&](const VectorX& v) {
+      assemble_flow(m, v, step, Rp, nullptr);
+      return Rp;
+    });
+    EXPECT_LT(worst, 1e-7 * Jd.cwiseAbs().maxCoeff()) << "integrator " << static_cast<int>(integrator);
+  }
+}
+
 TEST(NavierStokes, PoiseuilleFlowConvergesAtSecondOrder) {
   // A 2 x 1 channel, mu = 0.1, rho = 1, the parabola u = 4 U y (1 - y) (U = 1) prescribed at inlet
   // and outlet, no-slip walls, pressure 0 at the outlet's lower corner. The exact solution is

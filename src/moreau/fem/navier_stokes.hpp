@@ -74,7 +74,8 @@ struct NavierStokesModel {
   Index free_count = 0;
   SparseMatrix pattern;
 
-  int fields() const { return dim + 1; }
+  // From the mesh, so that dof() is right before setup_navier_stokes (which sets dim).
+  int fields() const { return mesh.dim + 1; }
   Index dof_count() const { return mesh.node_count() * fields(); }
   Index dof(Index node, int field) const { return node * fields() + field; }
 };
