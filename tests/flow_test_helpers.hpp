@@ -66,8 +66,8 @@ inline FlowErrors flow_errors(const NavierStokesModel& m, const VectorX& x, cons
           const Index n = m.mesh.cell(e)[a];
           const Real N = m.shape[qp * nodes + a];
           X += N * m.mesh.nodes[n];
-          for (int k = 0; k < m.dim; ++k) u[k] += N * x[m.dof(n, k)];
-          p += N * x[m.dof(n, m.dim)];
+          for (int k = 0; k < m.dim(); ++k) u[k] += N * x[m.dof(n, k)];
+          p += N * x[m.dof(n, m.dim())];
         }
         const Real w = m.weight[qp];
         if (pass == 0) {

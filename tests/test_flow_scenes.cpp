@@ -83,7 +83,7 @@ TEST(FlowScenes, CavitySceneMatchesGhiaAndWritesFrames) {
   // scenes/cavity_re1000.json set to Re = 100 (mu = 0.01, no continuation) on 64 x 64: its line
   // probes must match Ghia et al.'s Re = 100 centrelines within 0.02 of the lid speed, as the
   // model-level test does (measured 0.0048 / 0.0072). The frame carries velocity, pressure and
-  // vorticity; the pressure's mean is 0 ("pressure_reference": {"mean": 0}).
+  // vorticity.
   const std::string out = test::temp_dir("cavity_scene") + "/out";
   test::run_scene(scene_path("cavity_re1000.json"), out,
                   "--set fluid.viscosity=0.01 --set fluid.continuation.viscosity=[0.01] --set fluid.mesh.cells=[64,64]");
@@ -105,7 +105,8 @@ TEST(FlowScenes, CavitySceneMatchesGhiaAndWritesFrames) {
 TEST(FlowScenes, PicardFallbackRescuesNewtonFromRest) {
   // The Re = 1000 cavity on 64 x 64 straight from rest (no continuation): Newton alone diverges
   // (exit 3, naming the fluid's solve); with the Picard fallback (the default) Picard brings the
-  // residual down 1e3 and Newton converges from there (measured: 11 Picard iterations).
+  // residual down 1e3 and Newton converges from there (measured: 11 Picard iterations); run.json
+  // must report Picard iterations.
   const std::string base = R"({"name": "cavity", "settings": {"solver": "fem", "integrator": "steady", "gravity": [0, 0, 0],
       "newton": {"tolerance": 1e-8, "picard_fallback": PICARD}},
     "fluid": {"mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [64, 64]}, "density": 1, "viscosity": 0.001,
@@ -122,11 +123,14 @@ TEST(FlowScenes, PicardFallbackRescuesNewtonFromRest) {
   const std::string out = test::temp_dir("picard_on") + "/out";
   const auto rows = test::run_scene(test::write_scene("picard_on_scene", with), out);
   ASSERT_EQ(rows.size(), 1u);
+  std::printf("Re 1000 from rest on 64^2 with the Picard fallback: centre u %.4f, v %.4f\n", rows[0][1], rows[0][2]);
   const std::string summary = read_text(out + "/run.json");
   EXPECT_EQ(summary.find("\"picard_iterations\": 0,"), std::string::npos) << summary;
-  // Ghia's Re = 1000 centre values are u = -0.0608 (y = 0.5) and v = 0.02526 (x = 0.5).
-  EXPECT_NEAR(rows[0][1], -0.0608, 0.03);
-  EXPECT_NEAR(rows[0][2], 0.02526, 0.03);
+  // Ghia's Re = 1000 centre values are u = -0.0608 (y = 0.5) and v = 0.02526 (x = 0.5); measured
+  // -0.0647 and 0.0239 on this 64^2 mesh. 0.01 leaves room for the mesh error and still rejects
+  // a solution of the wrong Reynolds number (Re = 100: u = -0.2058 at the centre).
+  EXPECT_NEAR(rows[0][1], -0.0608, 0.01);
+  EXPECT_NEAR(rows[0][2], 0.02526, 0.01);
 }
 
 TEST(FlowScenes, TransientRunIsBitIdenticalOnOneAndTwoThreads) {

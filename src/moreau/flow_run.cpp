@@ -41,13 +41,13 @@ class FlowFrameWriter {
     std::vector<Vec3> velocity(n, Vec3::Zero());
     std::vector<Real> pressure(n);
     for (Index a = 0; a < n; ++a) {
-      for (int k = 0; k < model_.dim; ++k) velocity[a][k] = x[model_.dof(a, k)];
-      pressure[a] = x[model_.dof(a, model_.dim)];
+      for (int k = 0; k < model_.dim(); ++k) velocity[a][k] = x[model_.dof(a, k)];
+      pressure[a] = x[model_.dof(a, model_.dim())];
     }
     std::vector<VtkPointArray> vectors{{"velocity", velocity}};
     std::vector<VtkScalarArray> scalars{{"pressure", pressure}};
     const std::vector<Vec3> curl = nodal_vorticity(model_, x);
-    if (model_.dim == 2) {
+    if (model_.dim() == 2) {
       std::vector<Real> w(n);
       for (Index a = 0; a < n; ++a) w[a] = curl[a].z();
       scalars.push_back({"vorticity", w});
@@ -70,10 +70,10 @@ class FlowFrameWriter {
 
 // "pressure_reference": {"mean": value}: shift the pressure so that its mean is the value.
 void shift_to_mean_pressure(const FlowProblem& problem, VectorX& x) {
-  if (problem.mean_pressure_node < 0) return;
+  if (!problem.mean_pressure) return;
   const NavierStokesModel& m = problem.model;
-  const Real shift = problem.mean_pressure - mean_pressure(m, x);
-  for (Index n = 0; n < m.mesh.node_count(); ++n) x[m.dof(n, m.dim)] += shift;
+  const Real shift = *problem.mean_pressure - mean_pressure(m, x);
+  for (Index n = 0; n < m.mesh.node_count(); ++n) x[m.dof(n, m.dim())] += shift;
 }
 
 }  // namespace
@@ -81,7 +81,7 @@ void shift_to_mean_pressure(const FlowProblem& problem, VectorX& x) {
 std::string flow_summary(const Scene& scene) {
   const FlowProblem& p = *scene.fem->flow;
   const NavierStokesModel& m = p.model;
-  std::string s = fmt::format("scene '{}' ({}): solver fem ({}D fluid), integrator {}", scene.name, scene.file, m.dim,
+  std::string s = fmt::format("scene '{}' ({}): solver fem ({}D fluid), integrator {}", scene.name, scene.file, m.dim(),
                               flow_integrator_name(p.integrator));
   if (p.integrator != FlowIntegrator::steady)
     s += fmt::format(", dt {} s, duration {} s", scene.model.settings.dt, scene.duration);
@@ -105,7 +105,7 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
   result.out_dir = run_output_directory(options.out_dir, scene.name);
   FlowFrameWriter frames(problem, result.out_dir, scene.name);
   ProbeCsv csv(result.out_dir, probe_table_columns(problem.probes, [&](const FlowProbe& p) {
-                 return flow_probe_columns(p, model.dim);
+                 return flow_probe_columns(p, model.dim());
                }));
 
   VectorX x = problem.initial;

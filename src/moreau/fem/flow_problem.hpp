@@ -1,6 +1,7 @@
 #pragma once
 // A fluid of the FEM engine (a "fluid" in a "solver": "fem" scene): the Navier-Stokes model, how
 // to advance it, and what to measure (docs/scene-format.md, "Fluids of the FEM engine").
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -29,10 +30,9 @@ struct FlowProblem {
   // Their Newton tolerance: an intermediate solution only starts the next solve, so it need not be
   // converged to the final tolerance.
   Real continuation_tolerance = 1e-3;
-  // "pressure_reference": {"mean": value}: the pressure is pinned at this node while solving and
-  // then shifted so that its mean over the domain is the value. -1: not used.
-  Index mean_pressure_node = -1;
-  Real mean_pressure = 0;
+  // "pressure_reference": {"mean": value}: the pressure is pinned at node 0 while solving and then
+  // shifted so that its mean over the domain is the value.
+  std::optional<Real> mean_pressure;
   VectorX initial;  // per dof: the initial velocity (and 0 pressure)
   std::vector<FlowProbe> probes;
 };
@@ -55,6 +55,10 @@ Vec3 boundary_force(const NavierStokesModel& model, const VectorX& residual, con
 
 /// The mean pressure over the domain (integral of p over the measure).
 Real mean_pressure(const NavierStokesModel& model, const VectorX& x);
+
+/// The kinetic energy 1/2 rho int |u|^2 (J; 2D: J/m), exact for the Q1 field at the 2 x 2 (x 2)
+/// Gauss points.
+Real flow_kinetic_energy(const NavierStokesModel& model, const VectorX& x);
 
 /// Vorticity at the nodes: the curl of the velocity averaged over the cells around each node
 /// (2D: the z component in every entry's z).

@@ -37,8 +37,8 @@ SchemeCoefficients scheme_coefficients(const FlowTimeStep& step) {
 // cell; local dofs node-major, fields (velocity components, pressure). x: u_{n+1}, x1: u_n, x2:
 // u_{n-1} (null when their coefficients vanish).
 void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x1, const Real* x2,
-               const SchemeCoefficients& c, Real dt, bool with_jacobian, bool picard, CellVector& R, CellMatrix& J) {
-  const int dim = m.dim, F = m.fields(), nodes = m.mesh.nodes_per_cell(), n = F * nodes;
+               const SchemeCoefficients& c, bool with_jacobian, bool picard, CellVector& R, CellMatrix& J) {
+  const int dim = m.dim(), F = m.fields(), nodes = m.mesh.nodes_per_cell(), n = F * nodes;
   const Real rho = m.density, mu = m.viscosity, nu = mu / rho, theta = c.theta;
   R.setZero(n);
   if (with_jacobian) J.setZero(n, n);
@@ -74,9 +74,9 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
       adv[a] = u.dot(dN[a]);
       s1 += std::abs(adv[a]);
     }
-    // tau = (tau1^-2 + tau2^-2 + tau3^-2)^-1/2 with tau1^-1 = sum_a |u . grad N_a|, tau2 = dt/2,
-    // tau3 = h^2 / (4 nu).
-    const Real inv = s1 * s1 + (dt > 0 ? 4 / (dt * dt) : 0) + std::pow(4 * nu / (h * h), 2);
+    // tau = (tau1^-2 + tau2^-2 + tau3^-2)^-1/2 with tau1^-1 = sum_a |u . grad N_a|, tau2 = dt/2
+    // (transient only: ct = 1/dt, 0 when steady), tau3 = h^2 / (4 nu).
+    const Real inv = s1 * s1 + 4 * c.ct * c.ct + std::pow(4 * nu / (h * h), 2);
     const Real tau = m.fixed_tau > 0 ? m.fixed_tau : 1 / std::sqrt(inv);
     const Real nu_lsic = m.fixed_tau > 0 ? m.fixed_lsic : tau * u.squaredNorm();
     for (int a = 0; a < nodes; ++a) {
@@ -124,7 +124,6 @@ void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeS
   if (coefficients.a2 != 0 && !step.before_previous) throw std::invalid_argument("assemble_flow: BDF2 needs x_{n-1}");
   const VectorX* x1 = step.transient() ? step.previous : nullptr;
   const VectorX* x2 = coefficients.a2 != 0 ? step.before_previous : nullptr;
-  const Real dt = step.transient() ? step.dt : 0;
   R.setZero(m.dof_count());
   if (J) {
     *J = m.pattern;
@@ -142,7 +141,7 @@ void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeS
         if (x1) local1[a * F + f] = (*x1)[d];
         if (x2) local2[a * F + f] = (*x2)[d];
       }
-    flow_cell(m, e, local, x1 ? local1 : nullptr, x2 ? local2 : nullptr, coefficients, dt, J != nullptr, picard, Re, Je);
+    flow_cell(m, e, local, x1 ? local1 : nullptr, x2 ? local2 : nullptr, coefficients, J != nullptr, picard, Re, Je);
     for (int a = 0; a < nodes; ++a)
       for (int f = 0; f < F; ++f) R[m.dof(cell[a], f)] += Re[a * F + f];
     if (!J) return;
@@ -158,7 +157,6 @@ void setup_navier_stokes(NavierStokesModel& m) {
   FemMesh& mesh = m.mesh;
   if (mesh.element != ElementType::quad4 && mesh.element != ElementType::hex8)
     throw InputError(fmt::format("the flow solver uses quad4 (2D) or hex8 (3D) cells, not {}", element_name(mesh.element)));
-  m.dim = mesh.dim;
   const int nodes = mesh.nodes_per_cell(), F = m.fields();
   const auto rule = gauss_rule(mesh.element, 2);
   m.points = static_cast<int>(rule.size());
@@ -183,11 +181,11 @@ void setup_navier_stokes(NavierStokesModel& m) {
       for (int a = 0; a < nodes; ++a) {
         m.shape[qp * nodes + a] = N[a];
         Vec3 g = inv_t * dN[a];
-        for (int k = m.dim; k < 3; ++k) g[k] = 0;
+        for (int k = m.dim(); k < 3; ++k) g[k] = 0;
         m.gradient[qp * nodes + a] = g;
       }
     }
-    m.cell_size[e] = std::pow(measure, 1.0 / m.dim);
+    m.cell_size[e] = std::pow(measure, 1.0 / m.dim());
   }
   m.colours = colour_cells(mesh);
   m.free_count = number_free_dofs(m.dof_count(), m.prescribed, m.free_index);
@@ -282,7 +280,7 @@ bool sample_flow(const NavierStokesModel& m, const VectorX& x, const Vec3& point
     }
     const Real slack = 1e-9 * (hi - lo).norm();
     bool outside = false;
-    for (int k = 0; k < m.dim; ++k) outside = outside || point[k] < lo[k] - slack || point[k] > hi[k] + slack;
+    for (int k = 0; k < m.dim(); ++k) outside = outside || point[k] < lo[k] - slack || point[k] > hi[k] + slack;
     if (outside) continue;
     // Invert x(xi) = sum_a N_a(xi) X_a by Newton from the centre.
     Vec3 xi = Vec3::Zero();
@@ -292,19 +290,19 @@ bool sample_flow(const NavierStokesModel& m, const VectorX& x, const Vec3& point
       for (int a = 0; a < nodes; ++a) xr += N[a] * mesh.nodes[c[a]];
       const Mat3 Jac = cell_jacobian(mesh, e, dN);
       Vec3 d = Jac.inverse() * (point - xr);
-      for (int k = m.dim; k < 3; ++k) d[k] = 0;
+      for (int k = m.dim(); k < 3; ++k) d[k] = 0;
       xi += d;
       if (d.norm() < 1e-14) break;
     }
     bool inside = true;
-    for (int k = 0; k < m.dim; ++k) inside = inside && std::abs(xi[k]) <= 1 + 1e-9;
+    for (int k = 0; k < m.dim(); ++k) inside = inside && std::abs(xi[k]) <= 1 + 1e-9;
     if (!inside) continue;
     shape_functions(mesh.element, xi, N, dN);
     velocity.setZero();
     pressure = 0;
     for (int a = 0; a < nodes; ++a) {
-      for (int k = 0; k < m.dim; ++k) velocity[k] += N[a] * x[m.dof(c[a], k)];
-      pressure += N[a] * x[m.dof(c[a], m.dim)];
+      for (int k = 0; k < m.dim(); ++k) velocity[k] += N[a] * x[m.dof(c[a], k)];
+      pressure += N[a] * x[m.dof(c[a], m.dim())];
     }
     return true;
   }

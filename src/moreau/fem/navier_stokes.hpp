@@ -65,7 +65,7 @@ struct NavierStokesModel {
   // Per node: dim velocity components, then the pressure.
   std::vector<PrescribedDof> prescribed;
   // Built by setup_navier_stokes:
-  int dim = 2, points = 0;
+  int points = 0;
   std::vector<Real> weight, shape;   // [cell][point], [cell][point][node]
   std::vector<Vec3> gradient;        // [cell][point][node]
   std::vector<Real> cell_size;       // m
@@ -74,7 +74,7 @@ struct NavierStokesModel {
   Index free_count = 0;
   SparseMatrix pattern;
 
-  // From the mesh, so that dof() is right before setup_navier_stokes (which sets dim).
+  int dim() const { return mesh.dim; }
   int fields() const { return mesh.dim + 1; }
   Index dof_count() const { return mesh.node_count() * fields(); }
   Index dof(Index node, int field) const { return node * fields() + field; }

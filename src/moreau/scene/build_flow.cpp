@@ -39,13 +39,13 @@ std::map<Index, std::pair<Components, int>> read_flow_boundaries(const JsonObjec
     if (type == "no_slip") {
       if (b.has("velocity")) b.fail("velocity", "a no_slip boundary has zero velocity; use \"type\": \"velocity\" to give one");
       value = std::make_shared<std::vector<std::unique_ptr<Expression>>>();
-      for (int k = 0; k < m.dim; ++k) value->push_back(std::make_unique<Expression>(0.0));
+      for (int k = 0; k < m.dim(); ++k) value->push_back(std::make_unique<Expression>(0.0));
     } else {
-      value = std::make_shared<std::vector<std::unique_ptr<Expression>>>(read_components(b, "velocity", m.dim, true));
+      value = std::make_shared<std::vector<std::unique_ptr<Expression>>>(read_components(b, "velocity", m.dim(), true));
     }
     b.finish();
     for (Index n : nodes)
-      for (int k = 0; k < m.dim; ++k)
+      for (int k = 0; k < m.dim(); ++k)
         if ((*value)[k]) velocity[m.dof(n, k)] = {value, k};
   }
   return velocity;
@@ -55,7 +55,7 @@ std::map<Index, std::pair<Components, int>> read_flow_boundaries(const JsonObjec
 // left, so the pressure is determined only up to a constant.
 bool velocity_everywhere_on_boundary(const NavierStokesModel& m, const std::map<Index, std::pair<Components, int>>& velocity) {
   for (Index n : exterior_facets(m.mesh))
-    for (int k = 0; k < m.dim; ++k)
+    for (int k = 0; k < m.dim(); ++k)
       if (!velocity.count(m.dof(n, k))) return false;
   return true;
 }
@@ -73,17 +73,17 @@ FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
   };
   if (type == "point") {
     p.type = FlowProbeType::point;
-    p.a = read_point(j, "at", m.dim);
+    p.a = read_point(j, "at", m.dim());
     inside("at", p.a);
   } else if (type == "line") {
     p.type = FlowProbeType::line;
-    p.a = read_point(j, "from", m.dim);
-    p.b = read_point(j, "to", m.dim);
+    p.a = read_point(j, "from", m.dim());
+    p.b = read_point(j, "to", m.dim());
     p.samples = j.integer("samples", 101, 2, 1000000);
   } else if (type == "pressure_difference") {
     p.type = FlowProbeType::pressure_difference;
-    p.a = read_point(j, "from", m.dim);
-    p.b = read_point(j, "to", m.dim);
+    p.a = read_point(j, "from", m.dim());
+    p.b = read_point(j, "to", m.dim());
     inside("from", p.a);
     inside("to", p.b);
   } else if (type == "boundary_force") {
@@ -92,7 +92,7 @@ FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
     if (auto reference = j.optional_object("reference")) {
       // Coefficients 2 F / (rho U^2 L) per unit depth in 2D, 2 F / (rho U^2 A) in 3D.
       const Real speed = reference->number("velocity", Range::positive());
-      const Real size = m.dim == 2 ? reference->number("length", Range::positive()) : reference->number("area", Range::positive());
+      const Real size = m.dim() == 2 ? reference->number("length", Range::positive()) : reference->number("area", Range::positive());
       reference->finish();
       p.coefficient_scale = 2 / (m.density * speed * speed * size);
     }
@@ -142,13 +142,12 @@ void build_flow_scene(const JsonObject& top, const JsonObject* settings, FemProb
     fluid.fail("mesh", fmt::format("the fluid needs quadrilateral (2D) or hexahedral (3D) cells, not {}; with Gmsh, "
                                    "recombine the mesh (\"Recombine Surface{{...}};\" in the .geo file)",
                                    element_name(m.mesh.element)));
-  m.dim = m.mesh.dim;
-  fem.model.dim = m.dim;
+  fem.model.dim = m.dim();
   m.density = fluid.number("density", Range::positive());
   m.viscosity = fluid.number("viscosity", Range::positive());
   m.body_force = gravity;
-  if (m.dim == 2) m.body_force.z() = 0;
-  if (fluid.has("body_force")) m.body_force += read_point(fluid, "body_force", m.dim);
+  if (m.dim() == 2) m.body_force.z() = 0;
+  if (fluid.has("body_force")) m.body_force += read_point(fluid, "body_force", m.dim());
 
   const auto velocity = read_flow_boundaries(fluid, m);
   for (const auto& [dof, expression] : velocity) {
@@ -166,13 +165,12 @@ void build_flow_scene(const JsonObject& top, const JsonObject* settings, FemProb
     if (reference->has("point") == reference->has("mean"))
       reference->fail("point", "give either \"point\": [...] with \"value\", or \"mean\": <value>");
     if (reference->has("point")) {
-      const Index node = nearest_node(m.mesh, read_point(*reference, "point", m.dim));
+      const Index node = nearest_node(m.mesh, read_point(*reference, "point", m.dim()));
       const Real value = reference->number("value", 0.0);
-      m.prescribed.push_back({m.dof(node, m.dim), [value](Real) { return value; }});
+      m.prescribed.push_back({m.dof(node, m.dim()), [value](Real) { return value; }});
     } else {
       problem.mean_pressure = reference->number("mean");
-      problem.mean_pressure_node = 0;
-      m.prescribed.push_back({m.dof(0, m.dim), [](Real) { return 0.0; }});
+      m.prescribed.push_back({m.dof(0, m.dim()), [](Real) { return 0.0; }});
     }
     reference->finish();
   } else if (closed) {
@@ -198,9 +196,9 @@ void build_flow_scene(const JsonObject& top, const JsonObject* settings, FemProb
   setup_navier_stokes(m);
   problem.initial = VectorX::Zero(m.dof_count());
   if (fluid.has("initial_velocity")) {
-    const auto initial = read_components(fluid, "initial_velocity", m.dim, false);
+    const auto initial = read_components(fluid, "initial_velocity", m.dim(), false);
     for (Index n = 0; n < m.mesh.node_count(); ++n)
-      for (int k = 0; k < m.dim; ++k) problem.initial[m.dof(n, k)] = (*initial[k])(0, m.mesh.nodes[n]);
+      for (int k = 0; k < m.dim(); ++k) problem.initial[m.dof(n, k)] = (*initial[k])(0, m.mesh.nodes[n]);
   }
   for (const PrescribedDof& p : m.prescribed) problem.initial[p.dof] = p.value(0);
   fluid.finish();
