@@ -271,6 +271,7 @@ TEST(FemScenes, BadInputNamesItsKey) {
   expect_bad("fem_material", scene(R"(, "dirichlet": [])").replace(scene("").find("\"youngs_modulus\""), 0, "\"lame_mu\": 1, "),
              {"solids[0].material", "either"});
   expect_bad("fem_integrator", scene("", R"(, "integrator": "rk4")"), {"settings.integrator", "energy_momentum"});
+  expect_bad("fem_linear_solver", scene("", R"(, "linear_solver": {"type": "gmres"})"), {"settings.linear_solver", "fluids"});
   const std::string body = R"({"name": "f", "settings": {"solver": "fem", "integrator": "static"},
       "rigid_bodies": [{"name": "b", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}, "density": 1000}]})";
   expect_bad("fem_rigid_static", body, {"rigid_bodies", "dynamic integrator"});

@@ -135,19 +135,22 @@ TEST(FlowScenes, PicardFallbackRescuesNewtonFromRest) {
 
 TEST(FlowScenes, TransientRunIsBitIdenticalOnOneAndTwoThreads) {
   // The cylinder channel (N = 1) started impulsively, 6 midpoint steps: probes.csv byte for byte
-  // equal on 1 and 2 threads (colour-ordered assembly, serial factorization).
-  std::string csv[2];
-  for (int threads : {1, 2}) {
-    const std::string out = test::temp_dir(fmt::format("flow_threads{}", threads)) + "/out";
-    const auto r = test::run_moreau(fmt::format(
-        "run {} --out {} --quiet --threads {} --set settings.integrator=midpoint --set settings.dt=0.05 "
-        "--set settings.duration=0.3 --set fluid.mesh.parameters.N=1",
-        scene_path("cylinder_re20.json"), out, threads));
-    ASSERT_EQ(r.exit_code, 0) << r.output;
-    csv[threads - 1] = read_text(out + "/probes.csv");
+  // equal on 1 and 2 threads (colour-ordered assembly, serial factorization or GMRES), with
+  // either linear solver.
+  for (const char* linear : {"direct", "gmres"}) {
+    std::string csv[2];
+    for (int threads : {1, 2}) {
+      const std::string out = test::temp_dir(fmt::format("flow_threads{}_{}", threads, linear)) + "/out";
+      const auto r = test::run_moreau(fmt::format(
+          "run {} --out {} --quiet --threads {} --set settings.integrator=midpoint --set settings.dt=0.05 "
+          "--set settings.duration=0.3 --set fluid.mesh.parameters.N=1 --set settings.linear_solver.type={}",
+          scene_path("cylinder_re20.json"), out, threads, linear));
+      ASSERT_EQ(r.exit_code, 0) << r.output;
+      csv[threads - 1] = read_text(out + "/probes.csv");
+    }
+    EXPECT_GT(csv[0].size(), 300u);
+    EXPECT_EQ(csv[0], csv[1]) << linear;
   }
-  EXPECT_GT(csv[0].size(), 300u);
-  EXPECT_EQ(csv[0], csv[1]);
 }
 
 TEST(FlowScenes, BadInputNamesItsKey) {
@@ -182,6 +185,12 @@ TEST(FlowScenes, BadInputNamesItsKey) {
              {"probes[0].at", "outside"});
   expect_bad("flow_geo", scene("", open).replace(scene("", open).find("\"type\": \"rectangle\""), 19, "\"type\": \"geo\", \"file\": \"none.geo\""),
              {"fluid.mesh.file", "none.geo"});
+  const std::string gmres_in_direct = R"("integrator": "steady", "linear_solver": {"type": "direct", "restart": 20})";
+  expect_bad("flow_linear_key", scene("", open).replace(scene("", open).find("\"integrator\": \"steady\""), 22, gmres_in_direct),
+             {"settings.linear_solver.restart", "gmres"});
+  const std::string unknown_solver = R"("integrator": "steady", "linear_solver": {"type": "cg"})";
+  expect_bad("flow_linear_type", scene("", open).replace(scene("", open).find("\"integrator\": \"steady\""), 22, unknown_solver),
+             {"settings.linear_solver.type", "'cg'", "gmres"});
   expect_bad("flow_with_solid", scene("", open, R"(, "solids": [])"), {"solids", "fluid-structure"});
 }
 

@@ -80,7 +80,7 @@ TEST(NavierStokes, PoiseuilleFlowConvergesAtSecondOrder) {
     fix_pressure(m, 2 * n);  // (2, 0)
     setup_navier_stokes(m);
     VectorX x = VectorX::Zero(m.dof_count());
-    SparseLuSolver solver;
+    FlowLinearSolver solver;
     const NewtonResult r = solve_navier_stokes(m, 0, {}, x, solver, {.tolerance = 1e-10, .max_iterations = 20});
     ASSERT_TRUE(r.converged) << r.failure;
     Vec3 centre, left;
@@ -115,7 +115,7 @@ TEST(NavierStokes, LidDrivenCavityAtRe100MatchesGhia) {
   fix_pressure(m, 0);
   setup_navier_stokes(m);
   VectorX x = VectorX::Zero(m.dof_count());
-  SparseLuSolver solver;
+  FlowLinearSolver solver;
   const NewtonResult r = solve_navier_stokes(m, 0, {}, x, solver, {.tolerance = 1e-10, .max_iterations = 30});
   ASSERT_TRUE(r.converged) << r.failure;
   Real worst_u = 0, worst_v = 0;

@@ -55,7 +55,7 @@ TEST(NavierStokesValidation, KovasznayFlowConvergesInVelocityAndPressure) {
     test::fix_pressure(m, 0);
     setup_navier_stokes(m);
     VectorX x = VectorX::Zero(m.dof_count());
-    SparseLuSolver solver;
+    FlowLinearSolver solver;
     const FlowSolveResult r = solve_navier_stokes(m, 0, {}, x, solver, {.tolerance = 1e-10});
     ASSERT_TRUE(r.converged) << r.failure;
     errors.push_back(test::flow_errors(m, x, exact, 0));
@@ -90,7 +90,7 @@ TEST(NavierStokesValidation, KovasznayFlowExtrudedIn3DMatchesThe2DSolution) {
     test::fix_pressure(m, 0);
     setup_navier_stokes(m);
     VectorX x = VectorX::Zero(m.dof_count());
-    SparseLuSolver solver;
+    FlowLinearSolver solver;
     const FlowSolveResult r = solve_navier_stokes(m, 0, {}, x, solver, {.tolerance = 1e-12});
     EXPECT_TRUE(r.converged) << r.failure;
     return x;
@@ -127,7 +127,7 @@ VectorX run_taylor_green(int cells, Real nu, FlowIntegrator integrator, Real dt,
   test::fix_pressure(m, 0);
   setup_navier_stokes(m);
   VectorX x = test::exact_state(m, exact, 0);
-  SparseLuSolver solver;
+  FlowLinearSolver solver;
   FlowStepper stepper(integrator);
   const long steps = std::lround(T / dt);
   for (long s = 0; s < steps; ++s) {

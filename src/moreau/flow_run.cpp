@@ -133,7 +133,7 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
     max_iterations = std::max(max_iterations, last_iterations);
   };
 
-  SparseLuSolver solver;
+  FlowLinearSolver solver(problem.linear);
   std::string status = "completed", message;
   nlohmann::json stages = nlohmann::json::array();
   if (steady) {
@@ -200,7 +200,17 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
   j["newton"] = {{"iterations", total_iterations},    {"picard_iterations", picard_iterations},
                  {"max_iterations_per_step", max_iterations}, {"tolerance", problem.solve.tolerance},
                  {"assembly_s", assembly_s},           {"solve_s", solve_s},
-                 {"linear_solver", "umfpack"}};
+                 {"linear_solver", solver.name()}};
+  if (problem.linear.method == FlowLinearMethod::gmres) {
+    const FlowLinearStatistics& ls = solver.statistics();
+    j["linear_solver"] = {{"type", solver.name()},
+                          {"solves", ls.solves},
+                          {"gmres_iterations", ls.iterations},
+                          {"max_gmres_iterations_per_solve", ls.max_iterations},
+                          {"preconditioner_updates", ls.preconditioner_updates},
+                          {"preconditioner_s", ls.preconditioner_s},
+                          {"tolerance", problem.linear.tolerance}};
+  }
   if (steady) j["continuation"] = stages;
   std::ofstream(result.out_dir + "/run.json") << j.dump(2) << '\n';
   if (status != "completed") throw NumericalError(message);

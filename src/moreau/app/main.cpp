@@ -14,7 +14,7 @@ constexpr int kExitOther = 1, kExitBadInput = 2, kExitNumerical = 3;
 }
 
 int main(int argc, char** argv) {
-  CLI::App app{"moreau: a multiphysics simulation engine (constraint-based XPBD; FEM to come)", "moreau"};
+  CLI::App app{"moreau: a multiphysics simulation engine (constraint-based XPBD and finite elements)", "moreau"};
   app.set_version_flag("--version", std::string("moreau ") + moreau::version());
   app.require_subcommand(1);
 

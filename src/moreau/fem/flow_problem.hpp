@@ -24,6 +24,7 @@ struct FlowProblem {
   NavierStokesModel model;
   FlowIntegrator integrator = FlowIntegrator::midpoint;
   FlowSolveSettings solve;
+  FlowLinearSettings linear;  // the linear solver inside each Newton/Picard iteration
   // Steady solves: the viscosities (Pa s) solved in turn before the model's own, each from the
   // previous solution (Reynolds-number continuation).
   std::vector<Real> continuation;

@@ -3,14 +3,14 @@
 namespace moreau {
 
 FlowSolveResult FlowStepper::single(const NavierStokesModel& model, FlowIntegrator scheme, Real t, Real dt, VectorX& x,
-                                    SparseLuSolver& solver, const FlowSolveSettings& settings) {
+                                    FlowLinearSolver& solver, const FlowSolveSettings& settings) {
   before_previous_ = previous_.size() ? previous_ : x;
   previous_ = x;
   last_ = {scheme, dt, &previous_, &before_previous_};
   return solve_navier_stokes(model, t + dt, last_, x, solver, settings);
 }
 
-FlowSolveResult FlowStepper::step(const NavierStokesModel& model, Real t, Real dt, VectorX& x, SparseLuSolver& solver,
+FlowSolveResult FlowStepper::step(const NavierStokesModel& model, Real t, Real dt, VectorX& x, FlowLinearSolver& solver,
                                   const FlowSolveSettings& settings) {
   if (integrator_ == FlowIntegrator::steady) {
     last_ = {};

@@ -17,7 +17,7 @@ class FlowStepper {
 
   /// Advances x (the state at t) to t + dt. On failure x is left at the failed iterate and the
   /// stepper can be discarded.
-  FlowSolveResult step(const NavierStokesModel& model, Real t, Real dt, VectorX& x, SparseLuSolver& solver,
+  FlowSolveResult step(const NavierStokesModel& model, Real t, Real dt, VectorX& x, FlowLinearSolver& solver,
                        const FlowSolveSettings& settings);
 
   /// The last step's scheme (with its previous states), for residual-based probes.
@@ -25,7 +25,7 @@ class FlowStepper {
 
  private:
   FlowSolveResult single(const NavierStokesModel& model, FlowIntegrator scheme, Real t, Real dt, VectorX& x,
-                         SparseLuSolver& solver, const FlowSolveSettings& settings);
+                         FlowLinearSolver& solver, const FlowSolveSettings& settings);
 
   FlowIntegrator integrator_;
   long steps_ = 0;

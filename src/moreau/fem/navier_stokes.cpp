@@ -202,7 +202,7 @@ namespace {
 // Newton (or Picard) iterations from x until |R| <= stop * |R_0| (or the correction is below
 // tolerance * |x|), at most `limit` linear solves; false on failure, with result.failure set.
 // Divergence (|R| above 1e6 |R_0|, or not finite) stops early.
-bool iterate_flow(const NavierStokesModel& m, const FlowTimeStep& step, VectorX& x, SparseLuSolver& solver, bool picard,
+bool iterate_flow(const NavierStokesModel& m, const FlowTimeStep& step, VectorX& x, FlowLinearSolver& solver, bool picard,
                   Real stop, Real tolerance, int limit, FlowSolveResult& result, int& count) {
   VectorX R;
   SparseMatrix J;
@@ -222,12 +222,12 @@ bool iterate_flow(const NavierStokesModel& m, const FlowTimeStep& step, VectorX&
       result.failure = fmt::format("{} did not converge in {} iterations (|R| = {:.3e}, first {:.3e})", method, limit, norm, first);
       return false;
     }
-    if (!timed(result.solve_s, [&] { return solver.factorize(J); })) {
-      result.failure = "the flow Jacobian is singular (is the pressure fixed somewhere, or an outflow given?)";
+    const VectorX rhs = -gather_free(m.free_index, m.free_count, R);
+    VectorX dx;
+    if (!timed(result.solve_s, [&] { return solver.factorize(J) && solver.solve(rhs, dx); })) {
+      result.failure = solver.failure();
       return false;
     }
-    const VectorX rhs = -gather_free(m.free_index, m.free_count, R);
-    const VectorX dx = timed(result.solve_s, [&] { return solver.solve(rhs); });
     ++count;
     add_free(m.free_index, dx, x);
     if (!picard && dx.norm() <= tolerance * gather_free(m.free_index, m.free_count, x).norm()) {
@@ -241,7 +241,7 @@ bool iterate_flow(const NavierStokesModel& m, const FlowTimeStep& step, VectorX&
 }  // namespace
 
 FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const FlowTimeStep& step, VectorX& x,
-                                    SparseLuSolver& solver, const FlowSolveSettings& settings) {
+                                    FlowLinearSolver& solver, const FlowSolveSettings& settings) {
   FlowSolveResult result;
   for (const PrescribedDof& p : m.prescribed) x[p.dof] = p.value(t);
   const VectorX start = x;

@@ -27,7 +27,7 @@
 
 #include "moreau/fem/fem_mesh.hpp"
 #include "moreau/fem/fem_model.hpp"
-#include "moreau/fem/linear_solver.hpp"
+#include "moreau/fem/flow_linear_solver.hpp"
 #include "moreau/fem/static_solver.hpp"
 
 namespace moreau {
@@ -97,7 +97,7 @@ struct FlowSolveResult : NewtonResult {
 /// to their values at t. Converged when |R| <= tolerance * |R_0| or the correction is below
 /// tolerance * |x|.
 FlowSolveResult solve_navier_stokes(const NavierStokesModel& model, Real t, const FlowTimeStep& step, VectorX& x,
-                                    SparseLuSolver& solver, const FlowSolveSettings& settings = {});
+                                    FlowLinearSolver& solver, const FlowSolveSettings& settings = {});
 
 /// Velocity and pressure at a point (the cell containing it is found by inverting the
 /// isoparametric map); false if the point is outside the mesh.

@@ -236,12 +236,16 @@ FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
 void allow_fem_settings(const JsonObject& settings) {
   settings.allow("integrator");
   settings.allow("newton");
+  settings.allow("linear_solver");
 }
 
 namespace {
 
 // The solids' "integrator" and "newton" settings.
 void read_solid_settings(const JsonObject& settings, FemProblem& problem) {
+  if (settings.has("linear_solver"))
+    settings.fail("linear_solver", "\"linear_solver\" applies to fluids; solids are solved by CHOLMOD (or UMFPACK where "
+                                   "the tangent is indefinite) without a choice");
   const std::string integrator = settings.choice("integrator", "energy_momentum", {"static", "midpoint", "energy_momentum"});
   problem.integrator = integrator == "static"     ? FemIntegrator::static_load_steps
                        : integrator == "midpoint" ? FemIntegrator::midpoint

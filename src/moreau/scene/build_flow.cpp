@@ -126,6 +126,23 @@ void read_flow_settings(const JsonObject* settings, const JsonObject& fluid, Flo
     s.max_picard_iterations = newton->integer("max_picard_iterations", s.max_picard_iterations, 1, 100000);
     newton->finish();
   }
+  if (auto linear = settings->optional_object("linear_solver")) {
+    FlowLinearSettings& s = problem.linear;
+    s.method = linear->choice("type", "direct", {"direct", "gmres"}) == "gmres" ? FlowLinearMethod::gmres
+                                                                              : FlowLinearMethod::direct;
+    for (const char* key : {"tolerance", "max_iterations", "restart", "drop_tolerance", "fill_factor", "refresh_ratio"})
+      if (s.method == FlowLinearMethod::direct && linear->has(key))
+        linear->fail(key, fmt::format("\"{}\" is a setting of \"type\": \"gmres\"; the direct solver (UMFPACK) has none", key));
+    if (s.method == FlowLinearMethod::gmres) {
+      s.tolerance = linear->number("tolerance", s.tolerance, Range::open(0, 1));
+      s.max_iterations = linear->integer("max_iterations", s.max_iterations, 1, 1000000);
+      s.restart = linear->integer("restart", s.restart, 1, 10000);
+      s.drop_tolerance = linear->number("drop_tolerance", s.drop_tolerance, Range::open(0, 1));
+      s.fill_factor = linear->integer("fill_factor", s.fill_factor, 1, 1000);
+      s.refresh_ratio = linear->number("refresh_ratio", s.refresh_ratio, Range::closed(1, 1e6));
+    }
+    linear->finish();
+  }
 }
 
 }  // namespace
