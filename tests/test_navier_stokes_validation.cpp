@@ -1,6 +1,6 @@
 // Stabilized Q1Q1 Navier-Stokes against exact solutions: Kovasznay flow (spatial convergence of
-// velocity and pressure), the Taylor-Green vortex (decay rate), and the orders of the time
-// integrators.
+// velocity and pressure), the Taylor-Green vortex (decay rate), the orders of the time
+// integrators, and Ethier & Steinman's 3D Beltrami flow (hex8, transient, GMRES).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -35,6 +35,32 @@ ExactFlow taylor_green(Real nu) {
             return Vec3(-std::cos(X.x()) * std::sin(X.y()) * f, std::sin(X.x()) * std::cos(X.y()) * f, 0);
           },
           [nu](const Vec3& X, Real t) { return -0.25 * (std::cos(2 * X.x()) + std::cos(2 * X.y())) * std::exp(-4 * nu * t); }};
+}
+
+// Ethier & Steinman (1994), "Exact fully 3D Navier-Stokes solutions for benchmarking", Int. J.
+// Numer. Meth. Fluids 19: a Beltrami flow (vorticity parallel to velocity) decaying as
+// e^(-d^2 nu t), with a = pi/4, d = pi/2 (rho = 1):
+//   u = -a [e^(ax) sin(ay + dz) + e^(az) cos(ax + dy)] e^(-d^2 nu t), v and w by the cyclic
+//   shift x -> y -> z -> x, and
+//   p = -a^2/2 [e^(2ax) + e^(2ay) + e^(2az) + 2 sin(ax + dy) cos(az + dx) e^(a(y+z))
+//       + 2 sin(ay + dz) cos(ax + dy) e^(a(z+x)) + 2 sin(az + dx) cos(ay + dz) e^(a(x+y))] e^(-2 d^2 nu t).
+// (Checked symbolically: divergence-free, momentum residual 0.)
+ExactFlow ethier_steinman(Real nu) {
+  const Real a = M_PI / 4, d = M_PI / 2;
+  return {[=](const Vec3& X, Real t) {
+            const Real x = X.x(), y = X.y(), z = X.z(), f = -a * std::exp(-d * d * nu * t);
+            return Vec3(f * (std::exp(a * x) * std::sin(a * y + d * z) + std::exp(a * z) * std::cos(a * x + d * y)),
+                        f * (std::exp(a * y) * std::sin(a * z + d * x) + std::exp(a * x) * std::cos(a * y + d * z)),
+                        f * (std::exp(a * z) * std::sin(a * x + d * y) + std::exp(a * y) * std::cos(a * z + d * x)));
+          },
+          [=](const Vec3& X, Real t) {
+            const Real x = X.x(), y = X.y(), z = X.z();
+            return -a * a / 2 * std::exp(-2 * d * d * nu * t) *
+                   (std::exp(2 * a * x) + std::exp(2 * a * y) + std::exp(2 * a * z) +
+                    2 * std::sin(a * x + d * y) * std::cos(a * z + d * x) * std::exp(a * (y + z)) +
+                    2 * std::sin(a * y + d * z) * std::cos(a * x + d * y) * std::exp(a * (z + x)) +
+                    2 * std::sin(a * z + d * x) * std::cos(a * y + d * z) * std::exp(a * (x + y)));
+          }};
 }
 
 TEST(NavierStokesValidation, KovasznayFlowConvergesInVelocityAndPressure) {
@@ -180,6 +206,54 @@ TEST(NavierStokesValidation, TimeIntegratorsConvergeAtTheirOrders) {
     const Real observed = std::log2(d01.norm() / d12.norm());
     std::printf("integrator %d: observed temporal order %.3f (expected %.0f), differences %.3e, %.3e\n", static_cast<int>(integrator), observed, order, d01.norm(), d12.norm());
     EXPECT_NEAR(observed, order, 0.15);
+  }
+}
+
+TEST(NavierStokesValidation, EthierSteinmanBeltramiFlowConvergesIn3D) {
+  // The exact velocity on the faces of [-1, 1]^3, the exact initial velocity, nu = 0.1 m^2/s,
+  // four midpoint steps of 1/160 s, hex8 cells (4^3, 8^3, 16^3), the linear systems by GMRES +
+  // ILUT. The time error (O(dt^2 (d^2 nu)^2), ~1e-6 relative) is far below the spatial one, so the
+  // L2 velocity error at T must fall at about second order. Measured rates 1.93, 1.79; asserted
+  // > 1.7. Two known effects, both measured, keep this test at a small dt and few steps:
+  // - The SUPG/PSPG residual lacks the viscous term (-mu lap u = mu d^2 u here), an O(tau mu d^2)
+  //   consistency error; with dt = 0.025 tau is limited by dt/2 on every mesh and the 8^3 -> 16^3
+  //   velocity rate drops to 1.42 (docs/validation.md).
+  // - The interpolated initial velocity does not satisfy the discrete continuity equation; the
+  //   first steps answer with a pressure transient of order 1/dt that the midpoint rule damps
+  //   slowly, so after four steps the (midpoint) pressure error does not yet converge with h. It
+  //   is printed, not asserted (after 20 steps of 0.025 s its rates are 2.05 and 1.59).
+  const Real nu = 0.1, dt = 1.0 / 160;
+  const int steps = 4;
+  const Real T = steps * dt;
+  const ExactFlow exact = ethier_steinman(nu);
+  std::vector<test::FlowErrors> errors;
+  for (int cells : {4, 8, 16}) {
+    NavierStokesModel m;
+    m.mesh = make_box_mesh(Vec3(-1, -1, -1), Vec3(1, 1, 1), {cells, cells, cells}, ElementType::hex8);
+    m.viscosity = nu;
+    test::prescribe_exact_velocity(m, exact);
+    test::fix_pressure(m, 0);
+    setup_navier_stokes(m);
+    VectorX x = test::exact_state(m, exact, 0);
+    FlowLinearSolver solver({.method = FlowLinearMethod::gmres});
+    FlowStepper stepper(FlowIntegrator::midpoint);
+    int newton = 0;
+    for (int s = 0; s < steps; ++s) {
+      const FlowSolveResult r = stepper.step(m, s * dt, dt, x, solver, {.tolerance = 1e-10});
+      ASSERT_TRUE(r.converged) << r.failure;
+      newton += r.iterations;
+    }
+    const test::FlowErrors velocity = test::flow_errors(m, x, exact, T);
+    const test::FlowErrors pressure = test::flow_errors(m, x, exact, T - dt / 2);
+    errors.push_back({velocity.velocity, pressure.pressure});
+    std::printf("Ethier-Steinman %2d^3: L2 velocity error %.3e, pressure %.3e; %d Newton, %ld GMRES iterations\n", cells,
+                errors.back().velocity, errors.back().pressure, newton, solver.statistics().iterations);
+  }
+  for (size_t i = 1; i < errors.size(); ++i) {
+    const Real ru = std::log2(errors[i - 1].velocity / errors[i].velocity);
+    const Real rp = std::log2(errors[i - 1].pressure / errors[i].pressure);
+    std::printf("  rates velocity %.2f, pressure %.2f\n", ru, rp);
+    EXPECT_GT(ru, 1.7);
   }
 }
 
