@@ -197,6 +197,9 @@ TEST(CommandLine, VersionHelpAndOutputDirectory) {
 TEST(Scenes, EveryExampleSceneRunsBriefly) {
   for (const auto& entry : fs::directory_iterator(fs::path(MOREAU_SOURCE_DIR) / "scenes")) {
     if (entry.path().extension() != ".json") continue;
+    // A steady scene solves completely whatever --duration says; this one takes 20 s and is run
+    // on a coarser mesh by FlowScenes.Cavity3DSceneWithGmresMatchesUmfpackAndIsMirrorSymmetric.
+    if (entry.path().filename() == "cavity3d_re400.json") continue;
     const std::string out = test::temp_dir("smoke") + "/out";
     const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet --duration 0.1", entry.path().string(), out));
     EXPECT_EQ(r.exit_code, 0) << entry.path() << ": " << r.output;

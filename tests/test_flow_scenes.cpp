@@ -1,6 +1,7 @@
 // Fluid scenes of the FEM engine through the command line: Schaefer & Turek's cylinder benchmark
 // 2D-1 (a Gmsh .geo mesh), the lid-driven cavity against Ghia et al. with line probes and frames,
-// the Picard fallback, bit-identical results on 1 and 2 threads, and bad input.
+// the Picard fallback, the 3D cavity with GMRES against UMFPACK, bit-identical results on 1 and 2
+// threads, and bad input.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -131,6 +132,36 @@ TEST(FlowScenes, PicardFallbackRescuesNewtonFromRest) {
   // a solution of the wrong Reynolds number (Re = 100: u = -0.2058 at the centre).
   EXPECT_NEAR(rows[0][1], -0.0608, 0.01);
   EXPECT_NEAR(rows[0][2], 0.02526, 0.01);
+}
+
+TEST(FlowScenes, Cavity3DSceneWithGmresMatchesUmfpackAndIsMirrorSymmetric) {
+  // scenes/cavity3d_re400.json (Re = 400, continuation from 100, GMRES + ILUT) on 8^3 cells
+  // against the same scene with UMFPACK: the vertical centreline's u at z = 0.5 agrees to 1e-6
+  // (both Newton solves stop at 1e-8 of the first residual), and w vanishes on the mid-plane,
+  // the cube's mirror symmetry, to 1e-8 in both.
+  std::vector<std::pair<Real, Real>> u[2], w[2];
+  const char* overrides[2] = {"", "--set 'settings.linear_solver={\"type\": \"direct\"}'"};
+  for (int k = 0; k < 2; ++k) {
+    const std::string out = test::temp_dir(fmt::format("cavity3d_{}", k)) + "/out";
+    const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet --set 'fluid.mesh.cells=[8,8,8]' {}",
+                                                scene_path("cavity3d_re400.json"), out, overrides[k]));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    u[k] = read_line(out + "/line_vertical_centreline.csv", 1, 3);
+    w[k] = read_line(out + "/line_vertical_centreline.csv", 1, 5);
+  }
+  ASSERT_EQ(u[0].size(), 49u);
+  ASSERT_EQ(u[1].size(), 49u);
+  Real difference = 0, asymmetry = 0, largest = 0;
+  for (size_t i = 0; i < u[0].size(); ++i) {
+    difference = std::max(difference, std::abs(u[0][i].second - u[1][i].second));
+    asymmetry = std::max({asymmetry, std::abs(w[0][i].second), std::abs(w[1][i].second)});
+    largest = std::max(largest, std::abs(u[0][i].second));
+  }
+  std::printf("3D cavity 8^3, Re 400: GMRES vs UMFPACK max |du| %.1e, max |w| on the mid-plane %.1e (max |u| %.3f)\n",
+              difference, asymmetry, largest);
+  EXPECT_LT(difference, 1e-6);
+  EXPECT_LT(asymmetry, 1e-8);
+  EXPECT_GT(largest, 0.99);  // the lid's speed at the top end of the line
 }
 
 TEST(FlowScenes, TransientRunIsBitIdenticalOnOneAndTwoThreads) {
