@@ -91,9 +91,49 @@ TEST(FlowLinearSolver, GmresGivesTheDirectTransientSolution) {
   EXPECT_LT(s.preconditioner_updates, 5);
 }
 
+// A tridiagonal matrix of size n with `diagonal` and `off` on the off-diagonals (both stored).
+SparseMatrix tridiagonal(int n, Real diagonal, Real off) {
+  std::vector<Eigen::Triplet<Real, int>> entries;
+  for (int i = 0; i < n; ++i) {
+    entries.emplace_back(i, i, diagonal);
+    if (i > 0) entries.emplace_back(i, i - 1, off);
+    if (i + 1 < n) entries.emplace_back(i, i + 1, off);
+  }
+  SparseMatrix A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  return A;
+}
+
+TEST(FlowLinearSolver, AStaleIluIsReplacedWhenGmresFailsWithIt) {
+  // The ILU of the identity (with a tridiagonal pattern) is exact for it; for the 1D Laplacian
+  // (2, -1) with the same pattern it is no preconditioner at all, and GMRES cannot reach 1e-8 in
+  // 5 iterations on 100 unknowns. The lagged ILU is used first, the solve fails, and it is
+  // retried with the Laplacian's own ILUT, which is its exact LU (a tridiagonal factorizes
+  // without fill), so GMRES converges in one iteration.
+  FlowLinearSettings settings = gmres_settings();
+  settings.tolerance = 1e-8;
+  settings.max_iterations = 5;
+  FlowLinearSolver solver(settings);
+  const VectorX b = VectorX::Ones(100);
+  VectorX x;
+  const SparseMatrix identity = tridiagonal(100, 1, 0), laplacian = tridiagonal(100, 2, -1);
+  ASSERT_TRUE(solver.factorize(identity));
+  ASSERT_TRUE(solver.solve(b, x)) << solver.failure();
+  EXPECT_LT((x - b).norm(), 1e-12);
+  ASSERT_TRUE(solver.factorize(laplacian));
+  EXPECT_EQ(solver.statistics().preconditioner_updates, 1) << "the identity's ILU is kept for the next matrix";
+  ASSERT_TRUE(solver.solve(b, x)) << solver.failure();
+  EXPECT_LT((laplacian * x - b).norm(), 1e-8 * b.norm());
+  const FlowLinearStatistics& s = solver.statistics();
+  EXPECT_EQ(s.solves, 2);
+  EXPECT_EQ(s.retries, 1);
+  EXPECT_EQ(s.preconditioner_updates, 2);
+}
+
 TEST(FlowLinearSolver, GmresThatCannotConvergeFailsTheSolveWithItsReason) {
-  // Three iterations cannot reduce the residual 1e-12 times on this system: the linear solve
-  // fails, after one retry with a fresh ILU, and Newton reports why instead of taking a bad step.
+  // Three iterations cannot reduce the residual 1e-12 times on this system: with an ILU fresh
+  // from this Jacobian there is nothing to retry, the linear solve fails, and Newton reports why
+  // instead of taking a bad step.
   NavierStokesModel m = lid_driven_cavity(2, 16);
   FlowLinearSettings settings = gmres_settings();
   settings.tolerance = 1e-12;
@@ -104,6 +144,8 @@ TEST(FlowLinearSolver, GmresThatCannotConvergeFailsTheSolveWithItsReason) {
   EXPECT_FALSE(r.converged);
   EXPECT_NE(r.failure.find("GMRES did not reach its tolerance"), std::string::npos) << r.failure;
   EXPECT_NE(r.failure.find("linear_solver"), std::string::npos) << r.failure;
+  EXPECT_EQ(gmres.statistics().solves, 1);
+  EXPECT_EQ(gmres.statistics().retries, 0);
 }
 
 }  // namespace

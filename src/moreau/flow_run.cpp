@@ -199,12 +199,13 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
                  {"unknowns", model.dof_count()}, {"free_unknowns", model.free_count}};
   j["newton"] = {{"iterations", total_iterations},    {"picard_iterations", picard_iterations},
                  {"max_iterations_per_step", max_iterations}, {"tolerance", problem.solve.tolerance},
-                 {"assembly_s", assembly_s},           {"solve_s", solve_s},
-                 {"linear_solver", solver.name()}};
+                 {"assembly_s", assembly_s},           {"solve_s", solve_s}};
+  j["linear_solver"] = {{"type", solver.name()}};
   if (problem.linear.method == FlowLinearMethod::gmres) {
     const FlowLinearStatistics& ls = solver.statistics();
     j["linear_solver"] = {{"type", solver.name()},
                           {"solves", ls.solves},
+                          {"retries", ls.retries},
                           {"gmres_iterations", ls.iterations},
                           {"max_gmres_iterations_per_solve", ls.max_iterations},
                           {"preconditioner_updates", ls.preconditioner_updates},

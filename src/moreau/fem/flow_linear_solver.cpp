@@ -31,8 +31,10 @@ class HeldIlut {
 struct FlowLinearSolver::Iterative {
   Eigen::IncompleteLUT<Real> ilu;
   Eigen::GMRES<SparseMatrix, HeldIlut> gmres;
-  bool fresh = false;          // the ILU was computed from the Jacobian being solved
-  int iterations_after_refresh = 0;
+  bool ilu_valid = false;        // the held ILU was computed without breaking down
+  bool fresh = false;            // ... from the Jacobian being solved
+  Index rows = -1, entries = -1; // the size and pattern it was computed for
+  int baseline_iterations = -1;  // of the first solve after the last refresh (-1: none yet)
   int last_iterations = 0;
   bool last_failed = false;
 };
@@ -54,18 +56,32 @@ FlowLinearSolver::~FlowLinearSolver() = default;
 std::string FlowLinearSolver::name() const { return iterative_ ? "gmres+ilut" : "umfpack"; }
 
 bool FlowLinearSolver::refresh_preconditioner() {
-  Iterative& it = *iterative_;
+  Iterative& state = *iterative_;
   const auto start = std::chrono::steady_clock::now();
-  it.ilu.compute(*matrix_);
+  // The AMD ordering depends on the pattern only: computed again only when that changed.
+  const bool same_pattern = state.rows == matrix_->rows() && state.entries == matrix_->nonZeros();
+  if (!same_pattern) state.ilu.analyzePattern(*matrix_);
+  state.ilu.factorize(*matrix_);
   statistics_.preconditioner_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++statistics_.preconditioner_updates;
-  it.fresh = true;
-  it.iterations_after_refresh = -1;  // set by the next solve
-  if (it.ilu.info() != Eigen::Success) {
+  state.rows = matrix_->rows();
+  state.entries = matrix_->nonZeros();
+  state.baseline_iterations = -1;
+  state.ilu_valid = state.ilu.info() == Eigen::Success;
+  state.fresh = state.ilu_valid;
+  if (!state.ilu_valid) {
     failure_ = "the incomplete LU of the flow Jacobian broke down (a zero row: is every dof coupled?)";
     return false;
   }
   return true;
+}
+
+bool FlowLinearSolver::needs_refresh() const {
+  const Iterative& state = *iterative_;
+  if (!state.ilu_valid || state.last_failed) return true;
+  if (state.rows != matrix_->rows() || state.entries != matrix_->nonZeros()) return true;
+  return state.baseline_iterations >= 0 &&
+         state.last_iterations > settings_.refresh_ratio * std::max(state.baseline_iterations, 10);
 }
 
 bool FlowLinearSolver::factorize(const SparseMatrix& J) {
@@ -76,13 +92,10 @@ bool FlowLinearSolver::factorize(const SparseMatrix& J) {
     failure_ = "the flow Jacobian is singular (is the pressure fixed somewhere, or an outflow given?)";
     return false;
   }
-  Iterative& it = *iterative_;
-  it.fresh = false;
-  it.gmres.compute(J);  // takes J; the held ILU is left as it is
-  const bool first = statistics_.preconditioner_updates == 0;
-  const bool slowed = it.iterations_after_refresh > 0 &&
-                      it.last_iterations > settings_.refresh_ratio * std::max(it.iterations_after_refresh, 10);
-  if (first || slowed || it.last_failed) return refresh_preconditioner();
+  Iterative& state = *iterative_;
+  state.fresh = false;
+  state.gmres.compute(J);  // takes J; the held ILU is left as it is
+  if (needs_refresh()) return refresh_preconditioner();
   return true;
 }
 
@@ -91,26 +104,27 @@ bool FlowLinearSolver::solve(const VectorX& b, VectorX& dx) {
     dx = lu_.solve(b);
     return true;
   }
-  Iterative& it = *iterative_;
+  Iterative& state = *iterative_;
+  ++statistics_.solves;
   for (;;) {
-    dx = it.gmres.solve(b);
-    const int iterations = static_cast<int>(it.gmres.iterations());
-    ++statistics_.solves;
+    dx = state.gmres.solve(b);
+    const int iterations = static_cast<int>(state.gmres.iterations());
     statistics_.iterations += iterations;
     statistics_.max_iterations = std::max(statistics_.max_iterations, iterations);
-    it.last_iterations = iterations;
-    if (it.iterations_after_refresh < 0) it.iterations_after_refresh = iterations;
-    it.last_failed = it.gmres.info() != Eigen::Success;
-    if (!it.last_failed) return true;
+    state.last_iterations = iterations;
+    if (state.baseline_iterations < 0) state.baseline_iterations = iterations;
+    state.last_failed = state.gmres.info() != Eigen::Success;
+    if (!state.last_failed) return true;
     // A lagged preconditioner may have gone stale: try once more with a fresh one.
-    if (!it.fresh) {
+    if (!state.fresh) {
+      ++statistics_.retries;
       if (!refresh_preconditioner()) return false;
       continue;
     }
     failure_ = fmt::format(
         "GMRES did not reach its tolerance {:.1e} in {} iterations (reached {:.2e}); raise "
         "settings.linear_solver.max_iterations or fill_factor, lower drop_tolerance, or use \"type\": \"direct\"",
-        settings_.tolerance, iterations, it.gmres.error());
+        settings_.tolerance, iterations, state.gmres.error());
     return false;
   }
 }
