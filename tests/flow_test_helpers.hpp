@@ -40,6 +40,28 @@ inline void fix_pressure(NavierStokesModel& m, Index node) {
   m.prescribed.push_back({m.dof(node, m.mesh.dim), [](Real) { return 0.0; }});
 }
 
+/// The lid-driven unit cavity (quad4, n x n) or cube (hex8, n^3): rho = 1, mu = `viscosity`, the
+/// lid (side "top", y = 1) moving in x at 1 m/s, every other side at rest, pressure 0 at node 0.
+/// The lid's edge nodes belong to the walls (u = 0), as in Ghia et al. (1982); set up.
+inline NavierStokesModel lid_driven_cavity(int dim, int n, Real viscosity = 0.01) {
+  NavierStokesModel m;
+  m.mesh = dim == 3 ? make_box_mesh(Vec3(0, 0, 0), Vec3(1, 1, 1), {n, n, n}, ElementType::hex8)
+                    : make_rectangle_mesh(Vec2(0, 0), Vec2(1, 1), {n, n}, ElementType::quad4);
+  m.viscosity = viscosity;
+  std::vector<bool> on_wall(m.mesh.node_count(), false);
+  for (const FemBoundary& b : m.mesh.boundaries)
+    if (b.name != "top") {
+      prescribe_velocity(m, b.name, [](const Vec3&) { return Vec3::Zero(); });
+      for (Index node : m.mesh.boundary_nodes(b.name)) on_wall[node] = true;
+    }
+  for (Index node : m.mesh.boundary_nodes("top"))
+    if (!on_wall[node])
+      for (int k = 0; k < dim; ++k) m.prescribed.push_back({m.dof(node, k), [k](Real) { return k == 0 ? 1.0 : 0.0; }});
+  fix_pressure(m, 0);
+  setup_navier_stokes(m);
+  return m;
+}
+
 /// The exact velocity at time t on every node (pressure 0).
 inline VectorX exact_state(const NavierStokesModel& m, const ExactFlow& exact, Real t) {
   VectorX x = VectorX::Zero(m.dof_count());

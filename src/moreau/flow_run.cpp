@@ -203,14 +203,13 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
   j["linear_solver"] = {{"type", solver.name()}};
   if (problem.linear.method == FlowLinearMethod::gmres) {
     const FlowLinearStatistics& ls = solver.statistics();
-    j["linear_solver"] = {{"type", solver.name()},
-                          {"solves", ls.solves},
-                          {"retries", ls.retries},
-                          {"gmres_iterations", ls.iterations},
-                          {"max_gmres_iterations_per_solve", ls.max_iterations},
-                          {"preconditioner_updates", ls.preconditioner_updates},
-                          {"preconditioner_s", ls.preconditioner_s},
-                          {"tolerance", problem.linear.tolerance}};
+    j["linear_solver"].update(nlohmann::json{{"solves", ls.solves},
+                                             {"retries", ls.retries},
+                                             {"gmres_iterations", ls.iterations},
+                                             {"max_gmres_iterations_per_solve", ls.max_iterations},
+                                             {"preconditioner_updates", ls.preconditioner_updates},
+                                             {"preconditioner_s", ls.preconditioner_s},
+                                             {"tolerance", problem.linear.tolerance}});
   }
   if (steady) j["continuation"] = stages;
   std::ofstream(result.out_dir + "/run.json") << j.dump(2) << '\n';

@@ -66,7 +66,6 @@ class FlowLinearSolver {
   bool solve(const VectorX& b, VectorX& dx);
 
   const std::string& failure() const { return failure_; }
-  const FlowLinearSettings& settings() const { return settings_; }
   const FlowLinearStatistics& statistics() const { return statistics_; }
   /// "umfpack" or "gmres+ilut".
   std::string name() const;
