@@ -28,14 +28,16 @@ std::string incline_scene(Real mu) {
 }
 
 TEST(RigidDynamics, BoxSlidesDownAnInclineAtTheCoulombAcceleration) {
-  // mu = 0.5 < tan 30: s = g (sin 30 - mu cos 30) t^2 / 2 = 1.3143 m after 2 s. The issue asks for
-  // 1 %; we measure +0.6 % (the box settles into the slope in its first substeps).
+  // mu = 0.5 < tan 30: s = g (sin 30 - mu cos 30) t^2 / 2 = 1.3143 m after 2 s, within 1 %; we
+  // measure +0.58 %, the one-substep lag of dynamic friction (test_rigid_friction.cpp).
   Scene s = scene_from_json(incline_scene(0.5));
   const Index b = body_of(s, "box");
   const Vec3 start = s.state.rigid.position[b];
   run_steps(s, 120);
   const Real expected = 0.5 * 9.81 * (0.5 - 0.5 * std::cos(kPi / 6)) * 4;
-  EXPECT_NEAR((s.state.rigid.position[b] - start).norm(), expected, 0.01 * expected);
+  const Real distance = (s.state.rigid.position[b] - start).norm();
+  std::printf("0.5 m box on the incline: slid %.5f m (exact %.5f m)\n", distance, expected);
+  EXPECT_NEAR(distance, expected, 0.01 * expected);
 }
 
 TEST(RigidDynamics, BoxSticksOnAnInclineWithoutCreep) {

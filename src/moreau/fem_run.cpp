@@ -106,36 +106,42 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   for (long s = 0; s < steps; ++s) {
     const auto t0 = std::chrono::steady_clock::now();
     NewtonResult r;
-    if (problem.integrator == FemIntegrator::static_load_steps) {
-      r = solve_static(model, state.time + dt, state.u, solver, problem.newton);
-      if (r.converged) {
-        state.time += dt;
-        state.energy = r.energy;
-      }
-    } else {
-      const StepRule rule = problem.integrator == FemIntegrator::midpoint ? StepRule::midpoint : StepRule::energy_momentum;
-      if (!problem.joints.empty()) {
-        // Joints couple solids and bodies: one Newton system for everything.
-        r = step_coupled(problem, mass, rule, dt, run, coupled, problem.newton);
-      } else if (model.dof_count() > 0) {
-        r = step_dynamic(model, mass, rule, dt, state, solver, problem.newton);
-      } else {
-        r.converged = true;
-        state.time += dt;
-      }
-      // Free rigid bodies: the constrained midpoint step (energy and angular momentum conserving
-      // for either integrator) under gravity, by the discrete null-space form (six unknowns per
-      // body; tested against the multiplier form, which the coupled step with joints uses).
-      for (size_t b = 0; b < run.bodies.size() && r.converged && problem.joints.empty(); ++b) {
-        const DirectorBody& body = problem.rigid_bodies[b].body;
-        const NewtonResult rb =
-            step_director_body_reduced(body, dt, body.mass * problem.gravity, Vec3::Zero(), run.bodies[b], problem.newton);
-        if (!rb.converged) {
-          r.converged = false;
-          r.failure = fmt::format("rigid body '{}': {}", problem.rigid_bodies[b].name, rb.failure);
+    // A load or prescribed value that is not finite throws NumericalError naming itself and t.
+    try {
+      if (problem.integrator == FemIntegrator::static_load_steps) {
+        r = solve_static(model, state.time + dt, state.u, solver, problem.newton);
+        if (r.converged) {
+          state.time += dt;
+          state.energy = r.energy;
         }
-        r.iterations += rb.iterations;
+      } else {
+        const StepRule rule = problem.integrator == FemIntegrator::midpoint ? StepRule::midpoint : StepRule::energy_momentum;
+        if (!problem.joints.empty()) {
+          // Joints couple solids and bodies: one Newton system for everything.
+          r = step_coupled(problem, mass, rule, dt, run, coupled, problem.newton);
+        } else if (model.dof_count() > 0) {
+          r = step_dynamic(model, mass, rule, dt, state, solver, problem.newton);
+        } else {
+          r.converged = true;
+          state.time += dt;
+        }
+        // Free rigid bodies: the constrained midpoint step (energy and angular momentum conserving
+        // for either integrator) under gravity, by the discrete null-space form (six unknowns per
+        // body; tested against the multiplier form, which the coupled step with joints uses).
+        for (size_t b = 0; b < run.bodies.size() && r.converged && problem.joints.empty(); ++b) {
+          const DirectorBody& body = problem.rigid_bodies[b].body;
+          const NewtonResult rb =
+              step_director_body_reduced(body, dt, body.mass * problem.gravity, Vec3::Zero(), run.bodies[b], problem.newton);
+          if (!rb.converged) {
+            r.converged = false;
+            r.failure = fmt::format("rigid body '{}': {}", problem.rigid_bodies[b].name, rb.failure);
+          }
+          r.iterations += rb.iterations;
+        }
       }
+    } catch (const NumericalError& e) {
+      r.converged = false;
+      r.failure = e.what();
     }
     wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (!r.converged) {

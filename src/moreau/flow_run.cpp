@@ -170,7 +170,13 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
     for (long s = 0; s < steps; ++s) {
       const VectorX start = x;
       const auto t0 = std::chrono::steady_clock::now();
-      const FlowSolveResult r = stepper.step(model, time, dt, x, solver, problem.solve);
+      FlowSolveResult r;
+      try {  // a boundary value that is not finite throws NumericalError naming itself and t
+        r = stepper.step(model, time, dt, x, solver, problem.solve);
+      } catch (const NumericalError& e) {
+        r.converged = false;
+        r.failure = e.what();
+      }
       step = &stepper.last_step();
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       if (!r.converged || !x.allFinite()) {

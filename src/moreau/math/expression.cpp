@@ -3,7 +3,10 @@
 #include <fmt/format.h>
 #include <muParser.h>
 
+#include <cmath>
 #include <stdexcept>
+
+#include "moreau/errors.hpp"
 
 namespace moreau {
 
@@ -25,7 +28,7 @@ struct Expression::Parser {
   }
 };
 
-Expression::Expression(const std::string& text) : text_(text) {
+Expression::Expression(const std::string& text, std::string source) : text_(text), source_(std::move(source)) {
   try {
     parser_ = std::make_unique<Parser>(text);
   } catch (const mu::Parser::exception_type& e) {
@@ -37,7 +40,7 @@ Expression::Expression(Real value) : Expression(fmt::format("{:.17g}", value)) {
 
 Expression::~Expression() = default;
 
-Expression::Expression(const Expression& other) : Expression(other.text_) {}
+Expression::Expression(const Expression& other) : Expression(other.text_, other.source_) {}
 
 bool Expression::uses_position() const {
   const auto used = parser_->parser.GetUsedVar();
@@ -49,7 +52,14 @@ Real Expression::operator()(Real t, const Vec3& x) const {
   parser_->x = x.x();
   parser_->y = x.y();
   parser_->z = x.z();
-  return parser_->parser.Eval();
+  const Real value = parser_->parser.Eval();
+  if (!std::isfinite(value)) {
+    const std::string where = uses_position() ? fmt::format(" and x = ({}, {}, {}) m", x.x(), x.y(), x.z()) : "";
+    throw NumericalError(fmt::format("{}{}\"{}\" evaluates to {} at t = {} s{}; a load, prescribed value or initial "
+                                     "condition must be finite",
+                                     source_, source_.empty() ? "" : ": ", text_, value, t, where));
+  }
+  return value;
 }
 
 }  // namespace moreau

@@ -13,14 +13,17 @@ namespace moreau {
 class Expression {
  public:
   /// Compiles `text`; throws std::invalid_argument with muparser's message on a syntax error or
-  /// an unknown variable.
-  explicit Expression(const std::string& text);
+  /// an unknown variable. `source` says where the expression came from (file and JSON path), for
+  /// the message when it evaluates to a value that is not finite.
+  explicit Expression(const std::string& text, std::string source = {});
   /// A constant.
   explicit Expression(Real value);
   ~Expression();
   Expression(const Expression&);
   Expression& operator=(const Expression&) = delete;
 
+  /// The value at time t and reference position x. A value that is not finite ("1/(t-t)",
+  /// "0/0", "sqrt(-1)") is a numerical failure: throws NumericalError naming the source and t.
   Real operator()(Real t, const Vec3& x = Vec3::Zero()) const;
   const std::string& text() const { return text_; }
   /// Whether the expression reads x, y or z.
@@ -28,7 +31,7 @@ class Expression {
 
  private:
   struct Parser;
-  std::string text_;
+  std::string text_, source_;
   std::unique_ptr<Parser> parser_;
 };
 

@@ -172,7 +172,8 @@ std::vector<std::unique_ptr<Expression>> read_components(const JsonObject& j, co
       out.push_back(std::make_unique<Expression>(v.get<Real>()));
     } else if (v.is_string()) {
       try {
-        out.push_back(std::make_unique<Expression>(v.get<std::string>()));
+        out.push_back(std::make_unique<Expression>(v.get<std::string>(),
+                                                   fmt::format("{}: {}[{}]", j.file(), j.path_of(key), k)));
       } catch (const std::invalid_argument& e) {
         j.fail(key, fmt::format("entry {} \"{}\" is not a valid expression: {}", k, v.get<std::string>(), e.what()));
       }
