@@ -17,6 +17,7 @@
 #include "moreau/model/diagnostics.hpp"
 #include "moreau/moreau.hpp"
 #include "moreau/scene/scene.hpp"
+#include "moreau/solvers/thread_budget.hpp"
 #include "moreau/solvers/xpbd/xpbd_step.hpp"
 #include "moreau/fem_run.hpp"
 
@@ -174,8 +175,11 @@ RunResult Simulation::run(const RunOptions& options) {
   sample();
   double wall = 0;
   std::string status = "completed", message;
+  // The requested thread count is a maximum: cores that other processes keep busy are left to them.
+  ThreadBudget budget(model.settings.threads);
   try {
     for (long s = 0; s < steps; ++s) {
+      model.settings.threads = budget.next_step_threads();
       const auto t0 = std::chrono::steady_clock::now();
       xpbd_step(model, state, timer);
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

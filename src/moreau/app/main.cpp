@@ -7,6 +7,9 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <cmath>
+#include <string>
+
 #include "moreau/moreau.hpp"
 
 namespace {
@@ -27,8 +30,25 @@ int main(int argc, char** argv) {
   CLI::App* run = app.add_subcommand("run", "run a scene and write its output directory");
   run->add_option("scene", scene_path, "scene file (JSON)")->required();
   run->add_option("--out", out_dir, "output directory (default out/<scene name>)");
-  run->add_option("--duration", duration, "simulated time in s (overrides settings.duration)")->check(CLI::PositiveNumber);
-  run->add_option("--threads", threads, "worker threads (0 = all cores; overrides settings.threads)")->check(CLI::NonNegativeNumber);
+  // A finite, positive time: "nan" and "inf" are refused, not ignored.
+  const CLI::Validator finite_positive(
+      [](std::string& text) {
+        double value = 0;
+        try {
+          size_t used = 0;
+          value = std::stod(text, &used);
+          if (used != text.size()) return std::string("not a number: " + text);
+        } catch (const std::exception&) {
+          return std::string("not a number: " + text);
+        }
+        return std::isfinite(value) && value > 0 ? std::string() : "must be a finite time > 0 s, not " + text;
+      },
+      "SECONDS > 0");
+  run->add_option("--duration", duration, "simulated time in s (overrides settings.duration)")->check(finite_positive);
+  run->add_option("--threads", threads,
+                  "most worker threads to use (0 = all cores; fewer while other processes keep cores busy; "
+                  "overrides settings.threads)")
+      ->check(CLI::Range(0, 1024));
   run->add_flag("--quiet", quiet, "no progress bar");
   run->add_option("--set", overrides, "override a scene value by its JSON path, e.g. --set settings.substeps=40");
 
