@@ -8,6 +8,7 @@
 #include <fstream>
 
 #include "moreau/collision/collider_surface.hpp"
+#include "moreau/errors.hpp"
 #include "moreau/rigid/shape_surface.hpp"
 
 namespace moreau {
@@ -37,7 +38,12 @@ std::string safe_file_name(const std::string& name) {
   std::string s = name;
   for (char& c : s)
     if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
-  return s;
+  // A leading dot would hide the file: a scene named "../../x" gives "___.._x", not ".._.._x".
+  for (char& c : s) {
+    if (c != '.') break;
+    c = '_';
+  }
+  return s.empty() ? std::string("_") : s;
 }
 
 FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string scene_name)
@@ -143,7 +149,20 @@ void prepare_output_directory(const std::string& out_dir) {
 
 std::string run_output_directory(const std::string& requested, const std::string& scene_name) {
   const std::string dir = requested.empty() ? "out/" + safe_file_name(scene_name) : requested;
-  prepare_output_directory(dir);
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
+    throw InputError(fmt::format("--out {}: exists and is not a directory; give a directory (it is created if missing)", dir));
+  try {
+    prepare_output_directory(dir);
+  } catch (const fs::filesystem_error& e) {
+    throw InputError(fmt::format("--out {}: cannot prepare the output directory ({}); choose a writable directory", dir,
+                                 e.code().message()));
+  }
+  // A directory that can be created but not written (a read-only mount, /proc, /sys).
+  const fs::path probe = fs::path(dir) / ".moreau-write-test";
+  if (!std::ofstream(probe) || !fs::remove(probe, ec))
+    throw InputError(fmt::format("--out {}: the directory is not writable; choose a writable directory", dir));
   return dir;
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 
@@ -171,30 +172,93 @@ void JsonObject::finish() const {
   }
 }
 
+namespace {
+
+// Line and column of a byte offset.
+std::pair<size_t, size_t> line_and_column(const std::string& text, size_t offset) {
+  size_t line = 1, column = 1;
+  for (size_t i = 0; i < std::min(offset, text.size()); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return {line, column};
+}
+
+// Rejects an object that repeats a key (JSON leaves it undefined; nlohmann keeps the last value
+// silently): tracks the keys seen in each open object, and the JSON path for the message.
+class DuplicateKeyCheck {
+ public:
+  explicit DuplicateKeyCheck(std::string file) : file_(std::move(file)) {}
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: open_.push_back({true, {}, {}, 0}); break;
+      case json::parse_event_t::array_start: open_.push_back({false, {}, {}, 0}); break;
+      case json::parse_event_t::key: {
+        Level& top = open_.back();
+        top.key = parsed.get<std::string>();
+        if (!top.keys.insert(top.key).second)
+          throw InputError(fmt::format("{}: {}: the key appears twice in this object; give it once", file_, path()));
+        break;
+      }
+      case json::parse_event_t::value: element_done(); break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        open_.pop_back();
+        element_done();
+        break;
+    }
+    return true;
+  }
+
+ private:
+  struct Level {
+    bool is_object;
+    std::set<std::string> keys;
+    std::string key;
+    size_t index;
+  };
+  void element_done() {
+    if (!open_.empty() && !open_.back().is_object) ++open_.back().index;
+  }
+  std::string path() const {
+    std::string p;
+    for (const Level& l : open_) p += l.is_object ? (p.empty() ? "" : ".") + l.key : fmt::format("[{}]", l.index);
+    return p;
+  }
+  std::string file_;
+  std::vector<Level> open_;
+};
+
+}  // namespace
+
 json parse_json_file(const std::string& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(fmt::format("{}: is a directory; give the path of a scene file (.json)", path));
   std::ifstream in(path);
   if (!in) throw InputError(fmt::format("{}: cannot open scene file (does it exist and is it readable?)", path));
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
+  if (const size_t nul = text.find('\0'); nul != std::string::npos) {
+    const auto [line, column] = line_and_column(text, nul);
+    throw InputError(fmt::format("{}:{}:{}: the file contains a NUL byte; a scene file is UTF-8 JSON text", path, line, column));
+  }
   try {
-    return json::parse(text);
+    return json::parse(text, DuplicateKeyCheck(path));
   } catch (const json::parse_error& e) {
-    // Translate the byte offset into a line and column.
-    size_t line = 1, column = 1;
-    const size_t end = std::min<size_t>(e.byte == 0 ? 0 : e.byte - 1, text.size());
-    for (size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
+    const auto [line, column] = line_and_column(text, e.byte == 0 ? 0 : e.byte - 1);
     std::string what = e.what();
     const auto colon = what.find("syntax error");
     throw InputError(fmt::format("{}:{}:{}: malformed JSON: {}", path, line, column,
                                  colon == std::string::npos ? what : what.substr(colon)));
+  } catch (const json::out_of_range& e) {
+    // A number too large for a double (1e999).
+    throw InputError(fmt::format("{}: {}; numbers must fit a double (|x| < 1.8e308)", path, e.what()));
   }
 }
 
@@ -208,6 +272,8 @@ void apply_override(json& scene, const std::string& assignment, const std::strin
     value = json::parse(text);
   } catch (const json::parse_error&) {
     value = text;  // a bare word is a string
+  } catch (const json::out_of_range&) {
+    throw InputError(fmt::format("--set {}: '{}' does not fit a double (|x| < 1.8e308)", assignment, text));
   }
   json* node = &scene;
   std::string walked;
@@ -238,7 +304,13 @@ void apply_override(json& scene, const std::string& assignment, const std::strin
     } else {
       throw InputError(fmt::format("{}: --set {}: '{}' is not an object or array", file, path, walked));
     }
-    if (last) *node = value;
+    if (last) {
+      // Replacing a whole object would silently reset every key in it (--set settings={}).
+      if (node->is_object() && !node->empty())
+        throw InputError(fmt::format("{}: --set {}: '{}' is an object; set its keys one at a time (e.g. --set {}.{}=...)",
+                                     file, path, walked, walked, node->begin().key()));
+      *node = value;
+    }
   }
 }
 

@@ -1,0 +1,113 @@
+// The command line's answers to bad input (exit 2, naming the problem, nothing written) and to
+// numerical failure (exit 3, naming the step, the time and the culprit), for inputs a new user
+// tried: out-of-range flags, non-finite numbers, duplicate keys, directories and unwritable
+// output places, a non-finite load.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "scene_test_helpers.hpp"
+#include "test_helpers.hpp"
+
+namespace moreau {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kShowcase = std::string(MOREAU_SOURCE_DIR) + "/scenes/showcase.json";
+
+void expect_bad_input(const std::string& args, const std::string& message) {
+  const test::CommandResult r = test::run_moreau(args);
+  EXPECT_EQ(r.exit_code, 2) << args << "\n" << r.output;
+  EXPECT_NE(r.output.find(message), std::string::npos) << args << "\n" << r.output;
+  EXPECT_EQ(r.output.find("internal error"), std::string::npos) << args << "\n" << r.output;
+}
+
+TEST(CliBadInput, FlagsOutOfRangeAreRefused) {
+  const std::string out = test::temp_dir("flags") + "/out";
+  // --threads 100000 crashed in libgomp and 30000 hung; the scene key has the same limit.
+  expect_bad_input(fmt::format("run {} --out {} --threads 100000", kShowcase, out), "not in range 0 to 1024");
+  expect_bad_input(fmt::format("run {} --out {} --threads 30000", kShowcase, out), "not in range 0 to 1024");
+  // --duration nan was ignored silently.
+  expect_bad_input(fmt::format("run {} --out {} --duration nan", kShowcase, out), "must be a finite time > 0 s");
+  expect_bad_input(fmt::format("run {} --out {} --duration inf", kShowcase, out), "must be a finite time > 0 s");
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(CliBadInput, NumbersThatOverflowADoubleAreBadInput) {
+  const std::string dir = test::temp_dir("overflow");
+  std::ofstream(dir + "/big.json") << R"({"name": "big", "settings": {"dt": 1e999}})";
+  expect_bad_input(fmt::format("check {}/big.json", dir), "numbers must fit a double");
+  expect_bad_input(fmt::format("check {} --set settings.dt=1e999", kShowcase), "does not fit a double");
+}
+
+TEST(CliBadInput, DuplicateKeysAreRefusedWithTheirPath) {
+  const std::string dir = test::temp_dir("duplicate");
+  std::ofstream(dir + "/dup.json") << R"({"name": "dup", "objects": [{"name": "a", "kind": "collider"},
+    {"name": "b", "kind": "collider", "shape": {"type": "plane", "type": "box"}}]})";
+  expect_bad_input(fmt::format("check {}/dup.json", dir), "objects[1].shape.type: the key appears twice");
+}
+
+TEST(CliBadInput, WhatIsNotASceneFileIsNamed) {
+  const std::string dir = test::temp_dir("notscene");
+  expect_bad_input(fmt::format("check {}", dir), "is a directory");
+  std::ofstream(dir + "/nul.json") << std::string("{\"name\": \"x\"\0}", 14);
+  expect_bad_input(fmt::format("check {}/nul.json", dir), "NUL byte");
+}
+
+TEST(CliBadInput, ResettingAWholeObjectWithSetIsRefused) {
+  // --set settings={} used to reset every setting silently.
+  expect_bad_input(fmt::format("check {} --set settings={{}}", kShowcase), "set its keys one at a time");
+}
+
+TEST(CliBadInput, OutputPlacesThatCannotHoldAnOutputDirectoryAreBadInput) {
+  const std::string dir = test::temp_dir("outplace");
+  std::ofstream(dir + "/file") << "x";
+  expect_bad_input(fmt::format("run {} --duration 0.02 --out {}/file", kShowcase, dir), "is not a directory");
+  expect_bad_input(fmt::format("run {} --duration 0.02 --out /proc/moreau-out", kShowcase), "cannot prepare the output");
+  expect_bad_input(fmt::format("run {} --duration 0.02 --out /sys/moreau-out", kShowcase), "cannot prepare the output");
+}
+
+TEST(CliBadInput, ASceneNamedWithDotsWritesAVisibleCollection) {
+  // "../../x" is made safe, and its .pvd must not become a hidden dotfile.
+  const std::string dir = test::temp_dir("dots");
+  std::ofstream(dir + "/dots.json") << R"({"name": "../../x", "settings": {"duration": 0.02},
+    "objects": [{"name": "s", "kind": "rigid_body", "shape": {"type": "sphere", "radius": 0.1}, "position": [0, 1, 0]}]})";
+  const test::CommandResult r = test::run_moreau(fmt::format("run {}/dots.json --out {}/out --quiet", dir, dir));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  int collections = 0;
+  for (const auto& entry : fs::directory_iterator(dir + "/out"))
+    if (entry.path().extension() == ".pvd") {
+      ++collections;
+      EXPECT_NE(entry.path().filename().string().front(), '.') << entry.path();
+    }
+  EXPECT_EQ(collections, 1);
+}
+
+TEST(CliNumericalFailure, ANonFiniteLoadNamesItselfAndTheTime) {
+  // "1/(t-t)" gave 0 Newton iterations, a beam that never moved and exit 0; "0/0" an inverted
+  // cell. Both are numerical failures naming the load's JSON path and t.
+  for (const std::string load : {"1/(t-t)", "0/0"}) {
+    const std::string scene = test::write_scene("nonfinite", fmt::format(R"({{"name": "beam",
+      "settings": {{"solver": "fem", "integrator": "midpoint", "dt": 0.01, "duration": 0.05, "gravity": [0, 0, 0]}},
+      "solids": [{{"name": "bar", "mesh": {{"type": "box", "min": [0, 0, 0], "max": [1, 0.1, 0.1], "cells": [4, 1, 1]}},
+                  "material": {{"youngs_modulus": 1e6, "poisson_ratio": 0.3, "density": 1000}},
+                  "dirichlet": [{{"where": {{"boundary": "left"}}, "value": [0, 0, 0]}}],
+                  "loads": [{{"type": "traction", "where": {{"boundary": "right"}}, "value": [0, "{}", 0]}}]}}]}})",
+                                                                         load));
+    const std::string out = fs::path(scene).parent_path().string() + "/out";
+    const test::CommandResult r = test::run_moreau(fmt::format("run {} --out {} --quiet", scene, out));
+    EXPECT_EQ(r.exit_code, 3) << load << "\n" << r.output;
+    EXPECT_NE(r.output.find("solids[0].loads[0].value[1]"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("at t = 0.005 s"), std::string::npos) << r.output;  // the midpoint rule loads at t + dt/2
+    EXPECT_NE(r.output.find("step 1"), std::string::npos) << r.output;
+    std::ifstream summary(out + "/run.json");
+    ASSERT_TRUE(summary.good());
+    EXPECT_EQ(nlohmann::json::parse(summary).at("status"), "failed");
+  }
+}
+
+}  // namespace
+}  // namespace moreau
