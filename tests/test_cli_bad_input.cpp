@@ -55,6 +55,11 @@ TEST(CliBadInput, WhatIsNotASceneFileIsNamed) {
   expect_bad_input(fmt::format("check {}", dir), "is a directory");
   std::ofstream(dir + "/nul.json") << std::string("{\"name\": \"x\"\0}", 14);
   expect_bad_input(fmt::format("check {}/nul.json", dir), "NUL byte");
+  // A mesh file that is a directory was reported as "OBJ file has no faces".
+  fs::create_directories(dir + "/meshes");
+  std::ofstream(dir + "/hull.json") << R"({"name": "hull", "objects": [{"name": "rock", "kind": "rigid_body",
+    "shape": {"type": "convex_hull", "mesh": "meshes"}, "position": [0, 1, 0]}]})";
+  expect_bad_input(fmt::format("check {}/hull.json", dir), "is a directory; give the path of a mesh file");
 }
 
 TEST(CliBadInput, ResettingAWholeObjectWithSetIsRefused) {

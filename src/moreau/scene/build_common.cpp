@@ -100,7 +100,11 @@ void read_pins(const JsonObject& object, const ObjectInfo& info, SceneBuildConte
 
 std::string resolve_path(const SceneBuildContext& ctx, const std::string& path) {
   const std::filesystem::path p(path);
-  return p.is_absolute() ? p.string() : (ctx.scene_directory / p).string();
+  const std::string resolved = p.is_absolute() ? p.string() : (ctx.scene_directory / p).string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(resolved, ec))
+    throw InputError(fmt::format("{}: is a directory; give the path of a mesh file", resolved));
+  return resolved;
 }
 
 }  // namespace moreau

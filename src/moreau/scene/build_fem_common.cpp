@@ -121,6 +121,8 @@ FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where) {
     const std::filesystem::path resolved =
         file.is_absolute() ? file : std::filesystem::absolute(mesh.file()).parent_path() / file;
     if (!std::filesystem::exists(resolved)) mesh.fail("file", fmt::format("no file '{}'", resolved.string()));
+    if (std::filesystem::is_directory(resolved))
+      mesh.fail("file", fmt::format("'{}' is a directory; give the path of a mesh file", resolved.string()));
     if (type == "msh") {
       result = read_gmsh_fem_mesh(resolved.string());
     } else {

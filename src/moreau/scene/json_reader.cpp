@@ -305,8 +305,9 @@ void apply_override(json& scene, const std::string& assignment, const std::strin
       throw InputError(fmt::format("{}: --set {}: '{}' is not an object or array", file, path, walked));
     }
     if (last) {
-      // Replacing a whole object would silently reset every key in it (--set settings={}).
-      if (node->is_object() && !node->empty())
+      // An object value replaces the whole object (settings.linear_solver={"type": "direct"});
+      // an empty one would silently reset every key in it (--set settings={}).
+      if (node->is_object() && !node->empty() && value.is_object() && value.empty())
         throw InputError(fmt::format("{}: --set {}: '{}' is an object; set its keys one at a time (e.g. --set {}.{}=...)",
                                      file, path, walked, walked, node->begin().key()));
       *node = value;
