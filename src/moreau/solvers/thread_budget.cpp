@@ -53,7 +53,7 @@ bool read_own_ticks(std::uint64_t& ticks) {
 ThreadBudget::ThreadBudget(int requested) {
   cores_ = std::max(1, omp_get_num_procs());
   requested_ = requested > 0 ? requested : std::max(1, omp_get_max_threads());
-  current_ = most_used_ = requested_;
+  current_ = requested_;
   last_ = std::chrono::steady_clock::now();
   measure();
 }
@@ -82,7 +82,6 @@ int ThreadBudget::next_step_threads() {
     last_ = now;
     measure();
   }
-  most_used_ = std::max(most_used_, current_);
   return current_;
 }
 

@@ -17,12 +17,10 @@ class ThreadBudget {
   explicit ThreadBudget(int requested);
   /// The thread count for the next step.
   int next_step_threads();
-  /// The largest count used so far (for run summaries).
-  int most_used() const { return most_used_; }
 
  private:
   void measure();
-  int requested_ = 1, cores_ = 1, current_ = 1, most_used_ = 1;
+  int requested_ = 1, cores_ = 1, current_ = 1;
   std::chrono::steady_clock::time_point last_;
   std::uint64_t last_busy_ = 0, last_total_ = 0, last_self_ = 0;
   bool have_sample_ = false;
