@@ -70,7 +70,7 @@ TEST(FemStatics, SlenderCantileverMatchesEulerBernoulli) {
 // Cook's membrane: the trapezoid (0, 0), (48, 44), (48, 60), (0, 44) in n x n bilinear quads
 // (a mapped rectangle), clamped at x = 0, with a uniform vertical shear of resultant F on the edge
 // x = 48. Plane strain, Neo-Hookean with E, nu = 1/3.
-Real cook_membrane_tip(int n, Real E, Real F, int load_steps = 1) {
+FemModel cook_membrane(int n, Real E, Real nu, Real F) {
   FemMesh mesh = make_rectangle_mesh(Vec2(0, 0), Vec2(48, 1), {n, n}, ElementType::quad4);
   for (Vec3& x : mesh.nodes) {
     const Real bottom = 44 * x.x() / 48, top = 44 + 16 * x.x() / 48;
@@ -78,10 +78,15 @@ Real cook_membrane_tip(int n, Real E, Real F, int load_steps = 1) {
   }
   FemModel model;
   model.dim = 2;
-  add_fem_solid(model, test::fem_solid("cook", mesh, test::fem_material(HyperelasticModel::neo_hookean, E, 1.0 / 3)));
+  add_fem_solid(model, test::fem_solid("cook", mesh, test::fem_material(HyperelasticModel::neo_hookean, E, nu)));
   test::prescribe_nodes(model, test::boundary_global_nodes(model, 0, "left"), [](const Vec3&) { return Vec3::Zero(); });
   test::add_traction(model, 0, "right", Vec3(0, F / 16, 0));  // scaled by the load factor t
   finalize_fem_model(model);
+  return model;
+}
+
+Real cook_membrane_tip(int n, Real E, Real F, int load_steps = 1) {
+  const FemModel model = cook_membrane(n, E, 1.0 / 3, F);
   VectorX u = VectorX::Zero(model.dof_count());
   SparseSymmetricSolver solver;
   for (int step = 1; step <= load_steps; ++step) {
@@ -122,6 +127,34 @@ TEST(FemStatics, CooksMembraneConvergesToThePublishedValue) {
   }
   EXPECT_LT(std::abs(nonlinear[2] - nonlinear[1]), 0.6 * std::abs(nonlinear[1] - nonlinear[0]));
   EXPECT_LT(nonlinear[2], linear[2]);
+}
+
+TEST(FemStatics, NewtonRecognisesTheRoundOffFloorOfANearlyIncompressibleBody) {
+  // Cook's membrane with lambda / mu = 1.5e8 (nu = 0.5 - 1e-8; E = 240.565 as in the classic
+  // nearly incompressible version) on 128 x 128 quads. The residual's round-off floor grows with
+  // lambda (~ eps lambda h per dof): measured 1.8e-6 N against a force scale of 0.06 N, far above
+  // tolerance * scale. There no step reduces |r|, and the line search used to stop the run with
+  // exit 3; Newton's correction is then ~1e-14 of |u|, below the tolerance, which is convergence.
+  // Solved again from its own solution five times (each solve starts on the floor), every solve
+  // converges and the residual stays on the floor. An unreachable tolerance still stops, and the
+  // message says which setting to change.
+  const FemModel model = cook_membrane(128, 240.565, 0.5 - 1e-8, 1.0);
+  VectorX u = VectorX::Zero(model.dof_count());
+  SparseSymmetricSolver solver;
+  const NewtonResult first = solve_static(model, 1.0, u, solver);
+  ASSERT_TRUE(first.converged) << first.failure;
+  const Real floor = first.residual_norms.back();
+  std::printf("round-off floor %.3e N after %d iterations (first residual %.3e)\n", floor, first.iterations,
+              first.residual_norms.front());
+  EXPECT_GT(floor, 1e-6 * first.residual_norms.front()) << "not a round-off-limited case";
+  for (int again = 0; again < 5; ++again) {
+    const NewtonResult r = solve_static(model, 1.0, u, solver);
+    ASSERT_TRUE(r.converged) << "solve " << again + 2 << ": " << r.failure;
+    EXPECT_LT(r.residual_norms.back(), 3 * floor);
+  }
+  const NewtonResult strict = solve_static(model, 1.0, u, solver, {.tolerance = 1e-20});
+  EXPECT_FALSE(strict.converged);
+  EXPECT_NE(strict.failure.find("raise settings.newton.tolerance"), std::string::npos) << strict.failure;
 }
 
 TEST(FemStatics, NewtonConvergesQuadraticallyOnALargeDeflection) {

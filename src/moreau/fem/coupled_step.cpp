@@ -4,8 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "moreau/fem/fem_assembly.hpp"
+#include "moreau/fem/static_solver.hpp"
 
 namespace moreau {
 
@@ -156,6 +158,7 @@ NewtonResult step_coupled(const FemProblem& problem, const SparseMatrix& mass, S
   }
   VectorX R(n);
   Triplets triplets;
+  Real last_correction = std::numeric_limits<Real>::infinity();  // |correction| / |motion| of the last step
   for (;;) {
     // Residuals.
     Configuration mid{0.5 * (s0.u + z.u), {}};
@@ -191,8 +194,9 @@ NewtonResult step_coupled(const FemProblem& problem, const SparseMatrix& mass, S
     if (momentum_norm <= settings.tolerance * force_scale && constraint_norm <= settings.tolerance) break;
     if (result.iterations == settings.max_iterations) {
       result.failure = fmt::format("the coupled step did not converge in {} Newton iterations (force residual {:.3e} of {:.3e}, "
-                                   "constraint residual {:.3e})",
-                                   settings.max_iterations, momentum_norm, force_scale, constraint_norm);
+                                   "constraint residual {:.3e}); {}",
+                                   settings.max_iterations, momentum_norm, force_scale, constraint_norm,
+                                   newton_failure_advice(std::max(momentum_norm / force_scale, constraint_norm), 1, last_correction, settings));
       return result;
     }
     // Jacobian.
@@ -265,6 +269,7 @@ NewtonResult step_coupled(const FemProblem& problem, const SparseMatrix& mass, S
       correction += (alpha * dz.segment<12>(layout.body(b))).squaredNorm();
       motion += (trial.q[b] - q0[b]).squaredNorm();
     }
+    last_correction = std::sqrt(correction / std::max(motion, Real(1e-300)));
     z = trial;
     for (Index b = 0; b < layout.bodies; ++b) internal(b) += alpha * dz.segment<6>(layout.body(b) + 12);
     if (layout.joint_rows > 0) joint_lambda() += alpha * dz.tail(layout.joint_rows);

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <limits>
 
 #include "moreau/fem/fem_assembly.hpp"
 
@@ -87,6 +88,7 @@ NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepR
     }
   }
   const Real c = 2 / (h * h);
+  Real last_correction = std::numeric_limits<Real>::infinity();  // |alpha du| / |u1 - u0| of the last step
   for (;;) {
     const VectorX inertia = mass_times(model, c * (u1 - u0) - (2 / h) * v0);
     const VectorX R = free_part(model, inertia + f - f_ext);
@@ -95,8 +97,8 @@ NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepR
     const Real scale = std::max({inertia.norm(), f.norm(), f_ext.norm(), Real(1e-300)});
     if (norm <= settings.tolerance * scale) break;
     if (result.iterations == settings.max_iterations) {
-      result.failure = fmt::format("no convergence in {} Newton iterations (|R| = {:.3e}, scale {:.3e})",
-                                   settings.max_iterations, norm, scale);
+      result.failure = fmt::format("no convergence in {} Newton iterations (|R| = {:.3e}, scale {:.3e}); {}",
+                                   settings.max_iterations, norm, scale, newton_failure_advice(norm, scale, last_correction, settings));
       return result;
     }
     // dR/du = 2/h^2 M + K_algo: the two matrices share the structure of model.pattern.
@@ -121,12 +123,13 @@ NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepR
       }
     }
     u1 = trial;
+    last_correction = alpha * du.norm() / std::max(free_part(model, u1 - u0).norm(), Real(1e-300));
     // The correction criterion is for a residual on its round-off floor: it counts only once
     // the residual has stopped falling (a stiff body's tiny corrections with a large residual
     // are not convergence).
     const bool stagnating = result.residual_norms.size() >= 2 &&
                             norm > 0.5 * result.residual_norms[result.residual_norms.size() - 2];
-    if (stagnating && alpha * du.norm() <= settings.tolerance * free_part(model, u1 - u0).norm()) {
+    if (stagnating && last_correction <= settings.tolerance) {
       const VectorX inertia_end = mass_times(model, c * (u1 - u0) - (2 / h) * v0);
       result.residual_norms.push_back(free_part(model, inertia_end + f - f_ext).norm());
       break;

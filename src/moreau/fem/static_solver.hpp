@@ -11,7 +11,8 @@
 // nodes alone would invert the cells next to them).
 // Converged when |r| <= tolerance * max(|f_ext|, |f_int|, 1e-300) over all dofs (the reactions at
 // prescribed dofs set the scale of a displacement-driven problem), or when the last correction
-// was below tolerance * |u_free| (the residual's round-off floor is ~ eps |K| |u|).
+// was below tolerance * |u_free| (the residual's round-off floor is ~ eps |K| |u|; the correction
+// criterion also ends a line search that finds no step at that floor).
 #include <chrono>
 #include <string>
 #include <vector>
@@ -47,6 +48,12 @@ auto timed(double& seconds, F&& f) {
   } add{seconds, start};
   return f();
 }
+
+/// What a user can change when Newton stops at `residual` against its convergence scale, its last
+/// correction having been `correction` times the size of the solution: the tolerance when the
+/// residual is round-off (within 1e3 tolerances of its scale, or a correction below 1e-8), else
+/// the step.
+std::string newton_failure_advice(Real residual, Real scale, Real correction, const NewtonSettings& settings);
 
 /// Equilibrium at load time t, starting from u (its prescribed dofs are overwritten with their
 /// values at t). `solver` keeps its symbolic analysis between calls.
