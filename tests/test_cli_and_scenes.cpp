@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "test_helpers.hpp"
@@ -65,7 +66,7 @@ TEST(CommandLine, MissingMeshFileIsNamed) {
                    {"no_such_mesh.msh", "cannot open"});
 }
 
-TEST(CommandLine, InvertedTetrahedraAreRejected) {
+TEST(CommandLine, MixedInvertedTetrahedraAreRejectedAndAllInvertedAreRenumbered) {
   const std::string dir = test::temp_dir("inverted");
   // Two tetrahedra, one of them inverted (vertices 2 and 3 swapped).
   std::ofstream(dir + "/m.node") << "5 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n4 1 1 1\n";
@@ -77,6 +78,27 @@ TEST(CommandLine, InvertedTetrahedraAreRejected) {
   const auto r = test::run_moreau(fmt::format("check {}", scene));
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("inverted"), std::string::npos) << r.output;
+  // Every tetrahedron inverted (a mirrored export) is one orientation convention: the reader swaps
+  // two vertices of each, and the body falls exactly as the correctly numbered one does.
+  std::ofstream(dir + "/good.ele") << "2 4 0\n0 0 1 2 3\n1 1 2 3 4\n";
+  std::ofstream(dir + "/mirrored.ele") << "2 4 0\n0 0 1 3 2\n1 1 2 4 3\n";
+  std::ofstream(dir + "/good.node") << "5 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n4 1 1 1\n";
+  std::ofstream(dir + "/mirrored.node") << "5 3 0 0\n0 0 0 0\n1 1 0 0\n2 0 1 0\n3 0 0 1\n4 1 1 1\n";
+  std::vector<std::string> probes;
+  for (const std::string base : {"good", "mirrored"}) {
+    std::ofstream(dir + "/" + base + ".json") << fmt::format(R"({{"name": "{}", "settings": {{"dt": 0.01, "duration": 0.1}},
+      "objects": [{{"name": "b", "kind": "soft_body", "mesh": {{"type": "tetgen", "file": "{}"}},
+                   "material": {{"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000}}}},
+                  {{"name": "floor", "kind": "collider", "shape": {{"type": "plane", "point": [0, -0.05, 0]}}}}],
+      "probes": [{{"name": "c", "type": "center_of_mass", "object": "b"}}]}})",
+                                                              base, base);
+    const auto run = test::run_moreau(fmt::format("run {}/{}.json --out {}/{}_out --quiet", dir, base, dir, base));
+    ASSERT_EQ(run.exit_code, 0) << run.output;
+    std::ifstream in(fmt::format("{}/{}_out/probes.csv", dir, base));
+    probes.emplace_back(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  EXPECT_GT(probes[0].size(), 100u);
+  EXPECT_EQ(probes[0], probes[1]);
 }
 
 TEST(CommandLine, BadSetOverrideAndUnknownSolver) {

@@ -2,9 +2,12 @@
 // homogeneous solution, a dynamic run's energy after a load pulse, output files, and bad input.
 #include <gtest/gtest.h>
 
+#include <iterator>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 
 #include "moreau/materials/hyperelastic.hpp"
@@ -138,6 +141,27 @@ $EndElements
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_NEAR(rows.back()[1], 2 * (l.x() - 1), 1e-9);
   EXPECT_NEAR(rows.back()[2], l.y() - 1, 1e-9);
+  // Every cell numbered clockwise (all Jacobians negative, as some exporters write a mirrored
+  // part): the reader reverses each cell's numbering, and the solution is the same.
+  std::string reversed_text;
+  {
+    std::ifstream in(dir + "/plate.msh");
+    reversed_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  reversed_text.replace(reversed_text.find("3 1 2 5 4"), 9, "3 4 5 2 1");
+  reversed_text.replace(reversed_text.find("4 2 3 6 5"), 9, "4 5 6 3 2");
+  std::ofstream(dir + "/reversed.msh") << reversed_text;
+  std::string reversed_scene_text;
+  {
+    std::ifstream in(scene);
+    reversed_scene_text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  reversed_scene_text.replace(reversed_scene_text.find("plate.msh"), 9, "reversed.msh");
+  std::ofstream(dir + "/reversed.json") << reversed_scene_text;
+  const auto reversed_rows = run_scene(dir + "/reversed.json", dir + "/reversed_out");
+  ASSERT_EQ(reversed_rows.size(), 3u);
+  EXPECT_NEAR(reversed_rows.back()[1], rows.back()[1], 1e-12);
+  EXPECT_NEAR(reversed_rows.back()[2], rows.back()[2], 1e-12);
   // A boundary the file does not name is reported with the names it does.
   std::ofstream(dir + "/bad.json") << R"({"name": "bad", "settings": {"solver": "fem"},
     "solids": [{"name": "p", "mesh": {"type": "msh", "file": "plate.msh"}, "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.3, "density": 1},

@@ -6,6 +6,10 @@ void build_collider(const JsonObject& object, ObjectInfo& info, SceneBuildContex
   Collider c;
   const JsonObject shape = object.object("shape");
   const std::string type = shape.choice("type", {"plane", "box", "sphere", "capsule"});
+  shape.expect_keys(type == "plane"    ? std::vector<std::string>{"type", "normal", "point", "offset"}
+                    : type == "box"    ? std::vector<std::string>{"type", "center", "half_extents", "size", "rotation_deg"}
+                    : type == "sphere" ? std::vector<std::string>{"type", "center", "radius"}
+                                       : std::vector<std::string>{"type", "center", "radius", "half_height", "rotation_deg"});
   if (type == "plane") {
     c.shape = ColliderShape::plane;
     const Vec3 n = shape.vec3("normal", Vec3::UnitY());

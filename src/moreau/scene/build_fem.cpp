@@ -191,6 +191,10 @@ FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
   p.name = j.string("name");
   const std::string type =
       j.choice("type", {"point", "energy", "momentum", "newton_iterations", "body", "constraint_error"});
+  j.expect_keys(type == "point"    ? std::vector<std::string>{"name", "type", "object", "nearest", "quantity"}
+                : type == "body" ? std::vector<std::string>{"name", "type", "object", "quantity"}
+                : type == "energy" || type == "momentum" ? std::vector<std::string>{"name", "type", "quantity"}
+                                                         : std::vector<std::string>{"name", "type"});
   const FemModel& model = problem.model;
   if (type == "point") {
     const std::string object = j.string("object");
@@ -210,11 +214,9 @@ FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
   } else if (type == "energy") {
     p.type = FemProbeType::energy;
     p.quantity = j.choice("quantity", "total", {"kinetic", "strain", "potential", "total"});
-    j.allow("object");
   } else if (type == "momentum") {
     p.type = FemProbeType::momentum;
     p.quantity = j.choice("quantity", "linear", {"linear", "angular"});
-    j.allow("object");
   } else if (type == "body") {
     p.type = FemProbeType::body;
     const std::string object = j.string("object");

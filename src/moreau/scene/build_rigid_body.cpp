@@ -29,6 +29,11 @@ Quat read_orientation(const JsonObject& object) {
 
 RigidShape read_shape(const JsonObject& shape, const SceneBuildContext& ctx) {
   const std::string type = shape.choice("type", {"sphere", "box", "capsule", "cylinder", "convex_hull", "triangle_mesh"});
+  shape.expect_keys(type == "sphere"          ? std::vector<std::string>{"type", "radius"}
+                    : type == "box"           ? std::vector<std::string>{"type", "half_extents", "size"}
+                    : type == "convex_hull"   ? std::vector<std::string>{"type", "mesh", "scale"}
+                    : type == "triangle_mesh" ? std::vector<std::string>{"type", "mesh", "scale", "thickness"}
+                                              : std::vector<std::string>{"type", "radius", "half_height"});
   RigidShape s;
   if (type == "sphere") {
     s = make_sphere(shape.number("radius", Range::positive()));

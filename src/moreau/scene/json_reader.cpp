@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -54,10 +55,52 @@ void JsonObject::fail(const std::string& key, const std::string& problem) const 
   throw InputError(fmt::format("{}: {}: {}", file_, path_of(key), problem));
 }
 
+std::string closest_key(const std::string& key, const std::vector<std::string>& candidates) {
+  std::string best;
+  size_t best_distance = std::max<size_t>(2, key.size() / 3) + 1;
+  for (const std::string& c : candidates) {
+    // Levenshtein distance by the two-row dynamic programme.
+    std::vector<size_t> previous(c.size() + 1), current(c.size() + 1);
+    for (size_t j = 0; j <= c.size(); ++j) previous[j] = j;
+    for (size_t i = 1; i <= key.size(); ++i) {
+      current[0] = i;
+      for (size_t j = 1; j <= c.size(); ++j)
+        current[j] = std::min({previous[j] + 1, current[j - 1] + 1, previous[j - 1] + (key[i - 1] != c[j - 1])});
+      std::swap(previous, current);
+    }
+    if (previous[c.size()] < best_distance) best_distance = previous[c.size()], best = c;
+  }
+  return best;
+}
+
+void JsonObject::fail_unknown(const std::string& key, const std::string& missing) const {
+  std::vector<std::string> allowed = expected_;
+  for (const std::string& k : known_)
+    if (std::find(allowed.begin(), allowed.end(), k) == allowed.end()) allowed.push_back(k);
+  std::string suggestion = closest_key(key, allowed);
+  if (suggestion.empty() && !missing.empty()) suggestion = missing;
+  const std::string hint = suggestion.empty() ? ""
+                           : suggestion == missing
+                               ? fmt::format(" (did you mean '{}', which is required here?)", suggestion)
+                               : fmt::format(" (did you mean '{}'?)", suggestion);
+  fail(key, fmt::format("unknown key{}; allowed here: {}", hint, join(allowed)));
+}
+
 const json& JsonObject::require(const std::string& key) const {
   known_.insert(key);
   auto it = j_->find(key);
-  if (it == j_->end()) fail(key, "missing required key");
+  if (it == j_->end()) {
+    // A key outside the declared list (or, with none declared, a near-spelling of this key that
+    // nothing has read) is the user's real mistake: name it first.
+    for (auto other = j_->begin(); other != j_->end(); ++other) {
+      if (known_.count(other.key())) continue;
+      const bool outside = expected_.empty()
+                               ? closest_key(other.key(), {key}) == key
+                               : std::find(expected_.begin(), expected_.end(), other.key()) == expected_.end();
+      if (outside) fail_unknown(other.key(), key);
+    }
+    fail(key, "missing required key");
+  }
   return *it;
 }
 
@@ -165,11 +208,8 @@ std::vector<JsonObject> JsonObject::object_list(const std::string& key) const {
 }
 
 void JsonObject::finish() const {
-  for (auto it = j_->begin(); it != j_->end(); ++it) {
-    if (known_.count(it.key())) continue;
-    std::vector<std::string> allowed(known_.begin(), known_.end());
-    fail(it.key(), fmt::format("unknown key; allowed here: {}", join(allowed)));
-  }
+  for (auto it = j_->begin(); it != j_->end(); ++it)
+    if (!known_.count(it.key())) fail_unknown(it.key(), "");
 }
 
 namespace {

@@ -36,6 +36,11 @@ class JsonObject {
   bool has(const std::string& key) const;
   /// Records `key` as known without reading it.
   void allow(const std::string& key) const { known_.insert(key); }
+  /// Declares every key this object may have (in the branch its reader took). A missing required
+  /// key is then reported after any key outside this list, as that key with the closest allowed
+  /// one suggested: a misspelt key is named as such, not as the key it was meant to be. The list
+  /// only shapes messages; which keys are accepted is still decided by what is read.
+  void expect_keys(std::vector<std::string> keys) const { expected_ = std::move(keys); }
 
   Real number(const std::string& key, Range range = Range::any()) const;
   Real number(const std::string& key, Real fallback, Range range = Range::any()) const;
@@ -62,10 +67,16 @@ class JsonObject {
 
  private:
   const nlohmann::json& require(const std::string& key) const;
+  [[noreturn]] void fail_unknown(const std::string& key, const std::string& missing) const;
   const nlohmann::json* j_;
   std::string path_, file_;
   mutable std::set<std::string> known_;
+  mutable std::vector<std::string> expected_;
 };
+
+/// The candidate nearest to `key` by edit distance (Levenshtein), or "" if none is within about a
+/// third of the key's length (a typo, not a different word).
+std::string closest_key(const std::string& key, const std::vector<std::string>& candidates);
 
 /// Parses a scene file; syntax errors name line and column.
 nlohmann::json parse_json_file(const std::string& path);

@@ -11,35 +11,7 @@ namespace moreau {
 
 namespace {
 
-void read_settings(const JsonObject& settings, Scene& scene) {
-  SolverSettings& s = scene.model.settings;
-  const std::string solver = settings.choice("solver", "xpbd", {"xpbd", "nmd", "xpbi", "fem"});
-  if (solver != "xpbd" && solver != "fem")
-    settings.fail("solver",
-                  fmt::format("the '{}' formulation is not available in this version of moreau; allowed: xpbd, fem", solver));
-  scene.solver = solver;
-  if (solver == "fem") {
-    scene.fem = std::make_unique<FemProblem>();
-    allow_fem_settings(settings);
-  }
-  s.dt = settings.number("dt", s.dt, Range::positive());
-  s.substeps = settings.integer("substeps", s.substeps, 1, 100000);
-  s.iterations = settings.integer("iterations", s.iterations, 1, 100000);
-  scene.duration = settings.number("duration", scene.duration, Range::positive());
-  s.gravity = settings.vec3("gravity", s.gravity);
-  s.threads = settings.integer("threads", s.threads, 0, 1024);
-  s.particle_contacts = settings.boolean("particle_contacts", s.particle_contacts);
-  s.max_speed = settings.number("max_speed", s.max_speed, Range::positive());
-  s.joint_solver = settings.choice("joint_solver", "direct", {"direct", "gauss_seidel"}) == "direct"
-                       ? JointSolver::direct
-                       : JointSolver::gauss_seidel;
-  if (auto fluid = settings.optional_object("fluid")) {
-    FluidModel& fm = scene.model.fluid;
-    fm.neighbor_skin_fraction = fluid->number("neighbor_skin", fm.neighbor_skin_fraction, Range::closed(0, 1));
-    fm.tensile_k = fluid->number("tensile_k", fm.tensile_k, Range::closed(0, 10));
-    fm.cfl_limit = fluid->number("cfl_limit", fm.cfl_limit, Range::positive());
-    fluid->finish();
-  }
+void read_output_settings(const JsonObject& settings, Scene& scene) {
   if (auto output = settings.optional_object("output")) {
     scene.output.every = output->integer("every", 1, 1);
     if (output->has("formats")) {
@@ -54,6 +26,45 @@ void read_settings(const JsonObject& settings, Scene& scene) {
     }
     output->finish();
   }
+}
+
+void read_settings(const JsonObject& settings, Scene& scene) {
+  SolverSettings& s = scene.model.settings;
+  const std::string solver = settings.choice("solver", "xpbd", {"xpbd", "nmd", "xpbi", "fem"});
+  if (solver != "xpbd" && solver != "fem")
+    settings.fail("solver",
+                  fmt::format("the '{}' formulation is not available in this version of moreau; allowed: xpbd, fem", solver));
+  scene.solver = solver;
+  if (solver == "fem") {
+    scene.fem = std::make_unique<FemProblem>();
+    allow_fem_settings(settings);
+  }
+  s.dt = settings.number("dt", s.dt, Range::positive());
+  scene.duration = settings.number("duration", scene.duration, Range::positive());
+  s.gravity = settings.vec3("gravity", s.gravity);
+  s.threads = settings.integer("threads", s.threads, 0, 1024);
+  if (solver == "fem") {
+    // The FEM engine reads its own keys (allow_fem_settings); the XPBD ones below would be
+    // accepted and ignored, so they are not offered.
+    read_output_settings(settings, scene);
+    settings.finish();
+    return;
+  }
+  s.substeps = settings.integer("substeps", s.substeps, 1, 100000);
+  s.iterations = settings.integer("iterations", s.iterations, 1, 100000);
+  s.particle_contacts = settings.boolean("particle_contacts", s.particle_contacts);
+  s.max_speed = settings.number("max_speed", s.max_speed, Range::positive());
+  s.joint_solver = settings.choice("joint_solver", "direct", {"direct", "gauss_seidel"}) == "direct"
+                       ? JointSolver::direct
+                       : JointSolver::gauss_seidel;
+  if (auto fluid = settings.optional_object("fluid")) {
+    FluidModel& fm = scene.model.fluid;
+    fm.neighbor_skin_fraction = fluid->number("neighbor_skin", fm.neighbor_skin_fraction, Range::closed(0, 1));
+    fm.tensile_k = fluid->number("tensile_k", fm.tensile_k, Range::closed(0, 10));
+    fm.cfl_limit = fluid->number("cfl_limit", fm.cfl_limit, Range::positive());
+    fluid->finish();
+  }
+  read_output_settings(settings, scene);
   settings.finish();
 }
 
@@ -83,6 +94,22 @@ Index object_index(const JsonObject& probe, const Model& model, bool allow_all, 
   return i;
 }
 
+// Every key a probe of this type may have (for the message on a misspelt key).
+std::vector<std::string> probe_keys(const std::string& type) {
+  std::vector<std::string> keys{"name", "type"};
+  auto add = [&](std::initializer_list<const char*> more) { keys.insert(keys.end(), more.begin(), more.end()); };
+  if (type == "joint_error") add({"joint"});
+  else add({"object"});
+  if (type == "point") add({"vertex", "nearest", "quantity"});
+  if (type == "energy" || type == "density_error") add({"quantity"});
+  if (type == "extent") add({"axis", "quantity"});
+  if (type == "momentum") add({"quantity", "about"});
+  if (type == "fluid_height") add({"at"});
+  if (type == "escaped") add({"box"});
+  if (type == "constraint_error") add({"family"});
+  return keys;
+}
+
 ProbeSpec read_probe(const JsonObject& j, const Model& model) {
   ProbeSpec p;
   p.name = j.string("name");
@@ -90,6 +117,7 @@ ProbeSpec read_probe(const JsonObject& j, const Model& model) {
                                              "fluid_height", "density_error", "particle_count", "escaped",
                                              "position", "orientation", "velocity", "angular_velocity", "joint_error",
                                              "contact_count", "max_displacement"});
+  j.expect_keys(probe_keys(type));
   if (type == "point") {
     p.type = ProbeType::point;
     p.object = object_index(j, model, false, Accepts::solids);
