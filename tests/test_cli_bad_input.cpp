@@ -110,6 +110,28 @@ TEST(CliBadInput, FemAndFlowSettingsOfferOnlyTheirOwnKeys) {
                    "settings.particle_contacts: unknown key; " + allowed);
 }
 
+TEST(CliBadInput, ScenesTooLargeForMemoryAreRefusedBeforeAllocating) {
+  // cells [100000, 100000] failed at once with bad_alloc (exit 1); a 2000^3 soft body grew to
+  // 3 GB first. The estimate (count x a measured lower bound per item) is checked before any
+  // allocation; the limit is 80 % of physical memory, or --memory-limit.
+  const std::string dir = test::temp_dir("memory");
+  std::ofstream(dir + "/soft.json") << R"({"name": "soft", "objects": [{"name": "b", "kind": "soft_body",
+    "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [2000, 2000, 2000]},
+    "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000}}]})";
+  expect_bad_input(fmt::format("check {}/soft.json", dir), "objects[0].mesh.cells: 4.8e+10 tetrahedra need at least 1.44e+04 GB");
+  expect_bad_input(fmt::format("check {}/soft.json", dir), "raise the limit with --memory-limit <GB>");
+  const std::string scenes = std::string(MOREAU_SOURCE_DIR) + "/scenes/";
+  expect_bad_input(fmt::format("check {}cavity_re1000.json --set fluid.mesh.cells=[100000,100000]", scenes),
+                   "fluid.mesh.cells: 1e+10 cells need at least 6e+04 GB");
+  expect_bad_input(fmt::format("check {}fem_beam.json --set solids.beam.mesh.cells=[100000,100000,2]", scenes),
+                   "solids[0].mesh.cells: 2e+10 cells need at least 2e+05 GB");
+  // A small scene under a smaller limit given on the command line.
+  const std::string small = fmt::format("{}/soft.json --set objects.b.mesh.cells=[40,40,40]", dir);
+  expect_bad_input(fmt::format("check {} --memory-limit 0.1", small),
+                   "3.84e+05 tetrahedra need at least 0.115 GB (300 bytes each), more than the memory limit of 0.1 GB (set by --memory-limit)");
+  EXPECT_EQ(test::run_moreau(fmt::format("check {} --memory-limit 1", small)).exit_code, 0);
+}
+
 TEST(CliBadInput, ResettingAWholeObjectWithSetIsRefused) {
   // --set settings={} used to reset every setting silently.
   expect_bad_input(fmt::format("check {} --set settings={{}}", kShowcase), "set its keys one at a time");

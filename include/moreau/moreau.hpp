@@ -13,6 +13,10 @@ namespace moreau {
 /// The version string, e.g. "0.1.0".
 const char* version();
 
+/// The memory a scene's meshes and particles may need, in bytes, checked when a scene is loaded
+/// (a larger scene is an InputError naming the key). Default: 80 % of the physical memory.
+void set_memory_limit(double bytes);
+
 struct RunOptions {
   std::string out_dir;                 // empty: out/<scene name>
   std::optional<double> duration;      // s, overrides settings.duration

@@ -10,6 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "moreau/scene/memory_estimate.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/probe_csv.hpp"
 #include "moreau/io/progress_bar.hpp"
@@ -26,6 +27,8 @@ namespace moreau {
 namespace fs = std::filesystem;
 
 const char* version() { return MOREAU_VERSION; }
+
+void set_memory_limit(double bytes) { set_memory_limit_bytes(bytes); }
 
 Simulation::Simulation(std::unique_ptr<Scene> scene) : scene_(std::move(scene)) {}
 Simulation::~Simulation() = default;

@@ -1,6 +1,7 @@
 // The `moreau` command-line program.
 //   moreau run SCENE.json [--out DIR] [--duration T] [--threads N] [--quiet] [--set key=value ...]
-//   moreau check SCENE.json
+//   moreau check SCENE.json [--set key=value ...]
+// Both take --memory-limit GB (what a scene's meshes and particles may need).
 //   moreau --version | --help
 // Exit codes: 0 success, 1 anything else, 2 bad input, 3 numerical failure.
 #include <CLI/CLI.hpp>
@@ -23,7 +24,7 @@ int main(int argc, char** argv) {
 
   std::string scene_path, out_dir;
   std::vector<std::string> overrides;
-  double duration = 0;
+  double duration = 0, memory_limit_gb = 0;
   int threads = -1;
   bool quiet = false;
 
@@ -50,11 +51,15 @@ int main(int argc, char** argv) {
                   "overrides settings.threads)")
       ->check(CLI::Range(0, 1024));
   run->add_flag("--quiet", quiet, "no progress bar");
+  const auto memory_limit_help = "memory the scene's meshes and particles may need, in GB (default: 80 % of physical memory)";
+  const auto positive_gb = CLI::Range(1e-6, 1e9);
+  run->add_option("--memory-limit", memory_limit_gb, memory_limit_help)->check(positive_gb);
   run->add_option("--set", overrides, "override a scene value by its JSON path, e.g. --set settings.substeps=40");
 
   CLI::App* check = app.add_subcommand("check", "validate a scene and print what it builds");
   check->add_option("scene", scene_path, "scene file (JSON)")->required();
   check->add_option("--set", overrides, "override a scene value by its JSON path");
+  check->add_option("--memory-limit", memory_limit_gb, memory_limit_help)->check(positive_gb);
 
   try {
     app.parse(argc, argv);
@@ -66,6 +71,7 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (memory_limit_gb > 0) moreau::set_memory_limit(memory_limit_gb * 1e9);
     moreau::Simulation sim = moreau::Simulation::load(scene_path, overrides);
     if (check->parsed()) {
       fmt::print("{}", sim.summary());

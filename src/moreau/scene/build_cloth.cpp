@@ -4,6 +4,7 @@
 
 #include "moreau/geometry/mesh_generators.hpp"
 #include "moreau/geometry/mesh_readers.hpp"
+#include "moreau/scene/memory_estimate.hpp"
 #include "moreau/scene/object_builders.hpp"
 
 namespace moreau {
@@ -17,6 +18,7 @@ TriangleMesh read_cloth_mesh(const JsonObject& mesh, SceneBuildContext& ctx) {
     const Vec2 size = mesh.vec2("size", Range::positive());
     const auto res = mesh.integers("resolution", 2, 2);
     const Vec3 center = mesh.vec3("center", Vec3::Zero());
+    check_memory(mesh, "resolution", double(res[0]) * res[1], memory_cost::cloth_cell, "grid cells");
     out = make_grid_sheet(size, {res[0], res[1]}, center);
     // Optional rotation about the sheet's centre (world x, then y, then z): a curtain is
     // "rotation_deg": [90, 0, 0].

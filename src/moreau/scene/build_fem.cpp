@@ -287,7 +287,7 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
     solid.name = sj.string("name");
     for (const FemSolid& other : model.solids)
       if (other.name == solid.name) sj.fail("name", fmt::format("another solid is already named '{}'", solid.name));
-    solid.mesh = read_fem_mesh(sj.object("mesh"), top.file() + ": " + sj.path_of("mesh"));
+    solid.mesh = read_fem_mesh(sj.object("mesh"), top.file() + ": " + sj.path_of("mesh"), MeshUse::solid);
     if (model.solids.empty()) model.dim = solid.mesh.dim;
     if (solid.mesh.dim != model.dim) sj.fail("mesh", "all solids of a scene must be 2D (rectangle) or all 3D (box)");
     solid.material = read_fem_material(sj.object("material"));
@@ -305,7 +305,7 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
       if (other.name == rb.name) bj.fail("name", fmt::format("a solid is already named '{}'", rb.name));
     for (const FemRigidBody& other : problem.rigid_bodies)
       if (other.name == rb.name) bj.fail("name", fmt::format("another rigid body is already named '{}'", rb.name));
-    rb.mesh = read_fem_mesh(bj.object("mesh"), top.file() + ": " + bj.path_of("mesh"));
+    rb.mesh = read_fem_mesh(bj.object("mesh"), top.file() + ": " + bj.path_of("mesh"), MeshUse::solid);
     if (rb.mesh.dim != 3) bj.fail("mesh", "a rigid body's mesh is 3D (\"type\": \"box\")");
     rb.body = director_body_from_mesh(rb.mesh, bj.number("density", Range::positive()));
     rb.initial = director_state_at_rest_pose(rb.body, bj.vec3("velocity", Vec3::Zero()),

@@ -11,6 +11,7 @@
 #include <functional>
 #include <unistd.h>
 
+#include "moreau/scene/memory_estimate.hpp"
 #include "moreau/errors.hpp"
 #include "moreau/scene/fem_scene.hpp"
 
@@ -113,7 +114,7 @@ std::string mesh_geo_file(const JsonObject& mesh, const std::filesystem::path& g
 
 }  // namespace
 
-FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where) {
+FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where, MeshUse use) {
   const std::string type = mesh.choice("type", {"box", "rectangle", "msh", "geo"});
   FemMesh result;
   if (type == "msh" || type == "geo") {
@@ -141,6 +142,8 @@ FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where) {
     if (!((hi - lo).array() > 0).all()) mesh.fail("max", "every component of max must exceed min");
     const auto cells = mesh.integers("cells", 3, 1);
     const ElementType element = mesh.choice("element", "hex8", {"hex8", "tet4"}) == "hex8" ? ElementType::hex8 : ElementType::tet4;
+    check_memory(mesh, "cells", double(cells[0]) * cells[1] * cells[2],
+                 use == MeshUse::flow ? memory_cost::flow_cell_3d : memory_cost::solid_cell_3d, "cells");
     result = make_box_mesh(lo, hi, {cells[0], cells[1], cells[2]}, element);
     grade_mesh(mesh, result, lo, hi, cells);
     remove_boxes(mesh, result, lo, hi);
@@ -149,6 +152,8 @@ FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where) {
     if (!((hi - lo).array() > 0).all()) mesh.fail("max", "every component of max must exceed min");
     const auto cells = mesh.integers("cells", 2, 1);
     const ElementType element = mesh.choice("element", "quad4", {"quad4", "tri3"}) == "quad4" ? ElementType::quad4 : ElementType::tri3;
+    check_memory(mesh, "cells", double(cells[0]) * cells[1],
+                 use == MeshUse::flow ? memory_cost::flow_cell_2d : memory_cost::solid_cell_2d, "cells");
     result = make_rectangle_mesh(lo, hi, {cells[0], cells[1]}, element);
     const Vec3 lo3(lo.x(), lo.y(), 0), hi3(hi.x(), hi.y(), 0);
     grade_mesh(mesh, result, lo3, hi3, cells);

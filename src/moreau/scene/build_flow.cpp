@@ -154,7 +154,7 @@ void build_flow_scene(const JsonObject& top, const JsonObject* settings, FemProb
   read_flow_settings(settings, fluid, problem);
   NavierStokesModel& m = problem.model;
   m.threads = threads;
-  m.mesh = read_fem_mesh(fluid.object("mesh"), top.file() + ": " + fluid.path_of("mesh"));
+  m.mesh = read_fem_mesh(fluid.object("mesh"), top.file() + ": " + fluid.path_of("mesh"), MeshUse::flow);
   if (m.mesh.element != ElementType::quad4 && m.mesh.element != ElementType::hex8)
     fluid.fail("mesh", fmt::format("the fluid needs quadrilateral (2D) or hexahedral (3D) cells, not {}; with Gmsh, "
                                    "recombine the mesh (\"Recombine Surface{{...}};\" in the .geo file)",

@@ -10,6 +10,7 @@
 #include "moreau/fluids/solid_sampling.hpp"
 #include "moreau/geometry/mesh_readers.hpp"
 #include "moreau/geometry/point_in_mesh.hpp"
+#include "moreau/scene/memory_estimate.hpp"
 #include "moreau/scene/object_builders.hpp"
 
 namespace moreau {
@@ -35,6 +36,9 @@ void read_block(const JsonObject& block, Real d, std::vector<Vec3>& out) {
   const Vec3 lo = block.vec3("min"), hi = block.vec3("max");
   if ((hi - lo).minCoeff() < d)
     block.fail("max", fmt::format("the block must be at least one particle spacing 2r = {} m wide along every axis", d));
+  double count = 1;
+  for (int a = 0; a < 3; ++a) count *= std::floor((hi[a] - lo[a]) / d + 1e-9);
+  check_memory(block, "max", count, memory_cost::fluid_particle, "particles");
   block.finish();
   fill_block(lo, hi, d, out);
 }

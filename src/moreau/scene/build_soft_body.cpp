@@ -4,6 +4,7 @@
 
 #include "moreau/geometry/mesh_generators.hpp"
 #include "moreau/geometry/mesh_readers.hpp"
+#include "moreau/scene/memory_estimate.hpp"
 #include "moreau/scene/object_builders.hpp"
 
 namespace moreau {
@@ -19,6 +20,7 @@ TetMesh read_soft_body_mesh(const JsonObject& mesh, SceneBuildContext& ctx) {
     if (!((hi - lo).minCoeff() > 0)) mesh.fail("max", "max must exceed min along every axis");
     const auto cells = mesh.integers("cells", 3, 1);
     const int per_cell = mesh.integer("tets_per_cell", 6, 5, 6);
+    check_memory(mesh, "cells", double(cells[0]) * cells[1] * cells[2] * per_cell, memory_cost::tetrahedron, "tetrahedra");
     out = make_box_tets(lo, hi, {cells[0], cells[1], cells[2]}, per_cell == 5 ? CellSplit::five : CellSplit::six);
   } else if (type == "msh") {
     source = resolve_path(ctx, mesh.string("file"));

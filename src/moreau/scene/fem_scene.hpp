@@ -29,7 +29,9 @@ Vec3 read_point(const JsonObject& j, const std::string& key, int dim);
 
 /// A mesh: "rectangle" / "box" (with optional "grading" and "remove"), "msh" (Gmsh MSH 4.1) or
 /// "geo" (meshed by Gmsh); cells are oriented and validated (`where` names it in errors).
-FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where);
+/// What a mesh is for: its memory per cell differs (a flow has more unknowns per node, and LU factors).
+enum class MeshUse { solid, flow };
+FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where, MeshUse use);
 
 /// One expression of t, x, y, z per component: a number, a string, or (if `allow_null`) null.
 std::vector<std::unique_ptr<Expression>> read_components(const JsonObject& j, const std::string& key, int dim,
