@@ -132,6 +132,19 @@ TEST(CliBadInput, ScenesTooLargeForMemoryAreRefusedBeforeAllocating) {
   EXPECT_EQ(test::run_moreau(fmt::format("check {} --memory-limit 1", small)).exit_code, 0);
 }
 
+TEST(CliBadInput, RunsThatCannotFinishOrFitOnDiskAreRefused) {
+  // --duration 1e12 wrote frames without end (125 MB in 20 s); 1e300 overflowed the step count
+  // and ran one step. The output is projected from the first frame against the free space.
+  const std::string out = test::temp_dir("endless") + "/out";
+  expect_bad_input(fmt::format("run {} --out {} --quiet --duration 1e12", kShowcase, out),
+                   "the run would write");
+  expect_bad_input(fmt::format("run {} --out {} --quiet --duration 1e12", kShowcase, out),
+                   "write less often (settings.output.every)");
+  EXPECT_FALSE(fs::exists(out)) << "the first frame must be removed";
+  expect_bad_input(fmt::format("run {} --out {} --quiet --duration 1e300", kShowcase, out), "more than any run can take");
+  EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(CliBadInput, ResettingAWholeObjectWithSetIsRefused) {
   // --set settings={} used to reset every setting silently.
   expect_bad_input(fmt::format("check {} --set settings={{}}", kShowcase), "set its keys one at a time");

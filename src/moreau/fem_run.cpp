@@ -1,3 +1,4 @@
+#include "moreau/io/output_budget.hpp"
 #include "moreau/fem_run.hpp"
 
 #include <fmt/format.h>
@@ -60,6 +61,7 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   const double duration = options.duration.value_or(scene.duration);
   const Real dt = scene.model.settings.dt;
 
+  const long steps = run_step_count(duration, dt);
   RunResult result;
   result.out_dir = run_output_directory(options.out_dir, scene.name);
   FemFrameWriter frames(problem, result.out_dir, scene.name);
@@ -98,9 +100,9 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   const SparseMatrix mass = problem.integrator == FemIntegrator::static_load_steps ? SparseMatrix() : assemble_mass_matrix(model);
   SparseSymmetricSolver solver;
   SparseLuSolver coupled;
-  const long steps = std::max<long>(1, std::lround(duration / dt));
   ProgressBar progress(options.progress, duration);
   sample();
+  check_output_budget(result.out_dir, steps, scene.output.every);
   double wall = 0;
   std::string status = "completed", message;
   for (long s = 0; s < steps; ++s) {

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "moreau/io/output_budget.hpp"
 #include "moreau/fem/fem_output.hpp"
 #include "moreau/fem/flow_stepper.hpp"
 #include "moreau/fem_run.hpp"
@@ -101,6 +102,7 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
   const Real dt = steady ? 0 : scene.model.settings.dt;
   const double duration = options.duration.value_or(scene.duration);
 
+  const long steps = steady ? 1 : run_step_count(duration, dt);
   RunResult result;
   result.out_dir = run_output_directory(options.out_dir, scene.name);
   FlowFrameWriter frames(problem, result.out_dir, scene.name);
@@ -164,9 +166,9 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
       sample();
     }
   } else {
-    const long steps = std::max<long>(1, std::lround(duration / dt));
     ProgressBar progress(options.progress, duration);
     sample();
+    check_output_budget(result.out_dir, steps, scene.output.every);
     for (long s = 0; s < steps; ++s) {
       const VectorX start = x;
       const auto t0 = std::chrono::steady_clock::now();

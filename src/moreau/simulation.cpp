@@ -10,6 +10,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "moreau/io/output_budget.hpp"
 #include "moreau/scene/memory_estimate.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/probe_csv.hpp"
@@ -157,6 +158,7 @@ RunResult Simulation::run(const RunOptions& options) {
   const double duration = options.duration.value_or(scene.duration);
   const int threads = solver_thread_count(model);
 
+  const long steps = run_step_count(duration, model.settings.dt);
   RunResult result;
   result.out_dir = run_output_directory(options.out_dir, scene.name);
   const fs::path dir(result.out_dir);
@@ -172,10 +174,10 @@ RunResult Simulation::run(const RunOptions& options) {
     if (scene.output.write_vtk) frames.write(state);
   };
 
-  const long steps = std::max<long>(1, std::lround(duration / model.settings.dt));
   StageTimer timer;
   ProgressBar progress(options.progress, duration);
   sample();
+  check_output_budget(result.out_dir, steps, scene.output.every);
   double wall = 0;
   std::string status = "completed", message;
   // The requested thread count is a maximum: cores that other processes keep busy are left to them.
