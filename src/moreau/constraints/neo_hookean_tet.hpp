@@ -10,8 +10,8 @@
 // so that U = C_H^2/(2 alpha_H) + C_D^2/(2 alpha_D) = V Psi + const. At F = I the two forces,
 // mu I and lambda(1-gamma) I = -mu I, cancel: the rest state is stable.
 // Lame mapping: linearizing Psi about F = I gives mu eps:eps + ((lambda - mu)/2)(tr eps)^2, so
-// lambda = lambda_Lame + mu reproduces linear elasticity with E and nu (derivation in
-// docs/methods/neo-hookean.md; checked by the hanging-bar test).
+// lambda = lambda_Lame + mu reproduces linear elasticity with E and nu (checked by the
+// hanging-bar test).
 // The pair is solved per element as a coupled 2x2 system in (dlambda_H, dlambda_D), whose
 // off-diagonal sum_i w_i grad_i C_H . grad_i C_D removes the fight between the two near rest.
 #include <cmath>

@@ -1,6 +1,6 @@
 #pragma once
 // One time step of solids, director rigid bodies and the joints between them, solved as one
-// Newton system (methods.md sec. 9). Unknowns: the solids' free dofs u1, each body's q1 (12) and
+// Newton system. Unknowns: the solids' free dofs u1, each body's q1 (12) and
 // internal multipliers (6), and the joints' multipliers. Residuals, all in force units:
 //   solids  M (2/h^2 (u1 - u0) - 2/h v0) + f_algo(u0, u1) - f_ext + J_u^T lambda_j
 //   bodies  M_b (2/h^2 (q1 - q0) - 2/h v0) + G(q_m)^T lambda_int - f_b + J_q(q_m)^T lambda_j

@@ -1,5 +1,5 @@
 #pragma once
-// Rigid bodies of the FEM engine as constrained director frames (methods.md sec. 9; Betsch &
+// Rigid bodies of the FEM engine as constrained director frames (Betsch &
 // Steinmann 2001, "Constrained integration of rigid body dynamics", CMAME 191). A body is
 //   q = (phi, d1, d2, d3) in R^12   (centre of mass and three body-fixed unit directors)
 // with the constant mass matrix M = diag(m I, E1 I, E2 I, E3 I), E_i = integral of rho X_i^2 dV

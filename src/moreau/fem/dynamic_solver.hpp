@@ -1,5 +1,5 @@
 #pragma once
-// One time step of nonlinear elastodynamics (methods.md sec. 9), for the implicit midpoint rule
+// One time step of nonlinear elastodynamics, for the implicit midpoint rule
 // and the energy-momentum scheme, which differ only in the algorithmic internal force
 // (solid_element_step):
 //   u_n+1 - u_n = h/2 (v_n + v_n+1)

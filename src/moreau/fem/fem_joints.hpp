@@ -11,7 +11,7 @@
 //              end a and two directions e_b1, e_b2 normal to it fixed in end b (bodies or the
 //              world); a revolute joint to a solid holds every solid node on the hinge axis
 //              (spherical rows each), which leaves the rotation about the axis free
-// (Betsch & Steinmann 2001, sec. 5; methods.md sec. 9: joints as external constraints on q.)
+// (Betsch & Steinmann 2001, sec. 5: joints as external constraints on q.)
 #include <string>
 #include <vector>
 

@@ -1,12 +1,12 @@
 #pragma once
 // Incompressible Navier-Stokes on equal-order Q1Q1 elements (quad4 in 2D, hex8 in 3D) stabilized
-// by SUPG, PSPG and LSIC (methods.md sec. 10; Tezduyar 1992; Tezduyar & Osawa 2000). Find (u, p)
+// by SUPG, PSPG and LSIC (Tezduyar 1992; Tezduyar & Osawa 2000). Find (u, p)
 // with, for all (w, q),
 //   int w . rho (du/dt + (grad u) u - f) + int eps(w) : sigma(u, p) + int q div u
 //   + sum_e int [tau (u . grad w) + tau/rho grad q] . r_M + sum_e int nu_LSIC rho div w div u = 0,
 //   sigma = -p I + 2 mu eps(u),   r_M = rho (du/dt + (grad u) u - f) + grad p
 // (the viscous second derivatives of r_M vanish on affine cells and are dropped, as usual for Q1).
-// Stabilization parameters at each quadrature point (methods.md, with r = 2):
+// Stabilization parameters at each quadrature point (Tezduyar & Osawa 2000, with r = 2):
 //   tau = (tau1^-2 + tau2^-2 + tau3^-2)^-1/2,  tau1 = h_UGN / (2|u|) = 1 / sum_a |u . grad N_a|,
 //   tau2 = dt / 2 (transient only),  tau3 = h^2 / (4 nu) with h the cell's size (area^(1/2),
 //   volume^(1/3)),  tau_PSPG = tau_SUPG = tau,  nu_LSIC = tau |u|^2.

@@ -42,7 +42,7 @@ struct ElementOutput {
 void solid_element(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u,
                    bool with_tangent, ElementOutput& out);
 
-/// How the internal force of a time step is evaluated between u_n and u_n+1 (methods.md sec. 9).
+/// How the internal force of a time step is evaluated between u_n and u_n+1 (midpoint rule, or Gonzalez's discrete gradient).
 enum class StepRule {
   midpoint,         // f = f_int(u_n+1/2): the implicit midpoint rule
   energy_momentum,  // f = sum_qp w B(F_n+1/2)^T S_algo, Gonzalez's discrete gradient in E

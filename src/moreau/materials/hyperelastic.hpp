@@ -4,7 +4,7 @@
 // constraint engine. Each model gives the stored energy W per reference volume, the second
 // Piola-Kirchhoff stress S = dW/dE = 2 dW/dC and the material tangent CC = dS/dE.
 //
-// Compressible Neo-Hookean (methods.md sec. 9; e.g. Bonet & Wood, Nonlinear Continuum Mechanics, ch. 6):
+// Compressible Neo-Hookean (e.g. Bonet & Wood, Nonlinear Continuum Mechanics, ch. 6):
 //   W = mu/2 (tr C - 3) - mu ln J + lambda/2 (ln J)^2,       J = sqrt(det C)
 //   S = mu (I - C^-1) + lambda ln J C^-1
 //   CC_IJKL = lambda C^-1_IJ C^-1_KL + (mu - lambda ln J)(C^-1_IK C^-1_JL + C^-1_IL C^-1_JK)

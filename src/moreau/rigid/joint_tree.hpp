@@ -1,7 +1,7 @@
 #pragma once
 // Direct linear-time solve of the joints' equality rows on tree-structured joint graphs (Deul,
 // Kugelstadt, Weiler, Bender 2018, "Direct Position-Based Solver for Stiff Rods", after Baraff
-// 1996, "Linear-Time Dynamics using Lagrange Multipliers"); methods.md section 6.
+// 1996, "Linear-Time Dynamics using Lagrange Multipliers").
 //
 // Gauss-Seidel over joints propagates a correction one joint per pass, so a light chain holding a
 // heavy weight stretches like a soft spring. Here each XPBD iteration instead solves the whole
