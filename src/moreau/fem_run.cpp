@@ -1,3 +1,4 @@
+#include "moreau/solvers/thread_budget.hpp"
 #include "moreau/io/output_budget.hpp"
 #include "moreau/fem_run.hpp"
 
@@ -105,7 +106,11 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   check_output_budget(result.out_dir, steps, scene.output.every);
   double wall = 0;
   std::string status = "completed", message;
+  // The requested thread count is a maximum: cores that other processes keep busy are left to them
+  // (the coloured assembly gives the same bits for any count).
+  ThreadBudget budget(model.threads);
   for (long s = 0; s < steps; ++s) {
+    model.threads = budget.next_step_threads();
     const auto t0 = std::chrono::steady_clock::now();
     NewtonResult r;
     // A load or prescribed value that is not finite throws NumericalError naming itself and t.

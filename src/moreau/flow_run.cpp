@@ -8,6 +8,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "moreau/solvers/thread_budget.hpp"
 #include "moreau/io/output_budget.hpp"
 #include "moreau/fem/fem_output.hpp"
 #include "moreau/fem/flow_stepper.hpp"
@@ -169,7 +170,10 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
     ProgressBar progress(options.progress, duration);
     sample();
     check_output_budget(result.out_dir, steps, scene.output.every);
+    // The requested thread count is a maximum: cores that other processes keep busy are left to them.
+    ThreadBudget budget(model.threads);
     for (long s = 0; s < steps; ++s) {
+      model.threads = budget.next_step_threads();
       const VectorX start = x;
       const auto t0 = std::chrono::steady_clock::now();
       FlowSolveResult r;
