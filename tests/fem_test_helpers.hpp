@@ -2,8 +2,8 @@
 // Building FEM models in tests without a scene file.
 #include <random>
 
-#include "moreau/fem/fem_assembly.hpp"
-#include "moreau/fem/fem_model.hpp"
+#include "moreau/fem/solids/fem_assembly.hpp"
+#include "moreau/fem/solids/fem_model.hpp"
 
 namespace moreau::test {
 

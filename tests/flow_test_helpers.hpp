@@ -4,7 +4,7 @@
 #include <functional>
 #include <string>
 
-#include "moreau/fem/navier_stokes.hpp"
+#include "moreau/fem/flow/navier_stokes.hpp"
 
 namespace moreau::test {
 

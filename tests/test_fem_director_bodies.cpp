@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "moreau/fem/director_body.hpp"
+#include "moreau/fem/bodies/director_body.hpp"
 
 namespace moreau {
 namespace {
@@ -147,8 +147,8 @@ TEST(DirectorBodies, ForceAndTorqueAgainstClosedForms) {
 }  // namespace
 }  // namespace moreau
 
-#include "moreau/fem/fem_assembly.hpp"
-#include "moreau/fem/dynamic_solver.hpp"
+#include "moreau/fem/solids/fem_assembly.hpp"
+#include "moreau/fem/solids/dynamic_solver.hpp"
 
 namespace moreau {
 namespace {

@@ -6,7 +6,7 @@
 #include <cstdio>
 
 #include "fem_test_helpers.hpp"
-#include "moreau/fem/dynamic_solver.hpp"
+#include "moreau/fem/solids/dynamic_solver.hpp"
 
 namespace moreau {
 namespace {

@@ -8,7 +8,7 @@
 #include <cstdio>
 
 #include "fem_test_helpers.hpp"
-#include "moreau/fem/coupled_step.hpp"
+#include "moreau/fem/bodies/coupled_step.hpp"
 
 namespace moreau {
 namespace {

@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #include "fem_test_helpers.hpp"
-#include "moreau/fem/static_solver.hpp"
+#include "moreau/fem/solids/static_solver.hpp"
 
 namespace moreau {
 namespace {

@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "flow_test_helpers.hpp"
-#include "moreau/fem/flow_stepper.hpp"
+#include "moreau/fem/flow/flow_stepper.hpp"
 
 namespace moreau {
 namespace {

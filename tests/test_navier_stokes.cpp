@@ -9,7 +9,7 @@
 #include "data/ghia1982_re100.hpp"
 #include "fem_test_helpers.hpp"
 #include "flow_test_helpers.hpp"
-#include "moreau/fem/navier_stokes.hpp"
+#include "moreau/fem/flow/navier_stokes.hpp"
 
 namespace moreau {
 namespace {

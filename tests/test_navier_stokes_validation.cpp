@@ -7,8 +7,8 @@
 #include <cstdio>
 
 #include "flow_test_helpers.hpp"
-#include "moreau/fem/flow_problem.hpp"
-#include "moreau/fem/flow_stepper.hpp"
+#include "moreau/fem/flow/flow_problem.hpp"
+#include "moreau/fem/flow/flow_stepper.hpp"
 
 namespace moreau {
 namespace {

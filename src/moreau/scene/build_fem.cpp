@@ -7,7 +7,7 @@
 #include <limits>
 #include <memory>
 
-#include "moreau/fem/fem_assembly.hpp"
+#include "moreau/fem/solids/fem_assembly.hpp"
 #include "moreau/math/expression.hpp"
 #include "moreau/scene/fem_scene.hpp"
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "moreau/fem/fem_problem.hpp"
+#include "moreau/fem/scene/fem_problem.hpp"
 #include "moreau/math/expression.hpp"
 #include "moreau/scene/json_reader.hpp"
 

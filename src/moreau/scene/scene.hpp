@@ -5,7 +5,7 @@
 
 #include <memory>
 
-#include "moreau/fem/fem_problem.hpp"
+#include "moreau/fem/scene/fem_problem.hpp"
 #include "moreau/io/probes.hpp"
 #include "moreau/model/state.hpp"
 

@@ -1,0 +1,132 @@
+#include "moreau/fem/flow/flow_linear_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/IterativeLinearSolvers>
+#include <algorithm>
+#include <chrono>
+#include <unsupported/Eigen/IterativeSolvers>
+
+namespace moreau {
+
+namespace {
+
+// Eigen's iterative solvers recompute their preconditioner in every compute(A). This one only
+// applies an ILU that FlowLinearSolver computes when it chooses, so one ILU can serve several
+// Jacobians.
+class HeldIlut {
+ public:
+  HeldIlut() = default;
+  template <class M> HeldIlut& analyzePattern(const M&) { return *this; }
+  template <class M> HeldIlut& factorize(const M&) { return *this; }
+  template <class M> HeldIlut& compute(const M&) { return *this; }
+  template <class B> auto solve(const B& b) const { return ilu->solve(b); }
+  Eigen::ComputationInfo info() const { return Eigen::Success; }
+
+  const Eigen::IncompleteLUT<Real>* ilu = nullptr;
+};
+
+}  // namespace
+
+struct FlowLinearSolver::Iterative {
+  Eigen::IncompleteLUT<Real> ilu;
+  Eigen::GMRES<SparseMatrix, HeldIlut> gmres;
+  bool ilu_valid = false;        // the held ILU was computed without breaking down
+  bool fresh = false;            // ... from the Jacobian being solved
+  Index rows = -1, entries = -1; // the size and pattern it was computed for
+  int baseline_iterations = -1;  // of the first solve after the last refresh (-1: none yet)
+  int last_iterations = 0;
+  bool last_failed = false;
+};
+
+FlowLinearSolver::FlowLinearSolver(const FlowLinearSettings& settings) : settings_(settings) {
+  if (settings_.method == FlowLinearMethod::gmres) {
+    iterative_ = std::make_unique<Iterative>();
+    iterative_->ilu.setDroptol(settings_.drop_tolerance);
+    iterative_->ilu.setFillfactor(settings_.fill_factor);
+    iterative_->gmres.preconditioner().ilu = &iterative_->ilu;
+    iterative_->gmres.set_restart(settings_.restart);
+    iterative_->gmres.setTolerance(settings_.tolerance);
+    iterative_->gmres.setMaxIterations(settings_.max_iterations);
+  }
+}
+
+FlowLinearSolver::~FlowLinearSolver() = default;
+
+std::string FlowLinearSolver::name() const { return iterative_ ? "gmres+ilut" : "umfpack"; }
+
+bool FlowLinearSolver::refresh_preconditioner() {
+  Iterative& state = *iterative_;
+  const auto start = std::chrono::steady_clock::now();
+  // The AMD ordering depends on the pattern only: computed again only when that changed.
+  const bool same_pattern = state.rows == matrix_->rows() && state.entries == matrix_->nonZeros();
+  if (!same_pattern) state.ilu.analyzePattern(*matrix_);
+  state.ilu.factorize(*matrix_);
+  statistics_.preconditioner_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ++statistics_.preconditioner_updates;
+  state.rows = matrix_->rows();
+  state.entries = matrix_->nonZeros();
+  state.baseline_iterations = -1;
+  state.ilu_valid = state.ilu.info() == Eigen::Success;
+  state.fresh = state.ilu_valid;
+  if (!state.ilu_valid) {
+    failure_ = "the incomplete LU of the flow Jacobian broke down (a zero row: is every dof coupled?)";
+    return false;
+  }
+  return true;
+}
+
+bool FlowLinearSolver::needs_refresh() const {
+  const Iterative& state = *iterative_;
+  if (!state.ilu_valid || state.last_failed) return true;
+  if (state.rows != matrix_->rows() || state.entries != matrix_->nonZeros()) return true;
+  return state.baseline_iterations >= 0 &&
+         state.last_iterations > settings_.refresh_ratio * std::max(state.baseline_iterations, 10);
+}
+
+bool FlowLinearSolver::factorize(const SparseMatrix& J) {
+  failure_.clear();
+  matrix_ = &J;
+  if (!iterative_) {
+    if (lu_.factorize(J)) return true;
+    failure_ = "the flow Jacobian is singular (is the pressure fixed somewhere, or an outflow given?)";
+    return false;
+  }
+  Iterative& state = *iterative_;
+  state.fresh = false;
+  state.gmres.compute(J);  // takes J; the held ILU is left as it is
+  if (needs_refresh()) return refresh_preconditioner();
+  return true;
+}
+
+bool FlowLinearSolver::solve(const VectorX& b, VectorX& dx) {
+  if (!iterative_) {
+    dx = lu_.solve(b);
+    return true;
+  }
+  Iterative& state = *iterative_;
+  ++statistics_.solves;
+  for (;;) {
+    dx = state.gmres.solve(b);
+    const int iterations = static_cast<int>(state.gmres.iterations());
+    statistics_.iterations += iterations;
+    statistics_.max_iterations = std::max(statistics_.max_iterations, iterations);
+    state.last_iterations = iterations;
+    if (state.baseline_iterations < 0) state.baseline_iterations = iterations;
+    state.last_failed = state.gmres.info() != Eigen::Success;
+    if (!state.last_failed) return true;
+    // A lagged preconditioner may have gone stale: try once more with a fresh one.
+    if (!state.fresh) {
+      ++statistics_.retries;
+      if (!refresh_preconditioner()) return false;
+      continue;
+    }
+    failure_ = fmt::format(
+        "GMRES did not reach its tolerance {:.1e} in {} iterations (reached {:.2e}); raise "
+        "settings.linear_solver.max_iterations or fill_factor, lower drop_tolerance, or use \"type\": \"direct\"",
+        settings_.tolerance, iterations, state.gmres.error());
+    return false;
+  }
+}
+
+}  // namespace moreau

@@ -1,0 +1,144 @@
+#include <fmt/format.h>
+
+#include <fstream>
+
+#include "moreau/errors.hpp"
+#include "moreau/fem/flow/flow_problem.hpp"
+
+namespace moreau {
+
+std::vector<std::string> flow_probe_columns(const FlowProbe& p, int dim) {
+  static const char* axes[] = {".x", ".y", ".z"};
+  std::vector<std::string> columns;
+  switch (p.type) {
+    case FlowProbeType::point:
+      for (int k = 0; k < dim; ++k) columns.push_back(p.name + ".velocity" + axes[k]);
+      columns.push_back(p.name + ".pressure");
+      break;
+    case FlowProbeType::boundary_force:
+      for (int k = 0; k < dim; ++k) columns.push_back(p.name + ".force" + axes[k]);
+      if (p.coefficient_scale > 0)
+        for (int k = 0; k < dim; ++k) columns.push_back(p.name + ".coefficient" + axes[k]);
+      break;
+    case FlowProbeType::pressure_difference:
+    case FlowProbeType::kinetic_energy:
+    case FlowProbeType::newton_iterations: columns.push_back(p.name); break;
+    case FlowProbeType::line: break;
+  }
+  return columns;
+}
+
+Vec3 boundary_force(const NavierStokesModel& m, const VectorX& residual, const std::vector<Index>& nodes) {
+  Vec3 f = Vec3::Zero();
+  for (Index n : nodes)
+    for (int k = 0; k < m.dim(); ++k) f[k] -= residual[m.dof(n, k)];
+  return f;
+}
+
+Real mean_pressure(const NavierStokesModel& m, const VectorX& x) {
+  const int nodes = m.mesh.nodes_per_cell();
+  Real integral = 0, measure = 0;
+  for (Index e = 0; e < m.mesh.cell_count(); ++e)
+    for (int q = 0; q < m.points; ++q) {
+      const size_t qp = static_cast<size_t>(e) * m.points + q;
+      Real p = 0;
+      for (int a = 0; a < nodes; ++a) p += m.shape[qp * nodes + a] * x[m.dof(m.mesh.cell(e)[a], m.dim())];
+      integral += m.weight[qp] * p;
+      measure += m.weight[qp];
+    }
+  return integral / measure;
+}
+
+Real flow_kinetic_energy(const NavierStokesModel& m, const VectorX& x) {
+  const int nodes = m.mesh.nodes_per_cell();
+  Real energy = 0;
+  for (Index e = 0; e < m.mesh.cell_count(); ++e)
+    for (int q = 0; q < m.points; ++q) {
+      const size_t qp = static_cast<size_t>(e) * m.points + q;
+      Vec3 u = Vec3::Zero();
+      for (int a = 0; a < nodes; ++a)
+        for (int k = 0; k < m.dim(); ++k) u[k] += m.shape[qp * nodes + a] * x[m.dof(m.mesh.cell(e)[a], k)];
+      energy += 0.5 * m.density * m.weight[qp] * u.squaredNorm();
+    }
+  return energy;
+}
+
+std::vector<Vec3> nodal_vorticity(const NavierStokesModel& m, const VectorX& x) {
+  const int nodes = m.mesh.nodes_per_cell();
+  std::vector<Vec3> curl(m.mesh.node_count(), Vec3::Zero());
+  std::vector<Real> weight(m.mesh.node_count(), 0.0);
+  for (Index e = 0; e < m.mesh.cell_count(); ++e) {
+    const Index* c = m.mesh.cell(e);
+    Mat3 G = Mat3::Zero();  // cell mean of du_i/dx_j
+    Real measure = 0;
+    for (int q = 0; q < m.points; ++q) {
+      const size_t qp = static_cast<size_t>(e) * m.points + q;
+      for (int a = 0; a < nodes; ++a)
+        for (int i = 0; i < m.dim(); ++i) G.row(i) += m.weight[qp] * x[m.dof(c[a], i)] * m.gradient[qp * nodes + a].transpose();
+      measure += m.weight[qp];
+    }
+    const Vec3 w(G(2, 1) - G(1, 2), G(0, 2) - G(2, 0), G(1, 0) - G(0, 1));  // already weighted by the measure
+    for (int a = 0; a < nodes; ++a) {
+      curl[c[a]] += w;
+      weight[c[a]] += measure;
+    }
+  }
+  for (size_t n = 0; n < curl.size(); ++n)
+    if (weight[n] > 0) curl[n] /= weight[n];
+  return curl;
+}
+
+void evaluate_flow_probe(const FlowProbe& p, const FlowProblem& problem, const VectorX& x, const FlowTimeStep& step,
+                         int newton_iterations, std::vector<Real>& values) {
+  const NavierStokesModel& m = problem.model;
+  switch (p.type) {
+    case FlowProbeType::point: {
+      Vec3 u;
+      Real pressure;
+      if (!sample_flow(m, x, p.a, u, pressure)) throw InputError(fmt::format("probe '{}': the point is outside the fluid mesh", p.name));
+      for (int k = 0; k < m.dim(); ++k) values.push_back(u[k]);
+      values.push_back(pressure);
+      break;
+    }
+    case FlowProbeType::pressure_difference: {
+      Vec3 u;
+      Real pa, pb;
+      if (!sample_flow(m, x, p.a, u, pa) || !sample_flow(m, x, p.b, u, pb))
+        throw InputError(fmt::format("probe '{}': a point is outside the fluid mesh", p.name));
+      values.push_back(pa - pb);
+      break;
+    }
+    case FlowProbeType::boundary_force: {
+      VectorX R;
+      assemble_flow(m, x, step, R, nullptr);
+      const Vec3 f = boundary_force(m, R, p.nodes);
+      for (int k = 0; k < m.dim(); ++k) values.push_back(f[k]);
+      if (p.coefficient_scale > 0)
+        for (int k = 0; k < m.dim(); ++k) values.push_back(p.coefficient_scale * f[k]);
+      break;
+    }
+    case FlowProbeType::kinetic_energy: values.push_back(flow_kinetic_energy(m, x)); break;
+    case FlowProbeType::newton_iterations: values.push_back(newton_iterations); break;
+    case FlowProbeType::line: break;
+  }
+}
+
+void write_line_probe(const FlowProbe& p, const FlowProblem& problem, const VectorX& x, const std::string& path) {
+  const NavierStokesModel& m = problem.model;
+  std::ofstream out(path);
+  static const char* axes[] = {"x", "y", "z"};
+  for (int k = 0; k < m.dim(); ++k) out << axes[k] << ',';
+  for (int k = 0; k < m.dim(); ++k) out << "velocity." << axes[k] << ',';
+  out << "pressure\n";
+  for (int s = 0; s < p.samples; ++s) {
+    const Vec3 at = p.a + (p.b - p.a) * (static_cast<Real>(s) / (p.samples - 1));
+    Vec3 u;
+    Real pressure;
+    if (!sample_flow(m, x, at, u, pressure)) continue;  // a gap in the mesh (an obstacle): no row
+    for (int k = 0; k < m.dim(); ++k) out << fmt::format("{:.9g},", at[k]);
+    for (int k = 0; k < m.dim(); ++k) out << fmt::format("{:.17g},", u[k]);
+    out << fmt::format("{:.17g}\n", pressure);
+  }
+}
+
+}  // namespace moreau

@@ -1,0 +1,36 @@
+#include "moreau/fem/flow/flow_stepper.hpp"
+
+namespace moreau {
+
+FlowSolveResult FlowStepper::single(const NavierStokesModel& model, FlowIntegrator scheme, Real t, Real dt, VectorX& x,
+                                    FlowLinearSolver& solver, const FlowSolveSettings& settings) {
+  before_previous_ = previous_.size() ? previous_ : x;
+  previous_ = x;
+  last_ = {scheme, dt, &previous_, &before_previous_};
+  return solve_navier_stokes(model, t + dt, last_, x, solver, settings);
+}
+
+FlowSolveResult FlowStepper::step(const NavierStokesModel& model, Real t, Real dt, VectorX& x, FlowLinearSolver& solver,
+                                  const FlowSolveSettings& settings) {
+  if (integrator_ == FlowIntegrator::steady) {
+    last_ = {};
+    return solve_navier_stokes(model, t, last_, x, solver, settings);
+  }
+  const bool first = steps_++ == 0;
+  if (first && integrator_ == FlowIntegrator::midpoint) {
+    FlowSolveResult a = single(model, FlowIntegrator::backward_euler, t, dt / 2, x, solver, settings);
+    if (!a.converged) return a;
+    const FlowSolveResult b = single(model, FlowIntegrator::backward_euler, t + dt / 2, dt / 2, x, solver, settings);
+    a.converged = b.converged;
+    a.failure = b.failure;
+    a.iterations += b.iterations;
+    a.picard_iterations += b.picard_iterations;
+    a.assembly_s += b.assembly_s;
+    a.solve_s += b.solve_s;
+    return a;
+  }
+  const FlowIntegrator scheme = first && integrator_ == FlowIntegrator::bdf2 ? FlowIntegrator::backward_euler : integrator_;
+  return single(model, scheme, t, dt, x, solver, settings);
+}
+
+}  // namespace moreau

@@ -1,0 +1,312 @@
+#include "moreau/fem/flow/navier_stokes.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "moreau/errors.hpp"
+
+namespace moreau {
+
+namespace {
+
+constexpr int kMaxFields = 4;
+constexpr int kMaxCellDofs = kMaxFields * kMaxElementNodes;
+using CellVector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, kMaxCellDofs, 1>;
+using CellMatrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCellDofs, kMaxCellDofs>;
+
+// The time scheme's coefficients (navier_stokes.hpp): du/dt = (a0 u_{n+1} + a1 u_n + a2 u_{n-1}) * ct,
+// momentum terms at theta u_{n+1} + (1 - theta) u_n.
+struct SchemeCoefficients {
+  Real a0 = 0, a1 = 0, a2 = 0, theta = 1, ct = 0;
+};
+
+SchemeCoefficients scheme_coefficients(const FlowTimeStep& step) {
+  if (!step.transient()) return {};
+  const Real ct = 1 / step.dt;
+  switch (step.integrator) {
+    case FlowIntegrator::bdf2: return {1.5, -2, 0.5, 1, ct};
+    case FlowIntegrator::midpoint: return {1, -1, 0, 0.5, ct};
+    default: return {1, -1, 0, 1, ct};
+  }
+}
+
+// The residual and the Jacobian (tau frozen; `picard`: advecting velocity frozen too) of one
+// cell; local dofs node-major, fields (velocity components, pressure). x: u_{n+1}, x1: u_n, x2:
+// u_{n-1} (null when their coefficients vanish).
+void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x1, const Real* x2,
+               const SchemeCoefficients& c, bool with_jacobian, bool picard, CellVector& R, CellMatrix& J) {
+  const int dim = m.dim(), F = m.fields(), nodes = m.mesh.nodes_per_cell(), n = F * nodes;
+  const Real rho = m.density, mu = m.viscosity, nu = mu / rho, theta = c.theta;
+  R.setZero(n);
+  if (with_jacobian) J.setZero(n, n);
+  const Real h = m.cell_size[e];
+  Real adv[kMaxElementNodes];
+  for (int q = 0; q < m.points; ++q) {
+    const size_t qp = static_cast<size_t>(e) * m.points + q;
+    const Real w = m.weight[qp];
+    const Real* N = m.shape.data() + qp * nodes;
+    const Vec3* dN = m.gradient.data() + qp * nodes;
+    // u, G (G_ij = du_i/dx_j) and div u at theta; ut the time derivative; p and grad p the
+    // unknown pressure (at t_{n+theta}).
+    Vec3 u = Vec3::Zero(), ut = Vec3::Zero(), gp = Vec3::Zero();
+    Mat3 G = Mat3::Zero();
+    Real p = 0, div = 0;
+    for (int a = 0; a < nodes; ++a) {
+      for (int i = 0; i < dim; ++i) {
+        const Real now = x[a * F + i], before = x1 ? x1[a * F + i] : 0, older = x2 ? x2[a * F + i] : 0;
+        const Real at_theta = theta * now + (1 - theta) * before;
+        u[i] += N[a] * at_theta;
+        ut[i] += N[a] * c.ct * (c.a0 * now + c.a1 * before + c.a2 * older);
+        G.row(i) += at_theta * dN[a].transpose();
+        div += at_theta * dN[a][i];
+      }
+      p += N[a] * x[a * F + dim];
+      gp += x[a * F + dim] * dN[a];
+    }
+    // Strong momentum residual (gradients have zero components past dim, so 3-vector dot
+    // products below are the dim-dimensional ones).
+    const Vec3 r = rho * (ut + G * u - m.body_force) + gp;
+    Real s1 = 0;
+    for (int a = 0; a < nodes; ++a) {
+      adv[a] = u.dot(dN[a]);
+      s1 += std::abs(adv[a]);
+    }
+    // tau = (tau1^-2 + tau2^-2 + tau3^-2)^-1/2 with tau1^-1 = sum_a |u . grad N_a|, tau2 = dt/2
+    // (transient only: ct = 1/dt, 0 when steady), tau3 = h^2 / (4 nu).
+    const Real inv = s1 * s1 + 4 * c.ct * c.ct + std::pow(4 * nu / (h * h), 2);
+    const Real tau = m.fixed_tau > 0 ? m.fixed_tau : 1 / std::sqrt(inv);
+    const Real nu_lsic = m.fixed_tau > 0 ? m.fixed_lsic : tau * u.squaredNorm();
+    for (int a = 0; a < nodes; ++a) {
+      for (int i = 0; i < dim; ++i) {
+        Real viscous = 0;
+        for (int k = 0; k < dim; ++k) viscous += (G(i, k) + G(k, i)) * dN[a][k];
+        R[a * F + i] += w * (N[a] * (r[i] - gp[i]) + mu * viscous - p * dN[a][i] + tau * adv[a] * r[i] +
+                             nu_lsic * rho * dN[a][i] * div);
+      }
+      R[a * F + dim] += w * (N[a] * div + tau / rho * dN[a].dot(r));
+    }
+    if (!with_jacobian) continue;
+    // Newton: d u_theta / d u_{n+1} = theta, d ut / d u_{n+1} = a0 / dt. Picard drops the
+    // derivatives through the advecting velocity (the G N_b term and the SUPG test function's).
+    const Real frozen = picard ? 0 : 1;
+    for (int a = 0; a < nodes; ++a)
+      for (int b = 0; b < nodes; ++b) {
+        const Real mass_adv = c.a0 * c.ct * N[b] + theta * adv[b];
+        const Real grad_dot = dN[a].dot(dN[b]);
+        for (int j = 0; j < dim; ++j) {
+          // d r_i / d u_bj = rho ((a0 N_b / dt + theta u . grad N_b) delta_ij + theta G_ij N_b)
+          Vec3 dr = frozen * theta * rho * G.col(j) * N[b];
+          dr[j] += rho * mass_adv;
+          for (int i = 0; i < dim; ++i) {
+            Real v = N[a] * dr[i] + theta * mu * ((i == j ? grad_dot : 0) + dN[a][j] * dN[b][i]) + tau * adv[a] * dr[i] +
+                     frozen * theta * tau * N[b] * dN[a][j] * r[i] + theta * nu_lsic * rho * dN[a][i] * dN[b][j];
+            J(a * F + i, b * F + j) += w * v;
+          }
+          J(a * F + dim, b * F + j) += w * (theta * N[a] * dN[b][j] + tau / rho * dN[a].dot(dr));
+        }
+        for (int i = 0; i < dim; ++i) J(a * F + i, b * F + dim) += w * (-dN[a][i] * N[b] + tau * adv[a] * dN[b][i]);
+        J(a * F + dim, b * F + dim) += w * tau / rho * grad_dot;
+      }
+  }
+}
+
+}  // namespace
+
+void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeStep& step, VectorX& R, SparseMatrix* J,
+                   bool picard) {
+  const int F = m.fields(), nodes = m.mesh.nodes_per_cell(), n = F * nodes;
+  const SchemeCoefficients coefficients = scheme_coefficients(step);
+  if (step.transient() && !(step.dt > 0)) throw std::invalid_argument("assemble_flow: a transient step needs dt > 0");
+  if (step.transient() && !step.previous) throw std::invalid_argument("assemble_flow: a transient step needs x_n");
+  if (coefficients.a2 != 0 && !step.before_previous) throw std::invalid_argument("assemble_flow: BDF2 needs x_{n-1}");
+  const VectorX* x1 = step.transient() ? step.previous : nullptr;
+  const VectorX* x2 = coefficients.a2 != 0 ? step.before_previous : nullptr;
+  R.setZero(m.dof_count());
+  if (J) {
+    *J = m.pattern;
+    std::fill(J->valuePtr(), J->valuePtr() + J->nonZeros(), 0.0);
+  }
+  for_each_cell_by_colour(m.colours, m.threads, [&](Index e) {
+    CellVector Re;
+    CellMatrix Je;
+    Real local[kMaxCellDofs], local1[kMaxCellDofs], local2[kMaxCellDofs];
+    const Index* cell = m.mesh.cell(e);
+    for (int a = 0; a < nodes; ++a)
+      for (int f = 0; f < F; ++f) {
+        const Index d = m.dof(cell[a], f);
+        local[a * F + f] = x[d];
+        if (x1) local1[a * F + f] = (*x1)[d];
+        if (x2) local2[a * F + f] = (*x2)[d];
+      }
+    flow_cell(m, e, local, x1 ? local1 : nullptr, x2 ? local2 : nullptr, coefficients, J != nullptr, picard, Re, Je);
+    for (int a = 0; a < nodes; ++a)
+      for (int f = 0; f < F; ++f) R[m.dof(cell[a], f)] += Re[a * F + f];
+    if (!J) return;
+    const Index* slots = m.slots.data() + static_cast<size_t>(e) * n * n;
+    for (int r = 0; r < n; ++r)
+      for (int q = 0; q < n; ++q)
+        if (slots[r * n + q] >= 0) J->valuePtr()[slots[r * n + q]] += Je(r, q);
+  });
+}
+
+
+void setup_navier_stokes(NavierStokesModel& m) {
+  FemMesh& mesh = m.mesh;
+  if (mesh.element != ElementType::quad4 && mesh.element != ElementType::hex8)
+    throw InputError(fmt::format("the flow solver uses quad4 (2D) or hex8 (3D) cells, not {}", element_name(mesh.element)));
+  const int nodes = mesh.nodes_per_cell(), F = m.fields();
+  const auto rule = gauss_rule(mesh.element, 2);
+  m.points = static_cast<int>(rule.size());
+  const size_t qps = static_cast<size_t>(mesh.cell_count()) * rule.size();
+  m.weight.assign(qps, 0);
+  m.shape.assign(qps * nodes, 0);
+  m.gradient.assign(qps * nodes, Vec3::Zero());
+  m.cell_size.assign(mesh.cell_count(), 0);
+  Real N[kMaxElementNodes];
+  Vec3 dN[kMaxElementNodes];
+  for (Index e = 0; e < mesh.cell_count(); ++e) {
+    Real measure = 0;
+    for (size_t q = 0; q < rule.size(); ++q) {
+      shape_functions(mesh.element, rule[q].xi, N, dN);
+      const Mat3 Jac = cell_jacobian(mesh, e, dN);
+      const Real det = Jac.determinant();
+      if (!(det > 0)) throw InputError(fmt::format("flow mesh: cell {} is inverted or degenerate", e));
+      const Mat3 inv_t = Jac.inverse().transpose();
+      const size_t qp = static_cast<size_t>(e) * rule.size() + q;
+      m.weight[qp] = rule[q].weight * det;
+      measure += m.weight[qp];
+      for (int a = 0; a < nodes; ++a) {
+        m.shape[qp * nodes + a] = N[a];
+        Vec3 g = inv_t * dN[a];
+        for (int k = m.dim(); k < 3; ++k) g[k] = 0;
+        m.gradient[qp * nodes + a] = g;
+      }
+    }
+    m.cell_size[e] = std::pow(measure, 1.0 / m.dim());
+  }
+  m.colours = colour_cells(mesh);
+  m.free_count = number_free_dofs(m.dof_count(), m.prescribed, m.free_index);
+  std::vector<Eigen::Triplet<Real, int>> entries;
+  add_cell_couplings(mesh, 0, F, m.free_index, entries);
+  m.pattern.resize(m.free_count, m.free_count);
+  m.pattern.setFromTriplets(entries.begin(), entries.end());
+  m.pattern.makeCompressed();
+  m.slots = cell_slots(mesh, 0, F, m.free_index, m.pattern);
+}
+
+namespace {
+
+// Newton (or Picard) iterations from x until |R| <= stop * |R_0| (or the correction is below
+// tolerance * |x|), at most `limit` linear solves; false on failure, with result.failure set.
+// Divergence (|R| above 1e6 |R_0|, or not finite) stops early.
+bool iterate_flow(const NavierStokesModel& m, const FlowTimeStep& step, VectorX& x, FlowLinearSolver& solver, bool picard,
+                  Real stop, Real tolerance, int limit, FlowSolveResult& result, int& count) {
+  VectorX R;
+  SparseMatrix J;
+  Real first = 0;
+  for (int it = 0;; ++it) {
+    timed(result.assembly_s, [&] { assemble_flow(m, x, step, R, &J, picard); return 0; });
+    const Real norm = gather_free(m.free_index, m.free_count, R).norm();
+    result.residual_norms.push_back(norm);
+    if (it == 0) first = std::max(norm, Real(1e-300));
+    if (norm <= stop * first || norm == 0) return true;
+    const char* method = picard ? "Picard" : "Newton";
+    if (!std::isfinite(norm) || norm > 1e6 * first) {
+      result.failure = fmt::format("{} diverged (|R| = {:.3e}, first {:.3e})", method, norm, first);
+      return false;
+    }
+    if (it == limit) {
+      result.failure = fmt::format("{} did not converge in {} iterations (|R| = {:.3e}, first {:.3e})", method, limit, norm, first);
+      return false;
+    }
+    const VectorX rhs = -gather_free(m.free_index, m.free_count, R);
+    VectorX dx;
+    if (!timed(result.solve_s, [&] { return solver.factorize(J) && solver.solve(rhs, dx); })) {
+      result.failure = solver.failure();
+      return false;
+    }
+    ++count;
+    add_free(m.free_index, dx, x);
+    if (!picard && dx.norm() <= tolerance * gather_free(m.free_index, m.free_count, x).norm()) {
+      assemble_flow(m, x, step, R, nullptr);
+      result.residual_norms.push_back(gather_free(m.free_index, m.free_count, R).norm());
+      return true;
+    }
+  }
+}
+
+}  // namespace
+
+FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const FlowTimeStep& step, VectorX& x,
+                                    FlowLinearSolver& solver, const FlowSolveSettings& settings) {
+  FlowSolveResult result;
+  for (const PrescribedDof& p : m.prescribed) x[p.dof] = p.value(t);
+  const VectorX start = x;
+  if (iterate_flow(m, step, x, solver, false, settings.tolerance, settings.tolerance, settings.max_iterations, result,
+                   result.iterations)) {
+    result.converged = true;
+    return result;
+  }
+  if (!settings.picard_fallback) return result;
+  // Picard from the same start (robust, linearly convergent), then Newton from where it got.
+  const std::string newton_failure = result.failure;
+  x = start;
+  if (!iterate_flow(m, step, x, solver, true, settings.picard_reduction, settings.tolerance,
+                    settings.max_picard_iterations, result, result.picard_iterations) ||
+      !iterate_flow(m, step, x, solver, false, settings.tolerance * result.residual_norms.front() /
+                                                   std::max(result.residual_norms.back(), Real(1e-300)),
+                    settings.tolerance, settings.max_iterations, result, result.iterations)) {
+    result.failure = fmt::format("Newton failed ({}), and so did the Picard fallback: {}", newton_failure, result.failure);
+    return result;
+  }
+  result.converged = true;
+  return result;
+}
+
+bool sample_flow(const NavierStokesModel& m, const VectorX& x, const Vec3& point, Vec3& velocity, Real& pressure) {
+  const FemMesh& mesh = m.mesh;
+  const int nodes = mesh.nodes_per_cell();
+  Real N[kMaxElementNodes];
+  Vec3 dN[kMaxElementNodes];
+  for (Index e = 0; e < mesh.cell_count(); ++e) {
+    const Index* c = mesh.cell(e);
+    Vec3 lo = mesh.nodes[c[0]], hi = lo;
+    for (int a = 1; a < nodes; ++a) {
+      lo = lo.cwiseMin(mesh.nodes[c[a]]);
+      hi = hi.cwiseMax(mesh.nodes[c[a]]);
+    }
+    const Real slack = 1e-9 * (hi - lo).norm();
+    bool outside = false;
+    for (int k = 0; k < m.dim(); ++k) outside = outside || point[k] < lo[k] - slack || point[k] > hi[k] + slack;
+    if (outside) continue;
+    // Invert x(xi) = sum_a N_a(xi) X_a by Newton from the centre.
+    Vec3 xi = Vec3::Zero();
+    for (int it = 0; it < 30; ++it) {
+      shape_functions(mesh.element, xi, N, dN);
+      Vec3 xr = Vec3::Zero();
+      for (int a = 0; a < nodes; ++a) xr += N[a] * mesh.nodes[c[a]];
+      const Mat3 Jac = cell_jacobian(mesh, e, dN);
+      Vec3 d = Jac.inverse() * (point - xr);
+      for (int k = m.dim(); k < 3; ++k) d[k] = 0;
+      xi += d;
+      if (d.norm() < 1e-14) break;
+    }
+    bool inside = true;
+    for (int k = 0; k < m.dim(); ++k) inside = inside && std::abs(xi[k]) <= 1 + 1e-9;
+    if (!inside) continue;
+    shape_functions(mesh.element, xi, N, dN);
+    velocity.setZero();
+    pressure = 0;
+    for (int a = 0; a < nodes; ++a) {
+      for (int k = 0; k < m.dim(); ++k) velocity[k] += N[a] * x[m.dof(c[a], k)];
+      pressure += N[a] * x[m.dof(c[a], m.dim())];
+    }
+    return true;
+  }
+  return false;
+}
+
+}  // namespace moreau

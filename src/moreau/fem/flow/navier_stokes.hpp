@@ -1,0 +1,106 @@
+#pragma once
+// Incompressible Navier-Stokes on equal-order Q1Q1 elements (quad4 in 2D, hex8 in 3D) stabilized
+// by SUPG, PSPG and LSIC (Tezduyar 1992; Tezduyar & Osawa 2000). Find (u, p)
+// with, for all (w, q),
+//   int w . rho (du/dt + (grad u) u - f) + int eps(w) : sigma(u, p) + int q div u
+//   + sum_e int [tau (u . grad w) + tau/rho grad q] . r_M + sum_e int nu_LSIC rho div w div u = 0,
+//   sigma = -p I + 2 mu eps(u),   r_M = rho (du/dt + (grad u) u - f) + grad p
+// (the viscous second derivatives of r_M vanish on affine cells and are dropped, as usual for Q1).
+// Stabilization parameters at each quadrature point (Tezduyar & Osawa 2000, with r = 2):
+//   tau = (tau1^-2 + tau2^-2 + tau3^-2)^-1/2,  tau1 = h_UGN / (2|u|) = 1 / sum_a |u . grad N_a|,
+//   tau2 = dt / 2 (transient only),  tau3 = h^2 / (4 nu) with h the cell's size (area^(1/2),
+//   volume^(1/3)),  tau_PSPG = tau_SUPG = tau,  nu_LSIC = tau |u|^2.
+// Newton's method with tau frozen at the current iterate (every other dependence on u, including
+// the SUPG test function's, is linearised exactly); Picard (advecting velocity frozen too) as the
+// fallback when Newton fails. Outflow boundaries without conditions are "do nothing"
+// (sigma n = 0 in the symmetric-gradient form).
+// Time stepping (FlowIntegrator): du/dt ~ (a0 u_{n+1} + a1 u_n + a2 u_{n-1}) / dt, and the
+// momentum terms (convection, viscosity, SUPG) at u_theta = theta u_{n+1} + (1 - theta) u_n:
+//   backward Euler a = (1, -1, 0), theta = 1;    BDF2 a = (3/2, -2, 1/2), theta = 1;
+//   midpoint (Crank-Nicolson) a = (1, -1, 0), theta = 1/2.
+// The whole system, continuity and PSPG included, is evaluated at n + theta: with the midpoint
+// rule the pressure unknown is the pressure at t_{n+1/2} (the multiplier of the midpoint momentum
+// balance), and the PSPG-modified continuity holds at t_{n+1/2} too. (Continuity at n+1 with the
+// PSPG residual at n+1/2 mixes time levels in one equation and was measured first order.)
+#include <functional>
+#include <vector>
+
+#include "moreau/fem/core/fem_mesh.hpp"
+#include "moreau/fem/solids/fem_model.hpp"
+#include "moreau/fem/flow/flow_linear_solver.hpp"
+#include "moreau/fem/solids/static_solver.hpp"
+
+namespace moreau {
+
+enum class FlowIntegrator { steady, backward_euler, bdf2, midpoint };
+
+/// One step of a flow integrator: the scheme, dt and the previous states it needs.
+struct FlowTimeStep {
+  FlowIntegrator integrator = FlowIntegrator::steady;
+  Real dt = 0;                               // s; ignored when steady
+  const VectorX* previous = nullptr;         // x_n (every transient scheme)
+  const VectorX* before_previous = nullptr;  // x_{n-1} (BDF2)
+  bool transient() const { return integrator != FlowIntegrator::steady; }
+};
+
+/// The nonlinear solve's settings: Newton, then (if it fails) Picard from the same start until the
+/// residual has dropped by picard_reduction, then Newton again.
+struct FlowSolveSettings {
+  Real tolerance = 1e-8;        // relative to the first residual, or to |x| for the correction
+  int max_iterations = 25;      // Newton iterations per attempt
+  bool picard_fallback = true;
+  int max_picard_iterations = 100;
+  Real picard_reduction = 1e-3;
+};
+
+struct NavierStokesModel {
+  FemMesh mesh;                  // quad4 or hex8
+  Real density = 1;              // kg/m^3
+  Real viscosity = 0.01;         // dynamic, Pa s
+  Vec3 body_force = Vec3::Zero();  // per unit mass, m/s^2
+  int threads = 0;
+  // For tests of the Jacobian only: if > 0, tau and nu_LSIC take these values everywhere (the
+  // Jacobian treats them as constants, so with them fixed it is the exact derivative).
+  Real fixed_tau = 0, fixed_lsic = 0;
+  // Per node: dim velocity components, then the pressure.
+  std::vector<PrescribedDof> prescribed;
+  // Built by setup_navier_stokes:
+  int points = 0;
+  std::vector<Real> weight, shape;   // [cell][point], [cell][point][node]
+  std::vector<Vec3> gradient;        // [cell][point][node]
+  std::vector<Real> cell_size;       // m
+  std::vector<std::vector<Index>> colours;
+  std::vector<Index> free_index, slots;
+  Index free_count = 0;
+  SparseMatrix pattern;
+
+  int dim() const { return mesh.dim; }
+  int fields() const { return mesh.dim + 1; }
+  Index dof_count() const { return mesh.node_count() * fields(); }
+  Index dof(Index node, int field) const { return node * fields() + field; }
+};
+
+/// Quadrature, colours, the free dofs and the Jacobian's sparsity; after `prescribed` is set.
+void setup_navier_stokes(NavierStokesModel& model);
+
+/// The residual on all dofs at x (the state at t_{n+1}) and, if `J` is given, its Jacobian (tau
+/// frozen; `picard`: the advecting velocity frozen too) on the free dofs. Cells in parallel by
+/// colours, deterministic.
+void assemble_flow(const NavierStokesModel& model, const VectorX& x, const FlowTimeStep& step, VectorX& R,
+                   SparseMatrix* J, bool picard = false);
+
+struct FlowSolveResult : NewtonResult {
+  int picard_iterations = 0;
+};
+
+/// Solves one step (or the steady equations) starting from x, whose prescribed dofs are first set
+/// to their values at t. Converged when |R| <= tolerance * |R_0| or the correction is below
+/// tolerance * |x|.
+FlowSolveResult solve_navier_stokes(const NavierStokesModel& model, Real t, const FlowTimeStep& step, VectorX& x,
+                                    FlowLinearSolver& solver, const FlowSolveSettings& settings = {});
+
+/// Velocity and pressure at a point (the cell containing it is found by inverting the
+/// isoparametric map); false if the point is outside the mesh.
+bool sample_flow(const NavierStokesModel& model, const VectorX& x, const Vec3& point, Vec3& velocity, Real& pressure);
+
+}  // namespace moreau

@@ -1,0 +1,37 @@
+#pragma once
+// Frames of a FEM run: one .vtu per solid and output step with the deformed nodes, point arrays
+// displacement and velocity, and cell arrays cauchy_stress (the Cauchy stress
+// sigma = J^-1 F S F^T averaged over the cell's quadrature points, a symmetric tensor) and
+// von_mises (sqrt(3/2 s:s), s the deviator of that average). 2D solids are written in the xy plane.
+// Rigid bodies are written as their mesh carried by the directors, x = phi + sum_i ((X - c) . a_i)
+// d_i, with the velocity of each node.
+#include <string>
+#include <vector>
+
+#include "moreau/fem/scene/fem_problem.hpp"
+#include "moreau/io/vtk_writer.hpp"
+
+namespace moreau {
+
+/// The VTK cell type of an element type.
+VtkCell vtk_cell(ElementType type);
+
+/// Per cell of a solid: the 6 Cauchy stress components (xx, yy, zz, xy, yz, xz) and von Mises.
+void cell_stresses(const FemModel& model, const FemSolid& solid, const VectorX& u, std::vector<Real>& cauchy,
+                   std::vector<Real>& von_mises);
+
+class FemFrameWriter {
+ public:
+  FemFrameWriter(const FemProblem& problem, std::string out_dir, std::string scene_name)
+      : problem_(problem), model_(problem.model), out_dir_(std::move(out_dir)), scene_name_(std::move(scene_name)) {}
+  void write(const FemRunState& state);
+
+ private:
+  const FemProblem& problem_;
+  const FemModel& model_;
+  std::string out_dir_, scene_name_;
+  std::vector<PvdEntry> entries_;
+  int frame_ = 0;
+};
+
+}  // namespace moreau

@@ -1,0 +1,170 @@
+#include "moreau/fem/solids/dynamic_solver.hpp"
+
+#include <fmt/format.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <limits>
+
+#include "moreau/fem/solids/fem_assembly.hpp"
+
+namespace moreau {
+
+FemDynamicState initial_dynamic_state(const FemModel& model) {
+  FemDynamicState s;
+  s.u = VectorX::Zero(model.dof_count());
+  s.v = VectorX::Zero(model.dof_count());
+  apply_prescribed(model, 0, s.u);
+  apply_prescribed_velocity(model, 0, s.v);
+  return s;
+}
+
+// Predictor of a step. A solid without prescribed dofs moves its nodes by the rigid motion that
+// fits its velocities (the centre's velocity and w = I^-1 L about the centre, with the node
+// masses, the row sums of the consistent mass), rotating them by exp(h w). Moving along straight lines
+// instead (u0 + h v0) stretches a spinning body by (w h)^2 / 2, and the midpoint rule's end
+// velocities are not a rigid field even for a rigid motion, so adding h times their non-rigid
+// part stretches it by O(h^2 w^2); a stiff body answers either with stresses so large that
+// Newton's linearised rotations cannot recover. The elastic part of the motion is left to Newton.
+// Held solids use u0 + h v0.
+VectorX dynamic_step_predictor(const FemModel& model, const VectorX& u0, const VectorX& v0, Real h) {
+  VectorX u1 = u0 + h * v0;
+  if (model.dim != 3) return u1;
+  const std::vector<Real>& lumped = model.node_mass;
+  for (const FemSolid& s : model.solids) {
+    const Index first = s.node_begin, count = s.mesh.node_count();
+    bool held = false;
+    for (Index n = first; n < first + count && !held; ++n)
+      for (int k = 0; k < 3; ++k) held = held || model.free_index[model.dof(n, k)] < 0;
+    if (held) continue;
+    auto x = [&](Index n) { return Vec3(s.mesh.nodes[n - first] + u0.segment<3>(3 * n)); };
+    Real m = 0;
+    Vec3 c = Vec3::Zero(), p = Vec3::Zero();
+    for (Index n = first; n < first + count; ++n) {
+      m += lumped[n];
+      c += lumped[n] * x(n);
+      p += lumped[n] * v0.segment<3>(3 * n);
+    }
+    c /= m;
+    const Vec3 vc = p / m;
+    Vec3 L = Vec3::Zero();
+    Mat3 I = Mat3::Zero();
+    for (Index n = first; n < first + count; ++n) {
+      const Vec3 r = x(n) - c;
+      L += lumped[n] * r.cross(v0.segment<3>(3 * n) - vc);
+      I += lumped[n] * (r.squaredNorm() * Mat3::Identity() - r * r.transpose());
+    }
+    const Vec3 w = I.ldlt().solve(L);
+    const Real angle = h * w.norm();
+    const Mat3 R = angle > 0 ? Mat3(Eigen::AngleAxisd(angle, w.normalized())) : Mat3::Identity();
+    for (Index n = first; n < first + count; ++n) {
+      const Vec3 r = x(n) - c;
+      const Vec3 x1 = c + h * vc + R * r;
+      u1.segment<3>(3 * n) = x1 - s.mesh.nodes[n - first];
+    }
+  }
+  return u1;
+}
+
+NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepRule rule, Real h,
+                          FemDynamicState& state, SparseSymmetricSolver& solver, const NewtonSettings& settings) {
+  NewtonResult result;
+  const VectorX& u0 = state.u;
+  const VectorX& v0 = state.v;
+  const VectorX f_ext = external_forces(model, state.time + 0.5 * h);
+  VectorX u1 = dynamic_step_predictor(model, u0, v0, h);
+  apply_prescribed(model, state.time + h, u1);
+  VectorX f;
+  SparseMatrix K;
+  InternalForceResult cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, u1, rule, f, &K); });
+  if (!cells.valid) {
+    u1 = u0;
+    apply_prescribed(model, state.time + h, u1);
+    cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, u1, rule, f, &K); });
+    if (!cells.valid) {
+      result.failure = fmt::format("cell {} of '{}' is inverted at the start of the step", cells.invalid_cell,
+                                   cells.invalid_solid);
+      return result;
+    }
+  }
+  const Real c = 2 / (h * h);
+  Real last_correction = std::numeric_limits<Real>::infinity();  // |alpha du| / |u1 - u0| of the last step
+  for (;;) {
+    const VectorX inertia = mass_times(model, c * (u1 - u0) - (2 / h) * v0);
+    const VectorX R = free_part(model, inertia + f - f_ext);
+    const Real norm = R.norm();
+    result.residual_norms.push_back(norm);
+    const Real scale = std::max({inertia.norm(), f.norm(), f_ext.norm(), Real(1e-300)});
+    if (norm <= settings.tolerance * scale) break;
+    if (result.iterations == settings.max_iterations) {
+      result.failure = fmt::format("no convergence in {} Newton iterations (|R| = {:.3e}, scale {:.3e}); {}",
+                                   settings.max_iterations, norm, scale, newton_failure_advice(norm, scale, last_correction, settings));
+      return result;
+    }
+    // dR/du = 2/h^2 M + K_algo: the two matrices share the structure of model.pattern.
+    for (Index i = 0; i < K.nonZeros(); ++i) K.valuePtr()[i] += c * mass.valuePtr()[i];
+    if (!timed(result.solve_s, [&] { return solver.factorize(K, rule == StepRule::midpoint); })) {
+      result.failure = "the step's tangent is singular";
+      return result;
+    }
+    const VectorX du = timed(result.solve_s, [&] { return solver.solve(-R); });
+    ++result.iterations;
+    Real alpha = 1;
+    VectorX trial;
+    for (int halving = 0;; ++halving, alpha *= 0.5) {
+      trial = u1;
+      add_free_part(model, alpha * du, trial);
+      cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, trial, rule, f, &K); });
+      if (cells.valid) break;
+      if (halving == settings.max_halvings) {
+        result.failure = fmt::format("every Newton correction inverts cell {} of '{}'", cells.invalid_cell,
+                                     cells.invalid_solid);
+        return result;
+      }
+    }
+    u1 = trial;
+    last_correction = alpha * du.norm() / std::max(free_part(model, u1 - u0).norm(), Real(1e-300));
+    // The correction criterion is for a residual on its round-off floor: it counts only once
+    // the residual has stopped falling (a stiff body's tiny corrections with a large residual
+    // are not convergence).
+    const bool stagnating = result.residual_norms.size() >= 2 &&
+                            norm > 0.5 * result.residual_norms[result.residual_norms.size() - 2];
+    if (stagnating && last_correction <= settings.tolerance) {
+      const VectorX inertia_end = mass_times(model, c * (u1 - u0) - (2 / h) * v0);
+      result.residual_norms.push_back(free_part(model, inertia_end + f - f_ext).norm());
+      break;
+    }
+  }
+  result.converged = true;
+  result.energy = cells.energy;
+  state.v = (2 / h) * (u1 - u0) - v0;
+  // The recursion above would carry an error in a prescribed dof's velocity forever (a ramp
+  // u = c t started from rest alternates 2c, 0, 2c, ...); prescribed dofs take the derivative of
+  // their values instead.
+  apply_prescribed_velocity(model, state.time + h, state.v);
+  state.u = u1;
+  state.time += h;
+  state.energy = cells.energy;
+  return result;
+}
+
+Real kinetic_energy(const FemModel& model, const VectorX& v) { return 0.5 * v.dot(mass_times(model, v)); }
+
+void momenta(const FemModel& model, const VectorX& u, const VectorX& v, Vec3& linear, Vec3& angular) {
+  // p = sum_a (M v)_a and L = sum_a x_a x (M v)_a: the consistent mass couples a node's position
+  // with its neighbours' velocities, and (M v)_a collects exactly those products.
+  const VectorX Mv = mass_times(model, v);
+  linear.setZero();
+  angular.setZero();
+  for (Index n = 0; n < model.node_count; ++n) {
+    Vec3 x = model.reference_position(n), p = Vec3::Zero();
+    for (int k = 0; k < model.dim; ++k) {
+      x[k] += u[model.dof(n, k)];
+      p[k] = Mv[model.dof(n, k)];
+    }
+    linear += p;
+    angular += x.cross(p);
+  }
+}
+
+}  // namespace moreau

@@ -1,0 +1,181 @@
+#include "moreau/fem/solids/fem_assembly.hpp"
+
+#include <functional>
+
+namespace moreau {
+
+namespace {
+
+// For every cell of solid s: gathers its nodal values of u (and of u_next, if given), lets
+// `compute(e, local_u, local_u_next, out)` fill the element output and `visit(e, out)` scatter it,
+// by colours (for_each_cell_by_colour: race-free and deterministic).
+template <class Compute, class Visit>
+void for_each_cell(const FemModel& model, const FemSolid& s, const VectorX& u, const VectorX* u_next, Compute compute,
+                   Visit visit) {
+  const int dim = model.dim, nodes = s.mesh.nodes_per_cell();
+  for_each_cell_by_colour(s.colours, model.threads, [&](Index e) {
+    ElementOutput out;
+    Real local_u[kMaxElementDofs], local_next[kMaxElementDofs];
+    const Index* c = s.mesh.cell(e);
+    for (int a = 0; a < nodes; ++a)
+      for (int k = 0; k < dim; ++k) {
+        const Index d = model.dof(s.node_begin + c[a], k);
+        local_u[a * dim + k] = u[d];
+        if (u_next) local_next[a * dim + k] = (*u_next)[d];
+      }
+    compute(e, local_u, local_next, out);
+    visit(e, out);
+  });
+}
+
+// Scatters cell outputs into the global force, tangent values and per-cell energies.
+InternalForceResult scatter_cells(const FemModel& model, const VectorX& u, const VectorX* u_next, bool with_tangent,
+                                  VectorX& force, SparseMatrix* tangent,
+                                  const std::function<void(const FemSolid&, Index, const Real*, const Real*, ElementOutput&)>& compute) {
+  InternalForceResult result;
+  force.setZero(model.dof_count());
+  if (tangent) {
+    *tangent = model.pattern;
+    std::fill(tangent->valuePtr(), tangent->valuePtr() + tangent->nonZeros(), 0.0);
+  }
+  Real* values = with_tangent && tangent ? tangent->valuePtr() : nullptr;
+  const int dim = model.dim;
+  for (const FemSolid& s : model.solids) {
+    const int nodes = s.mesh.nodes_per_cell(), n = nodes * dim;
+    std::vector<Real> cell_energy(s.mesh.cell_count(), 0.0);
+    std::vector<char> cell_valid(s.mesh.cell_count(), 1);
+    for_each_cell(
+        model, s, u, u_next,
+        [&](Index e, const Real* a, const Real* b, ElementOutput& out) { compute(s, e, a, b, out); },
+        [&](Index e, const ElementOutput& out) {
+          cell_energy[e] = out.energy;
+          if (!out.valid) {
+            cell_valid[e] = 0;
+            return;
+          }
+          const Index* c = s.mesh.cell(e);
+          for (int a = 0; a < nodes; ++a)
+            for (int k = 0; k < dim; ++k) force[model.dof(s.node_begin + c[a], k)] += out.force[a * dim + k];
+          if (!values) return;
+          const Index* slots = s.slots.data() + static_cast<size_t>(e) * n * n;
+          for (int r = 0; r < n; ++r)
+            for (int q = 0; q < n; ++q)
+              if (slots[r * n + q] >= 0) values[slots[r * n + q]] += out.tangent(r, q);
+        });
+    for (Index e = 0; e < s.mesh.cell_count(); ++e) {
+      result.energy += cell_energy[e];
+      if (!cell_valid[e] && result.valid) {
+        result.valid = false;
+        result.invalid_solid = s.name;
+        result.invalid_cell = e;
+      }
+    }
+  }
+  return result;
+}
+
+}  // namespace
+
+InternalForceResult assemble_internal_forces(const FemModel& model, const VectorX& u, VectorX& force,
+                                             SparseMatrix* tangent) {
+  const bool with_tangent = tangent != nullptr;
+  return scatter_cells(model, u, nullptr, with_tangent, force, tangent,
+                       [&](const FemSolid& s, Index e, const Real* local_u, const Real*, ElementOutput& out) {
+                         solid_element(s.material, s.cell_quadrature(e), model.dim, local_u, with_tangent, out);
+                       });
+}
+
+InternalForceResult assemble_step_forces(const FemModel& model, const VectorX& u_n, const VectorX& u_next,
+                                         StepRule rule, VectorX& force, SparseMatrix* tangent) {
+  const bool with_tangent = tangent != nullptr;
+  return scatter_cells(model, u_n, &u_next, with_tangent, force, tangent,
+                       [&](const FemSolid& s, Index e, const Real* a, const Real* b, ElementOutput& out) {
+                         solid_element_step(s.material, s.cell_quadrature(e), model.dim, a, b, rule, with_tangent, out);
+                       });
+}
+
+VectorX tangent_times(const FemModel& model, const VectorX& u, const VectorX& direction) {
+  VectorX product = VectorX::Zero(model.dof_count());
+  const int dim = model.dim;
+  for (const FemSolid& s : model.solids) {
+    const int nodes = s.mesh.nodes_per_cell();
+    for_each_cell(
+        model, s, u, nullptr,
+        [&](Index e, const Real* local_u, const Real*, ElementOutput& out) {
+          solid_element(s.material, s.cell_quadrature(e), dim, local_u, true, out);
+        },
+        [&](Index e, const ElementOutput& out) {
+          if (!out.valid) return;
+          const Index* c = s.mesh.cell(e);
+          ElementVector d(nodes * dim);
+          for (int a = 0; a < nodes; ++a)
+            for (int k = 0; k < dim; ++k) d[a * dim + k] = direction[model.dof(s.node_begin + c[a], k)];
+          const ElementVector Kd = out.tangent * d;
+          for (int a = 0; a < nodes; ++a)
+            for (int k = 0; k < dim; ++k) product[model.dof(s.node_begin + c[a], k)] += Kd[a * dim + k];
+        });
+  }
+  return product;
+}
+
+SparseMatrix assemble_mass_matrix(const FemModel& model) {
+  SparseMatrix M = model.pattern;
+  std::fill(M.valuePtr(), M.valuePtr() + M.nonZeros(), 0.0);
+  const int dim = model.dim;
+  for (const FemSolid& s : model.solids) {
+    const int nodes = s.mesh.nodes_per_cell(), n = nodes * dim;
+    for (Index e = 0; e < s.mesh.cell_count(); ++e) {
+      const Real* Me = s.cell_mass.data() + static_cast<size_t>(e) * nodes * nodes;
+      const Index* slots = s.slots.data() + static_cast<size_t>(e) * n * n;
+      for (int a = 0; a < nodes; ++a)
+        for (int b = 0; b < nodes; ++b)
+          for (int k = 0; k < dim; ++k) {
+            const Index slot = slots[(a * dim + k) * n + b * dim + k];
+            if (slot >= 0) M.valuePtr()[slot] += Me[a * nodes + b];
+          }
+    }
+  }
+  return M;
+}
+
+VectorX mass_times(const FemModel& model, const VectorX& x) {
+  VectorX y = VectorX::Zero(model.dof_count());
+  const int dim = model.dim;
+  for (const FemSolid& s : model.solids) {
+    const int nodes = s.mesh.nodes_per_cell();
+    for (Index e = 0; e < s.mesh.cell_count(); ++e) {
+      const Real* Me = s.cell_mass.data() + static_cast<size_t>(e) * nodes * nodes;
+      const Index* c = s.mesh.cell(e);
+      for (int a = 0; a < nodes; ++a)
+        for (int b = 0; b < nodes; ++b)
+          for (int k = 0; k < dim; ++k)
+            y[model.dof(s.node_begin + c[a], k)] += Me[a * nodes + b] * x[model.dof(s.node_begin + c[b], k)];
+    }
+  }
+  return y;
+}
+
+VectorX external_forces(const FemModel& model, Real t) {
+  VectorX f = VectorX::Zero(model.dof_count());
+  for (const NodalLoad& load : model.loads) {
+    const Vec3 value = load.value(t);
+    for (size_t i = 0; i < load.nodes.size(); ++i)
+      for (int k = 0; k < model.dim; ++k) f[model.dof(load.nodes[i], k)] += load.weights[i] * value[k];
+  }
+  return f;
+}
+
+void apply_prescribed(const FemModel& model, Real t, VectorX& u) {
+  for (const PrescribedDof& p : model.prescribed) u[p.dof] = p.value(t);
+}
+
+void apply_prescribed_velocity(const FemModel& model, Real t, VectorX& v) {
+  const Real dt = 1e-6;
+  for (const PrescribedDof& p : model.prescribed) v[p.dof] = (p.value(t + dt) - p.value(t - dt)) / (2 * dt);
+}
+
+VectorX free_part(const FemModel& model, const VectorX& full) { return gather_free(model.free_index, model.free_count, full); }
+
+void add_free_part(const FemModel& model, const VectorX& free, VectorX& full) { add_free(model.free_index, free, full); }
+
+}  // namespace moreau
