@@ -14,7 +14,7 @@
 //   (k_B/2) int kappa^2 dA we take the hinge energy (k_B/2) l^2/(A_A + A_B) (theta - theta0)^2, so
 //   alpha = (A_A + A_B) / (k_B l^2).
 //   Calibration: a sheet rolled onto a cylinder of radius R about a mesh-edge direction then has
-//   energy (k_B/2) A/R^2 (tests/test_bending_models.cpp). The discrete-shells weight
+//   energy (k_B/2) A/R^2 (tests/constraints/test_bending_models.cpp). The discrete-shells weight
 //   3 l^2/(A_A + A_B) (Grinspun et al. 2003) makes that 3x too stiff: only one edge family in
 //   three carries a cylindrical bend, so the curvature lives in a third of the area. Hinge
 //   bending stays anisotropic: on moreau's grid sheet, rolling about a diagonal is 1.5x stiffer.

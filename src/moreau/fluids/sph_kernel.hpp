@@ -12,7 +12,7 @@
 // The same kernel serves density and its gradient, so the density constraint's gradient is the
 // exact derivative of its value (PBF's poly6/spiky pair is not). With h = 4 r (r the particle
 // radius, lattice spacing 2 r) a particle of a regular lattice sees about 30 neighbours and
-// sum_j V_j W_ij = 1 to within 1 % (tests/test_fluids.cpp measures it).
+// sum_j V_j W_ij = 1 to within 1 % (tests/fluids/test_fluids.cpp measures it).
 #include <cmath>
 
 #include "moreau/math/types.hpp"
