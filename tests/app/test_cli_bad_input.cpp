@@ -4,6 +4,7 @@
 // output places, a non-finite load.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -84,6 +85,16 @@ TEST(CliBadInput, AMisspeltKeyIsNamedBeforeTheKeyItWasMeantToBe) {
   expect_bad_input(scene("radius", R"({"name": "s", "kind": "rigid_body", "density": 1000, "position": [0, 1, 0],
                                        "shape": {"type": "sphere", "raduis": 0.1}})", ""),
                    "objects[0].shape.raduis: unknown key (did you mean 'radius', which is required here?)");
+  // A correct key beside the missing one is not called unknown (min and max are two letters apart).
+  expect_bad_input(scene("sibling", R"({"name": "floor", "kind": "collider", "shape": {"type": "box", "size": [1, 1, 1]}})", ""),
+                   "objects[0].shape.center: missing required key");
+  {
+    const std::string path = dir + "/min.json";
+    std::ofstream(path) << R"({"name": "min", "objects": [{"name": "b", "kind": "soft_body",
+      "mesh": {"type": "box", "max": [1, 1, 1], "cells": [2, 2, 2]},
+      "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000}}]})";
+    expect_bad_input("check " + path, "objects[0].mesh.min: missing required key");
+  }
   expect_bad_input(scene("optional", body, R"({"name": "top", "type": "extent", "object": "b", "axis": "y", "quantity": "max", "objcet": 1})"),
                    "probes[0].objcet: unknown key (did you mean 'object'?)");
   expect_bad_input(fmt::format("check {} --set settings.substep=4", kShowcase), "settings.substep: unknown key (did you mean 'substeps'?)");
@@ -143,6 +154,19 @@ TEST(CliBadInput, RunsThatCannotFinishOrFitOnDiskAreRefused) {
   EXPECT_FALSE(fs::exists(out)) << "the first frame must be removed";
   expect_bad_input(fmt::format("run {} --out {} --quiet --duration 1e300", kShowcase, out), "more than any run can take");
   EXPECT_FALSE(fs::exists(out));
+  // Without frames the probe rows alone are projected (they were still buffered, and counted 0).
+  expect_bad_input(fmt::format("run {} --out {} --quiet --duration 1e12 --set settings.output.formats=[]", kShowcase, out),
+                   "the run would write");
+  // A file of an earlier run in the output directory is neither counted nor removed.
+  fs::create_directories(out);
+  std::ofstream(out + "/rigid_poses.csv") << "an earlier run's file\n";
+  fs::last_write_time(out + "/rigid_poses.csv", fs::file_time_type::clock::now() - std::chrono::hours(1));
+  std::ofstream(out + "/notes.txt") << "the user's file\n";
+  expect_bad_input(fmt::format("run {} --out {} --quiet --duration 1e12 --set settings.output.formats=[]", kShowcase, out),
+                   "the run would write");
+  EXPECT_TRUE(fs::exists(out + "/rigid_poses.csv"));
+  EXPECT_TRUE(fs::exists(out + "/notes.txt"));
+  EXPECT_FALSE(fs::exists(out + "/probes.csv"));
 }
 
 TEST(CliBadInput, ResettingAWholeObjectWithSetIsRefused) {

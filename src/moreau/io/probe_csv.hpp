@@ -23,6 +23,8 @@ class ProbeCsv {
   ProbeCsv(const std::string& dir, const std::vector<std::string>& columns);
   /// One row: the time (9 significant digits) and the values (17, round-trip exact).
   void write_row(double time, const std::vector<Real>& values);
+  /// Writes what is buffered (for measuring the file's size).
+  void flush() { out_.flush(); }
 
  private:
   std::ofstream out_;

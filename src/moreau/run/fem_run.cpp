@@ -2,6 +2,7 @@
 #include "moreau/io/output_budget.hpp"
 #include "moreau/run/fem_run.hpp"
 
+#include <filesystem>
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -63,6 +64,7 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   const Real dt = scene.model.settings.dt;
 
   const long steps = run_step_count(duration, dt);
+  const auto started = std::filesystem::file_time_type::clock::now();
   RunResult result;
   result.out_dir = run_output_directory(options.out_dir, scene.name);
   FemFrameWriter frames(problem, result.out_dir, scene.name);
@@ -103,12 +105,14 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   SparseLuSolver coupled;
   ProgressBar progress(options.progress, duration);
   sample();
-  check_output_budget(result.out_dir, steps, scene.output.every);
+  csv.flush();
+  check_output_budget(result.out_dir, steps, scene.output.every, started);
   double wall = 0;
   std::string status = "completed", message;
   // The requested thread count is a maximum: cores that other processes keep busy are left to them
   // (the coloured assembly gives the same bits for any count).
   ThreadBudget budget(model.threads);
+  const int requested_threads = model.threads;
   for (long s = 0; s < steps; ++s) {
     model.threads = budget.next_step_threads();
     const auto t0 = std::chrono::steady_clock::now();
@@ -166,6 +170,7 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
     progress.update(state.time, result.steps, wall);
   }
   progress.finish();
+  model.threads = requested_threads;
   result.wall_time_s = wall;
 
   nlohmann::json j =

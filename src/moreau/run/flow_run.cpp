@@ -1,6 +1,7 @@
 // The run loop of a FEM scene with a "fluid": a steady solve (with viscosity continuation) or
 // time steps of the chosen integrator, writing probes.csv, line_<name>.csv, frames with velocity,
 // pressure and vorticity, and run.json.
+#include <filesystem>
 #include <fmt/format.h>
 #include <omp.h>
 
@@ -104,6 +105,7 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
   const double duration = options.duration.value_or(scene.duration);
 
   const long steps = steady ? 1 : run_step_count(duration, dt);
+  const auto started = std::filesystem::file_time_type::clock::now();
   RunResult result;
   result.out_dir = run_output_directory(options.out_dir, scene.name);
   FlowFrameWriter frames(problem, result.out_dir, scene.name);
@@ -169,9 +171,11 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
   } else {
     ProgressBar progress(options.progress, duration);
     sample();
-    check_output_budget(result.out_dir, steps, scene.output.every);
+    csv.flush();
+  check_output_budget(result.out_dir, steps, scene.output.every, started);
     // The requested thread count is a maximum: cores that other processes keep busy are left to them.
     ThreadBudget budget(model.threads);
+    const int requested_threads = model.threads;
     for (long s = 0; s < steps; ++s) {
       model.threads = budget.next_step_threads();
       const VectorX start = x;
@@ -200,6 +204,7 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
       progress.update(time, result.steps, wall);
     }
     progress.finish();
+    model.threads = requested_threads;
   }
   for (const FlowProbe& p : problem.probes)
     if (p.type == FlowProbeType::line) write_line_probe(p, problem, x, result.out_dir + "/line_" + safe_file_name(p.name) + ".csv");

@@ -159,6 +159,7 @@ RunResult Simulation::run(const RunOptions& options) {
   const int threads = solver_thread_count(model);
 
   const long steps = run_step_count(duration, model.settings.dt);
+  const auto started = std::filesystem::file_time_type::clock::now();
   RunResult result;
   result.out_dir = run_output_directory(options.out_dir, scene.name);
   const fs::path dir(result.out_dir);
@@ -177,11 +178,13 @@ RunResult Simulation::run(const RunOptions& options) {
   StageTimer timer;
   ProgressBar progress(options.progress, duration);
   sample();
-  check_output_budget(result.out_dir, steps, scene.output.every);
+  csv.flush();
+  check_output_budget(result.out_dir, steps, scene.output.every, started);
   double wall = 0;
   std::string status = "completed", message;
   // The requested thread count is a maximum: cores that other processes keep busy are left to them.
   ThreadBudget budget(model.settings.threads);
+  const int requested_threads = model.settings.threads;
   try {
     for (long s = 0; s < steps; ++s) {
       model.settings.threads = budget.next_step_threads();
@@ -197,6 +200,7 @@ RunResult Simulation::run(const RunOptions& options) {
     message = e.what();
   }
   progress.finish();
+  model.settings.threads = requested_threads;
   if (state.fluid.cfl_violations > 0)
     fmt::print(stderr,
                "warning: the fluid CFL number max|v| h / (2 r) reached {:.2f} (limit {}) in {} steps; the time step is "

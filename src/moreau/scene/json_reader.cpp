@@ -73,6 +73,26 @@ std::string closest_key(const std::string& key, const std::vector<std::string>& 
   return best;
 }
 
+namespace {
+// True if a and b differ by one substitution, insertion, deletion or swap of adjacent letters.
+bool one_edit_apart(const std::string& a, const std::string& b) {
+  if (a == b) return false;
+  if (a.size() == b.size()) {
+    std::vector<size_t> diff;
+    for (size_t i = 0; i < a.size(); ++i)
+      if (a[i] != b[i]) diff.push_back(i);
+    if (diff.size() == 1) return true;
+    return diff.size() == 2 && diff[1] == diff[0] + 1 && a[diff[0]] == b[diff[1]] && a[diff[1]] == b[diff[0]];
+  }
+  const std::string& longer = a.size() > b.size() ? a : b;
+  const std::string& shorter = a.size() > b.size() ? b : a;
+  if (longer.size() != shorter.size() + 1) return false;
+  size_t i = 0;
+  while (i < shorter.size() && shorter[i] == longer[i]) ++i;
+  return shorter.compare(i, std::string::npos, longer, i + 1, std::string::npos) == 0;
+}
+}  // namespace
+
 void JsonObject::fail_unknown(const std::string& key, const std::string& missing) const {
   std::vector<std::string> allowed = expected_;
   for (const std::string& k : known_)
@@ -94,10 +114,14 @@ const json& JsonObject::require(const std::string& key) const {
     // nothing has read) is the user's real mistake: name it first.
     for (auto other = j_->begin(); other != j_->end(); ++other) {
       if (known_.count(other.key())) continue;
-      const bool outside = expected_.empty()
-                               ? closest_key(other.key(), {key}) == key
-                               : std::find(expected_.begin(), expected_.end(), other.key()) == expected_.end();
-      if (outside) fail_unknown(other.key(), key);
+      if (expected_.empty()) {
+        // Without a declared list the other key may be one still to be read: only a near-miss
+        // spelling of this one (a letter changed, added, dropped or two swapped) is named.
+        if (key.size() >= 4 && one_edit_apart(other.key(), key))
+          fail(other.key(), fmt::format("unknown key (did you mean '{}', which is required here?)", key));
+      } else if (std::find(expected_.begin(), expected_.end(), other.key()) == expected_.end()) {
+        fail_unknown(other.key(), key);
+      }
     }
     fail(key, "missing required key");
   }

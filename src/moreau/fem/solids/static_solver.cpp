@@ -12,10 +12,15 @@ namespace moreau {
 
 std::string newton_failure_advice(Real residual, Real scale, Real correction, const NewtonSettings& settings) {
   const Real relative = residual / scale;
-  if (relative <= 1e3 * settings.tolerance || correction <= 1e-8)
+  if (relative <= 1e3 * settings.tolerance || correction <= 1e-8) {
+    // A tolerance above the last correction converges by the correction criterion; else one
+    // above the residual's relative size by the residual test.
+    const Real needed = correction <= 1e-8 ? correction : relative;
+    const Real suggested = std::min(Real(1e-2), std::pow(10.0, std::ceil(std::log10(2 * needed))));
     return fmt::format("the residual is {:.1e} of its scale, close to its round-off floor: raise settings.newton.tolerance "
                        "(now {:.0e}) to about {:.0e}",
-                       relative, settings.tolerance, std::pow(10.0, std::ceil(std::log10(2 * relative))));
+                       relative, settings.tolerance, suggested);
+  }
   return fmt::format("take smaller steps (a smaller settings.dt; a static run applies its loads in steps of dt) or raise "
                      "settings.newton.max_iterations (now {})",
                      settings.max_iterations);
@@ -84,13 +89,14 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
     const Real slope = r.dot(du);
     Real alpha = 2;
     VectorX trial;
-    bool accepted = false;
+    bool accepted = false, any_valid = false;
     for (int halving = 0; halving <= settings.max_halvings && !accepted; ++halving) {
       alpha *= 0.5;
       trial = u;
       add_free_part(model, alpha * du, trial);
       const InternalForceResult trial_state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, trial, trial_force, nullptr); });
       if (!trial_state.valid) continue;
+      any_valid = true;
       const Real trial_norm = free_part(model, trial_force - f_ext).norm();
       const Real trial_potential = trial_state.energy - f_ext.dot(trial);
       accepted = trial_norm < norm || trial_potential <= potential + 1e-4 * alpha * slope;
@@ -100,7 +106,7 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
       // incompressible body): no step reduces it, and Newton's correction is as small as the
       // noise. A correction below tolerance * |u| is convergence by the correction criterion.
       const Real correction = du.norm() / std::max(free_part(model, u).norm(), Real(1e-300));
-      if (correction <= settings.tolerance) {
+      if (any_valid && correction <= settings.tolerance) {
         result.converged = true;
         return result;
       }
