@@ -172,7 +172,7 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
     ProgressBar progress(options.progress, duration);
     sample();
     csv.flush();
-  check_output_budget(result.out_dir, steps, scene.output.every, started);
+    check_output_budget(result.out_dir, steps, scene.output.every, started);
     // The requested thread count is a maximum: cores that other processes keep busy are left to them.
     ThreadBudget budget(model.threads);
     const int requested_threads = model.threads;

@@ -55,43 +55,31 @@ void JsonObject::fail(const std::string& key, const std::string& problem) const 
   throw InputError(fmt::format("{}: {}: {}", file_, path_of(key), problem));
 }
 
+namespace {
+// Edit distance counting a changed, added or dropped letter, or two adjacent letters swapped, as
+// one edit (optimal string alignment, a full matrix: keys are short).
+size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::vector<size_t>> d(a.size() + 1, std::vector<size_t>(b.size() + 1));
+  for (size_t i = 0; i <= a.size(); ++i) d[i][0] = i;
+  for (size_t j = 0; j <= b.size(); ++j) d[0][j] = j;
+  for (size_t i = 1; i <= a.size(); ++i)
+    for (size_t j = 1; j <= b.size(); ++j) {
+      d[i][j] = std::min({d[i - 1][j] + 1, d[i][j - 1] + 1, d[i - 1][j - 1] + (a[i - 1] != b[j - 1])});
+      if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1]) d[i][j] = std::min(d[i][j], d[i - 2][j - 2] + 1);
+    }
+  return d[a.size()][b.size()];
+}
+}  // namespace
+
 std::string closest_key(const std::string& key, const std::vector<std::string>& candidates) {
   std::string best;
   size_t best_distance = std::max<size_t>(2, key.size() / 3) + 1;
   for (const std::string& c : candidates) {
-    // Levenshtein distance by the two-row dynamic programme.
-    std::vector<size_t> previous(c.size() + 1), current(c.size() + 1);
-    for (size_t j = 0; j <= c.size(); ++j) previous[j] = j;
-    for (size_t i = 1; i <= key.size(); ++i) {
-      current[0] = i;
-      for (size_t j = 1; j <= c.size(); ++j)
-        current[j] = std::min({previous[j] + 1, current[j - 1] + 1, previous[j - 1] + (key[i - 1] != c[j - 1])});
-      std::swap(previous, current);
-    }
-    if (previous[c.size()] < best_distance) best_distance = previous[c.size()], best = c;
+    const size_t distance = edit_distance(key, c);
+    if (distance < best_distance) best_distance = distance, best = c;
   }
   return best;
 }
-
-namespace {
-// True if a and b differ by one substitution, insertion, deletion or swap of adjacent letters.
-bool one_edit_apart(const std::string& a, const std::string& b) {
-  if (a == b) return false;
-  if (a.size() == b.size()) {
-    std::vector<size_t> diff;
-    for (size_t i = 0; i < a.size(); ++i)
-      if (a[i] != b[i]) diff.push_back(i);
-    if (diff.size() == 1) return true;
-    return diff.size() == 2 && diff[1] == diff[0] + 1 && a[diff[0]] == b[diff[1]] && a[diff[1]] == b[diff[0]];
-  }
-  const std::string& longer = a.size() > b.size() ? a : b;
-  const std::string& shorter = a.size() > b.size() ? b : a;
-  if (longer.size() != shorter.size() + 1) return false;
-  size_t i = 0;
-  while (i < shorter.size() && shorter[i] == longer[i]) ++i;
-  return shorter.compare(i, std::string::npos, longer, i + 1, std::string::npos) == 0;
-}
-}  // namespace
 
 void JsonObject::fail_unknown(const std::string& key, const std::string& missing) const {
   std::vector<std::string> allowed = expected_;
@@ -117,7 +105,7 @@ const json& JsonObject::require(const std::string& key) const {
       if (expected_.empty()) {
         // Without a declared list the other key may be one still to be read: only a near-miss
         // spelling of this one (a letter changed, added, dropped or two swapped) is named.
-        if (key.size() >= 4 && one_edit_apart(other.key(), key))
+        if (key.size() >= 4 && edit_distance(other.key(), key) == 1)
           fail(other.key(), fmt::format("unknown key (did you mean '{}', which is required here?)", key));
       } else if (std::find(expected_.begin(), expected_.end(), other.key()) == expected_.end()) {
         fail_unknown(other.key(), key);

@@ -74,7 +74,7 @@ class JsonObject {
   mutable std::vector<std::string> expected_;
 };
 
-/// The candidate nearest to `key` by edit distance (Levenshtein), or "" if none is within about a
+/// The candidate nearest to `key` by edit distance (a swap of adjacent letters is one edit), or "" if none is within about a
 /// third of the key's length (a typo, not a different word).
 std::string closest_key(const std::string& key, const std::vector<std::string>& candidates);
 
