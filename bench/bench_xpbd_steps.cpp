@@ -22,6 +22,7 @@
 
 #include "moreau/moreau.hpp"
 #include "moreau/scene/scene.hpp"
+#include "moreau/solvers/xpbd/xpbd_stages.hpp"
 #include "moreau/solvers/xpbd/xpbd_step.hpp"
 
 namespace {
@@ -66,16 +67,17 @@ void run_steps(benchmark::State& bench, const std::string& scene_file, bool unit
   bench.counters["max_over_median"] = slowest / median;
   bench.counters["p99_over_median"] = sorted[sorted.size() * 99 / 100] / median;
   double total = 0;
-  for (int s = 0; s < static_cast<int>(moreau::Stage::count); ++s) total += timer.seconds(static_cast<moreau::Stage>(s));
-  for (int s = 0; s < static_cast<int>(moreau::Stage::count); ++s) {
-    const double share = timer.seconds(static_cast<moreau::Stage>(s)) / total;
-    if (share >= 0.01) bench.counters[std::string(moreau::kStageNames[s]) + "_%"] = 100 * share;
+  const std::vector<std::string> stages = moreau::xpbd_stage_names();
+  for (int s = 0; s < static_cast<int>(stages.size()); ++s) total += timer.seconds(s);
+  for (int s = 0; s < static_cast<int>(stages.size()); ++s) {
+    const double share = timer.seconds(s) / total;
+    if (share >= 0.01) bench.counters[stages[s] + "_%"] = 100 * share;
   }
   if (!scene.model.fluid.empty()) {
     // Per Jacobi iteration of the density constraint (lambda pass + correction pass + apply), and
     // throughput in particle-steps per second (the unit).
     const double iterations = static_cast<double>(step_ms.size()) * scene.model.settings.substeps * scene.model.settings.iterations;
-    bench.counters["ms_per_density_iteration"] = 1e3 * timer.seconds(moreau::Stage::fluid_density) / iterations;
+    bench.counters["ms_per_density_iteration"] = 1e3 * timer.seconds(static_cast<int>(moreau::XpbdStage::fluid_density)) / iterations;
     bench.counters["Mparticle_steps_per_s"] = scene.state.fluid.count / (median * 1e3);
   }
 }

@@ -129,7 +129,7 @@ TEST(FluidSolidCoupling, ClothCarriesTheWeightOfTheWaterItCatches) {
        "block": {"min": [-0.05, 0.17, -0.05], "max": [0.05, 0.22, 0.05]}}]})");
   const Model& m = scene.model;
   const ObjectInfo& sheet = m.objects[m.find_object("sheet")];
-  ASSERT_EQ(static_cast<Index>(m.attachment.size()), 76);  // every edge vertex of the 20 x 20 grid
+  ASSERT_EQ(static_cast<Index>(m.family<AttachmentConstraints>().size()), 76);  // every edge vertex of the 20 x 20 grid
   Real cloth_mass = 0;
   for (Index p = sheet.particle_begin; p < sheet.particle_end; ++p) cloth_mass += m.particle_mass[p];
   const Real water_mass = scene.state.fluid.count * 1000 * 1e-6;
@@ -141,7 +141,7 @@ TEST(FluidSolidCoupling, ClothCarriesTheWeightOfTheWaterItCatches) {
   for (int k = 0; k < samples; ++k) {
     run_steps(scene, 1);
     Real lift = 0;
-    for (std::size_t a = 0; a < m.attachment.size(); ++a) lift += scene.state.attachment_lambda[a].y() / (h * h);
+    for (std::size_t a = 0; a < m.family<AttachmentConstraints>().size(); ++a) lift += multipliers_of<AttachmentConstraints>(scene.state.constraint_lambda)[a].y() / (h * h);
     support += lift / samples;
     Real lowest = 1;
     for (Index p = sheet.particle_begin; p < sheet.particle_end; ++p) lowest = std::min(lowest, scene.state.position[p].y());

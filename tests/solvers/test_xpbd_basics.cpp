@@ -49,7 +49,7 @@ TEST(XpbdBasics, SpringPeriodIsIndependentOfIterations) {
     m.particle_radius = {0.1, 0.1};
     m.particle_collider_gap = {0, 0};
     m.particle_object = {0, 0};
-    m.distance.add(0, 1, 1.0, alpha, 0, 0);
+    m.family<DistanceConstraints>().add(0, 1, 1.0, alpha, 0, 0);
     m.color_constraints();
     State st = make_rest_state(m);
     StageTimer timer;

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "moreau/constraints/constraint_batches.hpp"
-#include "moreau/constraints/xpbd_update.hpp"
+#include "moreau/solvers/xpbd/substep_context.hpp"
 #include "moreau/geometry/spatial_hash.hpp"
 
 namespace moreau {

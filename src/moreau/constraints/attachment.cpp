@@ -2,35 +2,32 @@
 
 namespace moreau {
 
-void project_attachments(const AttachmentConstraints& c, Vec3* lambda, const SubstepContext& s) {
-  const Index n = static_cast<Index>(c.size());
-#pragma omp for schedule(static)
-  for (Index k = 0; k < n; ++k) {
-    const Index p = c.particle[k];
-    const Real w = s.inv_mass[p];
-    const Real alpha_tilde = c.compliance[k] * s.inv_h2;
-    const Real gamma = c.damping_time[k] * s.inv_h;
-    const Vec3 C = s.x[p] - c.target[k];
-    const Real denominator = (1 + gamma) * w + alpha_tilde;
-    if (denominator <= 0) continue;
-    const Vec3 dl = (-C - alpha_tilde * lambda[k] - gamma * (s.x[p] - s.x_start[p])) / denominator;
-    lambda[k] += dl;
-    s.x[p] += w * dl;
-  }
+void AttachmentConstraints::color(const std::vector<Real>&) {
+  batches.offsets = {0, static_cast<Index>(size())};
 }
 
-Real attachment_energy(const AttachmentConstraints& c, const Vec3* x, Index object) {
+AttachmentConstraints::Rows AttachmentConstraints::rows(Index k, const Vec3* x) const {
+  Rows r;
+  r.particle = {particle[k]};
+  r.C = x[particle[k]] - target[k];
+  r.gradient = {Mat3::Identity()};
+  r.compliance = compliance[k] * Mat3::Identity();
+  r.damping_time = damping_time[k];
+  return r;
+}
+
+Real AttachmentConstraints::energy(const Vec3* x, Index of_object) const {
   Real energy = 0;
-  for (size_t k = 0; k < c.size(); ++k)
-    if ((object < 0 || c.object[k] == object) && c.compliance[k] > 0)
-      energy += 0.5 * (x[c.particle[k]] - c.target[k]).squaredNorm() / c.compliance[k];
+  for (size_t k = 0; k < size(); ++k)
+    if ((of_object < 0 || object[k] == of_object) && compliance[k] > 0)
+      energy += 0.5 * (x[particle[k]] - target[k]).squaredNorm() / compliance[k];
   return energy;
 }
 
-Real attachment_max_error(const AttachmentConstraints& c, const Vec3* x, Index object) {
+Real AttachmentConstraints::max_error(const Vec3* x, Index of_object) const {
   Real error = 0;
-  for (size_t k = 0; k < c.size(); ++k)
-    if (object < 0 || c.object[k] == object) error = std::max(error, (x[c.particle[k]] - c.target[k]).norm());
+  for (size_t k = 0; k < size(); ++k)
+    if (of_object < 0 || object[k] == of_object) error = std::max(error, (x[particle[k]] - target[k]).norm());
   return error;
 }
 

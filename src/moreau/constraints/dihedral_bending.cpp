@@ -43,51 +43,35 @@ Real hinge_compliance_from_bending_stiffness(const Vec3& e0, const Vec3& e1, con
   return area_sum / (bending_stiffness * e.squaredNorm());
 }
 
-namespace {
-// Wraps an angle difference to (-pi, pi] so a hinge never takes the long way round.
-Real wrap_angle(Real a) {
-  while (a > kPi) a -= 2 * kPi;
-  while (a <= -kPi) a += 2 * kPi;
-  return a;
-}
-}  // namespace
-
-void project_dihedral_bending(const DihedralBendingConstraints& c, Real* lambda, const SubstepContext& s) {
-  for_each_by_color(c.batches, [&](Index k) {
-    const Hinge& h = c.hinges[k];
-    const std::array<Index, 4> p{h.e0, h.e1, h.o0, h.o1};
-    const DihedralValue v = evaluate_dihedral(s.x[p[0]], s.x[p[1]], s.x[p[2]], s.x[p[3]]);
-    const std::array<Real, 4> w{s.inv_mass[p[0]], s.inv_mass[p[1]], s.inv_mass[p[2]], s.inv_mass[p[3]]};
-    Real w_grad_sq = 0;
-    for (int i = 0; i < 4; ++i) w_grad_sq += w[i] * v.grad[i].squaredNorm();
-    const Real tau = c.damping_time[k];
-    Real grad_dot_dx = 0;
-    if (tau > 0)
-      for (int i = 0; i < 4; ++i) grad_dot_dx += v.grad[i].dot(s.x[p[i]] - s.x_start[p[i]]);
-    const Real C = wrap_angle(v.theta - c.rest_angle[k]);
-    const Real dl = xpbd_delta_lambda(C, lambda[k], c.compliance[k], tau, s, w_grad_sq, grad_dot_dx);
-    lambda[k] += dl;
-    for (int i = 0; i < 4; ++i) s.x[p[i]] += (w[i] * dl) * v.grad[i];
-  });
+DihedralBendingConstraints::Rows DihedralBendingConstraints::rows(Index k, const Vec3* x) const {
+  const Hinge& h = hinges[k];
+  const DihedralValue v = evaluate_dihedral(x[h.e0], x[h.e1], x[h.o0], x[h.o1]);
+  Rows r;
+  r.particle = {h.e0, h.e1, h.o0, h.o1};
+  r.C(0) = wrap_angle(v.theta - rest_angle[k]);
+  for (int i = 0; i < 4; ++i) r.gradient[i] = v.grad[i].transpose();
+  r.compliance(0, 0) = compliance[k];
+  r.damping_time = damping_time[k];
+  return r;
 }
 
-Real dihedral_bending_energy(const DihedralBendingConstraints& c, const Vec3* x, Index object) {
+Real DihedralBendingConstraints::energy(const Vec3* x, Index of_object) const {
   Real energy = 0;
-  for (size_t k = 0; k < c.size(); ++k) {
-    if ((object >= 0 && c.object[k] != object) || c.compliance[k] <= 0) continue;
-    const Hinge& h = c.hinges[k];
-    const Real C = wrap_angle(evaluate_dihedral(x[h.e0], x[h.e1], x[h.o0], x[h.o1]).theta - c.rest_angle[k]);
-    energy += 0.5 * C * C / c.compliance[k];
+  for (size_t k = 0; k < size(); ++k) {
+    if ((of_object >= 0 && object[k] != of_object) || compliance[k] <= 0) continue;
+    const Hinge& h = hinges[k];
+    const Real C = wrap_angle(evaluate_dihedral(x[h.e0], x[h.e1], x[h.o0], x[h.o1]).theta - rest_angle[k]);
+    energy += 0.5 * C * C / compliance[k];
   }
   return energy;
 }
 
-Real dihedral_bending_max_error(const DihedralBendingConstraints& c, const Vec3* x, Index object) {
+Real DihedralBendingConstraints::max_error(const Vec3* x, Index of_object) const {
   Real error = 0;
-  for (size_t k = 0; k < c.size(); ++k) {
-    if (object >= 0 && c.object[k] != object) continue;
-    const Hinge& h = c.hinges[k];
-    error = std::max(error, std::abs(wrap_angle(evaluate_dihedral(x[h.e0], x[h.e1], x[h.o0], x[h.o1]).theta - c.rest_angle[k])));
+  for (size_t k = 0; k < size(); ++k) {
+    if (of_object >= 0 && object[k] != of_object) continue;
+    const Hinge& h = hinges[k];
+    error = std::max(error, std::abs(wrap_angle(evaluate_dihedral(x[h.e0], x[h.e1], x[h.o0], x[h.o1]).theta - rest_angle[k])));
   }
   return error;
 }

@@ -18,15 +18,20 @@
 //   3 l^2/(A_A + A_B) (Grinspun et al. 2003) makes that 3x too stiff: only one edge family in
 //   three carries a cylindrical bend, so the curvature lives in a third of the area. Hinge
 //   bending stays anisotropic: on moreau's grid sheet, rolling about a diagonal is 1.5x stiffer.
+#include <string_view>
 #include <vector>
 
 #include "moreau/constraints/constraint_batches.hpp"
-#include "moreau/constraints/xpbd_update.hpp"
+#include "moreau/constraints/constraint_rows.hpp"
 #include "moreau/geometry/meshes.hpp"
 
 namespace moreau {
 
 struct DihedralBendingConstraints {
+  static constexpr std::string_view kName = "dihedral_bending", kErrorName = "bending";
+  using Multiplier = Real;
+  using Rows = RowBlock<4, 1>;
+
   std::vector<Hinge> hinges;
   std::vector<Real> rest_angle;    // rad
   std::vector<Real> compliance;    // 1/(N m)
@@ -43,6 +48,12 @@ struct DihedralBendingConstraints {
     object.push_back(obj);
   }
   void color(const std::vector<Real>& particle_inv_mass);
+  /// C = theta - theta0 wrapped to (-pi, pi], over (e0, e1, o0, o1).
+  Rows rows(Index k, const Vec3* x) const;
+  /// sum 0.5 C^2 / alpha over compliant hinges, J.
+  Real energy(const Vec3* x, Index object) const;
+  /// max |theta - theta0|, rad.
+  Real max_error(const Vec3* x, Index object) const;
 };
 
 struct DihedralValue {
@@ -50,14 +61,18 @@ struct DihedralValue {
   std::array<Vec3, 4> grad;  // with respect to e0, e1, o0, o1
 };
 
+/// Wraps an angle difference to (-pi, pi] so a hinge never takes the long way round.
+inline Real wrap_angle(Real a) {
+  while (a > kPi) a -= 2 * kPi;
+  while (a <= -kPi) a += 2 * kPi;
+  return a;
+}
+
 DihedralValue evaluate_dihedral(const Vec3& e0, const Vec3& e1, const Vec3& o0, const Vec3& o1);
 
 /// Hinge compliance for a bending stiffness k_B (N m), from the discrete-shells energy above.
 Real hinge_compliance_from_bending_stiffness(const Vec3& e0, const Vec3& e1, const Vec3& o0, const Vec3& o1,
                                              Real bending_stiffness);
 
-void project_dihedral_bending(const DihedralBendingConstraints& c, Real* lambda, const SubstepContext& s);
-Real dihedral_bending_energy(const DihedralBendingConstraints& c, const Vec3* x, Index object);
-Real dihedral_bending_max_error(const DihedralBendingConstraints& c, const Vec3* x, Index object);
 
 }  // namespace moreau

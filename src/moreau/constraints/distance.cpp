@@ -23,35 +23,33 @@ DistanceValue evaluate_distance(const Vec3& x0, const Vec3& x1, Real rest_length
   return {length - rest_length, n};
 }
 
-void project_distance(const DistanceConstraints& c, Real* lambda, const SubstepContext& s) {
-  for_each_by_color(c.batches, [&](Index k) {
-    const auto [a, b] = c.particles[k];
-    const Real wa = s.inv_mass[a], wb = s.inv_mass[b];
-    const auto [C, n] = evaluate_distance(s.x[a], s.x[b], c.rest_length[k]);
-    const Real tau = c.damping_time[k];
-    const Real grad_dot_dx = tau > 0 ? n.dot((s.x[a] - s.x_start[a]) - (s.x[b] - s.x_start[b])) : 0;
-    const Real dl = xpbd_delta_lambda(C, lambda[k], c.compliance[k], tau, s, wa + wb, grad_dot_dx);
-    lambda[k] += dl;
-    s.x[a] += (wa * dl) * n;
-    s.x[b] -= (wb * dl) * n;
-  });
+DistanceConstraints::Rows DistanceConstraints::rows(Index k, const Vec3* x) const {
+  const auto [a, b] = particles[k];
+  const DistanceValue v = evaluate_distance(x[a], x[b], rest_length[k]);
+  Rows r;
+  r.particle = {a, b};
+  r.C(0) = v.C;
+  r.gradient = {v.grad0.transpose(), -v.grad0.transpose()};
+  r.compliance(0, 0) = compliance[k];
+  r.damping_time = damping_time[k];
+  return r;
 }
 
-Real distance_energy(const DistanceConstraints& c, const Vec3* x, Index object) {
+Real DistanceConstraints::energy(const Vec3* x, Index of_object) const {
   Real energy = 0;
-  for (size_t k = 0; k < c.size(); ++k) {
-    if ((object >= 0 && c.object[k] != object) || c.compliance[k] <= 0) continue;
-    const Real C = evaluate_distance(x[c.particles[k][0]], x[c.particles[k][1]], c.rest_length[k]).C;
-    energy += 0.5 * C * C / c.compliance[k];
+  for (size_t k = 0; k < size(); ++k) {
+    if ((of_object >= 0 && object[k] != of_object) || compliance[k] <= 0) continue;
+    const Real C = evaluate_distance(x[particles[k][0]], x[particles[k][1]], rest_length[k]).C;
+    energy += 0.5 * C * C / compliance[k];
   }
   return energy;
 }
 
-Real distance_max_error(const DistanceConstraints& c, const Vec3* x, Index object) {
+Real DistanceConstraints::max_error(const Vec3* x, Index of_object) const {
   Real error = 0;
-  for (size_t k = 0; k < c.size(); ++k) {
-    if (object >= 0 && c.object[k] != object) continue;
-    error = std::max(error, std::abs(evaluate_distance(x[c.particles[k][0]], x[c.particles[k][1]], c.rest_length[k]).C));
+  for (size_t k = 0; k < size(); ++k) {
+    if (of_object >= 0 && object[k] != of_object) continue;
+    error = std::max(error, std::abs(evaluate_distance(x[particles[k][0]], x[particles[k][1]], rest_length[k]).C));
   }
   return error;
 }

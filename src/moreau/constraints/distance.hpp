@@ -5,14 +5,26 @@
 //   grad_x0 C = n = (x0 - x1)/|x0 - x1|,  grad_x1 C = -n
 //   compliance alpha (m/N): the inverse of an axial spring stiffness; 0 = inextensible.
 //   Source: Mueller et al. 2007 (PBD); compliance and damping from XPBD (Macklin et al. 2016).
+#include <string_view>
 #include <vector>
 
 #include "moreau/constraints/constraint_batches.hpp"
-#include "moreau/constraints/xpbd_update.hpp"
+#include "moreau/constraints/constraint_rows.hpp"
 
 namespace moreau {
 
+struct DistanceValue {
+  Real C;
+  Vec3 grad0;  // grad_x1 C = -grad0
+};
+
+DistanceValue evaluate_distance(const Vec3& x0, const Vec3& x1, Real rest_length);
+
 struct DistanceConstraints {
+  static constexpr std::string_view kName = "distance", kErrorName = "distance";
+  using Multiplier = Real;
+  using Rows = RowBlock<2, 1>;
+
   std::vector<std::array<Index, 2>> particles;
   std::vector<Real> rest_length;   // m
   std::vector<Real> compliance;    // m/N
@@ -30,22 +42,11 @@ struct DistanceConstraints {
   }
   /// Sorts the constraints into colour batches (call once after the last add).
   void color(const std::vector<Real>& particle_inv_mass);
+  Rows rows(Index k, const Vec3* x) const;
+  /// Elastic energy sum 0.5 C^2 / alpha over compliant constraints of `object` (-1 = all), J.
+  Real energy(const Vec3* x, Index object) const;
+  /// max |C| over the constraints of `object` (-1 = all), m.
+  Real max_error(const Vec3* x, Index object) const;
 };
-
-struct DistanceValue {
-  Real C;
-  Vec3 grad0;  // grad_x1 C = -grad0
-};
-
-DistanceValue evaluate_distance(const Vec3& x0, const Vec3& x1, Real rest_length);
-
-/// One Gauss-Seidel sweep by colour; lambda accumulates within the substep.
-void project_distance(const DistanceConstraints& c, Real* lambda, const SubstepContext& s);
-
-/// Elastic energy sum 0.5 C^2 / alpha over compliant constraints of `object` (-1 = all), J.
-Real distance_energy(const DistanceConstraints& c, const Vec3* x, Index object);
-
-/// max |C| over the constraints of `object` (-1 = all), m.
-Real distance_max_error(const DistanceConstraints& c, const Vec3* x, Index object);
 
 }  // namespace moreau

@@ -38,45 +38,31 @@ Vec3 isometric_bending_value(const IsometricHinge& h, const Vec3* x) {
   return K[0] * x[p[0]] + K[1] * x[p[1]] + K[2] * x[p[2]] + K[3] * x[p[3]];
 }
 
-void project_isometric_bending(const IsometricBendingConstraints& c, Vec3* lambda, const SubstepContext& s) {
-  for_each_by_color(c.batches, [&](Index k) {
-    const IsometricHinge& h = c.hinges[k];
-    const auto& p = h.particles;
-    const auto& K = h.weight;
-    const std::array<Real, 4> w{s.inv_mass[p[0]], s.inv_mass[p[1]], s.inv_mass[p[2]], s.inv_mass[p[3]]};
-    const Vec3 C = isometric_bending_value(h, s.x);
-    // XPBD with grad_i C = K_i I: the 3x3 system matrix is ((1+g) sum_i w_i K_i^2 + alpha~) I.
-    const Real alpha_tilde = h.compliance * s.inv_h2;
-    const Real g = h.damping_time * s.inv_h;
-    Vec3 rhs = -(C + alpha_tilde * lambda[k]);
-    if (g > 0) {
-      Vec3 J_dx = Vec3::Zero();
-      for (int i = 0; i < 4; ++i) J_dx += K[i] * (s.x[p[i]] - s.x_start[p[i]]);
-      rhs -= g * J_dx;
-    }
-    const Real denominator =
-        (1 + g) * (w[0] * K[0] * K[0] + w[1] * K[1] * K[1] + w[2] * K[2] * K[2] + w[3] * K[3] * K[3]) + alpha_tilde;
-    if (!(denominator > 0)) return;
-    const Vec3 dl = rhs * (1 / denominator);
-    lambda[k] += dl;
-    for (int i = 0; i < 4; ++i) s.x[p[i]] += (w[i] * K[i]) * dl;
-  });
+IsometricBendingConstraints::Rows IsometricBendingConstraints::rows(Index k, const Vec3* x) const {
+  const IsometricHinge& h = hinges[k];
+  Rows r;
+  r.particle = h.particles;
+  r.C = isometric_bending_value(h, x);
+  for (int i = 0; i < 4; ++i) r.gradient[i] = h.weight[i] * Mat3::Identity();
+  r.compliance = h.compliance * Mat3::Identity();
+  r.damping_time = h.damping_time;
+  return r;
 }
 
-Real isometric_bending_energy(const IsometricBendingConstraints& c, const Vec3* x, Index object) {
+Real IsometricBendingConstraints::energy(const Vec3* x, Index of_object) const {
   Real energy = 0;
-  for (size_t k = 0; k < c.size(); ++k) {
-    if ((object >= 0 && c.object[k] != object) || c.hinges[k].compliance <= 0) continue;
-    energy += 0.5 * isometric_bending_value(c.hinges[k], x).squaredNorm() / c.hinges[k].compliance;
+  for (size_t k = 0; k < size(); ++k) {
+    if ((of_object >= 0 && object[k] != of_object) || hinges[k].compliance <= 0) continue;
+    energy += 0.5 * isometric_bending_value(hinges[k], x).squaredNorm() / hinges[k].compliance;
   }
   return energy;
 }
 
-Real isometric_bending_max_error(const IsometricBendingConstraints& c, const Vec3* x, Index object) {
+Real IsometricBendingConstraints::max_error(const Vec3* x, Index of_object) const {
   Real error = 0;
-  for (size_t k = 0; k < c.size(); ++k) {
-    if (object >= 0 && c.object[k] != object) continue;
-    error = std::max(error, isometric_bending_value(c.hinges[k], x).norm() / c.edge_length[k]);
+  for (size_t k = 0; k < size(); ++k) {
+    if (of_object >= 0 && object[k] != of_object) continue;
+    error = std::max(error, isometric_bending_value(hinges[k], x).norm() / edge_length[k]);
   }
   return error;
 }

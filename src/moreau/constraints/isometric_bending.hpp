@@ -16,10 +16,11 @@
 // since |C| = l theta, alpha = l^2 alpha_theta gives the same energy to O(theta^2).
 // Because the gradient is constant the XPBD system is diagonal (one scalar for all three
 // components) and the projection needs no square root, division by |n| or arc tangent.
+#include <string_view>
 #include <vector>
 
 #include "moreau/constraints/constraint_batches.hpp"
-#include "moreau/constraints/xpbd_update.hpp"
+#include "moreau/constraints/constraint_rows.hpp"
 #include "moreau/geometry/meshes.hpp"
 
 namespace moreau {
@@ -33,6 +34,10 @@ struct IsometricHinge {
 };
 
 struct IsometricBendingConstraints {
+  static constexpr std::string_view kName = "isometric_bending", kErrorName = "bending";
+  using Multiplier = Vec3;
+  using Rows = RowBlock<4, 3>;
+
   std::vector<IsometricHinge> hinges;
   std::vector<Real> edge_length;  // m, rest length of the hinge edge (reports |C| / l in rad)
   std::vector<Index> object;
@@ -44,6 +49,12 @@ struct IsometricBendingConstraints {
   void add(const Hinge& h, const Vec3& E0, const Vec3& E1, const Vec3& O0, const Vec3& O1, Real angle_compliance,
            Real tau, Index obj);
   void color(const std::vector<Real>& particle_inv_mass);
+  /// C = sum_i K_i x_i (three rows), gradient K_i I, compliance alpha I.
+  Rows rows(Index k, const Vec3* x) const;
+  /// sum 0.5 |C|^2 / alpha over compliant hinges, J.
+  Real energy(const Vec3* x, Index object) const;
+  /// max |C| / l (the dihedral angle to first order), rad.
+  Real max_error(const Vec3* x, Index object) const;
 };
 
 /// The weights K of a flat rest hinge (see the header comment).
@@ -53,9 +64,6 @@ std::array<Real, 4> isometric_hinge_weights(const Vec3& E0, const Vec3& E1, cons
 Vec3 isometric_bending_value(const IsometricHinge& h, const Vec3* x);
 
 /// lambda holds one 3-vector per hinge.
-void project_isometric_bending(const IsometricBendingConstraints& c, Vec3* lambda, const SubstepContext& s);
-Real isometric_bending_energy(const IsometricBendingConstraints& c, const Vec3* x, Index object);
 /// max |C| / l (rad, the small-angle dihedral angle) over the hinges of `object`.
-Real isometric_bending_max_error(const IsometricBendingConstraints& c, const Vec3* x, Index object);
 
 }  // namespace moreau

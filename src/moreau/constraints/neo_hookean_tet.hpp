@@ -15,10 +15,11 @@
 // The pair is solved per element as a coupled 2x2 system in (dlambda_H, dlambda_D), whose
 // off-diagonal sum_i w_i grad_i C_H . grad_i C_D removes the fight between the two near rest.
 #include <cmath>
+#include <string_view>
 #include <vector>
 
 #include "moreau/constraints/constraint_batches.hpp"
-#include "moreau/constraints/xpbd_update.hpp"
+#include "moreau/constraints/constraint_rows.hpp"
 
 namespace moreau {
 
@@ -38,6 +39,10 @@ struct NeoHookeanElement {
 };
 
 struct NeoHookeanTetConstraints {
+  static constexpr std::string_view kName = "neo_hookean", kErrorName = "neo_hookean_volume";
+  using Multiplier = Vec2;  // (lambda_H, lambda_D)
+  using Rows = RowBlock<4, 2>;
+
   std::vector<NeoHookeanElement> elements;
   std::vector<Index> object;
   ColorBatches batches;
@@ -46,6 +51,12 @@ struct NeoHookeanTetConstraints {
   void add(const std::array<Index, 4>& tet, const std::array<Vec3, 4>& rest, Real youngs_modulus, Real poisson_ratio,
            Real tau, Index obj);
   void color(const std::vector<Real>& particle_inv_mass);
+  /// Rows (C_H, C_D) with compliance diag(alpha_H, alpha_D).
+  Rows rows(Index k, const Vec3* x) const;
+  /// Strain energy V (Psi(F) - Psi(I)), J.
+  Real energy(const Vec3* x, Index object) const;
+  /// max |det F - 1| (relative volume error).
+  Real max_error(const Vec3* x, Index object) const;
 };
 
 struct NeoHookeanValue {
@@ -70,13 +81,7 @@ struct NeoHookeanValue {
   return v;
 }
 
-/// lambda holds two multipliers per element: (H, D).
-void project_neo_hookean(const NeoHookeanTetConstraints& c, Vec2* lambda, const SubstepContext& s);
 
-/// Strain energy V (Psi(F) - Psi(I)), J.
-Real neo_hookean_energy(const NeoHookeanTetConstraints& c, const Vec3* x, Index object);
 
-/// max |det F - 1| (relative volume error) over the elements of `object`.
-Real neo_hookean_max_volume_error(const NeoHookeanTetConstraints& c, const Vec3* x, Index object);
 
 }  // namespace moreau

@@ -33,38 +33,35 @@ TetVolumeValue evaluate_tet_volume(const std::array<Vec3, 4>& x, const Mat3& res
   return {F.determinant() - 1, tet_vertex_gradients(cofactor(F), rest_inverse)};
 }
 
-void project_tet_volume(const TetVolumeConstraints& c, Real* lambda, const SubstepContext& s) {
-  for_each_by_color(c.batches, [&](Index k) {
-    const auto& p = c.particles[k];
-    const TetVolumeValue v = evaluate_tet_volume({s.x[p[0]], s.x[p[1]], s.x[p[2]], s.x[p[3]]}, c.rest_inverse[k]);
-    Real w_grad_sq = 0, grad_dot_dx = 0;
-    for (int i = 0; i < 4; ++i) {
-      w_grad_sq += s.inv_mass[p[i]] * v.grad[i].squaredNorm();
-      grad_dot_dx += v.grad[i].dot(s.x[p[i]] - s.x_start[p[i]]);
-    }
-    const Real dl = xpbd_delta_lambda(v.C, lambda[k], c.compliance[k], c.damping_time[k], s, w_grad_sq, grad_dot_dx);
-    lambda[k] += dl;
-    for (int i = 0; i < 4; ++i) s.x[p[i]] += s.inv_mass[p[i]] * dl * v.grad[i];
-  });
+TetVolumeConstraints::Rows TetVolumeConstraints::rows(Index k, const Vec3* x) const {
+  const auto& p = particles[k];
+  const TetVolumeValue v = evaluate_tet_volume({x[p[0]], x[p[1]], x[p[2]], x[p[3]]}, rest_inverse[k]);
+  Rows r;
+  r.particle = p;
+  r.C(0) = v.C;
+  for (int i = 0; i < 4; ++i) r.gradient[i] = v.grad[i].transpose();
+  r.compliance(0, 0) = compliance[k];
+  r.damping_time = damping_time[k];
+  return r;
 }
 
-Real tet_volume_energy(const TetVolumeConstraints& c, const Vec3* x, Index object) {
+Real TetVolumeConstraints::energy(const Vec3* x, Index of_object) const {
   Real energy = 0;
-  for (size_t k = 0; k < c.size(); ++k) {
-    if ((object >= 0 && c.object[k] != object) || c.compliance[k] <= 0) continue;
-    const auto& p = c.particles[k];
-    const Real C = evaluate_tet_volume({x[p[0]], x[p[1]], x[p[2]], x[p[3]]}, c.rest_inverse[k]).C;
-    energy += 0.5 * C * C / c.compliance[k];
+  for (size_t k = 0; k < size(); ++k) {
+    if ((of_object >= 0 && object[k] != of_object) || compliance[k] <= 0) continue;
+    const auto& p = particles[k];
+    const Real C = evaluate_tet_volume({x[p[0]], x[p[1]], x[p[2]], x[p[3]]}, rest_inverse[k]).C;
+    energy += 0.5 * C * C / compliance[k];
   }
   return energy;
 }
 
-Real tet_volume_max_error(const TetVolumeConstraints& c, const Vec3* x, Index object) {
+Real TetVolumeConstraints::max_error(const Vec3* x, Index of_object) const {
   Real error = 0;
-  for (size_t k = 0; k < c.size(); ++k) {
-    if (object >= 0 && c.object[k] != object) continue;
-    const auto& p = c.particles[k];
-    error = std::max(error, std::abs(evaluate_tet_volume({x[p[0]], x[p[1]], x[p[2]], x[p[3]]}, c.rest_inverse[k]).C));
+  for (size_t k = 0; k < size(); ++k) {
+    if (of_object >= 0 && object[k] != of_object) continue;
+    const auto& p = particles[k];
+    error = std::max(error, std::abs(evaluate_tet_volume({x[p[0]], x[p[1]], x[p[2]], x[p[3]]}, rest_inverse[k]).C));
   }
   return error;
 }

@@ -53,45 +53,35 @@ TriangleStrainValue evaluate_triangle_strain(const Vec3& x0, const Vec3& x1, con
   return v;
 }
 
-void project_triangle_strain(const TriangleStrainConstraints& c, Vec3* lambda, const SubstepContext& s) {
-  for_each_by_color(c.batches, [&](Index k) {
-    const auto& p = c.particles[k];
-    const TriangleStrainValue v = evaluate_triangle_strain(s.x[p[0]], s.x[p[1]], s.x[p[2]], c.rest_inverse[k]);
-    // Block XPBD update: [(1+gamma) J W J^T + alpha~] dlambda = -(C + alpha~ lambda + gamma J dx).
-    Mat3 JWJt = Mat3::Zero();
-    Vec3 J_dx = Vec3::Zero();
-    for (int i = 0; i < 3; ++i) {
-      JWJt += s.inv_mass[p[i]] * v.grad[i] * v.grad[i].transpose();
-      J_dx += v.grad[i] * (s.x[p[i]] - s.x_start[p[i]]);
-    }
-    const Mat3 alpha_tilde = c.compliance[k] * s.inv_h2;
-    const Real gamma = c.damping_time[k] * s.inv_h;
-    const Mat3 A = (1 + gamma) * JWJt + alpha_tilde;
-    const Vec3 rhs = -(v.C + alpha_tilde * lambda[k] + gamma * J_dx);
-    const Vec3 dl = A.ldlt().solve(rhs);
-    if (!dl.allFinite()) return;
-    lambda[k] += dl;
-    for (int i = 0; i < 3; ++i) s.x[p[i]] += s.inv_mass[p[i]] * (v.grad[i].transpose() * dl);
-  });
+TriangleStrainConstraints::Rows TriangleStrainConstraints::rows(Index k, const Vec3* x) const {
+  const auto& p = particles[k];
+  const TriangleStrainValue v = evaluate_triangle_strain(x[p[0]], x[p[1]], x[p[2]], rest_inverse[k]);
+  Rows r;
+  r.particle = p;
+  r.C = v.C;
+  r.gradient = v.grad;
+  r.compliance = compliance[k];
+  r.damping_time = damping_time[k];
+  return r;
 }
 
-Real triangle_strain_energy(const TriangleStrainConstraints& c, const Vec3* x, Index object) {
+Real TriangleStrainConstraints::energy(const Vec3* x, Index of_object) const {
   Real energy = 0;
-  for (size_t k = 0; k < c.size(); ++k) {
-    if (object >= 0 && c.object[k] != object) continue;
-    const auto& p = c.particles[k];
-    const Vec3 C = evaluate_triangle_strain(x[p[0]], x[p[1]], x[p[2]], c.rest_inverse[k]).C;
-    energy += 0.5 * C.dot(c.compliance[k].ldlt().solve(C));
+  for (size_t k = 0; k < size(); ++k) {
+    if (of_object >= 0 && object[k] != of_object) continue;
+    const auto& p = particles[k];
+    const Vec3 C = evaluate_triangle_strain(x[p[0]], x[p[1]], x[p[2]], rest_inverse[k]).C;
+    energy += 0.5 * C.dot(compliance[k].ldlt().solve(C));
   }
   return energy;
 }
 
-Real triangle_strain_max_error(const TriangleStrainConstraints& c, const Vec3* x, Index object) {
+Real TriangleStrainConstraints::max_error(const Vec3* x, Index of_object) const {
   Real error = 0;
-  for (size_t k = 0; k < c.size(); ++k) {
-    if (object >= 0 && c.object[k] != object) continue;
-    const auto& p = c.particles[k];
-    error = std::max(error, evaluate_triangle_strain(x[p[0]], x[p[1]], x[p[2]], c.rest_inverse[k]).C.cwiseAbs().maxCoeff());
+  for (size_t k = 0; k < size(); ++k) {
+    if (of_object >= 0 && object[k] != of_object) continue;
+    const auto& p = particles[k];
+    error = std::max(error, evaluate_triangle_strain(x[p[0]], x[p[1]], x[p[2]], rest_inverse[k]).C.cwiseAbs().maxCoeff());
   }
   return error;
 }

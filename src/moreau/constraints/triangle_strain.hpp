@@ -12,14 +12,19 @@
 // U = (1/2) C^T alpha^-1 C with the block compliance alpha = (A t K)^-1 (1/J).
 // The 3x3 block is solved at once (XPBD sec. 6.3; Servin et al. 2006), which keeps the Poisson
 // coupling that per-component Strain Based Dynamics (Mueller et al. 2014) loses.
+#include <string_view>
 #include <vector>
 
 #include "moreau/constraints/constraint_batches.hpp"
-#include "moreau/constraints/xpbd_update.hpp"
+#include "moreau/constraints/constraint_rows.hpp"
 
 namespace moreau {
 
 struct TriangleStrainConstraints {
+  static constexpr std::string_view kName = "triangle_strain", kErrorName = "triangle_strain";
+  using Multiplier = Vec3;
+  using Rows = RowBlock<3, 3>;
+
   std::vector<std::array<Index, 3>> particles;
   std::vector<Mat2> rest_inverse;   // D_m^-1, 1/m
   std::vector<Mat3> compliance;     // (A t K)^-1, 1/J
@@ -33,6 +38,12 @@ struct TriangleStrainConstraints {
   void add(const std::array<Index, 3>& tri, const Vec3& x0, const Vec3& x1, const Vec3& x2, Real youngs_modulus,
            Real poisson_ratio, Real thickness, Real tau, Index obj);
   void color(const std::vector<Real>& particle_inv_mass);
+  /// C = (E11, E22, 2 E12), compliance (A t K)^-1.
+  Rows rows(Index k, const Vec3* x) const;
+  /// sum 0.5 C^T alpha^-1 C, J.
+  Real energy(const Vec3* x, Index object) const;
+  /// max |C_r| (Green strain).
+  Real max_error(const Vec3* x, Index object) const;
 };
 
 struct TriangleStrainValue {
@@ -42,8 +53,5 @@ struct TriangleStrainValue {
 
 TriangleStrainValue evaluate_triangle_strain(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Mat2& rest_inverse);
 
-void project_triangle_strain(const TriangleStrainConstraints& c, Vec3* lambda, const SubstepContext& s);
-Real triangle_strain_energy(const TriangleStrainConstraints& c, const Vec3* x, Index object);
-Real triangle_strain_max_error(const TriangleStrainConstraints& c, const Vec3* x, Index object);
 
 }  // namespace moreau

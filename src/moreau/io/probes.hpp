@@ -24,7 +24,7 @@ struct ProbeSpec {
   Index particle = -1;               // point probes: global particle index
   int axis = 1;                      // extent
   Vec3 about = Vec3::Zero();         // angular momentum reference point, m
-  ConstraintFamily family = ConstraintFamily::all;
+  std::string family = "all";        // constraint_error: a family's kErrorName, or "all"
   Vec3 at = Vec3::Zero();            // fluid_height: a point on the vertical line measured, m
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  // escaped: particles outside this box are counted
   Index joint = -1;                  // joint_error: one joint, or -1 for every joint

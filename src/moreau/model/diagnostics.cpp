@@ -43,11 +43,9 @@ Real potential_energy(const Model& model, const State& state, Index object) {
 }
 
 Real elastic_energy(const Model& model, const State& state, Index object) {
-  const Vec3* x = state.position.data();
-  return distance_energy(model.distance, x, object) + dihedral_bending_energy(model.bending, x, object) +
-         isometric_bending_energy(model.isometric_bending, x, object) +
-         triangle_strain_energy(model.triangle_strain, x, object) + neo_hookean_energy(model.neo_hookean, x, object) +
-         tet_volume_energy(model.tet_volume, x, object) + attachment_energy(model.attachment, x, object);
+  Real energy = 0;
+  for_each_family(model.constraints, [&](const auto& family, int) { energy += family.energy(state.position.data(), object); });
+  return energy;
 }
 
 Vec3 linear_momentum(const Model& model, const State& state, Index object) {
@@ -74,21 +72,12 @@ Vec3 center_of_mass(const Model& model, const State& state, Index object) {
   return mass > 0 ? Vec3(c / mass) : c;
 }
 
-Real max_constraint_error(const Model& model, const State& state, Index object, ConstraintFamily family) {
-  const Vec3* x = state.position.data();
-  const bool all = family == ConstraintFamily::all;
+Real max_constraint_error(const Model& model, const State& state, Index object, std::string_view error_name) {
   Real e = 0;
-  if (all || family == ConstraintFamily::distance) e = std::max(e, distance_max_error(model.distance, x, object));
-  if (all || family == ConstraintFamily::bending) {
-    e = std::max(e, dihedral_bending_max_error(model.bending, x, object));
-    e = std::max(e, isometric_bending_max_error(model.isometric_bending, x, object));
-  }
-  if (all || family == ConstraintFamily::triangle_strain)
-    e = std::max(e, triangle_strain_max_error(model.triangle_strain, x, object));
-  if (all || family == ConstraintFamily::neo_hookean_volume)
-    e = std::max(e, neo_hookean_max_volume_error(model.neo_hookean, x, object));
-  if (all || family == ConstraintFamily::tet_volume) e = std::max(e, tet_volume_max_error(model.tet_volume, x, object));
-  if (all || family == ConstraintFamily::attachment) e = std::max(e, attachment_max_error(model.attachment, x, object));
+  for_each_family(model.constraints, [&](const auto& family, int) {
+    if (error_name == "all" || error_name == family.kErrorName)
+      e = std::max(e, family.max_error(state.position.data(), object));
+  });
   return e;
 }
 

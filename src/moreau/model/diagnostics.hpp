@@ -33,10 +33,8 @@ Vec3 linear_momentum(const Model& model, const State& state, Index object);
 Vec3 angular_momentum(const Model& model, const State& state, Index object, const Vec3& about);
 Vec3 center_of_mass(const Model& model, const State& state, Index object);
 
-/// Constraint families that constraint_error can be asked about.
-enum class ConstraintFamily { all, distance, bending, triangle_strain, neo_hookean_volume, tet_volume, attachment };
-
-/// max |C| of the object's constraints of `family` (for Neo-Hookean tets: max |det F - 1|).
-Real max_constraint_error(const Model& model, const State& state, Index object, ConstraintFamily family);
+/// The largest violation of the object's constraints whose family reports under `error_name` (a
+/// family's kErrorName, or "all"), each in its family's measure (max_error).
+Real max_constraint_error(const Model& model, const State& state, Index object, std::string_view error_name);
 
 }  // namespace moreau

@@ -9,12 +9,7 @@ Index Model::find_object(const std::string& name) const {
 }
 
 void Model::color_constraints() {
-  distance.color(particle_inv_mass);
-  bending.color(particle_inv_mass);
-  isometric_bending.color(particle_inv_mass);
-  triangle_strain.color(particle_inv_mass);
-  neo_hookean.color(particle_inv_mass);
-  tet_volume.color(particle_inv_mass);
+  for_each_family(constraints, [&](auto& family, int) { family.color(particle_inv_mass); });
 }
 
 }  // namespace moreau

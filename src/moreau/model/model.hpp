@@ -6,13 +6,7 @@
 #include <vector>
 
 #include "moreau/collision/collider.hpp"
-#include "moreau/constraints/attachment.hpp"
-#include "moreau/constraints/dihedral_bending.hpp"
-#include "moreau/constraints/distance.hpp"
-#include "moreau/constraints/isometric_bending.hpp"
-#include "moreau/constraints/neo_hookean_tet.hpp"
-#include "moreau/constraints/tet_volume.hpp"
-#include "moreau/constraints/triangle_strain.hpp"
+#include "moreau/constraints/particle_families.hpp"
 #include "moreau/fluids/fluid_model.hpp"
 #include "moreau/rigid/joint_tree.hpp"
 #include "moreau/rigid/joints.hpp"
@@ -72,14 +66,8 @@ struct Model {
   std::vector<ObjectInfo> objects;
   std::vector<Collider> colliders;
 
-  // Constraint families, colour-sorted at build time.
-  DistanceConstraints distance;
-  DihedralBendingConstraints bending;
-  IsometricBendingConstraints isometric_bending;
-  TriangleStrainConstraints triangle_strain;
-  NeoHookeanTetConstraints neo_hookean;
-  TetVolumeConstraints tet_volume;
-  AttachmentConstraints attachment;
+  // Constraint families between particles (particle_families.hpp), colour-sorted at build time.
+  ParticleFamilies constraints;
 
   FluidModel fluid;
 
@@ -92,6 +80,11 @@ struct Model {
   Index particle_count() const { return static_cast<Index>(particle_inv_mass.size()); }
   /// Object index by name, or -1.
   Index find_object(const std::string& name) const;
+  /// One family of `constraints`, e.g. family<DistanceConstraints>().
+  template <class Family>
+  Family& family() { return std::get<Family>(constraints); }
+  template <class Family>
+  const Family& family() const { return std::get<Family>(constraints); }
   /// Colours every family (call once after all constraints are added).
   void color_constraints();
 };

@@ -9,13 +9,9 @@ State make_rest_state(const Model& model) {
   s.velocity.assign(n, Vec3::Zero());
   s.substep_start = s.position;
   s.velocity_before.assign(n, Vec3::Zero());
-  s.distance_lambda.assign(model.distance.size(), 0);
-  s.bending_lambda.assign(model.bending.size(), 0);
-  s.isometric_bending_lambda.assign(model.isometric_bending.size(), Vec3::Zero());
-  s.triangle_strain_lambda.assign(model.triangle_strain.size(), Vec3::Zero());
-  s.neo_hookean_lambda.assign(model.neo_hookean.size(), Vec2::Zero());
-  s.tet_volume_lambda.assign(model.tet_volume.size(), 0);
-  s.attachment_lambda.assign(model.attachment.size(), Vec3::Zero());
+  for_each_family(model.constraints, s.constraint_lambda, [](const auto& family, auto& lambda, int) {
+    lambda.assign(family.size(), zero_multiplier<typename std::decay_t<decltype(family)>::Multiplier>());
+  });
   s.fluid = make_fluid_state(model.fluid);
   const RigidBodyModel& rb = model.rigid;
   s.rigid.resize(rb.count());

@@ -20,14 +20,9 @@ struct State {
   std::vector<Vec3> substep_start;      // m, positions at the start of the current substep
   std::vector<Vec3> velocity_before;    // m/s, velocity after prediction, before the solve (restitution)
 
-  // Multipliers, reset at every substep and accumulated over its iterations.
-  std::vector<Real> distance_lambda;
-  std::vector<Real> bending_lambda;
-  std::vector<Vec3> isometric_bending_lambda;
-  std::vector<Vec3> triangle_strain_lambda;
-  std::vector<Vec2> neo_hookean_lambda;
-  std::vector<Real> tet_volume_lambda;
-  std::vector<Vec3> attachment_lambda;
+  // Multipliers of the particle constraint families (one vector per family, in list order), reset
+  // at every substep and accumulated over its iterations. lambda / h^2 is the constraint force.
+  ParticleFamilyMultipliers constraint_lambda;
 
   ColliderContacts collider_contacts;
   ParticleContacts particle_contacts;

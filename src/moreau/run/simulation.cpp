@@ -20,6 +20,7 @@
 #include "moreau/moreau.hpp"
 #include "moreau/scene/scene.hpp"
 #include "moreau/solvers/thread_budget.hpp"
+#include "moreau/solvers/xpbd/xpbd_stages.hpp"
 #include "moreau/solvers/xpbd/xpbd_step.hpp"
 #include "moreau/run/fem_run.hpp"
 
@@ -86,19 +87,11 @@ std::string Simulation::summary() const {
       s += fmt::format(" {} particles, {} surface triangles, {} tetrahedra", o.particle_count(), o.surface.size(), o.tets.size());
     s += "\n";
   }
-  auto family = [&](const char* name, size_t count, const ColorBatches* b) {
-    if (count == 0) return;
-    s += fmt::format("  constraints {:<16} {:>8}", name, count);
-    if (b) s += fmt::format("  in {} colours", b->color_count());
-    s += "\n";
-  };
-  family("distance", m.distance.size(), &m.distance.batches);
-  family("bending", m.bending.size(), &m.bending.batches);
-  family("isometric_bending", m.isometric_bending.size(), &m.isometric_bending.batches);
-  family("triangle_strain", m.triangle_strain.size(), &m.triangle_strain.batches);
-  family("neo_hookean", m.neo_hookean.size(), &m.neo_hookean.batches);
-  family("tet_volume", m.tet_volume.size(), &m.tet_volume.batches);
-  family("attachment", m.attachment.size(), nullptr);
+  for_each_family(m.constraints, [&](const auto& family, int) {
+    if (family.size() == 0) return;
+    s += fmt::format("  constraints {:<17} {:>8}  in {} colours\n", family.kName, family.size(),
+                     family.batches.color_count());
+  });
   if (!m.joints.empty()) s += fmt::format("  joints: {}\n", m.joints.size());
   if (!m.fluid.empty())
     s += fmt::format("  fluid: support h = {} m, {} collider wall samples\n", m.fluid.support(), m.fluid.boundary.size());
@@ -115,6 +108,8 @@ nlohmann::json xpbd_run_summary_json(const Scene& scene, const StageTimer& timer
       {scene.name, scene.file, scene.solver, status, message, m.settings.dt, state.time, wall_time, threads, steps});
   j["substeps"] = m.settings.substeps;
   j["iterations"] = m.settings.iterations;
+  nlohmann::json constraints = nlohmann::json::object();
+  for_each_family(m.constraints, [&](const auto& family, int) { constraints[std::string(family.kName)] = family.size(); });
   j["counts"] = {{"particles", m.particle_count()},
                  {"fluid_particles", state.fluid.count},
                  {"objects", m.objects.size()},
@@ -122,17 +117,10 @@ nlohmann::json xpbd_run_summary_json(const Scene& scene, const StageTimer& timer
                  {"rigid_bodies", std::count_if(m.objects.begin(), m.objects.end(),
                                                 [](const ObjectInfo& o) { return o.kind == ObjectKind::rigid_body; })},
                  {"joints", m.joints.size()},
-                 {"constraints",
-                  {{"distance", m.distance.size()},
-                   {"bending", m.bending.size()},
-                   {"isometric_bending", m.isometric_bending.size()},
-                   {"triangle_strain", m.triangle_strain.size()},
-                   {"neo_hookean", m.neo_hookean.size()},
-                   {"tet_volume", m.tet_volume.size()},
-                   {"attachment", m.attachment.size()}}}};
+                 {"constraints", constraints}};
   nlohmann::json stages = nlohmann::json::object();
-  for (int s = 0; s < static_cast<int>(Stage::count); ++s)
-    stages[std::string(kStageNames[s])] = timer.seconds(static_cast<Stage>(s));
+  const std::vector<std::string> names = xpbd_stage_names();
+  for (int s = 0; s < static_cast<int>(names.size()); ++s) stages[names[s]] = timer.seconds(s);
   j["stage_time_s"] = stages;
   if (!m.fluid.empty())
     j["fluid"] = {{"neighbor_list_builds", state.fluid.list_builds},

@@ -96,11 +96,11 @@ void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
 
   if (membrane) {
     for (const auto& t : mesh.triangles)
-      m.triangle_strain.add({base + t[0], base + t[1], base + t[2]}, X(t[0]), X(t[1]), X(t[2]), youngs, poisson, thickness,
+      m.family<TriangleStrainConstraints>().add({base + t[0], base + t[1], base + t[2]}, X(t[0]), X(t[1]), X(t[2]), youngs, poisson, thickness,
                             damping, object_index);
   } else {
     for (const auto& e : edges)
-      m.distance.add(base + e[0], base + e[1], (X(e[0]) - X(e[1])).norm(), stretch_compliance, damping, object_index);
+      m.family<DistanceConstraints>().add(base + e[0], base + e[1], (X(e[0]) - X(e[1])).norm(), stretch_compliance, damping, object_index);
   }
   if (has_bend_compliance || bending_stiffness > 0) {
     for (const Hinge& h : triangle_hinges(mesh.triangles)) {
@@ -111,7 +111,7 @@ void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
               ? bend_compliance
               : hinge_compliance_from_bending_stiffness(X(h.e0), X(h.e1), X(h.o0), X(h.o1), bending_stiffness);
       if (!isometric) {
-        m.bending.add(g, theta0, angle_compliance, damping, object_index);
+        m.family<DihedralBendingConstraints>().add(g, theta0, angle_compliance, damping, object_index);
         continue;
       }
       // The isometric model is exact only for a flat rest shape; 1e-3 rad tolerates mesh-file round-off.
@@ -119,7 +119,7 @@ void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
         material.fail("bending_model", fmt::format("isometric bending needs a flat rest shape, but the hinge on "
                                                    "vertices {} and {} is bent by {:.3g} degrees at rest; use \"dihedral\"",
                                                    h.e0, h.e1, theta0 * 180 / kPi));
-      m.isometric_bending.add(g, X(h.e0), X(h.e1), X(h.o0), X(h.o1), angle_compliance, damping, object_index);
+      m.family<IsometricBendingConstraints>().add(g, X(h.e0), X(h.e1), X(h.o0), X(h.o1), angle_compliance, damping, object_index);
     }
   }
   for (Index p = info.particle_begin; p < info.particle_end; ++p) m.contact_particle.push_back(p);

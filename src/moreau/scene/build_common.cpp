@@ -49,6 +49,7 @@ void add_particles(SceneBuildContext& ctx, ObjectInfo& info, const std::vector<V
 
 void read_pins(const JsonObject& object, const ObjectInfo& info, SceneBuildContext& ctx) {
   Model& m = ctx.model;
+  AttachmentConstraints& attachments = m.family<AttachmentConstraints>();
   const Index object_index = static_cast<Index>(m.objects.size());
   for (const JsonObject& pin : object.object_list("pin")) {
     const Real compliance = pin.number("compliance", 0.0, Range::non_negative());
@@ -86,13 +87,13 @@ void read_pins(const JsonObject& object, const ObjectInfo& info, SceneBuildConte
       // A particle already pinned rigidly, or attached by an earlier region, keeps that pin: two
       // attachments on one particle would also race in the attachments' parallel loop.
       if (m.particle_inv_mass[p] == 0 ||
-          std::find(m.attachment.particle.begin(), m.attachment.particle.end(), p) != m.attachment.particle.end())
+          std::find(attachments.particle.begin(), attachments.particle.end(), p) != attachments.particle.end())
         continue;
       if (compliance == 0) {
         m.particle_inv_mass[p] = 0;
         ctx.initial_velocity[p] = Vec3::Zero();
       } else {
-        m.attachment.add(p, m.particle_rest_position[p], compliance, damping, object_index);
+        attachments.add(p, m.particle_rest_position[p], compliance, damping, object_index);
       }
     }
   }

@@ -100,8 +100,8 @@ void build_soft_body(const JsonObject& object, ObjectInfo& info, SceneBuildConte
     const std::array<Index, 4> g{base + t[0], base + t[1], base + t[2], base + t[3]};
     const std::array<Vec3, 4> rest{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]};
     info.tets.push_back(g);
-    m.neo_hookean.add(g, rest, youngs, poisson, damping, object_index);
-    if (has_volume) m.tet_volume.add(g, rest, volume_compliance, damping, object_index);
+    m.family<NeoHookeanTetConstraints>().add(g, rest, youngs, poisson, damping, object_index);
+    if (has_volume) m.family<TetVolumeConstraints>().add(g, rest, volume_compliance, damping, object_index);
   }
   // Only surface vertices can touch anything.
   std::vector<Index> surface_vertices;

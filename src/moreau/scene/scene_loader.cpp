@@ -193,18 +193,8 @@ ProbeSpec read_probe(const JsonObject& j, const Model& model) {
   } else {
     p.type = ProbeType::constraint_error;
     p.object = object_index(j, model, true, Accepts::solids);
-    const std::string family = j.choice(
-        "family", "all", {"all", "distance", "bending", "triangle_strain", "neo_hookean_volume", "tet_volume", "attachment"});
-    static const std::vector<std::pair<std::string, ConstraintFamily>> kFamilies{
-        {"all", ConstraintFamily::all},
-        {"distance", ConstraintFamily::distance},
-        {"bending", ConstraintFamily::bending},
-        {"triangle_strain", ConstraintFamily::triangle_strain},
-        {"neo_hookean_volume", ConstraintFamily::neo_hookean_volume},
-        {"tet_volume", ConstraintFamily::tet_volume},
-        {"attachment", ConstraintFamily::attachment}};
-    for (const auto& [n, f] : kFamilies)
-      if (n == family) p.family = f;
+    const auto names = constraint_error_names();
+    p.family = j.choice("family", "all", std::vector<std::string>(names.begin(), names.end()));
   }
   j.finish();
   return p;

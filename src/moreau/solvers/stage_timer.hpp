@@ -1,54 +1,31 @@
 #pragma once
-// Wall-clock time per named stage of a step, accumulated over a run (reported as stage_time_s).
-#include <array>
+// Wall-clock time per stage of a step, accumulated over a run (reported as stage_time_s). A
+// solver numbers its stages and names them (e.g. xpbd_stage_names()); the timer only adds time.
 #include <chrono>
-#include <string_view>
+#include <type_traits>
+#include <vector>
 
 namespace moreau {
-
-enum class Stage : int {
-  detect_contacts,
-  predict,
-  distance,
-  bending,
-  triangle_strain,
-  neo_hookean,
-  tet_volume,
-  attachments,
-  collider_contacts,
-  particle_contacts,
-  joints,
-  rigid_contacts,
-  fluid_neighbors,
-  fluid_density,
-  update_velocity,
-  velocity_pass,
-  fluid_velocity,
-  check_state,
-  count
-};
-
-inline constexpr std::array<std::string_view, static_cast<int>(Stage::count)> kStageNames{
-    "detect_contacts", "predict",           "distance",          "bending",         "triangle_strain",
-    "neo_hookean",     "tet_volume",        "attachments",       "collider_contacts", "particle_contacts", "joints", "rigid_contacts",
-    "fluid_neighbors", "fluid_density",     "update_velocity",   "velocity_pass",     "fluid_velocity",
-    "check_state"};
 
 class StageTimer {
  public:
   using Clock = std::chrono::steady_clock;
   void start() { last_ = Clock::now(); }
-  /// Charges the time since the previous lap (or start) to `stage`.
-  void lap(Stage stage) {
+  /// Charges the time since the previous lap (or start) to stage `stage`.
+  void lap(int stage) {
     const auto now = Clock::now();
-    seconds_[static_cast<int>(stage)] += std::chrono::duration<double>(now - last_).count();
+    if (stage >= static_cast<int>(seconds_.size())) seconds_.resize(stage + 1, 0.0);
+    seconds_[stage] += std::chrono::duration<double>(now - last_).count();
     last_ = now;
   }
-  double seconds(Stage stage) const { return seconds_[static_cast<int>(stage)]; }
+  template <class Stage>
+    requires std::is_enum_v<Stage>
+  void lap(Stage stage) { lap(static_cast<int>(stage)); }
+  double seconds(int stage) const { return stage < static_cast<int>(seconds_.size()) ? seconds_[stage] : 0.0; }
 
  private:
   Clock::time_point last_{};
-  std::array<double, static_cast<int>(Stage::count)> seconds_{};
+  std::vector<double> seconds_;
 };
 
 }  // namespace moreau

@@ -15,6 +15,8 @@
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/rigid/particle_body_contacts.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
+#include "moreau/solvers/xpbd/particle_projections.hpp"
+#include "moreau/solvers/xpbd/xpbd_stages.hpp"
 
 namespace moreau {
 
@@ -41,13 +43,9 @@ void predict(const Model& model, State& state, Real h) {
 #pragma omp for schedule(static) nowait
     for (Index k = 0; k < m; ++k) values[k] = zero;
   };
-  clear(state.distance_lambda, Real{0});
-  clear(state.bending_lambda, Real{0});
-  clear(state.isometric_bending_lambda, Vec3::Zero().eval());
-  clear(state.triangle_strain_lambda, Vec3::Zero().eval());
-  clear(state.neo_hookean_lambda, Vec2::Zero().eval());
-  clear(state.tet_volume_lambda, Real{0});
-  clear(state.attachment_lambda, Vec3::Zero().eval());
+  for_each_family(model.constraints, state.constraint_lambda, [&](const auto& family, auto& lambda, int) {
+    clear(lambda, zero_multiplier<typename std::decay_t<decltype(family)>::Multiplier>());
+  });
   clear(state.collider_contacts.lambda_normal, Real{0});
   clear(state.particle_contacts.lambda_normal, Real{0});
 #pragma omp barrier
@@ -111,7 +109,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
     detect_rigid_contacts(model, state);
     detect_particle_body_contacts(model, state);
   }
-  timer.lap(Stage::detect_contacts);
+  timer.lap(XpbdStage::detect_contacts);
 
   const Real dt = model.settings.dt;
   const int substeps = model.settings.substeps, iterations = model.settings.iterations;
@@ -124,7 +122,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
 
 #pragma omp parallel num_threads(solver_thread_count(model))
   {
-    auto lap = [&](Stage stage) {
+    auto lap = [&](auto stage) {
 #pragma omp master
       timer.lap(stage);
     };
@@ -141,28 +139,19 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
       predict(model, state, h);
       if (rigid) predict_rigid_bodies(model, state.rigid, h);
       if (fluids) predict_fluid(model, fluid, h);
-      lap(Stage::predict);
+      lap(XpbdStage::predict);
       if (fluids) {
         if (model.fluid.boundary.moving) place_boundary_samples(model, fluid, substep_end);
         if (coupled_solids) place_solid_samples(model, state);
         update_fluid_neighbors(model, fluid, substep_end);
         if (coupled_solids) split_solid_masses(model, fluid);
-        lap(Stage::fluid_neighbors);
+        lap(XpbdStage::fluid_neighbors);
       }
       for (int it = 0; it < iterations; ++it) {
-        project_distance(model.distance, state.distance_lambda.data(), ctx);
-        lap(Stage::distance);
-        project_dihedral_bending(model.bending, state.bending_lambda.data(), ctx);
-        project_isometric_bending(model.isometric_bending, state.isometric_bending_lambda.data(), ctx);
-        lap(Stage::bending);
-        project_triangle_strain(model.triangle_strain, state.triangle_strain_lambda.data(), ctx);
-        lap(Stage::triangle_strain);
-        project_neo_hookean(model.neo_hookean, state.neo_hookean_lambda.data(), ctx);
-        lap(Stage::neo_hookean);
-        project_tet_volume(model.tet_volume, state.tet_volume_lambda.data(), ctx);
-        lap(Stage::tet_volume);
-        project_attachments(model.attachment, state.attachment_lambda.data(), ctx);
-        lap(Stage::attachments);
+        for_each_family(model.constraints, state.constraint_lambda, [&](const auto& family, auto& lambda, int index) {
+          xpbd_project(family, lambda.data(), ctx);
+          lap(xpbd_family_stage(index));
+        });
         // The fluid before the contacts: what it pushes into a collider, the contacts push out.
         if (fluids) {
           if (coupled_solids) place_solid_samples(model, state);
@@ -173,28 +162,28 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
             place_solid_samples(model, state);
             project_solid_contacts(model, state, substep_end);
           }
-          lap(Stage::fluid_density);
+          lap(XpbdStage::fluid_density);
         }
         project_particle_contacts(model, state, ctx);
-        lap(Stage::particle_contacts);
+        lap(XpbdStage::particle_contacts);
         project_collider_contacts(model, state, ctx, substep_end);
-        lap(Stage::collider_contacts);
+        lap(XpbdStage::collider_contacts);
         if (rigid) {
 #pragma omp single
           {
             solve_joint_forest(model, state, h);
             project_joints(model, state, h);
-            timer.lap(Stage::joints);
+            timer.lap(XpbdStage::joints);
             project_rigid_contacts(model, state);
             project_particle_body_contacts(model, state);
-            timer.lap(Stage::rigid_contacts);
+            timer.lap(XpbdStage::rigid_contacts);
           }
         }
       }
       update_velocity(model, state, h);
       if (rigid) update_rigid_body_velocities(model, state.rigid, h);
       if (fluids) update_fluid_velocity(fluid, h);
-      lap(Stage::update_velocity);
+      lap(XpbdStage::update_velocity);
       particle_contact_velocities(model, state, h);
       collider_contact_velocities(model, state, h);
       if (rigid) {
@@ -207,12 +196,12 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
         }
       }
 #pragma omp barrier
-      lap(Stage::velocity_pass);
+      lap(XpbdStage::velocity_pass);
     }
     if (fluids) {
       apply_fluid_velocity_corrections(model, fluid, dt);
       apply_fluid_surface_tension(model, fluid, dt);
-      lap(Stage::fluid_velocity);
+      lap(XpbdStage::fluid_velocity);
     }
   }
   if (fluids) fluid_cfl_number(model, fluid, h);
@@ -220,7 +209,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
   state.time = start_time + dt;
   state.step += 1;
   check_state(model, state);
-  timer.lap(Stage::check_state);
+  timer.lap(XpbdStage::check_state);
 }
 
 }  // namespace moreau
