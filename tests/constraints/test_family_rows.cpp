@@ -140,7 +140,8 @@ TYPED_TEST(FamilyRows, GradientBlocksAreTheDerivativesOfC) {
         std::vector<Vec3> plus = s.x, minus = s.x;
         plus[rows.particle[i]][d] += step;
         minus[rows.particle[i]][d] -= step;
-        const auto difference = (s.family.rows(k, plus.data()).C - s.family.rows(k, minus.data()).C) / (2 * step);
+        const typename TypeParam::Rows::Vector difference =
+            (s.family.rows(k, plus.data()).C - s.family.rows(k, minus.data()).C) / (2 * step);
         EXPECT_LT((difference - rows.gradient[i].col(d)).norm(), 1e-6 * scale)
             << TypeParam::kName << " constraint " << k << ", particle " << i << ", axis " << d;
       }

@@ -15,27 +15,6 @@ void DihedralBendingConstraints::color(const std::vector<Real>& particle_inv_mas
   apply_permutation(object, permutation);
 }
 
-DihedralValue evaluate_dihedral(const Vec3& e0, const Vec3& e1, const Vec3& o0, const Vec3& o1) {
-  DihedralValue v{0, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};
-  const Vec3 e = e1 - e0;
-  const Real l2 = e.squaredNorm();
-  const Vec3 nA = e.cross(o0 - e0);
-  const Vec3 nB = (o1 - e0).cross(e);
-  const Real nA2 = nA.squaredNorm(), nB2 = nB.squaredNorm();
-  if (l2 <= 0 || nA2 <= 0 || nB2 <= 0) return v;  // degenerate hinge: no bending direction
-  const Real l = std::sqrt(l2), inv_l = 1 / l;
-  // atan2 is invariant to scaling both arguments by |nA||nB| > 0, so the normals need no normalizing.
-  v.theta = std::atan2(nA.cross(nB).dot(e) * inv_l, nA.dot(nB));
-  const Vec3 gA = nA * (1 / nA2), gB = nB * (1 / nB2);
-  v.grad[2] = -l * gA;
-  v.grad[3] = -l * gB;
-  // (o - e1).e = (o - e0).e - l^2
-  const Real sA = (o0 - e0).dot(e) * inv_l, sB = (o1 - e0).dot(e) * inv_l;
-  v.grad[0] = (l - sA) * gA + (l - sB) * gB;
-  v.grad[1] = sA * gA + sB * gB;
-  return v;
-}
-
 Real hinge_compliance_from_bending_stiffness(const Vec3& e0, const Vec3& e1, const Vec3& o0, const Vec3& o1,
                                              Real bending_stiffness) {
   const Vec3 e = e1 - e0;

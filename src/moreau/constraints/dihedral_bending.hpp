@@ -18,6 +18,7 @@
 //   3 l^2/(A_A + A_B) (Grinspun et al. 2003) makes that 3x too stiff: only one edge family in
 //   three carries a cylindrical bend, so the curvature lives in a third of the area. Hinge
 //   bending stays anisotropic: on moreau's grid sheet, rolling about a diagonal is 1.5x stiffer.
+#include <cmath>
 #include <string_view>
 #include <vector>
 
@@ -68,7 +69,26 @@ inline Real wrap_angle(Real a) {
   return a;
 }
 
-DihedralValue evaluate_dihedral(const Vec3& e0, const Vec3& e1, const Vec3& o0, const Vec3& o1);
+[[gnu::always_inline]] inline DihedralValue evaluate_dihedral(const Vec3& e0, const Vec3& e1, const Vec3& o0, const Vec3& o1) {
+  DihedralValue v{0, {Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero()}};
+  const Vec3 e = e1 - e0;
+  const Real l2 = e.squaredNorm();
+  const Vec3 nA = e.cross(o0 - e0);
+  const Vec3 nB = (o1 - e0).cross(e);
+  const Real nA2 = nA.squaredNorm(), nB2 = nB.squaredNorm();
+  if (l2 <= 0 || nA2 <= 0 || nB2 <= 0) return v;  // degenerate hinge: no bending direction
+  const Real l = std::sqrt(l2), inv_l = 1 / l;
+  // atan2 is invariant to scaling both arguments by |nA||nB| > 0, so the normals need no normalizing.
+  v.theta = std::atan2(nA.cross(nB).dot(e) * inv_l, nA.dot(nB));
+  const Vec3 gA = nA * (1 / nA2), gB = nB * (1 / nB2);
+  v.grad[2] = -l * gA;
+  v.grad[3] = -l * gB;
+  // (o - e1).e = (o - e0).e - l^2
+  const Real sA = (o0 - e0).dot(e) * inv_l, sB = (o1 - e0).dot(e) * inv_l;
+  v.grad[0] = (l - sA) * gA + (l - sB) * gB;
+  v.grad[1] = sA * gA + sB * gB;
+  return v;
+}
 
 /// Hinge compliance for a bending stiffness k_B (N m), from the discrete-shells energy above.
 Real hinge_compliance_from_bending_stiffness(const Vec3& e0, const Vec3& e1, const Vec3& o0, const Vec3& o1,

@@ -16,13 +16,6 @@ void DistanceConstraints::color(const std::vector<Real>& particle_inv_mass) {
   apply_permutation(object, permutation);
 }
 
-DistanceValue evaluate_distance(const Vec3& x0, const Vec3& x1, Real rest_length) {
-  const Vec3 d = x0 - x1;
-  const Real length = d.norm();
-  const Vec3 n = length > 0 ? Vec3(d * (1 / length)) : Vec3::Zero();
-  return {length - rest_length, n};
-}
-
 DistanceConstraints::Rows DistanceConstraints::rows(Index k, const Vec3* x) const {
   const auto [a, b] = particles[k];
   const DistanceValue v = evaluate_distance(x[a], x[b], rest_length[k]);

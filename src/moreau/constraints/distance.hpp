@@ -5,6 +5,7 @@
 //   grad_x0 C = n = (x0 - x1)/|x0 - x1|,  grad_x1 C = -n
 //   compliance alpha (m/N): the inverse of an axial spring stiffness; 0 = inextensible.
 //   Source: Mueller et al. 2007 (PBD); compliance and damping from XPBD (Macklin et al. 2016).
+#include <cmath>
 #include <string_view>
 #include <vector>
 
@@ -18,7 +19,12 @@ struct DistanceValue {
   Vec3 grad0;  // grad_x1 C = -grad0
 };
 
-DistanceValue evaluate_distance(const Vec3& x0, const Vec3& x1, Real rest_length);
+[[gnu::always_inline]] inline DistanceValue evaluate_distance(const Vec3& x0, const Vec3& x1, Real rest_length) {
+  const Vec3 d = x0 - x1;
+  const Real length = d.norm();
+  const Vec3 n = length > 0 ? Vec3(d * (1 / length)) : Vec3::Zero();
+  return {length - rest_length, n};
+}
 
 struct DistanceConstraints {
   static constexpr std::string_view kName = "distance", kErrorName = "distance";

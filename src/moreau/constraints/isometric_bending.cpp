@@ -32,12 +32,6 @@ void IsometricBendingConstraints::color(const std::vector<Real>& particle_inv_ma
   apply_permutation(object, permutation);
 }
 
-Vec3 isometric_bending_value(const IsometricHinge& h, const Vec3* x) {
-  const auto& p = h.particles;
-  const auto& K = h.weight;
-  return K[0] * x[p[0]] + K[1] * x[p[1]] + K[2] * x[p[2]] + K[3] * x[p[3]];
-}
-
 IsometricBendingConstraints::Rows IsometricBendingConstraints::rows(Index k, const Vec3* x) const {
   const IsometricHinge& h = hinges[k];
   Rows r;

@@ -61,7 +61,11 @@ struct IsometricBendingConstraints {
 std::array<Real, 4> isometric_hinge_weights(const Vec3& E0, const Vec3& E1, const Vec3& O0, const Vec3& O1);
 
 /// C = sum_i K_i x_i of hinge k.
-Vec3 isometric_bending_value(const IsometricHinge& h, const Vec3* x);
+[[gnu::always_inline]] inline Vec3 isometric_bending_value(const IsometricHinge& h, const Vec3* x) {
+  const auto& p = h.particles;
+  const auto& K = h.weight;
+  return K[0] * x[p[0]] + K[1] * x[p[1]] + K[2] * x[p[2]] + K[3] * x[p[3]];
+}
 
 /// lambda holds one 3-vector per hinge.
 /// max |C| / l (rad, the small-angle dihedral angle) over the hinges of `object`.

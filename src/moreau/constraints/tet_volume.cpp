@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "moreau/constraints/tet_kinematics.hpp"
 
 namespace moreau {
 
@@ -26,11 +25,6 @@ void TetVolumeConstraints::color(const std::vector<Real>& particle_inv_mass) {
   apply_permutation(compliance, permutation);
   apply_permutation(damping_time, permutation);
   apply_permutation(object, permutation);
-}
-
-TetVolumeValue evaluate_tet_volume(const std::array<Vec3, 4>& x, const Mat3& rest_inverse) {
-  const Mat3 F = tet_deformation_gradient(x[0], x[1], x[2], x[3], rest_inverse);
-  return {F.determinant() - 1, tet_vertex_gradients(cofactor(F), rest_inverse)};
 }
 
 TetVolumeConstraints::Rows TetVolumeConstraints::rows(Index k, const Vec3* x) const {

@@ -9,6 +9,7 @@
 
 #include "moreau/constraints/constraint_batches.hpp"
 #include "moreau/constraints/constraint_rows.hpp"
+#include "moreau/constraints/tet_kinematics.hpp"
 
 namespace moreau {
 
@@ -41,6 +42,9 @@ struct TetVolumeValue {
   std::array<Vec3, 4> grad;
 };
 
-TetVolumeValue evaluate_tet_volume(const std::array<Vec3, 4>& x, const Mat3& rest_inverse);
+[[gnu::always_inline]] inline TetVolumeValue evaluate_tet_volume(const std::array<Vec3, 4>& x, const Mat3& rest_inverse) {
+  const Mat3 F = tet_deformation_gradient(x[0], x[1], x[2], x[3], rest_inverse);
+  return {F.determinant() - 1, tet_vertex_gradients(cofactor(F), rest_inverse)};
+}
 
 }  // namespace moreau

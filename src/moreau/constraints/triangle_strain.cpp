@@ -35,24 +35,6 @@ void TriangleStrainConstraints::color(const std::vector<Real>& particle_inv_mass
   apply_permutation(object, permutation);
 }
 
-TriangleStrainValue evaluate_triangle_strain(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Mat2& M) {
-  Mat32 Ds;
-  Ds.col(0) = x1 - x0;
-  Ds.col(1) = x2 - x0;
-  const Mat32 F = Ds * M;
-  const Vec3 f1 = F.col(0), f2 = F.col(1);
-  TriangleStrainValue v;
-  v.C = Vec3(0.5 * (f1.squaredNorm() - 1), 0.5 * (f2.squaredNorm() - 1), f1.dot(f2));
-  for (int k = 1; k <= 2; ++k) {
-    Mat3& g = v.grad[k];
-    g.row(0) = (f1 * M(k - 1, 0)).transpose();
-    g.row(1) = (f2 * M(k - 1, 1)).transpose();
-    g.row(2) = (f2 * M(k - 1, 0) + f1 * M(k - 1, 1)).transpose();
-  }
-  v.grad[0] = -(v.grad[1] + v.grad[2]);
-  return v;
-}
-
 TriangleStrainConstraints::Rows TriangleStrainConstraints::rows(Index k, const Vec3* x) const {
   const auto& p = particles[k];
   const TriangleStrainValue v = evaluate_triangle_strain(x[p[0]], x[p[1]], x[p[2]], rest_inverse[k]);
