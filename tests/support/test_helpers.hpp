@@ -28,9 +28,11 @@ inline Scene scene_from_json(const std::string& json, const std::vector<std::str
   return load_scene(path, overrides);
 }
 
+/// Steps a constraint-engine scene through its solver (the one settings.solver selects).
 inline void run_steps(Scene& scene, long steps) {
   StageTimer timer;
-  for (long s = 0; s < steps; ++s) xpbd_step(scene.model, scene.state, timer);
+  for (long s = 0; s < steps; ++s)
+    scene.formulation->step(scene.model, scene.state, timer, solver_thread_count(scene.model));
 }
 
 struct CommandResult {

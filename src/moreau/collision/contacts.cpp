@@ -65,7 +65,7 @@ void detect_collider_contacts(const Model& model, State& state) {
   c.group_offsets.push_back(static_cast<Index>(c.particle.size()));
 }
 
-void detect_particle_contacts(const Model& model, State& state) {
+void detect_particle_contacts(const Model& model, State& state, int threads) {
   ParticleContacts& c = state.particle_contacts;
   ContactScratch& scratch = state.contact_scratch;
   c.clear();
@@ -82,7 +82,7 @@ void detect_particle_contacts(const Model& model, State& state) {
   const Real cell = 2 * max_radius + std::min(2 * k * dt * max_speed, 2 * max_radius);
   scratch.hash.build(model.contact_particle, state.position.data(), cell);
 
-  const int threads = std::max(1, model.settings.threads > 0 ? model.settings.threads : omp_get_max_threads());
+  threads = std::max(1, threads);
   scratch.thread_pairs.resize(threads);
   const Index n = static_cast<Index>(model.contact_particle.size());
 #pragma omp parallel num_threads(threads)

@@ -65,8 +65,8 @@ struct ContactScratch {
 /// Gathers (particle, collider) candidates for the coming step.
 void detect_collider_contacts(const Model& model, State& state);
 
-/// Gathers particle pairs for the coming step and sorts them into colour batches.
-void detect_particle_contacts(const Model& model, State& state);
+/// Gathers particle pairs for the coming step (on `threads` threads) and sorts them into colour batches.
+void detect_particle_contacts(const Model& model, State& state, int threads);
 
 /// Projections inside a substep; call inside an OpenMP parallel region. `substep_end_time` places
 /// kinematic colliders.

@@ -334,7 +334,7 @@ void solve_velocity_block(const BlockMatrix& K, const std::array<Real, 3 * kMaxP
 
 }  // namespace
 
-void detect_rigid_contacts(const Model& model, State& state) {
+void detect_rigid_contacts(const Model& model, State& state, int threads) {
   const RigidBodyModel& m = model.rigid;
   RigidBodyState& s = state.rigid;
   RigidContacts& contacts = state.rigid_contacts;
@@ -397,7 +397,7 @@ void detect_rigid_contacts(const Model& model, State& state) {
   };
   const Index pairs = static_cast<Index>(bp.pairs.size());
   if (static_cast<Index>(bp.pair_manifolds.size()) < pairs) bp.pair_manifolds.resize(pairs);
-#pragma omp parallel for schedule(dynamic, 16) num_threads(model.settings.threads > 0 ? model.settings.threads : 0)
+#pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
   for (Index p = 0; p < pairs; ++p) {
     const Index a = bp.pairs[p][0], b = bp.pairs[p][1];
     const RigidShape &sa = m.body_shape[a], &sb = m.body_shape[b];

@@ -75,8 +75,8 @@ struct RigidContacts {
   RigidBroadPhaseScratch scratch;
 };
 
-/// Broad and narrow phase for the coming step.
-void detect_rigid_contacts(const Model& model, State& state);
+/// Broad and narrow phase for the coming step, the narrow phase on `threads` threads.
+void detect_rigid_contacts(const Model& model, State& state, int threads);
 
 /// Clears the multipliers at the start of a substep.
 void reset_rigid_contacts(State& state);

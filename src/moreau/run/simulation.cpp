@@ -48,7 +48,7 @@ double Simulation::time() const { return scene_->state.time; }
 void Simulation::step() {
   if (scene_->fem) throw InputError("Simulation::step is not available for \"solver\": \"fem\" scenes; use run");
   StageTimer timer;
-  xpbd_step(scene_->model, scene_->state, timer);
+  scene_->formulation->step(scene_->model, scene_->state, timer, solver_thread_count(scene_->model));
 }
 
 std::vector<double> Simulation::position(const std::string& object, int vertex) const {
@@ -119,7 +119,7 @@ nlohmann::json xpbd_run_summary_json(const Scene& scene, const StageTimer& timer
                  {"joints", m.joints.size()},
                  {"constraints", constraints}};
   nlohmann::json stages = nlohmann::json::object();
-  const std::vector<std::string> names = xpbd_stage_names();
+  const std::vector<std::string> names = scene.formulation->stage_names();
   for (int s = 0; s < static_cast<int>(names.size()); ++s) stages[names[s]] = timer.seconds(s);
   j["stage_time_s"] = stages;
   if (!m.fluid.empty())
@@ -141,10 +141,11 @@ nlohmann::json xpbd_run_summary_json(const Scene& scene, const StageTimer& timer
 RunResult Simulation::run(const RunOptions& options) {
   Scene& scene = *scene_;
   if (scene.fem) return run_fem_scene(scene, options);
-  Model& model = scene.model;
-  if (options.threads) model.settings.threads = *options.threads;
+  const Model& model = scene.model;
+  Solver& solver = *scene.formulation;
+  const int requested_threads = options.threads.value_or(model.settings.threads);
   const double duration = options.duration.value_or(scene.duration);
-  const int threads = solver_thread_count(model);
+  const int threads = requested_threads > 0 ? requested_threads : omp_get_max_threads();
 
   const long steps = run_step_count(duration, model.settings.dt);
   const auto started = std::filesystem::file_time_type::clock::now();
@@ -171,13 +172,12 @@ RunResult Simulation::run(const RunOptions& options) {
   double wall = 0;
   std::string status = "completed", message;
   // The requested thread count is a maximum: cores that other processes keep busy are left to them.
-  ThreadBudget budget(model.settings.threads);
-  const int requested_threads = model.settings.threads;
+  ThreadBudget budget(requested_threads);
   try {
     for (long s = 0; s < steps; ++s) {
-      model.settings.threads = budget.next_step_threads();
+      const int step_threads = budget.next_step_threads();
       const auto t0 = std::chrono::steady_clock::now();
-      xpbd_step(model, state, timer);
+      solver.step(model, state, timer, step_threads);
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       result.steps = s + 1;
       if ((s + 1) % scene.output.every == 0 || s + 1 == steps) sample();
@@ -188,7 +188,6 @@ RunResult Simulation::run(const RunOptions& options) {
     message = e.what();
   }
   progress.finish();
-  model.settings.threads = requested_threads;
   if (state.fluid.cfl_violations > 0)
     fmt::print(stderr,
                "warning: the fluid CFL number max|v| h / (2 r) reached {:.2f} (limit {}) in {} steps; the time step is "

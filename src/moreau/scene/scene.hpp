@@ -8,6 +8,7 @@
 #include "moreau/fem/scene/fem_problem.hpp"
 #include "moreau/io/probes.hpp"
 #include "moreau/model/state.hpp"
+#include "moreau/solvers/solver.hpp"
 
 namespace moreau {
 
@@ -26,6 +27,7 @@ struct Scene {
   OutputSettings output;
   std::vector<ProbeSpec> probes;
   std::unique_ptr<FemProblem> fem;  // "solver": "fem" scenes: the FEM engine's problem (model is then empty)
+  std::unique_ptr<Solver> formulation;  // the registered solver named by settings.solver (constraint-engine scenes)
 };
 
 /// Reads, validates and builds a scene. `overrides` are "path=value" assignments applied to the

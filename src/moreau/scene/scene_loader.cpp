@@ -1,4 +1,5 @@
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <filesystem>
 
@@ -6,6 +7,7 @@
 #include "moreau/scene/fem_scene.hpp"
 #include "moreau/scene/object_builders.hpp"
 #include "moreau/scene/scene.hpp"
+#include "moreau/solvers/solver_registry.hpp"
 
 namespace moreau {
 
@@ -30,10 +32,14 @@ void read_output_settings(const JsonObject& settings, Scene& scene) {
 
 void read_settings(const JsonObject& settings, Scene& scene) {
   SolverSettings& s = scene.model.settings;
+  // The scene format names every formulation; those not registered (solver_registry.hpp) are
+  // refused with the list of the ones that are.
+  std::vector<std::string> available = registered_solver_names();
+  available.push_back("fem");
   const std::string solver = settings.choice("solver", "xpbd", {"xpbd", "nmd", "xpbi", "fem"});
-  if (solver != "xpbd" && solver != "fem")
-    settings.fail("solver",
-                  fmt::format("the '{}' formulation is not available in this version of moreau; allowed: xpbd, fem", solver));
+  if (std::find(available.begin(), available.end(), solver) == available.end())
+    settings.fail("solver", fmt::format("the '{}' formulation is not available in this version of moreau; allowed: {}",
+                                        solver, fmt::join(available, ", ")));
   scene.solver = solver;
   if (solver == "fem") {
     scene.fem = std::make_unique<FemProblem>();
@@ -250,6 +256,7 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
 
   scene.state = make_rest_state(scene.model);
   scene.state.velocity = initial_velocity;
+  scene.formulation = make_solver(scene.solver, scene.model);
   return scene;
 }
 

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "moreau/errors.hpp"
@@ -101,12 +102,17 @@ void check_state(const Model& model, const State& state) {
 }  // namespace
 
 void xpbd_step(const Model& model, State& state, StageTimer& timer) {
+  xpbd_step(model, state, timer, solver_thread_count(model));
+}
+
+void xpbd_step(const Model& model, State& state, StageTimer& timer, int threads) {
+  threads = std::max(1, threads);
   timer.start();
   detect_collider_contacts(model, state);
-  detect_particle_contacts(model, state);
+  detect_particle_contacts(model, state, threads);
   const bool rigid = !model.rigid.empty();
   if (rigid) {
-    detect_rigid_contacts(model, state);
+    detect_rigid_contacts(model, state, threads);
     detect_particle_body_contacts(model, state);
   }
   timer.lap(XpbdStage::detect_contacts);
@@ -120,7 +126,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer) {
   FluidState& fluid = state.fluid;
   if (!model.fluid.emitters.empty()) emit_fluid(model, fluid, start_time);
 
-#pragma omp parallel num_threads(solver_thread_count(model))
+#pragma omp parallel num_threads(threads)
   {
     auto lap = [&](auto stage) {
 #pragma omp master
