@@ -38,7 +38,7 @@ std::string fem_summary(const Scene& scene) {
   const FemProblem& p = *scene.fem;
   const FemModel& m = p.model;
   std::string s = fmt::format("scene '{}' ({}): solver fem ({}D), integrator {}, dt {} s, duration {} s\n", scene.name,
-                              scene.file, m.dim, integrator_name(p.integrator), scene.model.settings.dt, scene.duration);
+                              scene.file, m.dim, integrator_name(p.integrator), p.dt, scene.duration);
   for (const FemSolid& solid : m.solids)
     s += fmt::format("  solid {:<16} {} nodes, {} {} cells, {}, lambda {:.6g} Pa, mu {:.6g} Pa, density {} kg/m^3\n",
                      solid.name, solid.mesh.node_count(), solid.mesh.cell_count(), element_name(solid.mesh.element),
@@ -61,7 +61,7 @@ RunResult run_fem_scene(Scene& scene, const RunOptions& options) {
   if (options.threads) model.threads = *options.threads;
   const int threads = model.threads > 0 ? model.threads : omp_get_max_threads();
   const double duration = options.duration.value_or(scene.duration);
-  const Real dt = scene.model.settings.dt;
+  const Real dt = scene.fem->dt;
 
   const long steps = run_step_count(duration, dt);
   const auto started = std::filesystem::file_time_type::clock::now();

@@ -87,7 +87,7 @@ std::string flow_summary(const Scene& scene) {
   std::string s = fmt::format("scene '{}' ({}): solver fem ({}D fluid), integrator {}", scene.name, scene.file, m.dim(),
                               flow_integrator_name(p.integrator));
   if (p.integrator != FlowIntegrator::steady)
-    s += fmt::format(", dt {} s, duration {} s", scene.model.settings.dt, scene.duration);
+    s += fmt::format(", dt {} s, duration {} s", scene.fem->dt, scene.duration);
   s += fmt::format("\n  fluid: {} nodes, {} {} cells, density {} kg/m^3, viscosity {} Pa s\n", m.mesh.node_count(),
                    m.mesh.cell_count(), element_name(m.mesh.element), m.density, m.viscosity);
   s += fmt::format("  unknowns {} ({} free), Jacobian nonzeros {}, probes {}\n", m.dof_count(), m.free_count,
@@ -101,7 +101,7 @@ RunResult run_flow_scene(Scene& scene, const RunOptions& options) {
   if (options.threads) model.threads = *options.threads;
   const int threads = model.threads > 0 ? model.threads : omp_get_max_threads();
   const bool steady = problem.integrator == FlowIntegrator::steady;
-  const Real dt = steady ? 0 : scene.model.settings.dt;
+  const Real dt = steady ? 0 : scene.fem->dt;
   const double duration = options.duration.value_or(scene.duration);
 
   const long steps = steady ? 1 : run_step_count(duration, dt);

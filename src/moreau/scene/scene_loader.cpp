@@ -45,7 +45,8 @@ void read_settings(const JsonObject& settings, Scene& scene) {
     scene.fem = std::make_unique<FemProblem>();
     allow_fem_settings(settings);
   }
-  s.dt = settings.number("dt", s.dt, Range::positive());
+  Real& dt = solver == "fem" ? scene.fem->dt : s.dt;
+  dt = settings.number("dt", dt, Range::positive());
   scene.duration = settings.number("duration", scene.duration, Range::positive());
   s.gravity = settings.vec3("gravity", s.gravity);
   s.threads = settings.integer("threads", s.threads, 0, 1024);

@@ -43,6 +43,7 @@ struct FemRunState {
 struct FemProblem {
   FemModel model;
   FemIntegrator integrator = FemIntegrator::energy_momentum;
+  Real dt = 1.0 / 60;        // s, settings.dt (a flow's steady solve ignores it)
   NewtonSettings newton;
   VectorX initial_velocity;  // per dof
   std::vector<FemRigidBody> rigid_bodies;
