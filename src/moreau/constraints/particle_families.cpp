@@ -6,10 +6,10 @@ namespace moreau {
 
 std::vector<std::string_view> constraint_error_names() {
   std::vector<std::string_view> names{"all"};
-  const ParticleFamilies families;
-  for_each_family(families, [&](const auto& family, int) {
-    if (std::find(names.begin(), names.end(), family.kErrorName) == names.end()) names.push_back(family.kErrorName);
-  });
+  [&]<size_t... I>(std::index_sequence<I...>) {
+    for (std::string_view name : {std::tuple_element_t<I, ParticleFamilies>::kErrorName...})
+      if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+  }(std::make_index_sequence<kParticleFamilyCount>{});
   return names;
 }
 
