@@ -31,6 +31,7 @@ struct RunResult {
 };
 
 struct Scene;
+class Engine;
 
 class Simulation {
  public:
@@ -50,7 +51,8 @@ class Simulation {
   /// output written so far (and run.json with "status": "failed") remains.
   RunResult run(const RunOptions& options);
 
-  /// Lower-level access for tests and embedding: advance one step of settings.dt.
+  /// Lower-level access for tests and embedding: advance one step of settings.dt (any engine).
+  /// Throws NumericalError if it fails.
   void step();
   double time() const;
   /// Current position of a particle of the named object (m).
@@ -62,6 +64,7 @@ class Simulation {
  private:
   explicit Simulation(std::unique_ptr<Scene> scene);
   std::unique_ptr<Scene> scene_;
+  std::unique_ptr<Engine> engine_;  // steps scene_'s model and state
 };
 
 }  // namespace moreau

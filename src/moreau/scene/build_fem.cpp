@@ -273,7 +273,7 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
   }
   if (settings) read_solid_settings(*settings, problem);
   FemModel& model = problem.model;
-  model.threads = threads;
+  problem.threads = threads;
   if (top.has("objects"))
     top.fail("objects", "a \"solver\": \"fem\" scene has \"solids\", \"rigid_bodies\", \"joints\" and \"probes\", not objects");
   const auto solids = top.object_list("solids");

@@ -152,8 +152,8 @@ void build_flow_scene(const JsonObject& top, const JsonObject* settings, FemProb
   const JsonObject fluid = top.object("fluid");
   FlowProblem& problem = fem.flow.emplace();
   read_flow_settings(settings, fluid, problem);
+  fem.threads = threads;
   NavierStokesModel& m = problem.model;
-  m.threads = threads;
   m.mesh = read_fem_mesh(fluid.object("mesh"), top.file() + ": " + fluid.path_of("mesh"), MeshUse::flow);
   if (m.mesh.element != ElementType::quad4 && m.mesh.element != ElementType::hex8)
     fluid.fail("mesh", fmt::format("the fluid needs quadrilateral (2D) or hexahedral (3D) cells, not {}; with Gmsh, "

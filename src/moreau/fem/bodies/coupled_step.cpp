@@ -149,7 +149,7 @@ NewtonResult step_coupled(const FemProblem& problem, const SparseMatrix& mass, S
   InternalForceResult cells{};
   auto assemble_solids = [&](const Configuration& cfg, bool tangent) {
     if (model.dof_count() == 0) return InternalForceResult{};
-    return timed(result.assembly_s, [&] { return assemble_step_forces(model, s0.u, cfg.u, rule, f, tangent ? &K : nullptr); });
+    return timed(result.assembly_s, [&] { return assemble_step_forces(model, s0.u, cfg.u, rule, f, tangent ? &K : nullptr, settings.threads); });
   };
   cells = assemble_solids(z, true);
   if (!cells.valid) {

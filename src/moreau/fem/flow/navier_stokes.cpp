@@ -37,9 +37,9 @@ SchemeCoefficients scheme_coefficients(const FlowTimeStep& step) {
 // cell; local dofs node-major, fields (velocity components, pressure). x: u_{n+1}, x1: u_n, x2:
 // u_{n-1} (null when their coefficients vanish).
 void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x1, const Real* x2,
-               const SchemeCoefficients& c, bool with_jacobian, bool picard, CellVector& R, CellMatrix& J) {
+               const SchemeCoefficients& c, bool with_jacobian, bool picard, Real mu, CellVector& R, CellMatrix& J) {
   const int dim = m.dim(), F = m.fields(), nodes = m.mesh.nodes_per_cell(), n = F * nodes;
-  const Real rho = m.density, mu = m.viscosity, nu = mu / rho, theta = c.theta;
+  const Real rho = m.density, nu = mu / rho, theta = c.theta;
   R.setZero(n);
   if (with_jacobian) J.setZero(n, n);
   const Real h = m.cell_size[e];
@@ -116,7 +116,8 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
 }  // namespace
 
 void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeStep& step, VectorX& R, SparseMatrix* J,
-                   bool picard) {
+                   const FlowAssembly& how) {
+  const Real mu = how.viscosity > 0 ? how.viscosity : m.viscosity;
   const int F = m.fields(), nodes = m.mesh.nodes_per_cell(), n = F * nodes;
   const SchemeCoefficients coefficients = scheme_coefficients(step);
   if (step.transient() && !(step.dt > 0)) throw std::invalid_argument("assemble_flow: a transient step needs dt > 0");
@@ -129,7 +130,7 @@ void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeS
     *J = m.pattern;
     std::fill(J->valuePtr(), J->valuePtr() + J->nonZeros(), 0.0);
   }
-  for_each_cell_by_colour(m.colours, m.threads, [&](Index e) {
+  for_each_cell_by_colour(m.colours, how.threads, [&](Index e) {
     CellVector Re;
     CellMatrix Je;
     Real local[kMaxCellDofs], local1[kMaxCellDofs], local2[kMaxCellDofs];
@@ -141,7 +142,7 @@ void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeS
         if (x1) local1[a * F + f] = (*x1)[d];
         if (x2) local2[a * F + f] = (*x2)[d];
       }
-    flow_cell(m, e, local, x1 ? local1 : nullptr, x2 ? local2 : nullptr, coefficients, J != nullptr, picard, Re, Je);
+    flow_cell(m, e, local, x1 ? local1 : nullptr, x2 ? local2 : nullptr, coefficients, J != nullptr, how.picard, mu, Re, Je);
     for (int a = 0; a < nodes; ++a)
       for (int f = 0; f < F; ++f) R[m.dof(cell[a], f)] += Re[a * F + f];
     if (!J) return;
@@ -203,12 +204,14 @@ namespace {
 // tolerance * |x|), at most `limit` linear solves; false on failure, with result.failure set.
 // Divergence (|R| above 1e6 |R_0|, or not finite) stops early.
 bool iterate_flow(const NavierStokesModel& m, const FlowTimeStep& step, VectorX& x, FlowLinearSolver& solver, bool picard,
-                  Real stop, Real tolerance, int limit, FlowSolveResult& result, int& count) {
+                  Real stop, const FlowSolveSettings& settings, int limit, FlowSolveResult& result, int& count) {
+  const Real tolerance = settings.tolerance;
+  const FlowAssembly how{picard, settings.viscosity, settings.threads};
   VectorX R;
   SparseMatrix J;
   Real first = 0;
   for (int it = 0;; ++it) {
-    timed(result.assembly_s, [&] { assemble_flow(m, x, step, R, &J, picard); return 0; });
+    timed(result.assembly_s, [&] { assemble_flow(m, x, step, R, &J, how); return 0; });
     const Real norm = gather_free(m.free_index, m.free_count, R).norm();
     result.residual_norms.push_back(norm);
     if (it == 0) first = std::max(norm, Real(1e-300));
@@ -231,7 +234,7 @@ bool iterate_flow(const NavierStokesModel& m, const FlowTimeStep& step, VectorX&
     ++count;
     add_free(m.free_index, dx, x);
     if (!picard && dx.norm() <= tolerance * gather_free(m.free_index, m.free_count, x).norm()) {
-      assemble_flow(m, x, step, R, nullptr);
+      assemble_flow(m, x, step, R, nullptr, how);
       result.residual_norms.push_back(gather_free(m.free_index, m.free_count, R).norm());
       return true;
     }
@@ -245,7 +248,7 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
   FlowSolveResult result;
   for (const PrescribedDof& p : m.prescribed) x[p.dof] = p.value(t);
   const VectorX start = x;
-  if (iterate_flow(m, step, x, solver, false, settings.tolerance, settings.tolerance, settings.max_iterations, result,
+  if (iterate_flow(m, step, x, solver, false, settings.tolerance, settings, settings.max_iterations, result,
                    result.iterations)) {
     result.converged = true;
     return result;
@@ -254,11 +257,11 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
   // Picard from the same start (robust, linearly convergent), then Newton from where it got.
   const std::string newton_failure = result.failure;
   x = start;
-  if (!iterate_flow(m, step, x, solver, true, settings.picard_reduction, settings.tolerance,
+  if (!iterate_flow(m, step, x, solver, true, settings.picard_reduction, settings,
                     settings.max_picard_iterations, result, result.picard_iterations) ||
       !iterate_flow(m, step, x, solver, false, settings.tolerance * result.residual_norms.front() /
                                                    std::max(result.residual_norms.back(), Real(1e-300)),
-                    settings.tolerance, settings.max_iterations, result, result.iterations)) {
+                    settings, settings.max_iterations, result, result.iterations)) {
     result.failure = fmt::format("Newton failed ({}), and so did the Picard fallback: {}", newton_failure, result.failure);
     return result;
   }

@@ -51,6 +51,15 @@ struct FlowSolveSettings {
   bool picard_fallback = true;
   int max_picard_iterations = 100;
   Real picard_reduction = 1e-3;
+  Real viscosity = 0;           // Pa s of this solve; 0: the model's (continuation stages solve at their own)
+  int threads = 0;              // worker threads of the assembly (0 = all cores); results do not depend on it
+};
+
+/// How one assembly evaluates the equations.
+struct FlowAssembly {
+  bool picard = false;  // the advecting velocity frozen too (Picard's Jacobian)
+  Real viscosity = 0;   // Pa s; 0: the model's
+  int threads = 0;      // 0: all cores
 };
 
 struct NavierStokesModel {
@@ -58,7 +67,6 @@ struct NavierStokesModel {
   Real density = 1;              // kg/m^3
   Real viscosity = 0.01;         // dynamic, Pa s
   Vec3 body_force = Vec3::Zero();  // per unit mass, m/s^2
-  int threads = 0;
   // For tests of the Jacobian only: if > 0, tau and nu_LSIC take these values everywhere (the
   // Jacobian treats them as constants, so with them fixed it is the exact derivative).
   Real fixed_tau = 0, fixed_lsic = 0;
@@ -84,10 +92,10 @@ struct NavierStokesModel {
 void setup_navier_stokes(NavierStokesModel& model);
 
 /// The residual on all dofs at x (the state at t_{n+1}) and, if `J` is given, its Jacobian (tau
-/// frozen; `picard`: the advecting velocity frozen too) on the free dofs. Cells in parallel by
+/// frozen; `how.picard`: the advecting velocity frozen too) on the free dofs. Cells in parallel by
 /// colours, deterministic.
 void assemble_flow(const NavierStokesModel& model, const VectorX& x, const FlowTimeStep& step, VectorX& R,
-                   SparseMatrix* J, bool picard = false);
+                   SparseMatrix* J, const FlowAssembly& how = {});
 
 struct FlowSolveResult : NewtonResult {
   int picard_iterations = 0;

@@ -44,6 +44,7 @@ struct FemProblem {
   FemModel model;
   FemIntegrator integrator = FemIntegrator::energy_momentum;
   Real dt = 1.0 / 60;        // s, settings.dt (a flow's steady solve ignores it)
+  int threads = 0;           // settings.threads: the most worker threads a step may use (0 = all cores)
   NewtonSettings newton;
   VectorX initial_velocity;  // per dof
   std::vector<FemRigidBody> rigid_bodies;

@@ -76,11 +76,11 @@ NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepR
   apply_prescribed(model, state.time + h, u1);
   VectorX f;
   SparseMatrix K;
-  InternalForceResult cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, u1, rule, f, &K); });
+  InternalForceResult cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, u1, rule, f, &K, settings.threads); });
   if (!cells.valid) {
     u1 = u0;
     apply_prescribed(model, state.time + h, u1);
-    cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, u1, rule, f, &K); });
+    cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, u1, rule, f, &K, settings.threads); });
     if (!cells.valid) {
       result.failure = fmt::format("cell {} of '{}' is inverted at the start of the step", cells.invalid_cell,
                                    cells.invalid_solid);
@@ -114,7 +114,7 @@ NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepR
     for (int halving = 0;; ++halving, alpha *= 0.5) {
       trial = u1;
       add_free_part(model, alpha * du, trial);
-      cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, trial, rule, f, &K); });
+      cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, trial, rule, f, &K, settings.threads); });
       if (cells.valid) break;
       if (halving == settings.max_halvings) {
         result.failure = fmt::format("every Newton correction inverts cell {} of '{}'", cells.invalid_cell,

@@ -10,10 +10,10 @@ namespace {
 // `compute(e, local_u, local_u_next, out)` fill the element output and `visit(e, out)` scatter it,
 // by colours (for_each_cell_by_colour: race-free and deterministic).
 template <class Compute, class Visit>
-void for_each_cell(const FemModel& model, const FemSolid& s, const VectorX& u, const VectorX* u_next, Compute compute,
-                   Visit visit) {
+void for_each_cell(const FemModel& model, const FemSolid& s, const VectorX& u, const VectorX* u_next, int threads,
+                   Compute compute, Visit visit) {
   const int dim = model.dim, nodes = s.mesh.nodes_per_cell();
-  for_each_cell_by_colour(s.colours, model.threads, [&](Index e) {
+  for_each_cell_by_colour(s.colours, threads, [&](Index e) {
     ElementOutput out;
     Real local_u[kMaxElementDofs], local_next[kMaxElementDofs];
     const Index* c = s.mesh.cell(e);
@@ -30,7 +30,7 @@ void for_each_cell(const FemModel& model, const FemSolid& s, const VectorX& u, c
 
 // Scatters cell outputs into the global force, tangent values and per-cell energies.
 InternalForceResult scatter_cells(const FemModel& model, const VectorX& u, const VectorX* u_next, bool with_tangent,
-                                  VectorX& force, SparseMatrix* tangent,
+                                  VectorX& force, SparseMatrix* tangent, int threads,
                                   const std::function<void(const FemSolid&, Index, const Real*, const Real*, ElementOutput&)>& compute) {
   InternalForceResult result;
   force.setZero(model.dof_count());
@@ -45,7 +45,7 @@ InternalForceResult scatter_cells(const FemModel& model, const VectorX& u, const
     std::vector<Real> cell_energy(s.mesh.cell_count(), 0.0);
     std::vector<char> cell_valid(s.mesh.cell_count(), 1);
     for_each_cell(
-        model, s, u, u_next,
+        model, s, u, u_next, threads,
         [&](Index e, const Real* a, const Real* b, ElementOutput& out) { compute(s, e, a, b, out); },
         [&](Index e, const ElementOutput& out) {
           cell_energy[e] = out.energy;
@@ -77,18 +77,18 @@ InternalForceResult scatter_cells(const FemModel& model, const VectorX& u, const
 }  // namespace
 
 InternalForceResult assemble_internal_forces(const FemModel& model, const VectorX& u, VectorX& force,
-                                             SparseMatrix* tangent) {
+                                             SparseMatrix* tangent, int threads) {
   const bool with_tangent = tangent != nullptr;
-  return scatter_cells(model, u, nullptr, with_tangent, force, tangent,
+  return scatter_cells(model, u, nullptr, with_tangent, force, tangent, threads,
                        [&](const FemSolid& s, Index e, const Real* local_u, const Real*, ElementOutput& out) {
                          solid_element(s.material, s.cell_quadrature(e), model.dim, local_u, with_tangent, out);
                        });
 }
 
 InternalForceResult assemble_step_forces(const FemModel& model, const VectorX& u_n, const VectorX& u_next,
-                                         StepRule rule, VectorX& force, SparseMatrix* tangent) {
+                                         StepRule rule, VectorX& force, SparseMatrix* tangent, int threads) {
   const bool with_tangent = tangent != nullptr;
-  return scatter_cells(model, u_n, &u_next, with_tangent, force, tangent,
+  return scatter_cells(model, u_n, &u_next, with_tangent, force, tangent, threads,
                        [&](const FemSolid& s, Index e, const Real* a, const Real* b, ElementOutput& out) {
                          solid_element_step(s.material, s.cell_quadrature(e), model.dim, a, b, rule, with_tangent, out);
                        });
@@ -100,7 +100,7 @@ VectorX tangent_times(const FemModel& model, const VectorX& u, const VectorX& di
   for (const FemSolid& s : model.solids) {
     const int nodes = s.mesh.nodes_per_cell();
     for_each_cell(
-        model, s, u, nullptr,
+        model, s, u, nullptr, 0,
         [&](Index e, const Real* local_u, const Real*, ElementOutput& out) {
           solid_element(s.material, s.cell_quadrature(e), dim, local_u, true, out);
         },

@@ -16,13 +16,14 @@ struct InternalForceResult {
 
 /// Internal forces f_int(u) on all dofs (reactions included at prescribed ones) and the stored
 /// energy; if `tangent` is given, also K = d f_int / du on the free dofs (structure of model.pattern).
+/// `threads`: worker threads (0 = all cores); the result does not depend on it.
 InternalForceResult assemble_internal_forces(const FemModel& model, const VectorX& u, VectorX& force,
-                                             SparseMatrix* tangent);
+                                             SparseMatrix* tangent, int threads = 0);
 
 /// The algorithmic internal force of a time step from u_n to u_next (solid_element_step) on all
 /// dofs, the stored energy at u_next, and (if `tangent` is given) d f / d u_next on the free dofs.
 InternalForceResult assemble_step_forces(const FemModel& model, const VectorX& u_n, const VectorX& u_next,
-                                         StepRule rule, VectorX& force, SparseMatrix* tangent);
+                                         StepRule rule, VectorX& force, SparseMatrix* tangent, int threads = 0);
 
 /// K(u) d on all dofs, with K the full tangent (prescribed rows and columns included).
 VectorX tangent_times(const FemModel& model, const VectorX& u, const VectorX& direction);

@@ -71,7 +71,6 @@ struct FemModel {
   std::vector<Index> free_index;  // per dof; -1 if prescribed
   Index free_count = 0;
   SparseMatrix pattern;           // free x free, values zero: the structure of every tangent
-  int threads = 0;                // 0 = all cores
 
   Index dof_count() const { return node_count * dim; }
   Index dof(Index node, int component) const { return node * dim + component; }

@@ -33,7 +33,7 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
   const VectorX f_ext = external_forces(model, t);
   VectorX f_int, trial_force;
   SparseMatrix K;
-  InternalForceResult state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K); });
+  InternalForceResult state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K, settings.threads); });
   if (!state.valid) {
     result.failure = fmt::format("cell {} of '{}' is inverted at the start of the solve", state.invalid_cell,
                                  state.invalid_solid);
@@ -47,7 +47,7 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
   const VectorX du_D = target - u;
   if (du_D.squaredNorm() > 0 && model.free_count == 0) {
     u = target;
-    state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K); });
+    state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K, settings.threads); });
   } else if (du_D.squaredNorm() > 0) {
     if (!timed(result.solve_s, [&] { return solver.factorize(K); })) {
       result.failure = "the tangent is singular (is the body held against rigid motion?)";
@@ -57,7 +57,7 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
     u = target;
     add_free_part(model, timed(result.solve_s, [&] { return solver.solve(-rhs); }), u);
     ++result.iterations;
-    state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K); });
+    state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K, settings.threads); });
     if (!state.valid) {
       result.failure = fmt::format("the prescribed displacements invert cell {} of '{}'; take smaller load steps",
                                    state.invalid_cell, state.invalid_solid);
@@ -94,7 +94,7 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
       alpha *= 0.5;
       trial = u;
       add_free_part(model, alpha * du, trial);
-      const InternalForceResult trial_state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, trial, trial_force, nullptr); });
+      const InternalForceResult trial_state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, trial, trial_force, nullptr, settings.threads); });
       if (!trial_state.valid) continue;
       any_valid = true;
       const Real trial_norm = free_part(model, trial_force - f_ext).norm();
@@ -117,7 +117,7 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
     }
     u = trial;
     last_correction = alpha * du.norm() / std::max(free_part(model, u).norm(), Real(1e-300));
-    state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K); });
+    state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K, settings.threads); });
     // A correction below tolerance * |u| is converged even where the residual sits on its
     // round-off floor (~ eps |K| |u|, above tolerance * |f| for stiff or lightly loaded bodies).
     const bool stagnating = result.residual_norms.size() >= 2 &&

@@ -26,6 +26,7 @@ struct NewtonSettings {
   Real tolerance = 1e-10;
   int max_iterations = 25;
   int max_halvings = 12;
+  int threads = 0;  // worker threads of the assembly (0 = all cores); results do not depend on it
 };
 
 struct NewtonResult {

@@ -1,0 +1,137 @@
+// The constraint engine as the run loop sees it: the scene's registered Solver (settings.solver)
+// stepping its Model and State; probes, frames and run.json fields of particles, rigid bodies,
+// fluids and the constraint families.
+#include "moreau/run/engines.hpp"
+
+#include <fmt/format.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <optional>
+
+#include "moreau/io/frame_writer.hpp"
+#include "moreau/io/probe_csv.hpp"
+#include "moreau/model/diagnostics.hpp"
+#include "moreau/scene/scene.hpp"
+#include "moreau/solvers/stage_timer.hpp"
+
+namespace moreau {
+
+namespace {
+
+class ConstraintEngine final : public Engine {
+ public:
+  explicit ConstraintEngine(Scene& scene) : scene_(scene), model_(scene.model), state_(scene.state) {}
+
+  double time() const override { return state_.time; }
+  double dt() const override { return model_.settings.dt; }
+  int requested_threads() const override { return model_.settings.threads; }
+
+  void step(int threads) override { scene_.formulation->step(model_, state_, timer_, threads); }
+
+  std::vector<std::string> probe_columns() const override {
+    return probe_table_columns(scene_.probes, [](const ProbeSpec& p) { return moreau::probe_columns(p); });
+  }
+  void sample_probes(std::vector<Real>& values) const override {
+    for (const ProbeSpec& p : scene_.probes) evaluate_probe(p, model_, state_, values);
+  }
+
+  void open_frames(const std::string& out_dir, const std::string& scene_name) override {
+    frames_.emplace(model_, out_dir, scene_name);
+  }
+  void write_frame() override { frames_->write(state_); }
+
+  void add_run_fields(nlohmann::json& j, bool completed) const override;
+  std::vector<std::string> warnings() const override;
+  std::string summary() const override;
+
+ private:
+  Scene& scene_;
+  const Model& model_;
+  State& state_;
+  StageTimer timer_;
+  std::optional<FrameWriter> frames_;
+};
+
+void ConstraintEngine::add_run_fields(nlohmann::json& j, bool completed) const {
+  const Model& m = model_;
+  j["substeps"] = m.settings.substeps;
+  j["iterations"] = m.settings.iterations;
+  nlohmann::json constraints = nlohmann::json::object();
+  for_each_family(m.constraints, [&](const auto& family, int) { constraints[std::string(family.kName)] = family.size(); });
+  j["counts"] = {{"particles", m.particle_count()},
+                 {"fluid_particles", state_.fluid.count},
+                 {"objects", m.objects.size()},
+                 {"colliders", m.colliders.size()},
+                 {"rigid_bodies", std::count_if(m.objects.begin(), m.objects.end(),
+                                                [](const ObjectInfo& o) { return o.kind == ObjectKind::rigid_body; })},
+                 {"joints", m.joints.size()},
+                 {"constraints", constraints}};
+  nlohmann::json stages = nlohmann::json::object();
+  const std::vector<std::string> names = scene_.formulation->stage_names();
+  for (int s = 0; s < static_cast<int>(names.size()); ++s) stages[names[s]] = timer_.seconds(s);
+  j["stage_time_s"] = stages;
+  if (!m.fluid.empty())
+    j["fluid"] = {{"neighbor_list_builds", state_.fluid.list_builds},
+                  {"max_cfl_number", state_.fluid.max_cfl},
+                  {"cfl_limit", m.fluid.cfl_limit},
+                  {"steps_over_cfl_limit", state_.fluid.cfl_violations},
+                  {"wall_samples", m.fluid.boundary.size()}};
+  if (completed)
+    j["final_energy_j"] = {{"kinetic", kinetic_energy(m, state_, -1)},
+                           {"potential", potential_energy(m, state_, -1)},
+                           {"elastic", elastic_energy(m, state_, -1)}};
+}
+
+std::vector<std::string> ConstraintEngine::warnings() const {
+  if (state_.fluid.cfl_violations == 0) return {};
+  return {fmt::format(
+      "the fluid CFL number max|v| h / (2 r) reached {:.2f} (limit {}) in {} steps; the time step is too long for "
+      "the fastest particles: lower settings.dt or raise settings.substeps",
+      state_.fluid.max_cfl, model_.fluid.cfl_limit, state_.fluid.cfl_violations)};
+}
+
+std::string ConstraintEngine::summary() const {
+  const Model& m = model_;
+  std::string s = fmt::format("scene '{}' ({}): solver {}, dt {} s, {} substeps x {} iterations, duration {} s\n",
+                              scene_.name, scene_.file, scene_.solver, m.settings.dt, m.settings.substeps,
+                              m.settings.iterations, scene_.duration);
+  for (const auto& o : m.objects) {
+    static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid", "rigid_body"};
+    s += fmt::format("  {:<10} {:<16}", kinds[static_cast<int>(o.kind)], o.name);
+    if (o.kind == ObjectKind::fluid) {
+      Index count = 0;
+      for (Index p : m.fluid.initial_phase) count += p == o.fluid_phase;
+      s += fmt::format(" {} particles of radius {} m, rest density {} kg/m^3", count, m.fluid.particle_radius,
+                       m.fluid.phases[o.fluid_phase].rest_density);
+    }
+    if (o.kind == ObjectKind::rigid_body) {
+      static const char* shapes[] = {"sphere", "box", "capsule", "cylinder", "convex hull", "plane"};
+      static const char* motions[] = {"dynamic", "fixed", "kinematic"};
+      const RigidBodyModel& r = m.rigid;
+      s += fmt::format(" {} {}, mass {:.6g} kg, principal inertia ({:.4g}, {:.4g}, {:.4g}) kg m^2",
+                       motions[static_cast<int>(r.body_motion[o.body])], shapes[static_cast<int>(r.body_shape[o.body].type)],
+                       r.body_mass[o.body], r.body_inertia[o.body].x(), r.body_inertia[o.body].y(),
+                       r.body_inertia[o.body].z());
+    }
+    if (o.has_particles())
+      s += fmt::format(" {} particles, {} surface triangles, {} tetrahedra", o.particle_count(), o.surface.size(), o.tets.size());
+    s += "\n";
+  }
+  for_each_family(m.constraints, [&](const auto& family, int) {
+    if (family.size() == 0) return;
+    s += fmt::format("  constraints {:<17} {:>8}  in {} colours\n", family.kName, family.size(),
+                     family.batches.color_count());
+  });
+  if (!m.joints.empty()) s += fmt::format("  joints: {}\n", m.joints.size());
+  if (!m.fluid.empty())
+    s += fmt::format("  fluid: support h = {} m, {} collider wall samples\n", m.fluid.support(), m.fluid.boundary.size());
+  s += fmt::format("  probes: {}\n", scene_.probes.size());
+  return s;
+}
+
+}  // namespace
+
+std::unique_ptr<Engine> make_constraint_engine(Scene& scene) { return std::make_unique<ConstraintEngine>(scene); }
+
+}  // namespace moreau

@@ -1,0 +1,185 @@
+// The FEM engine for a fluid: the stabilized Navier-Stokes flow, advanced by one step of its
+// integrator (FlowStepper) per run-loop step, or solved once when steady (each continuation
+// viscosity's solution starting the next, the model's own last). After every solve the pressure is
+// shifted to its reference mean, if the scene sets one.
+#include "moreau/run/engines.hpp"
+
+#include <fmt/format.h>
+
+#include <optional>
+
+#include "moreau/errors.hpp"
+#include "moreau/fem/flow/flow_frames.hpp"
+#include "moreau/fem/flow/flow_stepper.hpp"
+#include "moreau/io/frame_writer.hpp"
+#include "moreau/io/probe_csv.hpp"
+#include "moreau/scene/scene.hpp"
+
+namespace moreau {
+
+namespace {
+
+const char* flow_integrator_name(FlowIntegrator i) {
+  switch (i) {
+    case FlowIntegrator::steady: return "steady";
+    case FlowIntegrator::backward_euler: return "backward_euler";
+    case FlowIntegrator::bdf2: return "bdf2";
+    case FlowIntegrator::midpoint: return "midpoint";
+  }
+  return "";
+}
+
+class FlowEngine final : public Engine {
+ public:
+  explicit FlowEngine(Scene& scene)
+      : scene_(scene), problem_(*scene.fem->flow), threads_(scene.fem->threads), x_(problem_.initial),
+        stepper_(problem_.integrator), solver_(problem_.linear) {}
+
+  double time() const override { return time_; }
+  double dt() const override { return steady() ? 0 : scene_.fem->dt; }
+  int requested_threads() const override { return threads_; }
+  void step(int threads) override { steady() ? solve_steady(threads) : step_transient(threads); }
+
+  std::vector<std::string> probe_columns() const override {
+    return probe_table_columns(problem_.probes, [&](const FlowProbe& p) { return flow_probe_columns(p, problem_.model.dim()); });
+  }
+  void sample_probes(std::vector<Real>& values) const override {
+    for (const FlowProbe& p : problem_.probes) evaluate_flow_probe(p, problem_, x_, *last_step_, last_iterations_, values);
+  }
+  void open_frames(const std::string& out_dir, const std::string& scene_name) override {
+    frames_.emplace(problem_.model, out_dir, scene_name);
+  }
+  void write_frame() override { frames_->write(x_, time_); }
+  void write_final_output(const std::string& out_dir) const override {
+    for (const FlowProbe& p : problem_.probes)
+      if (p.type == FlowProbeType::line) write_line_probe(p, problem_, x_, out_dir + "/line_" + safe_file_name(p.name) + ".csv");
+  }
+
+  void add_run_fields(nlohmann::json& j, bool completed) const override;
+  std::string summary() const override;
+
+ private:
+  bool steady() const { return problem_.integrator == FlowIntegrator::steady; }
+  void solve_steady(int threads);
+  void step_transient(int threads);
+  void account(const FlowSolveResult& r);
+  void shift_to_mean_pressure();
+
+  const Scene& scene_;
+  const FlowProblem& problem_;
+  int threads_;
+  VectorX x_;
+  Real time_ = 0;
+  long steps_ = 0;
+  FlowStepper stepper_;
+  FlowLinearSolver solver_;
+  const FlowTimeStep steady_step_;
+  const FlowTimeStep* last_step_ = &steady_step_;  // the last step's scheme, for the reactions of boundary_force
+  int last_iterations_ = 0, max_iterations_ = 0;
+  long total_iterations_ = 0, picard_iterations_ = 0;
+  double assembly_s_ = 0, solve_s_ = 0;
+  nlohmann::json continuation_ = nlohmann::json::array();
+  std::optional<FlowFrameWriter> frames_;
+};
+
+void FlowEngine::account(const FlowSolveResult& r) {
+  assembly_s_ += r.assembly_s;
+  solve_s_ += r.solve_s;
+  last_iterations_ = r.iterations + r.picard_iterations;
+  total_iterations_ += r.iterations;
+  picard_iterations_ += r.picard_iterations;
+  max_iterations_ = std::max(max_iterations_, last_iterations_);
+}
+
+// "pressure_reference": {"mean": value}: shift the pressure so that its mean is the value.
+void FlowEngine::shift_to_mean_pressure() {
+  if (!problem_.mean_pressure) return;
+  const NavierStokesModel& m = problem_.model;
+  const Real shift = *problem_.mean_pressure - mean_pressure(m, x_);
+  for (Index n = 0; n < m.mesh.node_count(); ++n) x_[m.dof(n, m.dim())] += shift;
+}
+
+void FlowEngine::solve_steady(int threads) {
+  // Continuation: each viscosity's solution starts the next; the model's own comes last.
+  std::vector<Real> viscosities = problem_.continuation;
+  viscosities.push_back(problem_.model.viscosity);
+  for (size_t stage = 0; stage < viscosities.size(); ++stage) {
+    FlowSolveSettings settings = problem_.solve;
+    settings.viscosity = viscosities[stage];
+    settings.threads = threads;
+    if (stage + 1 < viscosities.size()) settings.tolerance = std::max(settings.tolerance, problem_.continuation_tolerance);
+    const FlowSolveResult r = stepper_.step(problem_.model, 0, 0, x_, solver_, settings);
+    account(r);
+    continuation_.push_back(
+        {{"viscosity", viscosities[stage]}, {"newton_iterations", r.iterations}, {"picard_iterations", r.picard_iterations}});
+    if (!r.converged)
+      throw NumericalError(
+          fmt::format("the steady solve of the fluid at viscosity {} Pa s failed: {}", viscosities[stage], r.failure));
+  }
+  shift_to_mean_pressure();
+  ++steps_;
+}
+
+void FlowEngine::step_transient(int threads) {
+  const Real dt = scene_.fem->dt;
+  FlowSolveSettings settings = problem_.solve;
+  settings.threads = threads;
+  const VectorX start = x_;
+  FlowSolveResult r;
+  try {  // a boundary value that is not finite throws NumericalError naming itself and t
+    r = stepper_.step(problem_.model, time_, dt, x_, solver_, settings);
+  } catch (const NumericalError& e) {
+    r.converged = false;
+    r.failure = e.what();
+  }
+  last_step_ = &stepper_.last_step();
+  if (!r.converged || !x_.allFinite()) {
+    x_ = start;
+    throw NumericalError(fmt::format("step {} (t = {:.6g} s to {:.6g} s) failed: fluid: {}", steps_ + 1, time_, time_ + dt,
+                                     r.converged ? "the velocity or pressure is not finite" : r.failure));
+  }
+  account(r);
+  shift_to_mean_pressure();
+  time_ += dt;
+  ++steps_;
+}
+
+void FlowEngine::add_run_fields(nlohmann::json& j, bool /*completed*/) const {
+  const NavierStokesModel& model = problem_.model;
+  j["integrator"] = flow_integrator_name(problem_.integrator);
+  j["counts"] = {{"fluid_nodes", model.mesh.node_count()}, {"cells", model.mesh.cell_count()},
+                 {"unknowns", model.dof_count()}, {"free_unknowns", model.free_count}};
+  j["newton"] = {{"iterations", total_iterations_},    {"picard_iterations", picard_iterations_},
+                 {"max_iterations_per_step", max_iterations_}, {"tolerance", problem_.solve.tolerance},
+                 {"assembly_s", assembly_s_},           {"solve_s", solve_s_}};
+  j["linear_solver"] = {{"type", solver_.name()}};
+  if (problem_.linear.method == FlowLinearMethod::gmres) {
+    const FlowLinearStatistics& ls = solver_.statistics();
+    j["linear_solver"].update(nlohmann::json{{"solves", ls.solves},
+                                             {"retries", ls.retries},
+                                             {"gmres_iterations", ls.iterations},
+                                             {"max_gmres_iterations_per_solve", ls.max_iterations},
+                                             {"preconditioner_updates", ls.preconditioner_updates},
+                                             {"preconditioner_s", ls.preconditioner_s},
+                                             {"tolerance", problem_.linear.tolerance}});
+  }
+  if (steady()) j["continuation"] = continuation_;
+}
+
+std::string FlowEngine::summary() const {
+  const NavierStokesModel& m = problem_.model;
+  std::string s = fmt::format("scene '{}' ({}): solver fem ({}D fluid), integrator {}", scene_.name, scene_.file, m.dim(),
+                              flow_integrator_name(problem_.integrator));
+  if (!steady()) s += fmt::format(", dt {} s, duration {} s", scene_.fem->dt, scene_.duration);
+  s += fmt::format("\n  fluid: {} nodes, {} {} cells, density {} kg/m^3, viscosity {} Pa s\n", m.mesh.node_count(),
+                   m.mesh.cell_count(), element_name(m.mesh.element), m.density, m.viscosity);
+  s += fmt::format("  unknowns {} ({} free), Jacobian nonzeros {}, probes {}\n", m.dof_count(), m.free_count,
+                   m.pattern.nonZeros(), problem_.probes.size());
+  return s;
+}
+
+}  // namespace
+
+std::unique_ptr<Engine> make_flow_engine(Scene& scene) { return std::make_unique<FlowEngine>(scene); }
+
+}  // namespace moreau
