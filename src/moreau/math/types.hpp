@@ -12,6 +12,7 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 using Mat2 = Eigen::Matrix2d;
 using Mat3 = Eigen::Matrix3d;
+using VectorX = Eigen::VectorXd;
 using Mat32 = Eigen::Matrix<double, 3, 2>;
 using Quat = Eigen::Quaterniond;  // Hamilton convention, (w, x, y, z)
 using Index = std::int32_t;

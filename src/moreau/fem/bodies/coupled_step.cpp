@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "moreau/fem/solids/fem_assembly.hpp"
+#include "moreau/fem/core/newton.hpp"
 #include "moreau/fem/solids/static_solver.hpp"
 
 namespace moreau {
@@ -118,176 +119,230 @@ Real joint_violation(const FemProblem& problem, const FemRunState& run, const Fe
   return worst;
 }
 
+namespace {
+
+// One iterate of the coupled step: the configuration, the multipliers, and what is evaluated there.
+struct CoupledIterate {
+  Configuration z;
+  VectorX lambda;  // internal (6 per body), then joints
+  VectorX f;       // the solids' algorithmic internal forces
+  SparseMatrix K;  // and their tangent
+  InternalForceResult cells;
+  JointRows rows1, rows_mid;  // joint rows at z_1 and at the midpoint
+  std::vector<DirectorStepRows> body_rows;
+  VectorX R;
+};
+
+// The coupled step's residual (coupled_step.hpp) and Jacobian for the Newton driver. Unknowns:
+// the layout's; the merit is |R_momentum| / force scale + |R_constraints|.
+class CoupledStepSystem final : public NewtonSystem {
+ public:
+  CoupledStepSystem(const FemProblem& problem, const SparseMatrix& mass, StepRule rule, Real h, const FemRunState& run,
+                    SparseLuSolver& solver, const NewtonSettings& settings, NewtonResult& result)
+      : problem_(problem), model_(problem.model), mass_(mass), rule_(rule), h_(h), s0_(run.solids), solver_(solver),
+        settings_(settings), result_(result) {
+    layout_.free = model_.free_count;
+    layout_.bodies = static_cast<Index>(problem.rigid_bodies.size());
+    for (const FemJoint& j : problem.joints) layout_.joint_rows += j.row_count();
+    const Real t_mid = s0_.time + 0.5 * h;
+    if (model_.dof_count() > 0) f_ext_ = external_forces(model_, t_mid);
+    for (Index b = 0; b < layout_.bodies; ++b) {
+      q0_.push_back(director_configuration(run.bodies[b]));
+      v0_.push_back(director_velocities(run.bodies[b]));
+    }
+    // Predictor; multipliers start at zero.
+    now_.z = {dynamic_step_predictor(model_, s0_.u, s0_.v, h), {}};
+    apply_prescribed(model_, s0_.time + h, now_.z.u);
+    for (Index b = 0; b < layout_.bodies; ++b) now_.z.q.push_back(q0_[b] + h * v0_[b]);
+    now_.lambda = VectorX::Zero(6 * layout_.bodies + layout_.joint_rows);
+    assemble(now_);
+  }
+
+  NewtonEvaluation evaluate(const VectorX* dz, Real alpha) override {
+    if (!dz) return measure(now_);
+    trial_.z = now_.z;
+    trial_.lambda = now_.lambda;
+    if (model_.dof_count() > 0) add_free_part(model_, alpha * dz->head(layout_.free), trial_.z.u);
+    for (Index b = 0; b < layout_.bodies; ++b) {
+      trial_.z.q[b] += alpha * dz->segment<12>(layout_.body(b));
+      trial_.lambda.segment<6>(6 * b) += alpha * dz->segment<6>(layout_.body(b) + 12);
+    }
+    if (layout_.joint_rows > 0) trial_.lambda.tail(layout_.joint_rows) += alpha * dz->tail(layout_.joint_rows);
+    assemble(trial_);
+    return measure(trial_);
+  }
+
+  void accept() override { std::swap(now_, trial_); }
+  void save() override { saved_ = now_; }
+  void restore() override { now_ = saved_; }
+
+  bool solve(VectorX& dz, std::string& failure) override;
+
+  // |alpha dz| of the configuration against the step's motion (as in step_dynamic).
+  Real relative_correction(const VectorX& dz, Real alpha) const override {
+    Real correction = 0, motion = 0;
+    if (model_.dof_count() > 0) {
+      correction += (alpha * dz.head(layout_.free)).squaredNorm();
+      motion += free_part(model_, now_.z.u - s0_.u).squaredNorm();
+    }
+    for (Index b = 0; b < layout_.bodies; ++b) {
+      correction += (alpha * dz.segment<12>(layout_.body(b))).squaredNorm();
+      motion += (now_.z.q[b] - q0_[b]).squaredNorm();
+    }
+    return std::sqrt(correction / std::max(motion, Real(1e-300)));
+  }
+
+  // Accepts the converged step: velocities by the midpoint relation (prescribed dofs: the
+  // derivative of their values).
+  void finish(FemRunState& run) const {
+    if (model_.dof_count() > 0) {
+      FemDynamicState& s = run.solids;
+      const VectorX u0 = s.u;
+      s.v = (2 / h_) * (now_.z.u - u0) - s.v;
+      apply_prescribed_velocity(model_, s.time + h_, s.v);
+      s.u = now_.z.u;
+      s.energy = now_.cells.energy;
+    }
+    run.solids.time += h_;
+    for (Index b = 0; b < layout_.bodies; ++b) set_director_step(q0_[b], v0_[b], now_.z.q[b], h_, run.bodies[b]);
+  }
+
+ private:
+  void assemble(CoupledIterate& it) {
+    if (model_.dof_count() == 0) {
+      it.cells = {};
+      return;
+    }
+    it.cells = timed(result_.assembly_s, [&] {
+      return assemble_step_forces(model_, s0_.u, it.z.u, rule_, it.f, &it.K, settings_.threads);
+    });
+  }
+
+  NewtonEvaluation measure(CoupledIterate& it) const;
+
+  const FemProblem& problem_;
+  const FemModel& model_;
+  const SparseMatrix& mass_;
+  StepRule rule_;
+  Real h_;
+  const FemDynamicState& s0_;
+  SparseLuSolver& solver_;
+  const NewtonSettings& settings_;
+  NewtonResult& result_;
+  Layout layout_;
+  VectorX f_ext_;
+  std::vector<DirectorVector> q0_, v0_;
+  CoupledIterate now_, trial_, saved_;
+  Triplets triplets_;
+};
+
+NewtonEvaluation CoupledStepSystem::measure(CoupledIterate& it) const {
+  NewtonEvaluation e;
+  e.valid = it.cells.valid;
+  if (!e.valid) {
+    e.invalid = fmt::format("cell {} of '{}'", it.cells.invalid_cell, it.cells.invalid_solid);
+    return e;
+  }
+  const Index n = layout_.size();
+  const Real c = 2 / (h_ * h_);
+  Configuration mid{0.5 * (s0_.u + it.z.u), {}};
+  for (Index b = 0; b < layout_.bodies; ++b) mid.q.push_back(0.5 * (q0_[b] + it.z.q[b]));
+  it.rows1 = evaluate_joints(problem_, layout_, it.z);
+  it.rows_mid = evaluate_joints(problem_, layout_, mid);
+  it.R.resize(n);
+  Real force_scale = 1e-300;
+  if (model_.dof_count() > 0) {
+    const VectorX inertia = mass_times(model_, c * (it.z.u - s0_.u) - (2 / h_) * s0_.v);
+    it.R.head(layout_.free) = free_part(model_, inertia + it.f - f_ext_);
+    force_scale = std::max({force_scale, inertia.norm(), it.f.norm(), f_ext_.norm()});
+  }
+  it.body_rows.clear();
+  for (Index b = 0; b < layout_.bodies; ++b) {
+    const DirectorBody& body = problem_.rigid_bodies[b].body;
+    it.body_rows.push_back(director_step_rows(body, q0_[b], v0_[b], h_, body.mass * problem_.gravity, Vec3::Zero(), it.z.q[b],
+                                              it.lambda.segment<6>(6 * b), true));
+    it.R.segment<18>(layout_.body(b)) = it.body_rows.back().residual;
+    force_scale = std::max(force_scale, it.body_rows.back().force_scale);
+  }
+  // Joint forces J(z_mid)^T lambda_j on the momentum rows; joint rows g(z1).
+  for (Index r = 0; r < layout_.joint_rows; ++r) {
+    for (const auto& [unknown, value] : it.rows_mid.gradient[r]) it.R[unknown] += value * it.lambda[6 * layout_.bodies + r];
+    it.R[layout_.joints() + r] = it.rows1.g[r];
+  }
+  Real momentum_norm = 0, constraint_norm = 0;
+  for (Index i = 0; i < n; ++i) {
+    const bool constraint_row = i >= layout_.joints() || (i >= layout_.free && (i - layout_.free) % 18 >= 12);
+    (constraint_row ? constraint_norm : momentum_norm) += it.R[i] * it.R[i];
+  }
+  momentum_norm = std::sqrt(momentum_norm);
+  constraint_norm = std::sqrt(constraint_norm);
+  e.norm = momentum_norm / force_scale + constraint_norm;
+  e.converged = momentum_norm <= settings_.tolerance * force_scale && constraint_norm <= settings_.tolerance;
+  e.relative = std::max(momentum_norm / force_scale, constraint_norm);
+  e.describe = fmt::format("force residual {:.3e} of {:.3e}, constraint residual {:.3e}", momentum_norm, force_scale,
+                           constraint_norm);
+  return e;
+}
+
+bool CoupledStepSystem::solve(VectorX& dz, std::string& failure) {
+  const Index n = layout_.size();
+  const Real c = 2 / (h_ * h_);
+  const CoupledIterate& it = now_;
+  Triplets& triplets = triplets_;
+  triplets.clear();
+  if (model_.dof_count() > 0) {
+    for (int col = 0; col < it.K.outerSize(); ++col)
+      for (SparseMatrix::InnerIterator k(it.K, col); k; ++k) triplets.emplace_back(k.row(), col, k.value());
+    for (int col = 0; col < mass_.outerSize(); ++col)
+      for (SparseMatrix::InnerIterator k(mass_, col); k; ++k) triplets.emplace_back(k.row(), col, c * k.value());
+  }
+  // Every entry of a body's 18 x 18 block is inserted, zero or not: the sparsity must not change
+  // between iterations, since UMFPACK's symbolic analysis is reused.
+  for (Index b = 0; b < layout_.bodies; ++b)
+    for (int i = 0; i < 18; ++i)
+      for (int j = 0; j < 18; ++j) triplets.emplace_back(layout_.body(b) + i, layout_.body(b) + j, it.body_rows[b].jacobian(i, j));
+  Index r = 0;
+  for (const FemJoint& joint : problem_.joints)
+    for (const FemJointRows& group : joint.rows) {
+      const int count = group.kind == FemJointRows::Kind::coincide ? 3 : 1;
+      for (int k = 0; k < count; ++k, ++r) {
+        for (const auto& [unknown, value] : it.rows_mid.gradient[r]) triplets.emplace_back(unknown, layout_.joints() + r, value);
+        for (const auto& [unknown, value] : it.rows1.gradient[r]) triplets.emplace_back(layout_.joints() + r, unknown, value);
+      }
+      // Axis rows are quadratic: the transpose term J(z_mid)^T lambda has the derivative
+      // lambda/2 * alpha_i beta_j I between the directors of the two ends.
+      if (group.kind == FemJointRows::Kind::perpendicular && group.a.kind == FemJointEndKind::body &&
+          group.b.kind == FemJointEndKind::body) {
+        const Real l = 0.5 * it.lambda[6 * layout_.bodies + r - 1];
+        for (int i = 0; i < 3; ++i)
+          for (int j = 0; j < 3; ++j)
+            for (int k = 0; k < 3; ++k) {
+              const Real v = l * group.direction_a[i] * group.direction_b[j];
+              triplets.emplace_back(layout_.body(group.a.index) + 3 + 3 * i + k, layout_.body(group.b.index) + 3 + 3 * j + k, v);
+              triplets.emplace_back(layout_.body(group.b.index) + 3 + 3 * j + k, layout_.body(group.a.index) + 3 + 3 * i + k, v);
+            }
+      }
+    }
+  SparseMatrix A(n, n);
+  A.setFromTriplets(triplets.begin(), triplets.end());
+  A.makeCompressed();
+  if (!timed(result_.solve_s, [&] { return solver_.factorize(A); })) {
+    failure = "the coupled step's Jacobian is singular (a joint repeated, or a body held twice?)";
+    return false;
+  }
+  const VectorX rhs = -it.R;
+  dz = timed(result_.solve_s, [&] { return solver_.solve(rhs); });
+  return true;
+}
+
+}  // namespace
+
 NewtonResult step_coupled(const FemProblem& problem, const SparseMatrix& mass, StepRule rule, Real h, FemRunState& run,
                           SparseLuSolver& solver, const NewtonSettings& settings) {
-  const FemModel& model = problem.model;
   NewtonResult result;
-  Layout layout;
-  layout.free = model.free_count;
-  layout.bodies = static_cast<Index>(problem.rigid_bodies.size());
-  for (const FemJoint& j : problem.joints) layout.joint_rows += j.row_count();
-  const Index n = layout.size();
-
-  const FemDynamicState& s0 = run.solids;
-  const Real t_mid = s0.time + 0.5 * h, c = 2 / (h * h);
-  const VectorX f_ext = model.dof_count() > 0 ? external_forces(model, t_mid) : VectorX();
-  std::vector<DirectorVector> q0, v0;
-  for (Index b = 0; b < layout.bodies; ++b) {
-    q0.push_back(director_configuration(run.bodies[b]));
-    v0.push_back(director_velocities(run.bodies[b]));
-  }
-  // Predictor; multipliers start at zero.
-  Configuration z{dynamic_step_predictor(model, s0.u, s0.v, h), {}};
-  apply_prescribed(model, s0.time + h, z.u);
-  for (Index b = 0; b < layout.bodies; ++b) z.q.push_back(q0[b] + h * v0[b]);
-  VectorX lambda = VectorX::Zero(6 * layout.bodies + layout.joint_rows);  // internal (6 per body), then joints
-  auto internal = [&](Index b) { return lambda.segment<6>(6 * b); };
-  auto joint_lambda = [&]() { return lambda.tail(layout.joint_rows); };
-
-  VectorX f;
-  SparseMatrix K;
-  InternalForceResult cells{};
-  auto assemble_solids = [&](const Configuration& cfg, bool tangent) {
-    if (model.dof_count() == 0) return InternalForceResult{};
-    return timed(result.assembly_s, [&] { return assemble_step_forces(model, s0.u, cfg.u, rule, f, tangent ? &K : nullptr, settings.threads); });
-  };
-  cells = assemble_solids(z, true);
-  if (!cells.valid) {
-    result.failure = fmt::format("cell {} of '{}' is inverted at the start of the step", cells.invalid_cell, cells.invalid_solid);
-    return result;
-  }
-  VectorX R(n);
-  Triplets triplets;
-  Real last_correction = std::numeric_limits<Real>::infinity();  // |correction| / |motion| of the last step
-  for (;;) {
-    // Residuals.
-    Configuration mid{0.5 * (s0.u + z.u), {}};
-    for (Index b = 0; b < layout.bodies; ++b) mid.q.push_back(0.5 * (q0[b] + z.q[b]));
-    const JointRows rows1 = evaluate_joints(problem, layout, z), rows_mid = evaluate_joints(problem, layout, mid);
-    Real force_scale = 1e-300;
-    if (model.dof_count() > 0) {
-      const VectorX inertia = mass_times(model, c * (z.u - s0.u) - (2 / h) * s0.v);
-      R.head(layout.free) = free_part(model, inertia + f - f_ext);
-      force_scale = std::max({force_scale, inertia.norm(), f.norm(), f_ext.norm()});
-    }
-    std::vector<DirectorStepRows> body_rows;
-    for (Index b = 0; b < layout.bodies; ++b) {
-      const DirectorBody& body = problem.rigid_bodies[b].body;
-      body_rows.push_back(
-          director_step_rows(body, q0[b], v0[b], h, body.mass * problem.gravity, Vec3::Zero(), z.q[b], internal(b), true));
-      R.segment<18>(layout.body(b)) = body_rows.back().residual;
-      force_scale = std::max(force_scale, body_rows.back().force_scale);
-    }
-    // Joint forces J(z_mid)^T lambda_j on the momentum rows; joint rows g(z1).
-    for (Index r = 0; r < layout.joint_rows; ++r) {
-      for (const auto& [unknown, value] : rows_mid.gradient[r]) R[unknown] += value * joint_lambda()[r];
-      R[layout.joints() + r] = rows1.g[r];
-    }
-    Real momentum_norm = 0, constraint_norm = 0;
-    for (Index i = 0; i < n; ++i) {
-      const bool constraint_row = i >= layout.joints() || (i >= layout.free && (i - layout.free) % 18 >= 12);
-      (constraint_row ? constraint_norm : momentum_norm) += R[i] * R[i];
-    }
-    momentum_norm = std::sqrt(momentum_norm);
-    constraint_norm = std::sqrt(constraint_norm);
-    result.residual_norms.push_back(momentum_norm / force_scale + constraint_norm);
-    if (momentum_norm <= settings.tolerance * force_scale && constraint_norm <= settings.tolerance) break;
-    if (result.iterations == settings.max_iterations) {
-      result.failure = fmt::format("the coupled step did not converge in {} Newton iterations (force residual {:.3e} of {:.3e}, "
-                                   "constraint residual {:.3e}); {}",
-                                   settings.max_iterations, momentum_norm, force_scale, constraint_norm,
-                                   newton_failure_advice(std::max(momentum_norm / force_scale, constraint_norm), 1, last_correction, settings));
-      return result;
-    }
-    // Jacobian.
-    triplets.clear();
-    if (model.dof_count() > 0) {
-      for (int col = 0; col < K.outerSize(); ++col)
-        for (SparseMatrix::InnerIterator it(K, col); it; ++it) triplets.emplace_back(it.row(), col, it.value());
-      const SparseMatrix& Mf = mass;
-      for (int col = 0; col < Mf.outerSize(); ++col)
-        for (SparseMatrix::InnerIterator it(Mf, col); it; ++it) triplets.emplace_back(it.row(), col, c * it.value());
-    }
-    // Every entry of a body's 18 x 18 block is inserted, zero or not: the sparsity must not change
-    // between iterations, since UMFPACK's symbolic analysis is reused.
-    for (Index b = 0; b < layout.bodies; ++b)
-      for (int i = 0; i < 18; ++i)
-        for (int j = 0; j < 18; ++j) triplets.emplace_back(layout.body(b) + i, layout.body(b) + j, body_rows[b].jacobian(i, j));
-    Index r = 0;
-    for (const FemJoint& joint : problem.joints)
-      for (const FemJointRows& group : joint.rows) {
-        const int count = group.kind == FemJointRows::Kind::coincide ? 3 : 1;
-        for (int k = 0; k < count; ++k, ++r) {
-          for (const auto& [unknown, value] : rows_mid.gradient[r]) triplets.emplace_back(unknown, layout.joints() + r, value);
-          for (const auto& [unknown, value] : rows1.gradient[r]) triplets.emplace_back(layout.joints() + r, unknown, value);
-        }
-        // Axis rows are quadratic: the transpose term J(z_mid)^T lambda has the derivative
-        // lambda/2 * alpha_i beta_j I between the directors of the two ends.
-        if (group.kind == FemJointRows::Kind::perpendicular && group.a.kind == FemJointEndKind::body &&
-            group.b.kind == FemJointEndKind::body) {
-          const Real l = 0.5 * joint_lambda()[r - 1];
-          for (int i = 0; i < 3; ++i)
-            for (int j = 0; j < 3; ++j)
-              for (int k = 0; k < 3; ++k) {
-                const Real v = l * group.direction_a[i] * group.direction_b[j];
-                triplets.emplace_back(layout.body(group.a.index) + 3 + 3 * i + k, layout.body(group.b.index) + 3 + 3 * j + k, v);
-                triplets.emplace_back(layout.body(group.b.index) + 3 + 3 * j + k, layout.body(group.a.index) + 3 + 3 * i + k, v);
-              }
-        }
-      }
-    SparseMatrix A(n, n);
-    A.setFromTriplets(triplets.begin(), triplets.end());
-    A.makeCompressed();
-    const bool factored = timed(result.solve_s, [&] { return solver.factorize(A); });
-    if (!factored) {
-      result.failure = "the coupled step's Jacobian is singular (a joint repeated, or a body held twice?)";
-      return result;
-    }
-    const VectorX rhs = -R;
-    const VectorX dz = timed(result.solve_s, [&] { return solver.solve(rhs); });
-    ++result.iterations;
-    Real alpha = 1;
-    Configuration trial;
-    for (int halving = 0;; ++halving, alpha *= 0.5) {
-      trial = z;
-      if (model.dof_count() > 0) add_free_part(model, alpha * dz.head(layout.free), trial.u);
-      for (Index b = 0; b < layout.bodies; ++b) trial.q[b] += alpha * dz.segment<12>(layout.body(b));
-      cells = assemble_solids(trial, true);
-      if (cells.valid) break;
-      if (halving == settings.max_halvings) {
-        result.failure = fmt::format("every Newton correction inverts cell {} of '{}'", cells.invalid_cell, cells.invalid_solid);
-        return result;
-      }
-    }
-    // Size of the correction against the step's motion, for the round-off floor (as in step_dynamic).
-    Real correction = 0, motion = 0;
-    if (model.dof_count() > 0) {
-      correction += (alpha * dz.head(layout.free)).squaredNorm();
-      motion += free_part(model, trial.u - s0.u).squaredNorm();
-    }
-    for (Index b = 0; b < layout.bodies; ++b) {
-      correction += (alpha * dz.segment<12>(layout.body(b))).squaredNorm();
-      motion += (trial.q[b] - q0[b]).squaredNorm();
-    }
-    last_correction = std::sqrt(correction / std::max(motion, Real(1e-300)));
-    z = trial;
-    for (Index b = 0; b < layout.bodies; ++b) internal(b) += alpha * dz.segment<6>(layout.body(b) + 12);
-    if (layout.joint_rows > 0) joint_lambda() += alpha * dz.tail(layout.joint_rows);
-    const auto& norms = result.residual_norms;
-    const bool stagnating = norms.size() >= 2 && norms.back() > 0.5 * norms[norms.size() - 2];
-    if (stagnating && std::sqrt(correction) <= settings.tolerance * std::sqrt(motion)) break;
-  }
-  // Accept: velocities by the midpoint relation (prescribed dofs: the derivative of their values).
-  if (model.dof_count() > 0) {
-    FemDynamicState& s = run.solids;
-    const VectorX u0 = s.u;
-    s.v = (2 / h) * (z.u - u0) - s.v;
-    apply_prescribed_velocity(model, s.time + h, s.v);
-    s.u = z.u;
-    s.energy = cells.energy;
-  }
-  run.solids.time += h;
-  for (Index b = 0; b < layout.bodies; ++b) set_director_step(q0[b], v0[b], z.q[b], h, run.bodies[b]);
+  CoupledStepSystem system(problem, mass, rule, h, run, solver, settings, result);
+  if (!newton_solve(system, settings, "the coupled step", result)) return result;
+  system.finish(run);
   result.converged = true;
   return result;
 }

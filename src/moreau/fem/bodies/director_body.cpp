@@ -3,8 +3,11 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace moreau {
 
@@ -173,86 +176,182 @@ DirectorStepRows director_step_rows(const DirectorBody& body, const DirectorVect
   return rows;
 }
 
+namespace {
+
+using Vec6 = Eigen::Matrix<Real, 6, 1>;
+using Vec18 = Eigen::Matrix<Real, 18, 1>;
+
+// The multiplier form of a body's step: unknowns q1 (12) and the internal multipliers (6).
+class DirectorStepSystem final : public NewtonSystem {
+ public:
+  DirectorStepSystem(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque, const DirectorState& state,
+                     const NewtonSettings& settings)
+      : body_(body), h_(h), force_(force), torque_(torque), settings_(settings), q0_(pack(state.phi, state.d)),
+        v0_(director_velocities(state)), q1_(q0_ + h * v0_), lambda_(Vec6::Zero()) {}
+
+  NewtonEvaluation evaluate(const VectorX* dx, Real alpha) override {
+    trial_q_ = q1_;
+    trial_lambda_ = lambda_;
+    if (dx) {
+      trial_q_ += alpha * dx->head<12>();
+      trial_lambda_ += alpha * dx->tail<6>();
+    }
+    trial_rows_ = director_step_rows(body_, q0_, v0_, h_, force_, torque_, trial_q_, trial_lambda_, true);
+    const Real momentum_norm = trial_rows_.residual.head<12>().norm(), constraint_norm = trial_rows_.residual.tail<6>().norm();
+    NewtonEvaluation e;
+    e.norm = momentum_norm / trial_rows_.force_scale + constraint_norm;
+    e.converged = momentum_norm <= settings_.tolerance * trial_rows_.force_scale && constraint_norm <= settings_.tolerance;
+    e.relative = std::max(momentum_norm / trial_rows_.force_scale, constraint_norm);
+    e.describe = fmt::format("force residual {:.3e} of {:.3e}, constraint residual {:.3e}", momentum_norm,
+                             trial_rows_.force_scale, constraint_norm);
+    trial_constraint_norm_ = constraint_norm;
+    if (!dx) accept();
+    return e;
+  }
+  void accept() override {
+    q1_ = trial_q_;
+    lambda_ = trial_lambda_;
+    rows_ = trial_rows_;
+    constraint_norm_ = trial_constraint_norm_;
+  }
+  void save() override {
+    saved_q_ = q1_;
+    saved_lambda_ = lambda_;
+    saved_rows_ = rows_;
+    saved_constraint_norm_ = constraint_norm_;
+  }
+  void restore() override {
+    q1_ = saved_q_;
+    lambda_ = saved_lambda_;
+    rows_ = saved_rows_;
+    constraint_norm_ = saved_constraint_norm_;
+  }
+  bool solve(VectorX& dx, std::string&) override {
+    dx = rows_.jacobian.partialPivLu().solve(-rows_.residual);
+    return true;
+  }
+  // The correction of q1 against the step's motion; none counts while the constraints are violated.
+  Real relative_correction(const VectorX& dx, Real alpha) const override {
+    if (constraint_norm_ > settings_.tolerance) return std::numeric_limits<Real>::infinity();
+    return alpha * dx.head<12>().norm() / std::max((q1_ - q0_).norm(), Real(1e-300));
+  }
+
+  void finish(DirectorState& state) const { set_director_step(q0_, v0_, q1_, h_, state); }
+
+ private:
+  const DirectorBody& body_;
+  Real h_;
+  Vec3 force_, torque_;
+  const NewtonSettings& settings_;
+  Vec12 q0_, v0_, q1_, trial_q_, saved_q_;
+  Vec6 lambda_, trial_lambda_, saved_lambda_;
+  DirectorStepRows rows_, trial_rows_, saved_rows_;
+  Real constraint_norm_ = 0, trial_constraint_norm_ = 0, saved_constraint_norm_ = 0;
+};
+
+// The null-space form: six unknowns u (translation, rotation vector) with q1(u) = (phi + u_phi,
+// exp(theta^) d_i), exact on the constraint manifold, and the residual P(q_m)^T times the momentum
+// balance: the force balance and sum_i d_i,m x r_i.
+class ReducedDirectorStepSystem final : public NewtonSystem {
+ public:
+  ReducedDirectorStepSystem(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
+                            const DirectorState& state, const NewtonSettings& settings)
+      : h_(h), force_(force), torque_(torque), settings_(settings), state_(state), M_(director_mass(body)),
+        q0_(pack(state.phi, state.d)), v0_(director_velocities(state)) {
+    // Predictor: the explicit step's translation and the rotation of w h.
+    u_ << h * state.v_phi, h * angular_velocity(state);
+    scale_ = std::max({(M_.asDiagonal() * (2 * v0_)).norm(), h * force.norm(), h * torque.norm(), Real(1e-300)});
+  }
+
+  Vec12 configuration(const Vec6& u) const {
+    const Mat3 R = rotation(u.tail<3>());
+    return pack(state_.phi + u.head<3>(), {R * state_.d[0], R * state_.d[1], R * state_.d[2]});
+  }
+
+  NewtonEvaluation evaluate(const VectorX* du, Real alpha) override {
+    trial_u_ = u_;
+    if (du) trial_u_ += alpha * du->head<6>();
+    const Vec6 r = residual(trial_u_);
+    NewtonEvaluation e;
+    e.norm = r.norm() / scale_;
+    e.converged = r.norm() <= settings_.tolerance * scale_;
+    e.relative = e.norm;
+    e.describe = fmt::format("|r| = {:.3e}, scale {:.3e}", r.norm(), scale_);
+    trial_r_ = r;
+    if (!du) accept();
+    return e;
+  }
+  void accept() override {
+    u_ = trial_u_;
+    r_ = trial_r_;
+  }
+  void save() override {
+    saved_u_ = u_;
+    saved_r_ = r_;
+  }
+  void restore() override {
+    u_ = saved_u_;
+    r_ = saved_r_;
+  }
+  // Jacobian by central differences (6 x 6, step 1e-7 of the increment's scale): accurate to
+  // ~1e-9 relative, so Newton reaches the tolerance at the quadratic rate.
+  bool solve(VectorX& du, std::string&) override {
+    Eigen::Matrix<Real, 6, 6> J;
+    const Real step = 1e-7 * std::max(u_.norm(), Real(1e-3));
+    for (int c = 0; c < 6; ++c) {
+      Vec6 up = u_, um = u_;
+      up[c] += step;
+      um[c] -= step;
+      J.col(c) = (residual(up) - residual(um)) / (2 * step);
+    }
+    du = J.partialPivLu().solve(-r_);
+    return true;
+  }
+  Real relative_correction(const VectorX& du, Real alpha) const override {
+    return alpha * du.norm() / std::max(u_.norm(), Real(1e-300));
+  }
+
+  void finish(DirectorState& state) const { set_director_step(q0_, v0_, configuration(u_), h_, state); }
+
+ private:
+  Vec6 residual(const Vec6& u) const {
+    const Vec12 q1 = configuration(u), qm = 0.5 * (q0_ + q1);
+    const Vec12 r = M_.asDiagonal() * ((2 / h_) * (q1 - q0_) - 2 * v0_) - h_ * director_external_force(qm, force_, torque_);
+    Vec6 out;
+    out.head<3>() = r.head<3>();
+    out.tail<3>() = Vec3::Zero();
+    for (int i = 0; i < 3; ++i) out.tail<3>() += director(qm, i).cross(r.segment<3>(3 + 3 * i));
+    return out;
+  }
+
+  Real h_;
+  Vec3 force_, torque_;
+  const NewtonSettings& settings_;
+  const DirectorState& state_;
+  Vec12 M_, q0_, v0_;
+  Vec6 u_, trial_u_, r_, trial_r_, saved_u_, saved_r_;
+  Real scale_ = 1;
+};
+
+}  // namespace
+
 NewtonResult step_director_body(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
                                 DirectorState& state, const NewtonSettings& settings) {
   NewtonResult result;
-  const Vec12 q0 = pack(state.phi, state.d), v0 = director_velocities(state);
-  Vec12 q1 = q0 + h * v0;
-  Eigen::Matrix<Real, 6, 1> lambda = Eigen::Matrix<Real, 6, 1>::Zero();
-  for (;;) {
-    const DirectorStepRows rows = director_step_rows(body, q0, v0, h, force, torque, q1, lambda, true);
-    const Real momentum_norm = rows.residual.head<12>().norm(), constraint_norm = rows.residual.tail<6>().norm();
-    result.residual_norms.push_back(momentum_norm / rows.force_scale + constraint_norm);
-    if (momentum_norm <= settings.tolerance * rows.force_scale && constraint_norm <= settings.tolerance) break;
-    if (result.iterations == settings.max_iterations) {
-      result.failure = "the director body's step did not converge";
-      return result;
-    }
-    const Eigen::Matrix<Real, 18, 1> dx = rows.jacobian.partialPivLu().solve(-rows.residual);
-    ++result.iterations;
-    q1 += dx.head<12>();
-    lambda += dx.tail<6>();
-    // On the residual's round-off floor (it has stopped falling), a correction below tolerance
-    // times the step's motion is convergence, as in the solids' steps.
-    const auto& norms = result.residual_norms;
-    const bool stagnating = norms.size() >= 2 && norms.back() > 0.5 * norms[norms.size() - 2];
-    if (stagnating && dx.head<12>().norm() <= settings.tolerance * (q1 - q0).norm() && constraint_norm <= settings.tolerance)
-      break;
-  }
+  DirectorStepSystem system(body, h, force, torque, state, settings);
+  if (!newton_solve(system, settings, "the director body's step", result)) return result;
   result.converged = true;
-  set_director_step(q0, v0, q1, h, state);
+  system.finish(state);
   return result;
 }
 
 NewtonResult step_director_body_reduced(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
                                         DirectorState& state, const NewtonSettings& settings) {
   NewtonResult result;
-  const Vec12 M = director_mass(body);
-  const Vec12 q0 = pack(state.phi, state.d), v0 = director_velocities(state);
-  // q1(u): phi + u_phi, exp(theta^) d_i; exact on the constraint manifold.
-  auto configuration = [&](const Eigen::Matrix<Real, 6, 1>& u) {
-    const Mat3 R = rotation(u.tail<3>());
-    return pack(state.phi + u.head<3>(), {R * state.d[0], R * state.d[1], R * state.d[2]});
-  };
-  // P(q_m)^T times the momentum balance: the force balance and sum_i d_i,m x r_i.
-  auto reduced_residual = [&](const Eigen::Matrix<Real, 6, 1>& u) {
-    const Vec12 q1 = configuration(u), qm = 0.5 * (q0 + q1);
-    const Vec12 r = M.asDiagonal() * ((2 / h) * (q1 - q0) - 2 * v0) - h * director_external_force(qm, force, torque);
-    Eigen::Matrix<Real, 6, 1> out;
-    out.head<3>() = r.head<3>();
-    out.tail<3>() = Vec3::Zero();
-    for (int i = 0; i < 3; ++i) out.tail<3>() += director(qm, i).cross(r.segment<3>(3 + 3 * i));
-    return out;
-  };
-  // Predictor: the explicit step's translation and the rotation of w h.
-  Eigen::Matrix<Real, 6, 1> u;
-  u << h * state.v_phi, h * angular_velocity(state);
-  const Real scale = std::max({(M.asDiagonal() * (2 * v0)).norm(), h * force.norm(), h * torque.norm(), Real(1e-300)});
-  for (;;) {
-    const Eigen::Matrix<Real, 6, 1> r = reduced_residual(u);
-    result.residual_norms.push_back(r.norm() / scale);
-    if (r.norm() <= settings.tolerance * scale) break;
-    if (result.iterations == settings.max_iterations) {
-      result.failure = "the director body's reduced step did not converge";
-      return result;
-    }
-    // Jacobian by central differences (6 x 6, step 1e-7 of the increment's scale): accurate to
-    // ~1e-9 relative, so Newton reaches the tolerance at the quadratic rate.
-    Eigen::Matrix<Real, 6, 6> J;
-    const Real step = 1e-7 * std::max(u.norm(), Real(1e-3));
-    for (int c = 0; c < 6; ++c) {
-      Eigen::Matrix<Real, 6, 1> up = u, um = u;
-      up[c] += step;
-      um[c] -= step;
-      J.col(c) = (reduced_residual(up) - reduced_residual(um)) / (2 * step);
-    }
-    const Eigen::Matrix<Real, 6, 1> du = J.partialPivLu().solve(-r);
-    ++result.iterations;
-    u += du;
-    if (du.norm() <= 1e-3 * settings.tolerance * u.norm()) break;
-  }
+  ReducedDirectorStepSystem system(body, h, force, torque, state, settings);
+  if (!newton_solve(system, settings, "the director body's reduced step", result)) return result;
   result.converged = true;
-  set_director_step(q0, v0, configuration(u), h, state);
+  system.finish(state);
   return result;
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "moreau/errors.hpp"
+#include "moreau/fem/core/newton.hpp"
 
 namespace moreau {
 
@@ -200,46 +201,82 @@ void setup_navier_stokes(NavierStokesModel& m) {
 
 namespace {
 
-// Newton (or Picard) iterations from x until |R| <= stop * |R_0| (or the correction is below
-// tolerance * |x|), at most `limit` linear solves; false on failure, with result.failure set.
-// Divergence (|R| above 1e6 |R_0|, or not finite) stops early.
-bool iterate_flow(const NavierStokesModel& m, const FlowTimeStep& step, VectorX& x, FlowLinearSolver& solver, bool picard,
-                  Real stop, const FlowSolveSettings& settings, int limit, FlowSolveResult& result, int& count) {
-  const Real tolerance = settings.tolerance;
-  const FlowAssembly how{picard, settings.viscosity, settings.threads};
-  VectorX R;
-  SparseMatrix J;
-  Real first = 0;
-  for (int it = 0;; ++it) {
-    timed(result.assembly_s, [&] { assemble_flow(m, x, step, R, &J, how); return 0; });
-    const Real norm = gather_free(m.free_index, m.free_count, R).norm();
-    result.residual_norms.push_back(norm);
-    if (it == 0) first = std::max(norm, Real(1e-300));
-    if (norm <= stop * first || norm == 0) return true;
-    const char* method = picard ? "Picard" : "Newton";
-    if (!std::isfinite(norm) || norm > 1e6 * first) {
-      result.failure = fmt::format("{} diverged (|R| = {:.3e}, first {:.3e})", method, norm, first);
-      return false;
+// Newton's (or Picard's) iteration for one solve: unknowns the free dofs of x; converged when
+// |R| <= stop * |R_0| (R_0 the residual at the start of this iteration).
+class FlowSystem final : public NewtonSystem {
+ public:
+  FlowSystem(const NavierStokesModel& m, const FlowTimeStep& step, VectorX& x, FlowLinearSolver& solver,
+             const FlowAssembly& how, Real stop, NewtonResult& result)
+      : m_(m), step_(step), x_(x), solver_(solver), how_(how), stop_(stop), result_(result) {}
+
+  NewtonEvaluation evaluate(const VectorX* dx, Real alpha) override {
+    if (!dx) {
+      assemble(x_, R_, J_);
+      first_ = std::max(R_.norm(), Real(1e-300));
+      return measure(R_);
     }
-    if (it == limit) {
-      result.failure = fmt::format("{} did not converge in {} iterations (|R| = {:.3e}, first {:.3e})", method, limit, norm, first);
-      return false;
-    }
-    const VectorX rhs = -gather_free(m.free_index, m.free_count, R);
-    VectorX dx;
-    if (!timed(result.solve_s, [&] { return solver.factorize(J) && solver.solve(rhs, dx); })) {
-      result.failure = solver.failure();
-      return false;
-    }
-    ++count;
-    add_free(m.free_index, dx, x);
-    if (!picard && dx.norm() <= tolerance * gather_free(m.free_index, m.free_count, x).norm()) {
-      assemble_flow(m, x, step, R, nullptr, how);
-      result.residual_norms.push_back(gather_free(m.free_index, m.free_count, R).norm());
-      return true;
-    }
+    trial_x_ = x_;
+    add_free(m_.free_index, alpha * *dx, trial_x_);
+    assemble(trial_x_, trial_R_, trial_J_);
+    return measure(trial_R_);
   }
-}
+  void accept() override {
+    std::swap(x_, trial_x_);
+    std::swap(R_, trial_R_);
+    std::swap(J_, trial_J_);
+  }
+  void save() override {
+    saved_x_ = x_;
+    saved_R_ = R_;
+    saved_J_ = J_;
+  }
+  void restore() override {
+    x_ = saved_x_;
+    R_ = saved_R_;
+    J_ = saved_J_;
+  }
+  bool solve(VectorX& dx, std::string& failure) override {
+    const VectorX rhs = -R_;
+    if (!timed(result_.solve_s, [&] { return solver_.factorize(J_) && solver_.solve(rhs, dx); })) {
+      failure = solver_.failure();
+      return false;
+    }
+    return true;
+  }
+  Real relative_correction(const VectorX& dx, Real alpha) const override {
+    return alpha * dx.norm() / std::max(gather_free(m_.free_index, m_.free_count, x_).norm(), Real(1e-300));
+  }
+
+ private:
+  // The residual on the free dofs and the Jacobian at x.
+  void assemble(const VectorX& x, VectorX& R, SparseMatrix& J) {
+    VectorX full;
+    timed(result_.assembly_s, [&] {
+      assemble_flow(m_, x, step_, full, &J, how_);
+      return 0;
+    });
+    R = gather_free(m_.free_index, m_.free_count, full);
+  }
+  NewtonEvaluation measure(const VectorX& R) const {
+    NewtonEvaluation e;
+    e.norm = R.norm();
+    e.converged = e.norm <= stop_ * first_ || e.norm == 0;
+    e.relative = e.norm / first_;
+    e.describe = fmt::format("|R| = {:.3e}, first {:.3e}", e.norm, first_);
+    return e;
+  }
+
+  const NavierStokesModel& m_;
+  const FlowTimeStep& step_;
+  VectorX& x_;
+  FlowLinearSolver& solver_;
+  FlowAssembly how_;
+  Real stop_;
+  NewtonResult& result_;
+  Real first_ = 1;
+  VectorX R_, trial_R_, trial_x_, saved_x_, saved_R_;
+  SparseMatrix J_, trial_J_, saved_J_;
+};
 
 }  // namespace
 
@@ -248,24 +285,43 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
   FlowSolveResult result;
   for (const PrescribedDof& p : m.prescribed) x[p.dof] = p.value(t);
   const VectorX start = x;
-  if (iterate_flow(m, step, x, solver, false, settings.tolerance, settings, settings.max_iterations, result,
-                   result.iterations)) {
-    result.converged = true;
-    return result;
+  NewtonSettings newton;
+  newton.tolerance = settings.tolerance;
+  newton.max_iterations = settings.max_iterations;
+  newton.threads = settings.threads;
+  const FlowAssembly how{false, settings.viscosity, settings.threads};
+  {
+    FlowSystem system(m, step, x, solver, how, settings.tolerance, result);
+    if (newton_solve(system, newton, "Newton's method", result)) {
+      result.converged = true;
+      return result;
+    }
   }
   if (!settings.picard_fallback) return result;
   // Picard from the same start (robust, linearly convergent), then Newton from where it got.
   const std::string newton_failure = result.failure;
   x = start;
-  if (!iterate_flow(m, step, x, solver, true, settings.picard_reduction, settings,
-                    settings.max_picard_iterations, result, result.picard_iterations) ||
-      !iterate_flow(m, step, x, solver, false, settings.tolerance * result.residual_norms.front() /
-                                                   std::max(result.residual_norms.back(), Real(1e-300)),
-                    settings, settings.max_iterations, result, result.iterations)) {
-    result.failure = fmt::format("Newton failed ({}), and so did the Picard fallback: {}", newton_failure, result.failure);
-    return result;
+  NewtonResult picard;
+  NewtonSettings picard_settings = newton;
+  picard_settings.max_iterations = settings.max_picard_iterations;
+  picard_settings.line_search = false;  // Picard's direction need not decrease |R|
+  FlowSystem picard_system(m, step, x, solver, {true, settings.viscosity, settings.threads}, settings.picard_reduction, picard);
+  const bool picard_converged = newton_solve(picard_system, picard_settings, "Picard's iteration", picard);
+  result.picard_iterations += picard.iterations;
+  result.assembly_s += picard.assembly_s;
+  result.solve_s += picard.solve_s;
+  result.residual_norms.insert(result.residual_norms.end(), picard.residual_norms.begin(), picard.residual_norms.end());
+  result.failure = picard.failure;
+  if (picard_converged) {
+    // Newton again, to the tolerance relative to the first residual of the solve.
+    const Real stop = settings.tolerance * picard.residual_norms.front() / std::max(picard.residual_norms.back(), Real(1e-300));
+    FlowSystem system(m, step, x, solver, how, stop, result);
+    if (newton_solve(system, newton, "Newton's method after Picard's", result)) {
+      result.converged = true;
+      return result;
+    }
   }
-  result.converged = true;
+  result.failure = fmt::format("Newton failed ({}), and so did the Picard fallback: {}", newton_failure, result.failure);
   return result;
 }
 

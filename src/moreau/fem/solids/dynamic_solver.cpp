@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <limits>
 
+#include "moreau/fem/core/newton.hpp"
 #include "moreau/fem/solids/fem_assembly.hpp"
 
 namespace moreau {
@@ -66,6 +67,111 @@ VectorX dynamic_step_predictor(const FemModel& model, const VectorX& u0, const V
   return u1;
 }
 
+namespace {
+
+// The step's residual on the free dofs of u_n+1,
+//   R = M (2/h^2 (u_n+1 - u_n) - 2/h v_n) + f_algo(u_n, u_n+1) - f_ext,   dR/du_n+1 = 2/h^2 M + K_algo.
+class DynamicStepSystem final : public NewtonSystem {
+ public:
+  DynamicStepSystem(const FemModel& model, const SparseMatrix& mass, StepRule rule, Real h, const FemDynamicState& start,
+                    const VectorX& f_ext, SparseSymmetricSolver& solver, const NewtonSettings& settings,
+                    NewtonResult& result)
+      : model_(model), mass_(mass), rule_(rule), h_(h), start_(start), f_ext_(f_ext), solver_(solver),
+        settings_(settings), result_(result) {}
+
+  // The iterate u_n+1 with its assembled forces and tangent.
+  void take(VectorX u1, VectorX f, SparseMatrix K, const InternalForceResult& cells) {
+    u1_ = std::move(u1);
+    f_ = std::move(f);
+    K_ = std::move(K);
+    cells_ = cells;
+  }
+
+  NewtonEvaluation evaluate(const VectorX* du, Real alpha) override {
+    if (!du) return measure(u1_, f_, cells_, R_);
+    trial_u_ = u1_;
+    add_free_part(model_, alpha * *du, trial_u_);
+    trial_cells_ = timed(result_.assembly_s, [&] {
+      return assemble_step_forces(model_, start_.u, trial_u_, rule_, trial_f_, &trial_K_, settings_.threads);
+    });
+    return measure(trial_u_, trial_f_, trial_cells_, trial_R_);
+  }
+
+  void accept() override {
+    std::swap(u1_, trial_u_);
+    std::swap(f_, trial_f_);
+    std::swap(K_, trial_K_);
+    std::swap(R_, trial_R_);
+    cells_ = trial_cells_;
+  }
+
+  void save() override { saved_ = {u1_, f_, R_, K_, cells_}; }
+  void restore() override {
+    u1_ = saved_.u1;
+    f_ = saved_.f;
+    R_ = saved_.R;
+    K_ = saved_.K;
+    cells_ = saved_.cells;
+  }
+
+  bool solve(VectorX& du, std::string& failure) override {
+    // dR/du = 2/h^2 M + K_algo: the two matrices share the structure of model.pattern.
+    const Real c = 2 / (h_ * h_);
+    for (Index i = 0; i < K_.nonZeros(); ++i) K_.valuePtr()[i] += c * mass_.valuePtr()[i];
+    if (!timed(result_.solve_s, [&] { return solver_.factorize(K_, rule_ == StepRule::midpoint); })) {
+      failure = "the step's tangent is singular";
+      return false;
+    }
+    du = timed(result_.solve_s, [&] { return solver_.solve(-R_); });
+    return true;
+  }
+
+  Real relative_correction(const VectorX& du, Real alpha) const override {
+    return alpha * du.norm() / std::max(free_part(model_, u1_ - start_.u).norm(), Real(1e-300));
+  }
+
+  const VectorX& displacement() const { return u1_; }
+  const InternalForceResult& cells() const { return cells_; }
+
+ private:
+  NewtonEvaluation measure(const VectorX& u1, const VectorX& f, const InternalForceResult& cells, VectorX& R) const {
+    NewtonEvaluation e;
+    e.valid = cells.valid;
+    if (!e.valid) {
+      e.invalid = fmt::format("cell {} of '{}'", cells.invalid_cell, cells.invalid_solid);
+      return e;
+    }
+    const VectorX inertia = mass_times(model_, (2 / (h_ * h_)) * (u1 - start_.u) - (2 / h_) * start_.v);
+    R = free_part(model_, inertia + f - f_ext_);
+    const Real scale = std::max({inertia.norm(), f.norm(), f_ext_.norm(), Real(1e-300)});
+    e.norm = R.norm();
+    e.converged = e.norm <= settings_.tolerance * scale;
+    e.relative = e.norm / scale;
+    e.describe = fmt::format("|R| = {:.3e}, scale {:.3e}", e.norm, scale);
+    return e;
+  }
+
+  const FemModel& model_;
+  const SparseMatrix& mass_;
+  StepRule rule_;
+  Real h_;
+  const FemDynamicState& start_;
+  const VectorX& f_ext_;
+  SparseSymmetricSolver& solver_;
+  const NewtonSettings& settings_;
+  NewtonResult& result_;
+  VectorX u1_, f_, R_, trial_u_, trial_f_, trial_R_;
+  SparseMatrix K_, trial_K_;
+  InternalForceResult cells_, trial_cells_;
+  struct {
+    VectorX u1, f, R;
+    SparseMatrix K;
+    InternalForceResult cells;
+  } saved_;
+};
+
+}  // namespace
+
 NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepRule rule, Real h,
                           FemDynamicState& state, SparseSymmetricSolver& solver, const NewtonSettings& settings) {
   NewtonResult result;
@@ -87,54 +193,11 @@ NewtonResult step_dynamic(const FemModel& model, const SparseMatrix& mass, StepR
       return result;
     }
   }
-  const Real c = 2 / (h * h);
-  Real last_correction = std::numeric_limits<Real>::infinity();  // |alpha du| / |u1 - u0| of the last step
-  for (;;) {
-    const VectorX inertia = mass_times(model, c * (u1 - u0) - (2 / h) * v0);
-    const VectorX R = free_part(model, inertia + f - f_ext);
-    const Real norm = R.norm();
-    result.residual_norms.push_back(norm);
-    const Real scale = std::max({inertia.norm(), f.norm(), f_ext.norm(), Real(1e-300)});
-    if (norm <= settings.tolerance * scale) break;
-    if (result.iterations == settings.max_iterations) {
-      result.failure = fmt::format("no convergence in {} Newton iterations (|R| = {:.3e}, scale {:.3e}); {}",
-                                   settings.max_iterations, norm, scale, newton_failure_advice(norm, scale, last_correction, settings));
-      return result;
-    }
-    // dR/du = 2/h^2 M + K_algo: the two matrices share the structure of model.pattern.
-    for (Index i = 0; i < K.nonZeros(); ++i) K.valuePtr()[i] += c * mass.valuePtr()[i];
-    if (!timed(result.solve_s, [&] { return solver.factorize(K, rule == StepRule::midpoint); })) {
-      result.failure = "the step's tangent is singular";
-      return result;
-    }
-    const VectorX du = timed(result.solve_s, [&] { return solver.solve(-R); });
-    ++result.iterations;
-    Real alpha = 1;
-    VectorX trial;
-    for (int halving = 0;; ++halving, alpha *= 0.5) {
-      trial = u1;
-      add_free_part(model, alpha * du, trial);
-      cells = timed(result.assembly_s, [&] { return assemble_step_forces(model, u0, trial, rule, f, &K, settings.threads); });
-      if (cells.valid) break;
-      if (halving == settings.max_halvings) {
-        result.failure = fmt::format("every Newton correction inverts cell {} of '{}'", cells.invalid_cell,
-                                     cells.invalid_solid);
-        return result;
-      }
-    }
-    u1 = trial;
-    last_correction = alpha * du.norm() / std::max(free_part(model, u1 - u0).norm(), Real(1e-300));
-    // The correction criterion is for a residual on its round-off floor: it counts only once
-    // the residual has stopped falling (a stiff body's tiny corrections with a large residual
-    // are not convergence).
-    const bool stagnating = result.residual_norms.size() >= 2 &&
-                            norm > 0.5 * result.residual_norms[result.residual_norms.size() - 2];
-    if (stagnating && last_correction <= settings.tolerance) {
-      const VectorX inertia_end = mass_times(model, c * (u1 - u0) - (2 / h) * v0);
-      result.residual_norms.push_back(free_part(model, inertia_end + f - f_ext).norm());
-      break;
-    }
-  }
+  DynamicStepSystem system(model, mass, rule, h, state, f_ext, solver, settings, result);
+  system.take(std::move(u1), std::move(f), std::move(K), cells);
+  if (!newton_solve(system, settings, "the step", result)) return result;
+  u1 = system.displacement();
+  cells = system.cells();
   result.converged = true;
   result.energy = cells.energy;
   state.v = (2 / h) * (u1 - u0) - v0;

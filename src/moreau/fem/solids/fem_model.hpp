@@ -18,8 +18,6 @@
 
 namespace moreau {
 
-using VectorX = Eigen::VectorXd;
-
 struct FemSolid {
   std::string name;
   FemMesh mesh;

@@ -6,32 +6,112 @@
 #include <cmath>
 #include <limits>
 
+#include "moreau/fem/core/newton.hpp"
 #include "moreau/fem/solids/fem_assembly.hpp"
 
 namespace moreau {
 
-std::string newton_failure_advice(Real residual, Real scale, Real correction, const NewtonSettings& settings) {
-  const Real relative = residual / scale;
-  if (relative <= 1e3 * settings.tolerance || correction <= 1e-8) {
-    // A tolerance above the last correction converges by the correction criterion; else one
-    // above the residual's relative size by the residual test.
-    const Real needed = correction <= 1e-8 ? correction : relative;
-    const Real suggested = std::min(Real(1e-2), std::pow(10.0, std::ceil(std::log10(2 * needed))));
-    return fmt::format("the residual is {:.1e} of its scale, close to its round-off floor: raise settings.newton.tolerance "
-                       "(now {:.0e}) to about {:.0e}",
-                       relative, settings.tolerance, suggested);
+namespace {
+
+// Equilibrium r(u) = f_int(u) - f_ext on the free dofs, with the potential Pi = W(u) - f_ext . u.
+class StaticSystem final : public NewtonSystem {
+ public:
+  StaticSystem(const FemModel& model, const VectorX& f_ext, VectorX& u, SparseSymmetricSolver& solver,
+               const NewtonSettings& settings, NewtonResult& result)
+      : model_(model), f_ext_(f_ext), u_(u), solver_(solver), settings_(settings), result_(result) {}
+
+  // The state at u, already assembled by the caller.
+  void take(InternalForceResult state, VectorX f_int, SparseMatrix K) {
+    state_ = std::move(state);
+    f_int_ = std::move(f_int);
+    K_ = std::move(K);
   }
-  return fmt::format("take smaller steps (a smaller settings.dt; a static run applies its loads in steps of dt) or raise "
-                     "settings.newton.max_iterations (now {})",
-                     settings.max_iterations);
-}
+
+  NewtonEvaluation evaluate(const VectorX* du, Real alpha) override {
+    if (!du) return measure(u_, f_int_, state_);
+    trial_u_ = u_;
+    add_free_part(model_, alpha * *du, trial_u_);
+    trial_state_ = timed(result_.assembly_s, [&] {
+      return assemble_internal_forces(model_, trial_u_, trial_f_, &trial_K_, settings_.threads);
+    });
+    return measure(trial_u_, trial_f_, trial_state_);
+  }
+
+  void accept() override {
+    u_ = trial_u_;
+    state_ = trial_state_;
+    std::swap(f_int_, trial_f_);
+    std::swap(K_, trial_K_);
+  }
+
+  void save() override { saved_ = {u_, state_, f_int_, K_}; }
+  void restore() override {
+    u_ = saved_.u;
+    state_ = saved_.state;
+    f_int_ = saved_.f_int;
+    K_ = saved_.K;
+  }
+
+  bool solve(VectorX& du, std::string& failure) override {
+    if (!timed(result_.solve_s, [&] { return solver_.factorize(K_); })) {
+      failure = "the tangent is singular (is the body held against rigid motion?)";
+      return false;
+    }
+    du = timed(result_.solve_s, [&] { return solver_.solve(-residual()); });
+    return true;
+  }
+
+  Real relative_correction(const VectorX& du, Real alpha) const override {
+    return alpha * du.norm() / std::max(free_part(model_, u_).norm(), Real(1e-300));
+  }
+  // dPi/du . du = r . du
+  Real potential_slope(const VectorX& du) const override { return residual().dot(du); }
+
+  Real energy() const { return state_.energy; }
+
+ private:
+  NewtonEvaluation measure(const VectorX& u, const VectorX& f_int, const InternalForceResult& state) const {
+    NewtonEvaluation e;
+    e.valid = state.valid;
+    if (!e.valid) {
+      e.invalid = fmt::format("cell {} of '{}'", state.invalid_cell, state.invalid_solid);
+      return e;
+    }
+    const Real scale = std::max({f_ext_.norm(), f_int.norm(), Real(1e-300)});
+    e.norm = free_part(model_, f_int - f_ext_).norm();
+    e.converged = e.norm <= settings_.tolerance * scale;
+    e.relative = e.norm / scale;
+    e.describe = fmt::format("|r| = {:.3e}, scale {:.3e}", e.norm, scale);
+    e.potential = state.energy - f_ext_.dot(u);
+    return e;
+  }
+
+  VectorX residual() const { return free_part(model_, f_int_ - f_ext_); }
+
+  const FemModel& model_;
+  const VectorX& f_ext_;
+  VectorX& u_;
+  SparseSymmetricSolver& solver_;
+  const NewtonSettings& settings_;
+  NewtonResult& result_;
+  InternalForceResult state_, trial_state_;
+  VectorX f_int_, trial_f_, trial_u_;
+  SparseMatrix K_, trial_K_;
+  struct {
+    VectorX u;
+    InternalForceResult state;
+    VectorX f_int;
+    SparseMatrix K;
+  } saved_;
+};
+
+}  // namespace
 
 NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymmetricSolver& solver,
                           const NewtonSettings& settings) {
   NewtonResult result;
-  Real last_correction = std::numeric_limits<Real>::infinity();  // |alpha du| / |u_free| of the last step
   const VectorX f_ext = external_forces(model, t);
-  VectorX f_int, trial_force;
+  VectorX f_int;
   SparseMatrix K;
   InternalForceResult state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K, settings.threads); });
   if (!state.valid) {
@@ -64,71 +144,11 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
       return result;
     }
   }
-  for (;;) {
-    const VectorX r = free_part(model, f_int - f_ext);
-    const Real norm = r.norm();
-    result.residual_norms.push_back(norm);
-    result.energy = state.energy;
-    const Real scale = std::max({f_ext.norm(), f_int.norm(), Real(1e-300)});
-    if (norm <= settings.tolerance * scale) {
-      result.converged = true;
-      return result;
-    }
-    if (result.iterations == settings.max_iterations) {
-      result.failure = fmt::format("no convergence in {} Newton iterations (|r| = {:.3e}, scale {:.3e}); {}",
-                                   settings.max_iterations, norm, scale, newton_failure_advice(norm, scale, last_correction, settings));
-      return result;
-    }
-    if (!timed(result.solve_s, [&] { return solver.factorize(K); })) {
-      result.failure = "the tangent is singular (is the body held against rigid motion?)";
-      return result;
-    }
-    const VectorX du = timed(result.solve_s, [&] { return solver.solve(-r); });
-    ++result.iterations;
-    const Real potential = state.energy - f_ext.dot(u);
-    const Real slope = r.dot(du);
-    Real alpha = 2;
-    VectorX trial;
-    bool accepted = false, any_valid = false;
-    for (int halving = 0; halving <= settings.max_halvings && !accepted; ++halving) {
-      alpha *= 0.5;
-      trial = u;
-      add_free_part(model, alpha * du, trial);
-      const InternalForceResult trial_state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, trial, trial_force, nullptr, settings.threads); });
-      if (!trial_state.valid) continue;
-      any_valid = true;
-      const Real trial_norm = free_part(model, trial_force - f_ext).norm();
-      const Real trial_potential = trial_state.energy - f_ext.dot(trial);
-      accepted = trial_norm < norm || trial_potential <= potential + 1e-4 * alpha * slope;
-    }
-    if (!accepted) {
-      // Near the solution the residual is round-off (~ eps lambda h per dof for a nearly
-      // incompressible body): no step reduces it, and Newton's correction is as small as the
-      // noise. A correction below tolerance * |u| is convergence by the correction criterion.
-      const Real correction = du.norm() / std::max(free_part(model, u).norm(), Real(1e-300));
-      if (any_valid && correction <= settings.tolerance) {
-        result.converged = true;
-        return result;
-      }
-      result.failure = fmt::format("the line search found no step that reduces the residual (|r| = {:.3e}, scale {:.3e}, "
-                                   "last correction {:.1e} of |u|); {}",
-                                   norm, scale, correction, newton_failure_advice(norm, scale, correction, settings));
-      return result;
-    }
-    u = trial;
-    last_correction = alpha * du.norm() / std::max(free_part(model, u).norm(), Real(1e-300));
-    state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K, settings.threads); });
-    // A correction below tolerance * |u| is converged even where the residual sits on its
-    // round-off floor (~ eps |K| |u|, above tolerance * |f| for stiff or lightly loaded bodies).
-    const bool stagnating = result.residual_norms.size() >= 2 &&
-                            norm > 0.5 * result.residual_norms[result.residual_norms.size() - 2];
-    if (stagnating && last_correction <= settings.tolerance) {
-      result.residual_norms.push_back(free_part(model, f_int - f_ext).norm());
-      result.energy = state.energy;
-      result.converged = true;
-      return result;
-    }
-  }
+  StaticSystem system(model, f_ext, u, solver, settings, result);
+  system.take(std::move(state), std::move(f_int), std::move(K));
+  result.converged = newton_solve(system, settings, "the solve", result);
+  result.energy = system.energy();
+  return result;
 }
 
 }  // namespace moreau
