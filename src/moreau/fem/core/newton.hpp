@@ -82,7 +82,8 @@ class NewtonSystem {
  public:
   virtual ~NewtonSystem() = default;
   /// Evaluates the residual and, for the next solve, the Jacobian at z + alpha dz (`dz` null:
-  /// at z itself). The driver makes the last evaluated trial current by accept().
+  /// at z itself, which the system then keeps as current). The driver makes the last evaluated
+  /// trial current by accept().
   virtual NewtonEvaluation evaluate(const VectorX* dz, Real alpha) = 0;
   /// z <- the last evaluated trial.
   virtual void accept() = 0;
