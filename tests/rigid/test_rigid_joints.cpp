@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "moreau/solvers/xpbd/joint_projection.hpp"
 #include "test_helpers.hpp"
 
 namespace moreau {
@@ -45,14 +46,14 @@ TEST(RigidJoints, ProjectionsRemoveAViolationOfEveryJointType) {
       s.state.rigid.position[b] += Vec3(1e-3, -0.7e-3, 0.5e-3);
       s.state.rigid.orientation[b] =
           (Quat(Eigen::AngleAxisd(1.2e-3, Vec3(0.3, -1, 0.4).normalized())) * s.state.rigid.orientation[b]).normalized();
-      const JointError before = joint_error(s.model, s.state, 0);
+      const JointError before = joint_error(s.model.joints[0], s.state);
       const Real h = 1.0 / 1200;
       reset_joints(s.model, s.state);
       const int solves = solve_joint_forest(s.model, s.state, h);
       project_joints(s.model, s.state, h);
-      const JointError once = joint_error(s.model, s.state, 0);
+      const JointError once = joint_error(s.model.joints[0], s.state);
       for (int k = 0; k < 19; ++k) project_joints(s.model, s.state, h);
-      const JointError after = joint_error(s.model, s.state, 0);
+      const JointError after = joint_error(s.model.joints[0], s.state);
       const std::string what = j + (direct ? " direct" : " gauss_seidel");
       EXPECT_GT(before.position + before.angle, 5e-4) << what;
       if (s.model.joint_forest.in_tree(0)) {
@@ -100,10 +101,10 @@ TEST(RigidJoints, HingeLimitAndVelocityDrive) {
   run_steps(s, 30);  // 0.5 s
   const Index b = 0;
   EXPECT_NEAR(s.state.rigid.angular_velocity[b].y(), 1.0, 1e-5);
-  EXPECT_NEAR(joint_coordinate(s.model, s.state, 0), 0.5, 0.02 * 0.5);
+  EXPECT_NEAR(joint_coordinate(s.model.joints[0], s.state), 0.5, 0.02 * 0.5);
   run_steps(s, 90);  // 2 s in all: the limit holds at pi/2
-  EXPECT_NEAR(joint_coordinate(s.model, s.state, 0), kPi / 2, 1e-6);
-  EXPECT_LT(joint_error(s.model, s.state, 0).position, 1e-9);
+  EXPECT_NEAR(joint_coordinate(s.model.joints[0], s.state), kPi / 2, 1e-6);
+  EXPECT_LT(joint_error(s.model.joints[0], s.state).position, 1e-9);
 }
 
 TEST(RigidJoints, DriveTorqueIsLimited) {
@@ -136,9 +137,9 @@ TEST(RigidJoints, SphericalTwistLimitStopsASpinAndIsMeasured) {
   const Eigen::AngleAxisd turned(s.state.rigid.orientation[0]);
   EXPECT_NEAR(turned.angle(), kPi / 6, 1e-6);
   EXPECT_NEAR(std::abs(turned.axis().x()), 1.0, 1e-9);
-  EXPECT_LT(joint_error(s.model, s.state, 0).angle, 1e-6);
+  EXPECT_LT(joint_error(s.model.joints[0], s.state).angle, 1e-6);
   s.state.rigid.orientation[0] = Quat(Eigen::AngleAxisd(40 * kPi / 180, Vec3::UnitX()));
-  EXPECT_NEAR(joint_error(s.model, s.state, 0).angle, 10 * kPi / 180, 1e-12);
+  EXPECT_NEAR(joint_error(s.model.joints[0], s.state).angle, 10 * kPi / 180, 1e-12);
 }
 
 TEST(RigidJoints, ResultsAreBitIdenticalOnOneAndTwoThreads) {

@@ -19,7 +19,7 @@ Scene bench_scene(const std::string& file, const std::vector<std::string>& overr
 // The chain's stretch: the sum of every joint's gap over the 10 m of links.
 Real chain_stretch(const Scene& s) {
   Real gaps = 0;
-  for (Index j = 0; j < static_cast<Index>(s.model.joints.size()); ++j) gaps += joint_error(s.model, s.state, j).position;
+  for (Index j = 0; j < static_cast<Index>(s.model.joints.size()); ++j) gaps += joint_error(s.model.joints[j], s.state).position;
   return gaps / 10.0;
 }
 

@@ -141,7 +141,7 @@ void evaluate_probe(const ProbeSpec& probe, const Model& model, const State& sta
       JointError worst;
       for (Index j = 0; j < static_cast<Index>(model.joints.size()); ++j) {
         if (probe.joint >= 0 && j != probe.joint) continue;
-        const JointError e = joint_error(model, state, j);
+        const JointError e = joint_error(model.joints[j], state);
         worst.position = std::max(worst.position, e.position);
         worst.angle = std::max(worst.angle, e.angle);
       }

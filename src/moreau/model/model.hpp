@@ -9,7 +9,7 @@
 #include "moreau/constraints/particle_families.hpp"
 #include "moreau/fluids/fluid_model.hpp"
 #include "moreau/rigid/joint_tree.hpp"
-#include "moreau/rigid/joints.hpp"
+#include "moreau/constraints/joints/joint.hpp"
 #include "moreau/rigid/rigid_bodies.hpp"
 
 namespace moreau {

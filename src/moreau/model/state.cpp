@@ -21,7 +21,7 @@ State make_rest_state(const Model& model) {
   s.rigid.angular_velocity = rb.initial_angular_velocity;
   s.rigid.start_position = s.rigid.position;
   s.rigid.start_orientation = s.rigid.orientation;
-  s.joint_lambda.assign(model.joints.size(), JointLambdas{});
+  s.joint_lambda.assign(model.joints.size(), JointMultipliers{});
   s.joint_drive_start.assign(model.joints.size(), 0);
   return s;
 }

@@ -33,7 +33,7 @@ struct State {
   RigidBodyState rigid;
   RigidContacts rigid_contacts;
   ParticleBodyContacts particle_body_contacts;
-  std::vector<JointLambdas> joint_lambda;
+  std::vector<JointMultipliers> joint_lambda;  // per joint, this substep (JointSlot)
   std::vector<Real> joint_drive_start;  // hinge angle (rad) or slide (m) at the substep start
 };
 

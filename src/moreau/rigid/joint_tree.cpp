@@ -6,7 +6,6 @@
 #include "moreau/model/model.hpp"
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/body_handle.hpp"
-#include "moreau/rigid/joint_frames.hpp"
 
 namespace moreau {
 
@@ -18,112 +17,78 @@ using Column = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, 6, 1>;
 using RowJacobian = Eigen::Matrix<Real, Eigen::Dynamic, 6, 0, 6, 6>;
 
 bool is_tree_body(const RigidBodyModel& bodies, const JointEnd& e) {
-  return e.kind == JointEndKind::body && bodies.is_dynamic(e.index);
+  return e.kind == BodyEndKind::body && bodies.is_dynamic(e.index);
 }
 
-// A joint's equality rows linearised at the current poses: C, alpha~, the accumulated multipliers
-// and dC/d(dx, dtheta) of each end (dtheta a world-space rotation vector).
+// A joint's equality rows linearised at the current poses (the joint type's own blocks, in its
+// order): C, alpha~, the accumulated multipliers and dC/d(dx, dtheta) of each end (dtheta a
+// world-space rotation vector), with where each block's multipliers live.
 struct JointRows {
   Column c, alpha_tilde, lambda;
   std::array<RowJacobian, 2> jacobian;
+  struct Block {
+    int slot = 0, offset = 0, size = 0;
+  };
+  std::array<Block, 2> blocks;
+  int block_count = 0;
 };
 
-// Attachment C = p_a - p_b: dp = dx + dtheta x r = dx - [r]x dtheta.
-void attachment_rows(const ConstEndView& a, const ConstEndView& b, JointRows& rows, int row) {
-  rows.c.segment<3>(row) = a.anchor() - b.anchor();
-  const Vec3 ra = a.anchor() - a.center, rb = b.anchor() - b.center;
-  rows.jacobian[0].block<3, 3>(row, 0) = Mat3::Identity();
-  rows.jacobian[0].block<3, 3>(row, 3) = -cross_matrix(ra);
-  rows.jacobian[1].block<3, 3>(row, 0) = -Mat3::Identity();
-  rows.jacobian[1].block<3, 3>(row, 3) = cross_matrix(rb);
-}
-
-// Fixed orientation C = 2 s vec(dq), dq = f_a f_b^-1 = (w, v), s = sign(w). Turning a by dtheta
-// adds 1/2 [dtheta, 0] dq, whose vector part is (w I - [v]x) dtheta; turning b subtracts
-// 1/2 dq [dtheta, 0], vector part (w I + [v]x) dtheta.
-void orientation_rows(const ConstEndView& a, const ConstEndView& b, JointRows& rows, int row) {
-  const Quat dq = a.frame() * b.frame().conjugate();
-  const Real s = dq.w() >= 0 ? 1 : -1;
-  rows.c.segment<3>(row) = 2 * s * dq.vec();
-  rows.jacobian[0].block<3, 3>(row, 3) = s * (dq.w() * Mat3::Identity() - cross_matrix(dq.vec()));
-  rows.jacobian[1].block<3, 3>(row, 3) = -s * (dq.w() * Mat3::Identity() + cross_matrix(dq.vec()));
-}
-
-// Hinge alignment C_k = y_k . e, e = x_b x x_a, for y_k the two axes of a across the hinge.
-// de = x_b x (dtheta_a x x_a) + (dtheta_b x x_b) x x_a
-//    = ((x_a.x_b) I - x_a x_b^T) dtheta_a - ((x_a.x_b) I - x_b x_a^T) dtheta_b,
-// and y_k turns with a: d(y_k . e) gains (y_k x e) . dtheta_a.
-void alignment_rows(const ConstEndView& a, const ConstEndView& b, JointRows& rows, int row) {
-  const Vec3 xa = a.axis(0), xb = b.axis(0), e = xb.cross(xa);
-  const Real cosine = xa.dot(xb);
-  const Mat3 de_a = cosine * Mat3::Identity() - xa * xb.transpose();
-  const Mat3 de_b = -(cosine * Mat3::Identity() - xb * xa.transpose());
-  for (int k = 0; k < 2; ++k) {
-    const Vec3 y = a.axis(1 + k);
-    rows.c(row + k) = y.dot(e);
-    rows.jacobian[0].block<1, 3>(row + k, 3) = y.transpose() * de_a + y.cross(e).transpose();
-    rows.jacobian[1].block<1, 3>(row + k, 3) = y.transpose() * de_b;
+// Stacks the blocks a joint hands on into its JointRows. Rows a joint leaves out (a distance
+// joint's at zero length) stay zero.
+class RowStack final : public BodyRowSink {
+ public:
+  RowStack(JointRows& rows, const JointMultipliers& lambda, Real inv_h2) : rows_(rows), lambda_(lambda), inv_h2_(inv_h2) {}
+  void take(const BodyRows& block) override {
+    const int n = block.size();
+    if (n == 3)
+      place<3>(block);
+    else
+      place<Eigen::Dynamic>(block);
+    rows_.blocks[rows_.block_count++] = {block.slot, next_, n};
+    next_ += n;
   }
-}
+  int rows_taken() const { return next_; }
 
-// Distance C = |d| - L along n = d / |d|: J_a = [n^T, (r_a x n)^T], J_b = -[n^T, (r_b x n)^T].
-void distance_row(const ConstEndView& a, const ConstEndView& b, Real length, JointRows& rows) {
-  const Vec3 d = a.anchor() - b.anchor();
-  const Real len = d.norm();
-  if (len <= 0) return;  // direction undefined: leave the row at C = 0, J = 0
-  const Vec3 n = d / len, ra = a.anchor() - a.center, rb = b.anchor() - b.center;
-  rows.c(0) = len - length;
-  rows.jacobian[0] << n.transpose(), ra.cross(n).transpose();
-  rows.jacobian[1] << -n.transpose(), -rb.cross(n).transpose();
-}
+ private:
+  // Fixed-size copies for the common 3-row blocks (attachment, orientation).
+  template <int N>
+  void place(const BodyRows& block) {
+    const int n = block.size();
+    rows_.c.segment<N>(next_, n) = block.C;
+    rows_.alpha_tilde.segment<N>(next_, n) = block.compliance * inv_h2_;
+    rows_.lambda.segment<N>(next_, n) = Eigen::Map<const Eigen::Matrix<Real, N, 1>>(lambda_.data() + block.slot, n);
+    for (int e = 0; e < 2; ++e) rows_.jacobian[e].middleRows<N>(next_, n) = block.jacobian[e];
+  }
 
-JointRows joint_rows(const Joint& j, const JointLambdas& L, const State& state, Real inv_h2) {
+  JointRows& rows_;
+  const JointMultipliers& lambda_;
+  Real inv_h2_;
+  int next_ = 0;
+};
+
+JointRows joint_rows_now(const Joint& j, const JointMultipliers& lambda, const State& state, Real h) {
   const int n = direct_rows(j);
+  const Real inv_h2 = 1 / (h * h);
   JointRows rows;
-  rows.c.setZero(n);
-  rows.alpha_tilde.setConstant(n, j.compliance * inv_h2);
-  rows.lambda.setZero(n);
-  for (auto& jac : rows.jacobian) jac.setZero(n, 6);
-  const ConstEndView a = const_end_view(state, j.ends[0]), b = const_end_view(state, j.ends[1]);
-  switch (j.type) {
-    case JointType::spherical:
-      attachment_rows(a, b, rows, 0);
-      rows.lambda = L.position;
-      break;
-    case JointType::fixed:
-      attachment_rows(a, b, rows, 0);
-      orientation_rows(a, b, rows, 3);
-      rows.alpha_tilde.tail<3>().setConstant(j.angular_compliance * inv_h2);
-      rows.lambda << L.position, L.orientation;
-      break;
-    case JointType::hinge:
-      attachment_rows(a, b, rows, 0);
-      alignment_rows(a, b, rows, 3);
-      rows.alpha_tilde.tail<2>().setConstant(j.angular_compliance * inv_h2);
-      rows.lambda << L.position, L.orientation.head<2>();
-      break;
-    case JointType::distance:
-      distance_row(a, b, j.lower, rows);
-      rows.lambda(0) = L.distance;
-      break;
-    case JointType::prismatic: break;
+  rows.c.resize(n);
+  rows.alpha_tilde.resize(n);
+  rows.lambda.resize(n);
+  for (auto& jac : rows.jacobian) jac.resize(n, 6);
+  RowStack stack(rows, lambda, inv_h2);
+  joint_rows({state, j, h, 0, JointRowSet::equality}, stack);
+  if (const int taken = stack.rows_taken(); taken < n) {
+    rows.c.tail(n - taken).setZero();
+    rows.alpha_tilde.tail(n - taken).setConstant(j.compliance * inv_h2);
+    rows.lambda.tail(n - taken).setZero();
+    for (auto& jac : rows.jacobian) jac.bottomRows(n - taken).setZero();
   }
   return rows;
 }
 
-void add_to_lambdas(const Joint& j, const Column& d, JointLambdas& L) {
-  switch (j.type) {
-    case JointType::spherical: L.position += d.head<3>(); break;
-    case JointType::fixed:
-      L.position += d.head<3>();
-      L.orientation += d.tail<3>();
-      break;
-    case JointType::hinge:
-      L.position += d.head<3>();
-      L.orientation.head<2>() += d.tail<2>();
-      break;
-    case JointType::distance: L.distance += d(0); break;
-    case JointType::prismatic: break;
+void add_to_lambdas(const JointRows& rows, const Column& d, JointMultipliers& lambda) {
+  for (int b = 0; b < rows.block_count; ++b) {
+    const JointRows::Block& block = rows.blocks[b];
+    Eigen::Map<BodyRows::Vector>(lambda.data() + block.slot, block.size) += d.segment(block.offset, block.size);
   }
 }
 
@@ -139,17 +104,6 @@ struct Components {
 
 }  // namespace
 
-int direct_rows(const Joint& joint) {
-  switch (joint.type) {
-    case JointType::spherical: return 3;
-    case JointType::fixed: return 6;
-    case JointType::hinge: return 5;
-    case JointType::distance: return joint.lower == joint.upper ? 1 : 0;
-    case JointType::prismatic: return 0;
-  }
-  return 0;
-}
-
 JointForest build_joint_forest(const RigidBodyModel& bodies, const std::vector<Joint>& joints) {
   JointForest forest;
   forest.joint_in_tree.assign(joints.size(), 0);
@@ -158,7 +112,7 @@ JointForest build_joint_forest(const RigidBodyModel& bodies, const std::vector<J
   for (size_t k = 0; k < joints.size(); ++k) {
     const Joint& j = joints[k];
     if (direct_rows(j) == 0) continue;
-    if (j.ends[0].kind == JointEndKind::particle || j.ends[1].kind == JointEndKind::particle) continue;
+    if (j.ends[0].kind == BodyEndKind::particle || j.ends[1].kind == BodyEndKind::particle) continue;
     const bool tree_a = is_tree_body(bodies, j.ends[0]), tree_b = is_tree_body(bodies, j.ends[1]);
     if (tree_a && tree_b) {
       const Index ra = components.find(j.ends[0].index), rb = components.find(j.ends[1].index);
@@ -223,7 +177,7 @@ namespace {
 
 // One linearised solve (a Newton step on every tree joint's equality rows), skipped when the largest
 // |C + alpha~ lambda| is already below the tolerance; returns whether it solved.
-bool direct_pass(const Model& model, State& state, Real inv_h2) {
+bool direct_pass(const Model& model, State& state, Real h) {
   const JointForest& forest = model.joint_forest;
   const size_t n = forest.nodes.size();
   Real residual = 0;
@@ -243,7 +197,7 @@ bool direct_pass(const Model& model, State& state, Real inv_h2) {
       s[i].setZero(6);
     } else {
       const Joint& j = model.joints[node.index];
-      rows[i] = joint_rows(j, state.joint_lambda[node.index], state, inv_h2);
+      rows[i] = joint_rows_now(j, state.joint_lambda[node.index], state, h);
       diagonal[i] = -Block(rows[i].alpha_tilde.asDiagonal());
       s[i] = rows[i].c + rows[i].alpha_tilde.cwiseProduct(rows[i].lambda);
       residual = std::max(residual, s[i].cwiseAbs().maxCoeff());
@@ -256,7 +210,7 @@ bool direct_pass(const Model& model, State& state, Real inv_h2) {
     const size_t joint_node = node.is_body ? node.parent : i;
     const Index body = node.is_body ? node.index : forest.nodes[node.parent].index;
     const Joint& j = model.joints[forest.nodes[joint_node].index];
-    const int slot = j.ends[0].kind == JointEndKind::body && j.ends[0].index == body ? 0 : 1;
+    const int slot = j.ends[0].kind == BodyEndKind::body && j.ends[0].index == body ? 0 : 1;
     const RowJacobian& jac = rows[joint_node].jacobian[slot];
     return node.is_body ? Block(-jac.transpose()) : Block(-jac);
   };
@@ -286,7 +240,7 @@ bool direct_pass(const Model& model, State& state, Real inv_h2) {
       *body.position += s[i].head<3>();
       body.rotate_by(s[i].tail<3>());
     } else {
-      add_to_lambdas(model.joints[node.index], s[i], state.joint_lambda[node.index]);
+      add_to_lambdas(rows[i], s[i], state.joint_lambda[node.index]);
     }
   }
   return true;
@@ -296,9 +250,8 @@ bool direct_pass(const Model& model, State& state, Real inv_h2) {
 
 int solve_joint_forest(const Model& model, State& state, Real h) {
   if (model.joint_forest.empty()) return 0;
-  const Real inv_h2 = 1 / (h * h);
   int passes = 0;
-  while (passes < kMaxDirectPasses && direct_pass(model, state, inv_h2)) ++passes;
+  while (passes < kMaxDirectPasses && direct_pass(model, state, h)) ++passes;
   return passes;
 }
 

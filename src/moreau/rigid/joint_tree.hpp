@@ -21,14 +21,14 @@
 //
 // Rows per joint: spherical 3 (anchors), fixed 6 (anchors, orientation), hinge 5 (anchors, axis
 // alignment), distance with min = max 1. Limits, drives and the other joint types stay in the
-// Gauss-Seidel pass (joints.cpp). Only dynamic bodies are nodes; the world, fixed and kinematic
+// Gauss-Seidel pass (solvers/xpbd/joint_projection.cpp). Only dynamic bodies are nodes; the world, fixed and kinematic
 // bodies are not, so a joint to them has one neighbour and becomes its component's root. A joint
 // that would close a loop (between bodies already connected, or a second joint to the world in
 // a component) stays with Gauss-Seidel: loops are closed iteratively.
 #include <vector>
 
 #include "moreau/math/types.hpp"
-#include "moreau/rigid/joints.hpp"
+#include "moreau/constraints/joints/joint.hpp"
 #include "moreau/rigid/rigid_bodies.hpp"
 
 namespace moreau {
@@ -49,9 +49,6 @@ struct JointForest {
   bool empty() const { return nodes.empty(); }
   bool in_tree(size_t joint) const { return joint < joint_in_tree.size() && joint_in_tree[joint]; }
 };
-
-/// Equality rows of a joint the direct solver takes (0: none).
-int direct_rows(const Joint& joint);
 
 /// Builds the forest from the joints in scene order (see the file comment for loops).
 JointForest build_joint_forest(const RigidBodyModel& bodies, const std::vector<Joint>& joints);

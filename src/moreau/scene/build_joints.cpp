@@ -25,7 +25,7 @@ JointEnd read_end(const JsonObject& joint, const nlohmann::json& value, int slot
       joint.fail("bodies", fmt::format("{} is '{}', which is not a rigid body of this scene; give \"world\", a rigid "
                                        "body's name or {{\"object\": <cloth or soft body>, \"vertex\": i}}",
                                        where, name));
-    end.kind = JointEndKind::body;
+    end.kind = BodyEndKind::body;
     end.index = model.objects[o].body;
     return end;
   }
@@ -36,7 +36,7 @@ JointEnd read_end(const JsonObject& joint, const nlohmann::json& value, int slot
   if (o < 0 || !model.objects[o].has_particles())
     ref.fail("object", fmt::format("'{}' is not a cloth or soft body of this scene", name));
   const ObjectInfo& info = model.objects[o];
-  end.kind = JointEndKind::particle;
+  end.kind = BodyEndKind::particle;
   if (ref.has("vertex") == ref.has("nearest")) ref.fail("vertex", "give exactly one of \"vertex\" or \"nearest\"");
   if (ref.has("vertex")) {
     const int v = ref.integer("vertex", 0, 0, info.particle_count() - 1);
@@ -66,26 +66,26 @@ Quat frame_from_axis(const Vec3& axis) {
 // Centre, orientation and the world anchor of an end at scene time.
 void attach(JointEnd& end, const Vec3& anchor, const Quat& frame, const Model& model) {
   switch (end.kind) {
-    case JointEndKind::world:
+    case BodyEndKind::world:
       end.anchor = anchor;
       end.frame = frame;
       break;
-    case JointEndKind::body: {
+    case BodyEndKind::body: {
       const Quat& q = model.rigid.initial_orientation[end.index];
       end.anchor = q.conjugate() * (anchor - model.rigid.initial_position[end.index]);
       end.frame = (q.conjugate() * frame).normalized();
       break;
     }
-    case JointEndKind::particle:
+    case BodyEndKind::particle:
       end.anchor = Vec3::Zero();
       break;
   }
 }
 
 Vec3 end_world_point(const JointEnd& end, const Model& model) {
-  if (end.kind == JointEndKind::body)
+  if (end.kind == BodyEndKind::body)
     return model.rigid.initial_position[end.index] + model.rigid.initial_orientation[end.index] * end.anchor;
-  if (end.kind == JointEndKind::particle) return model.particle_rest_position[end.index];
+  if (end.kind == BodyEndKind::particle) return model.particle_rest_position[end.index];
   return end.anchor;
 }
 
@@ -134,11 +134,11 @@ void build_joints(const std::vector<JsonObject>& list, Model& model) {
     const auto& bodies = j.raw("bodies");
     if (!bodies.is_array() || bodies.size() != 2) j.fail("bodies", "expected two ends: [\"a\", \"b\"]");
     joint.ends = {read_end(j, bodies[0], 0, model), read_end(j, bodies[1], 1, model)};
-    if (joint.ends[0].kind == JointEndKind::world && joint.ends[1].kind == JointEndKind::world)
+    if (joint.ends[0].kind == BodyEndKind::world && joint.ends[1].kind == BodyEndKind::world)
       j.fail("bodies", "a joint needs at least one end that is not the world");
     if (joint.ends[0].kind == joint.ends[1].kind && joint.ends[0].index == joint.ends[1].index)
       j.fail("bodies", "a joint cannot connect a body to itself");
-    const bool oriented_ends = joint.ends[0].kind != JointEndKind::particle && joint.ends[1].kind != JointEndKind::particle;
+    const bool oriented_ends = joint.ends[0].kind != BodyEndKind::particle && joint.ends[1].kind != BodyEndKind::particle;
 
     // Anchors: one shared world point, or one per end.
     if (j.has("anchor") == j.has("anchors")) j.fail("anchor", "give exactly one of \"anchor\" (one world point) or \"anchors\" (one per end)");
@@ -214,8 +214,8 @@ void build_joints(const std::vector<JsonObject>& list, Model& model) {
     }
     read_drive(j, joint);
     // Joined bodies do not collide with each other unless asked to.
-    if (!j.boolean("collide", false) && joint.ends[0].kind == JointEndKind::body &&
-        joint.ends[1].kind == JointEndKind::body) {
+    if (!j.boolean("collide", false) && joint.ends[0].kind == BodyEndKind::body &&
+        joint.ends[1].kind == BodyEndKind::body) {
       const Index a = joint.ends[0].index, b = joint.ends[1].index;
       model.rigid.pairs_without_contact.push_back({std::min(a, b), std::max(a, b)});
     }

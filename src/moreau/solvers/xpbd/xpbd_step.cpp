@@ -16,6 +16,7 @@
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/rigid/particle_body_contacts.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
+#include "moreau/solvers/xpbd/joint_projection.hpp"
 #include "moreau/solvers/xpbd/particle_projections.hpp"
 #include "moreau/solvers/xpbd/xpbd_stages.hpp"
 

@@ -1,0 +1,28 @@
+#pragma once
+// Row blocks that several joint types share (body_rows.hpp for the row shapes). Every block is
+// evaluated at the poses given; the Jacobians are the exact derivatives of C.
+#include <algorithm>
+
+#include "moreau/constraints/joints/joint_frames.hpp"
+
+namespace moreau {
+
+/// Attachment C = p_a - p_b (3 rows): dp = dx + dtheta x r = dx - [r]x dtheta.
+BodyRows attachment_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b);
+
+/// Fixed relative orientation C = 2 s vec(dq), dq = f_a f_b^-1 = (w, v), s = sign(w) (3 rows).
+BodyRows orientation_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b);
+
+/// A drive's or a limit's single row on a coordinate whose value is `value` and whose target is
+/// `target`: rotation rows about n for angles, point rows along n for slides. A limit row may only
+/// push the coordinate back inside (unilateral); a drive row is bounded by the drive's force.
+BodyRows limit_row(const Joint& j, const JointEndPose& a, const JointEndPose& b, Real value, Real target,
+                   const Vec3& n, bool angular, int slot, Real compliance);
+BodyRows drive_row(const Joint& j, const JointEndPose& a, const JointEndPose& b, Real error, const Vec3& n,
+                   bool angular);
+
+/// The drive's target coordinate this substep: the position target, or the start plus h times the
+/// velocity target; inside the limits when the joint has them.
+Real drive_target(const Joint& j, Real drive_start, Real h);
+
+}  // namespace moreau
