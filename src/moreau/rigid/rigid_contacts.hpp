@@ -17,17 +17,9 @@
 // steps for the same point of the same pair (matched by its body-frame cores), makes static
 // friction a position constraint that holds; s is cleared when the manifold slides or the point
 // separates.
-// The rows of one manifold's penetrating points (up to 12) are solved together by projected
-// Gauss-Seidel on their effective-mass matrix (rigid_contacts.cpp). Mueller 2020 projects point by point; for a box
-// resting on four corners that lifts the far corner each time the near one is pushed, the box
-// rocks, and the first corner's static friction must hold the whole box on a quarter of the load:
-// a box on a 30 degree incline with mu = 0.7 then crept 12 mm in 2 s. Solved as a block it holds.
-// Velocity pass, once per substep, per point in contact (Mueller 2020, sec. 3.6):
-//   dynamic friction  dv = -v_t/|v_t| min(mu_k lambda_n/h (w_a + w_b), |v_t|)   (the friction
-//                     impulse mu_k lambda_n/h: the dimensionally consistent reading of eq. 30)
-//   restitution       dv = n (-v_n + max(-e min(vbar_n, v_n), 0)), e = 0 when |v_n| <= 2 |g| h
-//                     (vbar_n before the solve; the current v_n too, so a pulse passes down a
-//                     row of touching balls; rows of a manifold solved together, see the .cpp)
+// The rows of a manifold's penetrating points are constraints/contact_rows.hpp; XPBD solves them
+// as one block and applies dynamic friction and restitution in a velocity pass
+// (solvers/xpbd/rigid_contact_projection.hpp).
 // Coefficients combine as the mean of the two bodies' (Mueller 2020).
 #include <vector>
 
@@ -77,19 +69,6 @@ struct RigidContacts {
 
 /// Broad and narrow phase for the coming step, the narrow phase on `threads` threads.
 void detect_rigid_contacts(const Model& model, State& state, int threads);
-
-/// Clears the multipliers at the start of a substep.
-void reset_rigid_contacts(State& state);
-
-/// Projection of all manifolds (Gauss-Seidel over manifolds, in a fixed order); one thread.
-void project_rigid_contacts(const Model& model, State& state);
-
-/// End of a substep (after the projections): the slip each touching point kept is added to its
-/// stuck slip while its manifold sticks; sliding or separation clears it.
-void accumulate_stuck_slip(State& state);
-
-/// Velocity pass of the manifolds in contact this substep; one thread.
-void rigid_contact_velocities(const Model& model, State& state, Real h);
 
 /// Contact points in touch at the end of the last substep involving `object` (-1: any).
 Index touching_contact_count(const Model& model, const State& state, Index object);

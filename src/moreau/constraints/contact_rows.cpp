@@ -1,0 +1,46 @@
+#include "moreau/constraints/contact_rows.hpp"
+
+#include "moreau/rigid/rigid_bodies.hpp"
+#include "moreau/rigid/rigid_contacts.hpp"
+
+namespace moreau {
+
+ContactRows manifold_rows(const RigidManifold& mf, RigidContactPoint* points, const RigidBodyState& s) {
+  const Index a = mf.body_a, b = mf.body_b;
+  const Pose pa{s.position[a], s.orientation[a]}, pb{s.position[b], s.orientation[b]};
+  const Pose sa{s.start_position[a], s.start_orientation[a]}, sb{s.start_position[b], s.start_orientation[b]};
+  ContactRows rows;
+  rows.end = {BodyEnd{BodyEndKind::body, a}, BodyEnd{BodyEndKind::body, b}};
+  rows.static_friction = mf.static_friction;
+  for (int i = 0; i < mf.count; ++i) {
+    RigidContactPoint& c = points[i];
+    const Vec3 n = contact_normal(mf.frame, c.geometry, pa, pb);
+    const Vec3 p_a = pa.to_world(c.geometry.core_a) - c.geometry.radius_a * n;
+    const Vec3 p_b = pb.to_world(c.geometry.core_b) + c.geometry.radius_b * n;
+    c.normal = n;
+    c.offset_a = p_a - pa.position;
+    c.offset_b = p_b - pb.position;
+    const Real depth = (p_a - p_b).dot(n);
+    if (depth >= 0) continue;
+    c.material_a = pa.orientation.conjugate() * c.offset_a;
+    c.material_b = pb.orientation.conjugate() * c.offset_b;
+    const Vec3 slip = (p_a - sa.to_world(c.material_a)) - (p_b - sb.to_world(c.material_b)) + c.stuck_slip;
+    const Vec3 t1 = contact_tangent(n);
+    const Vec3 t2 = n.cross(t1);
+    const int r0 = 3 * rows.points;
+    rows.direction[r0] = n;
+    rows.direction[r0 + 1] = t1;
+    rows.direction[r0 + 2] = t2;
+    rows.C[r0] = depth;
+    rows.C[r0 + 1] = slip.dot(t1);
+    rows.C[r0 + 2] = slip.dot(t2);
+    for (int r = r0; r < r0 + 3; ++r) {
+      rows.offset_a[r] = c.offset_a;
+      rows.offset_b[r] = c.offset_b;
+    }
+    rows.point[rows.points++] = i;
+  }
+  return rows;
+}
+
+}  // namespace moreau

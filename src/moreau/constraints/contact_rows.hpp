@@ -1,0 +1,48 @@
+#pragma once
+// Constraint rows of one rigid contact manifold: what every solver reads from a contact.
+//
+// Per penetrating point j of the manifold (narrow_phase.hpp: the normal n from b to a, the surface
+// points p_a = x_a + q_a core_a - r_a n and p_b = x_b + q_b core_b + r_b n), three point rows
+// (body_rows.hpp: J_a = [d^T, (o_a x d)^T], J_b = -[d^T, (o_b x d)^T] for direction d at the
+// points' offsets o from the centres), rigid (compliance 0):
+//   row 3j      normal   C = (p_a - p_b) . n >= 0: a unilateral row, the force f_n >= 0
+//   rows 3j+1,2 static   C = s . t_k = 0 for two tangents t_k, s the slip of the two material
+//               friction points over the substep plus the slip left over since the point began to
+//                        stick (rigid_contacts.hpp); bounded by the friction cone |f_t| <= mu_s f_n
+// Points not in penetration have no rows (Mueller et al. 2020, sec. 3.5, handles a contact when
+// its depth is negative).
+#include <array>
+#include <cmath>
+
+#include "moreau/constraints/body_rows.hpp"
+
+namespace moreau {
+
+struct RigidManifold;
+struct RigidContactPoint;
+struct RigidBodyState;
+
+struct ContactRows {
+  static constexpr int kMaxPoints = 4, kMaxRows = 3 * kMaxPoints;
+  std::array<BodyEnd, 2> end;
+  int points = 0;                              // rows 3j (normal), 3j + 1 and 3j + 2 (tangents)
+  std::array<int, kMaxPoints> point{};         // the manifold's point in slot j
+  std::array<Vec3, kMaxRows> direction, offset_a, offset_b;  // world; a point's rows share offsets
+  std::array<Real, kMaxRows> C{};              // m
+  Real static_friction = 0;                    // mu_s of the cone
+
+  int size() const { return 3 * points; }
+};
+
+/// Two unit tangents t1, t2 = n x t1 completing the unit normal n (the same for a point in every
+/// pass, so static friction rows keep their directions).
+inline Vec3 contact_tangent(const Vec3& n) {
+  return (std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
+}
+
+/// The manifold's rows at the bodies' current poses. Records on each point its normal and world
+/// offsets now, and on penetrating points their material (body-frame) points, which the velocity
+/// pass and the stuck slip read.
+ContactRows manifold_rows(const RigidManifold& manifold, RigidContactPoint* points, const RigidBodyState& bodies);
+
+}  // namespace moreau
