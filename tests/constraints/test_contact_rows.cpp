@@ -47,6 +47,8 @@ TEST(ContactRows, CornerBelowAPlaneHasItsDepthSlipAndDerivatives) {
   ASSERT_EQ(rows.points, 1);
   EXPECT_EQ(rows.point[0], 0);
   EXPECT_EQ(rows.static_friction, 0.6);
+  // Values of order 0.1 m built from a few products: round-off is a few ulps (~1e-17 m each), so
+  // 1e-15 m holds any correct evaluation and fails a wrong offset or sign by orders of magnitude.
   EXPECT_NEAR(rows.C[0], -0.004, 1e-15);
   const Vec3 slip(0.003, 0, 0.001);
   for (int r = 0; r < 3; ++r) {

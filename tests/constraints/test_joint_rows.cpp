@@ -39,6 +39,12 @@ State two_bodies(const Quat& qa, const Quat& qb, const Vec3& xb) {
   return s;
 }
 
+// Both bodies turned about unrelated axes, apart by a general offset: no row is at a special point.
+State general_pose() {
+  return two_bodies(Quat(Eigen::AngleAxis<Real>(0.7, Vec3(0, 1, 1).normalized())),
+                    Quat(Eigen::AngleAxis<Real>(-0.5, Vec3(1, 0, 2).normalized())), Vec3(0.5, 0.4, -0.1));
+}
+
 Joint joint_of(JointType type) {
   Joint j;
   j.type = type;
@@ -79,17 +85,14 @@ void expect_jacobians_match(const Joint& j, const State& s, size_t expected_bloc
 }
 
 TEST(JointRows, FixedJointRowsAreTheDerivativesOfTheirValues) {
-  const State s = two_bodies(Quat(Eigen::AngleAxis<Real>(0.7, Vec3(0, 1, 1).normalized())),
-                             Quat(Eigen::AngleAxis<Real>(-0.5, Vec3(1, 0, 2).normalized())), Vec3(0.5, 0.4, -0.1));
+  const State s = general_pose();
   expect_jacobians_match(joint_of(JointType::fixed), s, 2);
 }
 
 TEST(JointRows, HingeRowsAreTheDerivativesOfTheirValues) {
   // Alignment and attachment at a general pose.
   Joint j = joint_of(JointType::hinge);
-  const State general = two_bodies(Quat(Eigen::AngleAxis<Real>(0.7, Vec3(0, 1, 1).normalized())),
-                                   Quat(Eigen::AngleAxis<Real>(-0.5, Vec3(1, 0, 2).normalized())), Vec3(0.5, 0.4, -0.1));
-  expect_jacobians_match(j, general, 2);
+  expect_jacobians_match(j, general_pose(), 2);
   // The angle's limit and drive rows turn about a's axis: their derivative is exact where the axes
   // are aligned, so b's frame is a's turned by 0.8 rad about it, beyond the upper limit 0.5.
   j.limited = true;
@@ -107,8 +110,7 @@ TEST(JointRows, SphericalRowsWithSwingLimitAreTheDerivativesOfTheirValues) {
   Joint j = joint_of(JointType::spherical);
   j.swing_limited = true;
   j.swing = 0.2;
-  const State s = two_bodies(Quat(Eigen::AngleAxis<Real>(0.7, Vec3(0, 1, 1).normalized())),
-                             Quat(Eigen::AngleAxis<Real>(-0.5, Vec3(1, 0, 2).normalized())), Vec3(0.5, 0.4, -0.1));
+  const State s = general_pose();
   expect_jacobians_match(j, s, 2);
 }
 
@@ -119,15 +121,13 @@ TEST(JointRows, PrismaticRowsAreTheDerivativesOfTheirValues) {
   j.upper = 0.05;
   j.drive = DriveMode::position;
   j.drive_target = 0.02;
-  const State s = two_bodies(Quat(Eigen::AngleAxis<Real>(0.7, Vec3(0, 1, 1).normalized())),
-                             Quat(Eigen::AngleAxis<Real>(-0.5, Vec3(1, 0, 2).normalized())), Vec3(0.5, 0.4, -0.1));
+  const State s = general_pose();
   expect_jacobians_match(j, s, 4);
 }
 
 TEST(JointRows, DistanceRowsAreTheDerivativesOfTheirValues) {
   Joint j = joint_of(JointType::distance);
-  const State s = two_bodies(Quat(Eigen::AngleAxis<Real>(0.7, Vec3(0, 1, 1).normalized())),
-                             Quat(Eigen::AngleAxis<Real>(-0.5, Vec3(1, 0, 2).normalized())), Vec3(0.5, 0.4, -0.1));
+  const State s = general_pose();
   j.lower = j.upper = 0.3;  // a rod: one equality row
   expect_jacobians_match(j, s, 1);
   j.lower = 0.05;  // a rope longer than the gap: no row

@@ -1,6 +1,8 @@
 #pragma once
 // Row blocks that several joint types share (body_rows.hpp for the row shapes). Every block is
-// evaluated at the poses given; the Jacobians are the exact derivatives of C.
+// evaluated at the poses given. The Jacobians are the exact derivatives of C, except that an
+// angle about a hinge or twist axis is differentiated as a rotation about that axis (exact where
+// the two ends' axes are aligned, which the alignment rows keep).
 #include <algorithm>
 
 #include "moreau/constraints/joints/joint_frames.hpp"

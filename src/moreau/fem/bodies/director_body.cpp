@@ -335,24 +335,31 @@ class ReducedDirectorStepSystem final : public NewtonSystem {
 
 }  // namespace
 
-NewtonResult step_director_body(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
-                                DirectorState& state, const NewtonSettings& settings) {
+namespace {
+
+// Newton on one step of either form; the state is written only when it converges.
+template <class System>
+NewtonResult solve_director_step(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
+                                 DirectorState& state, const NewtonSettings& settings, const char* what) {
   NewtonResult result;
-  DirectorStepSystem system(body, h, force, torque, state, settings);
-  if (!newton_solve(system, settings, "the director body's step", result)) return result;
+  System system(body, h, force, torque, state, settings);
+  if (!newton_solve(system, settings, what, result)) return result;
   result.converged = true;
   system.finish(state);
   return result;
 }
 
+}  // namespace
+
+NewtonResult step_director_body(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
+                                DirectorState& state, const NewtonSettings& settings) {
+  return solve_director_step<DirectorStepSystem>(body, h, force, torque, state, settings, "the director body's step");
+}
+
 NewtonResult step_director_body_reduced(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
                                         DirectorState& state, const NewtonSettings& settings) {
-  NewtonResult result;
-  ReducedDirectorStepSystem system(body, h, force, torque, state, settings);
-  if (!newton_solve(system, settings, "the director body's reduced step", result)) return result;
-  result.converged = true;
-  system.finish(state);
-  return result;
+  return solve_director_step<ReducedDirectorStepSystem>(body, h, force, torque, state, settings,
+                                                        "the director body's reduced step");
 }
 
 Real kinetic_energy(const DirectorBody& body, const DirectorState& s) {
