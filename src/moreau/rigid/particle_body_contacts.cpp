@@ -3,9 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "moreau/collision/contacts.hpp"
+#include "moreau/constraints/particle_body_contact_rows.hpp"
 #include "moreau/model/state.hpp"
-#include "moreau/rigid/body_handle.hpp"
 #include "moreau/rigid/narrow_phase.hpp"
 #include "moreau/rigid/point_query.hpp"
 
@@ -15,21 +14,6 @@ namespace {
 
 bool takes_part(const Model& model, Index body) {
   return model.objects[model.rigid.body_object[body]].kind == ObjectKind::rigid_body;
-}
-
-Pose body_pose(const RigidBodyState& s, Index b) { return {s.position[b], s.orientation[b]}; }
-
-// The nearest surface point of body b to world point x: body-frame point and normal, world normal
-// and offset r = q s from the body's centre.
-struct BodyPointContact {
-  SurfacePoint surface;
-  Vec3 normal, offset;
-};
-
-BodyPointContact nearest_on_body(const Model& model, const State& state, Index b, const Vec3& x) {
-  const Pose pose = body_pose(state.rigid, b);
-  const SurfacePoint sp = nearest_surface_point(model.rigid.body_shape[b], pose.to_local(x));
-  return {sp, pose.orientation * sp.normal, pose.orientation * sp.point};
 }
 
 }  // namespace
@@ -93,61 +77,6 @@ void detect_particle_body_contacts(const Model& model, State& state) {
     c.static_friction[q] = 0.5 * (particle_object.static_friction + m.body_static_friction[b]);
     c.dynamic_friction[q] = 0.5 * (particle_object.dynamic_friction + m.body_dynamic_friction[b]);
     c.restitution[q] = 0.5 * (particle_object.restitution + m.body_restitution[b]);
-  }
-}
-
-void reset_particle_body_contacts(State& state) {
-  std::fill(state.particle_body_contacts.lambda_normal.begin(), state.particle_body_contacts.lambda_normal.end(), 0);
-}
-
-void project_particle_body_contacts(const Model& model, State& state) {
-  ParticleBodyContacts& c = state.particle_body_contacts;
-  RigidBodyState& s = state.rigid;
-  for (size_t q = 0; q < c.size(); ++q) {
-    const auto [b, p] = c.pair[q];
-    const BodyPointContact near = nearest_on_body(model, state, b, state.position[p]);
-    const Real penetration = near.surface.distance - model.particle_collider_gap[p];
-    if (penetration >= 0) continue;
-    const BodyHandle hp = particle_handle(state.position[p], model.particle_inv_mass[p]), hb = rigid_body_handle(model.rigid, s, b);
-    const Vec3& n = near.normal;
-    c.normal[q] = n;
-    c.offset[q] = near.offset;
-    apply_positional_correction(hp, hb, n, penetration, Vec3::Zero(), near.offset, 0, c.lambda_normal[q]);
-    // Static friction: the slip of the particle against the body's material point over the substep.
-    const Vec3& local = near.surface.point;
-    const Vec3 body_point = s.position[b] + s.orientation[b] * local;
-    const Vec3 body_start = s.start_position[b] + s.start_orientation[b] * local;
-    const Vec3 dp = (state.position[p] - state.substep_start[p]) - (body_point - body_start);
-    const Vec3 dp_t = dp - dp.dot(n) * n;
-    const Real slip = dp_t.norm();
-    if (slip <= 0) continue;
-    const Vec3 t = dp_t / slip;
-    const Vec3 r = body_point - s.position[b];
-    const Real w = hp.positional_weight(Vec3::Zero(), t) + hb.positional_weight(r, t);
-    if (w <= 0 || slip / w >= c.static_friction[q] * c.lambda_normal[q]) continue;
-    Real lambda_t = 0;
-    apply_positional_correction(hp, hb, t, slip, Vec3::Zero(), r, 0, lambda_t);
-  }
-}
-
-void particle_body_contact_velocities(const Model& model, State& state, Real h) {
-  ParticleBodyContacts& c = state.particle_body_contacts;
-  const RigidBodyModel& m = model.rigid;
-  RigidBodyState& s = state.rigid;
-  const Real g = model.settings.gravity.norm();
-  for (size_t q = 0; q < c.size(); ++q) {
-    if (c.lambda_normal[q] <= 0) continue;
-    const auto [b, p] = c.pair[q];
-    const Vec3& n = c.normal[q];
-    const Vec3& r = c.offset[q];
-    const BodyVelocityHandle vp = particle_velocity_handle(state.velocity[p], model.particle_inv_mass[p]);
-    const BodyVelocityHandle vb = rigid_body_velocity_handle(m, s, b);
-    const Vec3 v = vp.point_velocity(Vec3::Zero()) - vb.point_velocity(r);
-    const Vec3 before = state.velocity_before[p] - (s.velocity_before[b] + s.angular_velocity_before[b].cross(r));
-    const Real w = vp.weight(Vec3::Zero(), n) + vb.weight(r, n);
-    const Vec3 dv = contact_velocity_change(v, before, n, c.lambda_normal[q], w, c.dynamic_friction[q],
-                                            c.restitution[q], h, g);
-    apply_relative_velocity_change(vp, vb, dv, Vec3::Zero(), r);
   }
 }
 

@@ -17,6 +17,8 @@
 #include "moreau/rigid/particle_body_contacts.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
 #include "moreau/solvers/xpbd/joint_projection.hpp"
+#include "moreau/solvers/xpbd/particle_body_contact_projection.hpp"
+#include "moreau/solvers/xpbd/particle_contact_projection.hpp"
 #include "moreau/solvers/xpbd/rigid_contact_projection.hpp"
 #include "moreau/solvers/xpbd/particle_projections.hpp"
 #include "moreau/solvers/xpbd/xpbd_stages.hpp"

@@ -1,0 +1,101 @@
+#include "moreau/solvers/xpbd/particle_contact_projection.hpp"
+
+#include <cmath>
+
+#include "moreau/constraints/particle_contact_rows.hpp"
+#include "moreau/model/state.hpp"
+
+namespace moreau {
+
+void project_collider_contacts(const Model& model, State& state, const SubstepContext& s, Real substep_end_time) {
+  ColliderContacts& c = state.collider_contacts;
+  const Index groups = static_cast<Index>(c.group_offsets.size()) - 1;
+#pragma omp for schedule(static)
+  for (Index g = 0; g < groups; ++g) {
+    for (Index q = c.group_offsets[g]; q < c.group_offsets[g + 1]; ++q) {
+      const Index p = c.particle[q];
+      const Collider& col = model.colliders[c.collider[q]];
+      const Real w = s.inv_mass[p];
+      const ColliderDistance d = collider_distance(col, col.position_at(substep_end_time), s.x[p]);
+      c.normal[q] = d.normal;
+      const Real C = d.distance - model.particle_collider_gap[p];  // the normal row
+      if (C >= 0) continue;
+      const Real dl = -C / w;
+      c.lambda_normal[q] += dl;
+      s.x[p] += w * dl * d.normal;
+      // Static friction: cancel the slip relative to the collider while it is inside the cone.
+      const Vec3 slip = tangential_part((s.x[p] - s.x_start[p]) - s.h * col.velocity, d.normal);
+      if (slip.norm() < c.static_friction[q] * c.lambda_normal[q] * w) s.x[p] -= slip;
+    }
+  }
+}
+
+void project_particle_contacts(const Model& model, State& state, const SubstepContext& s) {
+  ParticleContacts& c = state.particle_contacts;
+  for_each_by_color(c.batches, [&](Index q) {
+    const auto [i, j] = c.pair[q];
+    const Real wi = s.inv_mass[i], wj = s.inv_mass[j], w = wi + wj;
+    const auto [C, n] = pair_contact_normal(s.x[i], s.x[j], model.particle_radius[i] + model.particle_radius[j]);
+    if (n.isZero()) return;  // coincident centres: no direction to push along
+    c.normal[q] = n;
+    if (C >= 0) return;
+    const Real dl = -C / w;
+    c.lambda_normal[q] += dl;
+    s.x[i] += wi * dl * n;
+    s.x[j] -= wj * dl * n;
+    const Vec3 slip = tangential_part((s.x[i] - s.x_start[i]) - (s.x[j] - s.x_start[j]), n);
+    if (slip.norm() < c.static_friction[q] * c.lambda_normal[q] * w) {
+      s.x[i] -= (wi / w) * slip;
+      s.x[j] += (wj / w) * slip;
+    }
+  });
+}
+
+Vec3 contact_velocity_change(const Vec3& v_rel, const Vec3& v_rel_before, const Vec3& n, Real lambda_n, Real w,
+                             Real mu_k, Real e, Real h, Real g) {
+  const Real vn = n.dot(v_rel);
+  const Vec3 vt = v_rel - vn * n;
+  Vec3 dv = Vec3::Zero();
+  const Real vt_norm = vt.norm();
+  if (vt_norm > 0) dv -= vt / vt_norm * std::min(mu_k * w * lambda_n / h, vt_norm);
+  const Real vn_before = n.dot(v_rel_before);
+  if (std::abs(vn) <= 2 * g * h) e = 0;
+  dv += n * (-vn + std::max(-e * vn_before, 0.0));
+  return dv;
+}
+
+void collider_contact_velocities(const Model& model, State& state, Real h) {
+  ColliderContacts& c = state.collider_contacts;
+  const Real g = model.settings.gravity.norm();
+  const Index groups = static_cast<Index>(c.group_offsets.size()) - 1;
+#pragma omp for schedule(static)
+  for (Index gi = 0; gi < groups; ++gi) {
+    for (Index q = c.group_offsets[gi]; q < c.group_offsets[gi + 1]; ++q) {
+      if (c.lambda_normal[q] <= 0) continue;
+      const Index p = c.particle[q];
+      const Vec3& vc = model.colliders[c.collider[q]].velocity;
+      const Vec3 dv = contact_velocity_change(state.velocity[p] - vc, state.velocity_before[p] - vc, c.normal[q],
+                                              c.lambda_normal[q], model.particle_inv_mass[p], c.dynamic_friction[q],
+                                              c.restitution[q], h, g);
+      state.velocity[p] += dv;
+    }
+  }
+}
+
+void particle_contact_velocities(const Model& model, State& state, Real h) {
+  ParticleContacts& c = state.particle_contacts;
+  const Real g = model.settings.gravity.norm();
+  for_each_by_color(c.batches, [&](Index q) {
+    if (c.lambda_normal[q] <= 0) return;
+    const auto [i, j] = c.pair[q];
+    const Real wi = model.particle_inv_mass[i], wj = model.particle_inv_mass[j], w = wi + wj;
+    const Vec3 dv = contact_velocity_change(state.velocity[i] - state.velocity[j],
+                                            state.velocity_before[i] - state.velocity_before[j], c.normal[q],
+                                            c.lambda_normal[q], w, c.dynamic_friction[q], c.restitution[q], h, g);
+    // Impulse p = dv / (wi + wj): particle i gains wi p, particle j loses wj p.
+    state.velocity[i] += (wi / w) * dv;
+    state.velocity[j] -= (wj / w) * dv;
+  });
+}
+
+}  // namespace moreau

@@ -1,0 +1,40 @@
+#pragma once
+// XPBD's projection of particle contacts (rows: constraints/particle_contact_rows.hpp), after
+// Mueller et al. 2020, "Detailed Rigid Body Simulation with XPBD", sec. 3.5, with particles as
+// bodies without rotation.
+//
+// Position pass (every iteration), for a contact whose normal row is violated (C < 0):
+//   dlambda_n = -C / w, w = w_i + w_j (w_i for a collider contact); lambda_n accumulates over the
+//   substep's iterations; x_i += w_i dlambda_n n, x_j -= w_j dlambda_n n.
+//   Static friction, all or nothing: the slip s (the friction rows' values) is cancelled, split
+//   by inverse mass, when |s| / w < mu_s lambda_n.
+// Velocity pass (once per substep, after v = (x - x_start)/h), on the contacts that pushed:
+//   dynamic friction  dv = -v_t/|v_t| min(mu_k w lambda_n / h, |v_t|)
+//     (the normal impulse of the substep is lambda_n / h; we use this dimensionally consistent
+//      reading of Mueller 2020, eq. 30, whose f_n h mixes force and velocity)
+//   restitution       dv = n (-v_n + max(-e vbar_n, 0)),  e = 0 when |v_n| <= 2 |g| h
+//   each applied as an impulse split by inverse mass.
+#include "moreau/math/types.hpp"
+#include "moreau/solvers/xpbd/substep_context.hpp"
+
+namespace moreau {
+
+struct Model;
+struct State;
+
+/// Projections inside a substep; call inside an OpenMP parallel region. `substep_end_time` places
+/// kinematic colliders.
+void project_collider_contacts(const Model& model, State& state, const SubstepContext& s, Real substep_end_time);
+void project_particle_contacts(const Model& model, State& state, const SubstepContext& s);
+
+/// Relative-velocity change dv of one contact that pushed this substep (the two laws above): v_rel
+/// and v_rel_before now and after prediction, n the normal, lambda_n the substep's normal
+/// multiplier, w the summed inverse masses along n, g = |gravity| (the resting-speed cut-off).
+Vec3 contact_velocity_change(const Vec3& v_rel, const Vec3& v_rel_before, const Vec3& n, Real lambda_n, Real w,
+                             Real mu_k, Real e, Real h, Real g);
+
+/// Velocity pass: dynamic friction and restitution of the contacts active in this substep.
+void collider_contact_velocities(const Model& model, State& state, Real h);
+void particle_contact_velocities(const Model& model, State& state, Real h);
+
+}  // namespace moreau
