@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "moreau/errors.hpp"
-#include "moreau/fluids/density_constraint.hpp"
+#include "moreau/solvers/xpbd/project_fluid_density.hpp"
 #include "moreau/fluids/fluid_emitter.hpp"
 #include "moreau/fluids/fluid_motion.hpp"
 #include "moreau/fluids/fluid_neighbors.hpp"
