@@ -49,13 +49,13 @@ void run_steps(benchmark::State& bench, const std::string& scene_file, bool unit
   if (unit_masses) set_unit_masses(scene.model);
 
   moreau::StageTimer warmup_timer, timer;
-  for (int s = 0; s < kWarmupSteps; ++s) moreau::xpbd_step(scene.model, scene.state, warmup_timer);
+  for (int s = 0; s < kWarmupSteps; ++s) scene.formulation->step(scene.model, scene.state, warmup_timer, moreau::solver_thread_count(scene.model));
 
   std::vector<double> step_ms;
   step_ms.reserve(static_cast<size_t>(bench.max_iterations));
   for (auto _ : bench) {
     const auto start = std::chrono::steady_clock::now();
-    moreau::xpbd_step(scene.model, scene.state, timer);
+    scene.formulation->step(scene.model, scene.state, timer, moreau::solver_thread_count(scene.model));
     step_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
 

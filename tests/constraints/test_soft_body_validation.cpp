@@ -29,7 +29,7 @@ Real hanging_bar_stretch(int iterations) {
   long samples = 0;
   StageTimer timer;
   for (int step = 0; step < 250; ++step) {
-    xpbd_step(s.model, s.state, timer);
+    s.formulation->step(s.model, s.state, timer, solver_thread_count(s.model));
     for (Index p = 0; p < m.particle_count(); ++p)
       if (m.particle_rest_position[p].y() < -0.999) {
         sum += s.state.position[p].y() - m.particle_rest_position[p].y();
@@ -91,7 +91,7 @@ TEST(SoftBodyValidation, CantileverDeflectionConvergesWithSubsteps) {
     long n = 0;
     StageTimer timer;
     for (int step = 0; step < 400; ++step) {
-      xpbd_step(s.model, s.state, timer);
+      s.formulation->step(s.model, s.state, timer, solver_thread_count(s.model));
       for (Index p = 0; p < s.model.particle_count(); ++p)
         if (s.model.particle_rest_position[p].x() > 0.999)
           y += s.state.position[p].y() - s.model.particle_rest_position[p].y(), ++n;

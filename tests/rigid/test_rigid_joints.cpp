@@ -48,11 +48,12 @@ TEST(RigidJoints, ProjectionsRemoveAViolationOfEveryJointType) {
           (Quat(Eigen::AngleAxisd(1.2e-3, Vec3(0.3, -1, 0.4).normalized())) * s.state.rigid.orientation[b]).normalized();
       const JointError before = joint_error(s.model.joints[0], s.state);
       const Real h = 1.0 / 1200;
-      reset_joints(s.model, s.state);
+      Real drive_start = 0;
+      reset_joints(s.model, s.state, &drive_start);
       const int solves = solve_joint_forest(s.model, s.state, h);
-      project_joints(s.model, s.state, h);
+      project_joints(s.model, s.state, &drive_start, h);
       const JointError once = joint_error(s.model.joints[0], s.state);
-      for (int k = 0; k < 19; ++k) project_joints(s.model, s.state, h);
+      for (int k = 0; k < 19; ++k) project_joints(s.model, s.state, &drive_start, h);
       const JointError after = joint_error(s.model.joints[0], s.state);
       const std::string what = j + (direct ? " direct" : " gauss_seidel");
       EXPECT_GT(before.position + before.angle, 5e-4) << what;

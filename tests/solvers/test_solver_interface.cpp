@@ -30,9 +30,10 @@ TEST(SolverInterface, StepsExactlyAsTheFormulationAndNamesEveryStageItTimes) {
   Scene through_interface = load_scene(kShowcase), direct = load_scene(kShowcase);
   ASSERT_TRUE(through_interface.formulation);
   StageTimer timer, direct_timer;
+  XpbdWorkspace direct_workspace;
   for (int s = 0; s < 20; ++s) {
     through_interface.formulation->step(through_interface.model, through_interface.state, timer, 2);
-    xpbd_step(direct.model, direct.state, direct_timer, 1);
+    xpbd_step(direct.model, direct.state, direct_workspace, direct_timer, 1);
   }
   ASSERT_EQ(through_interface.state.position.size(), direct.state.position.size());
   for (size_t p = 0; p < direct.state.position.size(); ++p) {

@@ -53,11 +53,12 @@ TEST(XpbdBasics, SpringPeriodIsIndependentOfIterations) {
     m.color_constraints();
     State st = make_rest_state(m);
     StageTimer timer;
+    XpbdWorkspace workspace;
     // Times of successive maxima of x(t) give the period.
     std::vector<Real> peaks;
     Real prev2 = 1.5, prev1 = 1.5;
     for (int step = 0; step < 1000; ++step) {
-      xpbd_step(m, st, timer);
+      xpbd_step(m, st, workspace, timer, 1);
       const Real x = st.position[1].x();
       if (prev1 > prev2 && prev1 >= x && step > 1) peaks.push_back(st.time - m.settings.dt);
       prev2 = prev1;

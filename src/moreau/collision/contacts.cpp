@@ -65,9 +65,8 @@ void detect_collider_contacts(const Model& model, State& state) {
   c.group_offsets.push_back(static_cast<Index>(c.particle.size()));
 }
 
-void detect_particle_contacts(const Model& model, State& state, int threads) {
+void detect_particle_contacts(const Model& model, State& state, ContactScratch& scratch, int threads) {
   ParticleContacts& c = state.particle_contacts;
-  ContactScratch& scratch = state.contact_scratch;
   c.clear();
   if (!model.settings.particle_contacts || model.contact_particle.size() < 2) return;
 

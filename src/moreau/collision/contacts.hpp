@@ -54,6 +54,6 @@ struct ContactScratch {
 void detect_collider_contacts(const Model& model, State& state);
 
 /// Gathers particle pairs for the coming step (on `threads` threads) and sorts them into colour batches.
-void detect_particle_contacts(const Model& model, State& state, int threads);
+void detect_particle_contacts(const Model& model, State& state, ContactScratch& scratch, int threads);
 
 }  // namespace moreau

@@ -7,8 +7,6 @@ State make_rest_state(const Model& model) {
   const size_t n = model.particle_count();
   s.position = model.particle_rest_position;
   s.velocity.assign(n, Vec3::Zero());
-  s.substep_start = s.position;
-  s.velocity_before.assign(n, Vec3::Zero());
   for_each_family(model.constraints, s.constraint_lambda, [](const auto& family, auto& lambda, int) {
     lambda.assign(family.size(), zero_multiplier<typename std::decay_t<decltype(family)>::Multiplier>());
   });
@@ -22,7 +20,6 @@ State make_rest_state(const Model& model) {
   s.rigid.start_position = s.rigid.position;
   s.rigid.start_orientation = s.rigid.orientation;
   s.joint_lambda.assign(model.joints.size(), JointMultipliers{});
-  s.joint_drive_start.assign(model.joints.size(), 0);
   return s;
 }
 

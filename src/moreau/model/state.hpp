@@ -17,8 +17,6 @@ struct State {
 
   std::vector<Vec3> position;           // m
   std::vector<Vec3> velocity;           // m/s
-  std::vector<Vec3> substep_start;      // m, positions at the start of the current substep
-  std::vector<Vec3> velocity_before;    // m/s, velocity after prediction, before the solve (restitution)
 
   // Multipliers of the particle constraint families (one vector per family, in list order), reset
   // at every substep and accumulated over its iterations. lambda / h^2 is the constraint force.
@@ -26,7 +24,6 @@ struct State {
 
   ColliderContacts collider_contacts;
   ParticleContacts particle_contacts;
-  ContactScratch contact_scratch;
 
   FluidState fluid;
 
@@ -34,7 +31,6 @@ struct State {
   RigidContacts rigid_contacts;
   ParticleBodyContacts particle_body_contacts;
   std::vector<JointMultipliers> joint_lambda;  // per joint, this substep (JointSlot)
-  std::vector<Real> joint_drive_start;  // hinge angle (rad) or slide (m) at the substep start
 };
 
 /// A state at rest in the model's rest configuration, with all buffers sized.

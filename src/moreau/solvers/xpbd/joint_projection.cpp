@@ -47,20 +47,20 @@ class GaussSeidelProjection final : public BodyRowSink {
 
 }  // namespace
 
-void reset_joints(const Model& model, State& state) {
+void reset_joints(const Model& model, State& state, Real* drive_start) {
   for (size_t k = 0; k < model.joints.size(); ++k) {
     state.joint_lambda[k].fill(0);
-    state.joint_drive_start[k] = joint_coordinate(model.joints[k], state);
+    drive_start[k] = joint_coordinate(model.joints[k], state);
   }
 }
 
-void project_joints(const Model& model, State& state, Real h) {
+void project_joints(const Model& model, State& state, const Real* drive_start, Real h) {
   GaussSeidelProjection projection(model, state, h);
   for (size_t k = 0; k < model.joints.size(); ++k) {
     const bool direct = model.joint_forest.in_tree(k);  // equality rows already solved (joint_tree.hpp)
     if (direct && !has_other_rows(model.joints[k])) continue;
     projection.set_multipliers(state.joint_lambda[k]);
-    joint_rows({state, model.joints[k], h, state.joint_drive_start[k],
+    joint_rows({state, model.joints[k], h, drive_start[k],
                 direct ? JointRowSet::all_but_equality : JointRowSet::all},
                projection);
   }

@@ -10,12 +10,13 @@ namespace moreau {
 struct Model;
 struct State;
 
-/// Zeroes the joints' multipliers (start of a substep) and records each drive's starting coordinate.
-void reset_joints(const Model& model, State& state);
+/// Zeroes the joints' multipliers (start of a substep) and records each drive's starting
+/// coordinate in `drive_start` (one per joint).
+void reset_joints(const Model& model, State& state, Real* drive_start);
 
 /// One Gauss-Seidel pass over all joints in scene order, block by block (each block evaluated at
 /// the poses the previous ones left); the rows the direct tree solver took are skipped. One thread.
-void project_joints(const Model& model, State& state, Real h);
+void project_joints(const Model& model, State& state, const Real* drive_start, Real h);
 
 /// Joint damping (velocity pass).
 void damp_joints(const Model& model, State& state, Real h);

@@ -14,7 +14,7 @@ void reset_particle_body_contacts(State& state) {
   std::fill(state.particle_body_contacts.lambda_normal.begin(), state.particle_body_contacts.lambda_normal.end(), 0);
 }
 
-void project_particle_body_contacts(const Model& model, State& state) {
+void project_particle_body_contacts(const Model& model, State& state, const Vec3* x_start) {
   ParticleBodyContacts& c = state.particle_body_contacts;
   RigidBodyState& s = state.rigid;
   for (size_t q = 0; q < c.size(); ++q) {
@@ -28,7 +28,7 @@ void project_particle_body_contacts(const Model& model, State& state) {
     c.offset[q] = near.offset;
     apply_positional_correction(hp, hb, n, C, Vec3::Zero(), near.offset, 0, c.lambda_normal[q]);
     // Static friction: the slip of the particle against the body's material point over the substep.
-    const Vec3 dp_t = tangential_part(particle_body_slip(state, b, p, near.surface.point), n);
+    const Vec3 dp_t = tangential_part(particle_body_slip(state, x_start, b, p, near.surface.point), n);
     const Real slip = dp_t.norm();
     if (slip <= 0) continue;
     const Vec3 t = dp_t / slip;
@@ -40,7 +40,7 @@ void project_particle_body_contacts(const Model& model, State& state) {
   }
 }
 
-void particle_body_contact_velocities(const Model& model, State& state, Real h) {
+void particle_body_contact_velocities(const Model& model, State& state, const Vec3* velocity_before, Real h) {
   ParticleBodyContacts& c = state.particle_body_contacts;
   const RigidBodyModel& m = model.rigid;
   RigidBodyState& s = state.rigid;
@@ -53,7 +53,7 @@ void particle_body_contact_velocities(const Model& model, State& state, Real h) 
     const BodyVelocityHandle vp = particle_velocity_handle(state.velocity[p], model.particle_inv_mass[p]);
     const BodyVelocityHandle vb = rigid_body_velocity_handle(m, s, b);
     const Vec3 v = vp.point_velocity(Vec3::Zero()) - vb.point_velocity(r);
-    const Vec3 before = state.velocity_before[p] - (s.velocity_before[b] + s.angular_velocity_before[b].cross(r));
+    const Vec3 before = velocity_before[p] - (s.velocity_before[b] + s.angular_velocity_before[b].cross(r));
     const Real w = vp.weight(Vec3::Zero(), n) + vb.weight(r, n);
     const Vec3 dv = contact_velocity_change(v, before, n, c.lambda_normal[q], w, c.dynamic_friction[q],
                                             c.restitution[q], h, g);

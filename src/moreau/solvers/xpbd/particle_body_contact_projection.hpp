@@ -20,10 +20,11 @@ struct State;
 /// Clears the multipliers at the start of a substep.
 void reset_particle_body_contacts(State& state);
 
-/// Projection of all contacts in order; one thread.
-void project_particle_body_contacts(const Model& model, State& state);
+/// Projection of all contacts in order; one thread. `x_start`: particle positions at the substep's start.
+void project_particle_body_contacts(const Model& model, State& state, const Vec3* x_start);
 
-/// Velocity pass (dynamic friction, restitution) of the contacts that pushed this substep; one thread.
-void particle_body_contact_velocities(const Model& model, State& state, Real h);
+/// Velocity pass (dynamic friction, restitution) of the contacts that pushed this substep; one
+/// thread. `velocity_before`: particle velocities after prediction.
+void particle_body_contact_velocities(const Model& model, State& state, const Vec3* velocity_before, Real h);
 
 }  // namespace moreau

@@ -64,7 +64,7 @@ Vec3 contact_velocity_change(const Vec3& v_rel, const Vec3& v_rel_before, const 
   return dv;
 }
 
-void collider_contact_velocities(const Model& model, State& state, Real h) {
+void collider_contact_velocities(const Model& model, State& state, const Vec3* velocity_before, Real h) {
   ColliderContacts& c = state.collider_contacts;
   const Real g = model.settings.gravity.norm();
   const Index groups = static_cast<Index>(c.group_offsets.size()) - 1;
@@ -74,7 +74,7 @@ void collider_contact_velocities(const Model& model, State& state, Real h) {
       if (c.lambda_normal[q] <= 0) continue;
       const Index p = c.particle[q];
       const Vec3& vc = model.colliders[c.collider[q]].velocity;
-      const Vec3 dv = contact_velocity_change(state.velocity[p] - vc, state.velocity_before[p] - vc, c.normal[q],
+      const Vec3 dv = contact_velocity_change(state.velocity[p] - vc, velocity_before[p] - vc, c.normal[q],
                                               c.lambda_normal[q], model.particle_inv_mass[p], c.dynamic_friction[q],
                                               c.restitution[q], h, g);
       state.velocity[p] += dv;
@@ -82,7 +82,7 @@ void collider_contact_velocities(const Model& model, State& state, Real h) {
   }
 }
 
-void particle_contact_velocities(const Model& model, State& state, Real h) {
+void particle_contact_velocities(const Model& model, State& state, const Vec3* velocity_before, Real h) {
   ParticleContacts& c = state.particle_contacts;
   const Real g = model.settings.gravity.norm();
   for_each_by_color(c.batches, [&](Index q) {
@@ -90,7 +90,7 @@ void particle_contact_velocities(const Model& model, State& state, Real h) {
     const auto [i, j] = c.pair[q];
     const Real wi = model.particle_inv_mass[i], wj = model.particle_inv_mass[j], w = wi + wj;
     const Vec3 dv = contact_velocity_change(state.velocity[i] - state.velocity[j],
-                                            state.velocity_before[i] - state.velocity_before[j], c.normal[q],
+                                            velocity_before[i] - velocity_before[j], c.normal[q],
                                             c.lambda_normal[q], w, c.dynamic_friction[q], c.restitution[q], h, g);
     // Impulse p = dv / (wi + wj): particle i gains wi p, particle j loses wj p.
     state.velocity[i] += (wi / w) * dv;

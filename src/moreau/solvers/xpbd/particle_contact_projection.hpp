@@ -33,8 +33,9 @@ void project_particle_contacts(const Model& model, State& state, const SubstepCo
 Vec3 contact_velocity_change(const Vec3& v_rel, const Vec3& v_rel_before, const Vec3& n, Real lambda_n, Real w,
                              Real mu_k, Real e, Real h, Real g);
 
-/// Velocity pass: dynamic friction and restitution of the contacts active in this substep.
-void collider_contact_velocities(const Model& model, State& state, Real h);
-void particle_contact_velocities(const Model& model, State& state, Real h);
+/// Velocity pass: dynamic friction and restitution of the contacts active in this substep;
+/// `velocity_before` holds the particles' velocities after prediction.
+void collider_contact_velocities(const Model& model, State& state, const Vec3* velocity_before, Real h);
+void particle_contact_velocities(const Model& model, State& state, const Vec3* velocity_before, Real h);
 
 }  // namespace moreau

@@ -8,7 +8,7 @@ namespace moreau {
 std::vector<std::string> XpbdSolver::stage_names() const { return xpbd_stage_names(); }
 
 void XpbdSolver::step(const Model& model, State& state, StageTimer& timer, int threads) {
-  xpbd_step(model, state, timer, threads);
+  xpbd_step(model, state, workspace_, timer, threads);
 }
 
 }  // namespace moreau

@@ -32,15 +32,15 @@ int solver_thread_count(const Model& model) {
 namespace {
 
 // x_start = x; v += h g; x += h v (Mueller 2020, Algorithm 2). Also clears the multipliers.
-void predict(const Model& model, State& state, Real h) {
+void predict(const Model& model, State& state, XpbdWorkspace& work, Real h) {
   const Index n = model.particle_count();
   const Vec3 dv = h * model.settings.gravity;
 #pragma omp for schedule(static) nowait
   for (Index p = 0; p < n; ++p) {
-    state.substep_start[p] = state.position[p];
+    work.substep_start[p] = state.position[p];
     if (model.particle_inv_mass[p] <= 0) continue;
     state.velocity[p] += dv;
-    state.velocity_before[p] = state.velocity[p];
+    work.velocity_before[p] = state.velocity[p];
     state.position[p] += h * state.velocity[p];
   }
   auto clear = [](auto& values, auto zero) {
@@ -57,11 +57,11 @@ void predict(const Model& model, State& state, Real h) {
 }
 
 // v = (x - x_start) / h
-void update_velocity(const Model& model, State& state, Real h) {
+void update_velocity(const Model& model, State& state, const Vec3* x_start, Real h) {
   const Index n = model.particle_count();
 #pragma omp for schedule(static)
   for (Index p = 0; p < n; ++p)
-    if (model.particle_inv_mass[p] > 0) state.velocity[p] = (state.position[p] - state.substep_start[p]) / h;
+    if (model.particle_inv_mass[p] > 0) state.velocity[p] = (state.position[p] - x_start[p]) / h;
 }
 
 [[noreturn]] void report_divergence(const State& state, const std::string& object, Index particle, const Vec3& x,
@@ -105,15 +105,12 @@ void check_state(const Model& model, const State& state) {
 
 }  // namespace
 
-void xpbd_step(const Model& model, State& state, StageTimer& timer) {
-  xpbd_step(model, state, timer, solver_thread_count(model));
-}
-
-void xpbd_step(const Model& model, State& state, StageTimer& timer, int threads) {
+void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer& timer, int threads) {
   threads = std::max(1, threads);
   timer.start();
+  work.fit(model);
   detect_collider_contacts(model, state);
-  detect_particle_contacts(model, state, threads);
+  detect_particle_contacts(model, state, work.contact_scratch, threads);
   const bool rigid = !model.rigid.empty();
   if (rigid) {
     detect_rigid_contacts(model, state, threads);
@@ -124,7 +121,7 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer, int threads)
   const Real dt = model.settings.dt;
   const int substeps = model.settings.substeps, iterations = model.settings.iterations;
   const Real h = dt / substeps;
-  const SubstepContext ctx{state.position.data(), state.substep_start.data(), model.particle_inv_mass.data(), h};
+  const SubstepContext ctx{state.position.data(), work.substep_start.data(), model.particle_inv_mass.data(), h};
   const Real start_time = state.time;
   const bool fluids = !model.fluid.empty(), coupled_solids = model.fluid.solid.size() > 0;
   FluidState& fluid = state.fluid;
@@ -141,12 +138,12 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer, int threads)
       if (rigid) {
 #pragma omp single
         {
-          reset_joints(model, state);
+          reset_joints(model, state, work.joint_drive_start.data());
           reset_rigid_contacts(state);
           reset_particle_body_contacts(state);
         }
       }
-      predict(model, state, h);
+      predict(model, state, work, h);
       if (rigid) predict_rigid_bodies(model, state.rigid, h);
       if (fluids) predict_fluid(model, fluid, h);
       lap(XpbdStage::predict);
@@ -182,26 +179,26 @@ void xpbd_step(const Model& model, State& state, StageTimer& timer, int threads)
 #pragma omp single
           {
             solve_joint_forest(model, state, h);
-            project_joints(model, state, h);
+            project_joints(model, state, work.joint_drive_start.data(), h);
             timer.lap(XpbdStage::joints);
             project_rigid_contacts(model, state);
-            project_particle_body_contacts(model, state);
+            project_particle_body_contacts(model, state, work.substep_start.data());
             timer.lap(XpbdStage::rigid_contacts);
           }
         }
       }
-      update_velocity(model, state, h);
+      update_velocity(model, state, work.substep_start.data(), h);
       if (rigid) update_rigid_body_velocities(model, state.rigid, h);
       if (fluids) update_fluid_velocity(fluid, h);
       lap(XpbdStage::update_velocity);
-      particle_contact_velocities(model, state, h);
-      collider_contact_velocities(model, state, h);
+      particle_contact_velocities(model, state, work.velocity_before.data(), h);
+      collider_contact_velocities(model, state, work.velocity_before.data(), h);
       if (rigid) {
 #pragma omp single
         {
           accumulate_stuck_slip(state);
           rigid_contact_velocities(model, state, h);
-          particle_body_contact_velocities(model, state, h);
+          particle_body_contact_velocities(model, state, work.velocity_before.data(), h);
           damp_joints(model, state, h);
         }
       }
