@@ -9,53 +9,41 @@
 //                   Jacobi iterations (issue 3's targets; also reports ms per density iteration);
 //   pyramid_210 / boxes_1000 / chain_100_released  issue 4's rigid-body scenes (60 Hz; 8, 8 and
 //                   20 substeps; bench/scenes/generate_rigid_scenes.py).
-// Each benchmark loads its scene from bench/scenes/, runs 10 warm-up steps, then times every
-// step of a fixed-length run. Besides Google Benchmark's mean time it reports the median and the
+// Each benchmark loads its scene from bench/scenes/ into a moreau::World (the public API), runs 10
+// warm-up steps, then times every step of a fixed-length run. Besides Google Benchmark's mean time it reports the median and the
 // slowest step (ms), the 99th percentile over the median, and the share of each solver stage, so
 // fork/join stalls show up as max_over_median. The argument is the OpenMP thread count.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
 #include <chrono>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "moreau/moreau.hpp"
-#include "moreau/scene/scene.hpp"
-#include "moreau/solvers/xpbd/xpbd_stages.hpp"
-#include "moreau/solvers/xpbd/xpbd_step.hpp"
 
 namespace {
-
-using moreau::Real;
 
 constexpr int kWarmupSteps = 10;
 
 std::string bench_scene(const std::string& name) { return std::string(MOREAU_SOURCE_DIR) + "/bench/scenes/" + name; }
 
-// The reference library gives every cloth particle a mass of 1 kg (pinned ones: infinite).
-void set_unit_masses(moreau::Model& model) {
-  for (moreau::Index p = 0; p < model.particle_count(); ++p) {
-    model.particle_mass[p] = 1.0;
-    if (model.particle_inv_mass[p] > 0) model.particle_inv_mass[p] = 1.0;
-  }
-}
-
-void run_steps(benchmark::State& bench, const std::string& scene_file, bool unit_masses,
-               const std::vector<std::string>& overrides = {}) {
-  auto sim = moreau::Simulation::load(bench_scene(scene_file), overrides);
-  moreau::Scene& scene = sim.internals();
-  scene.model.settings.threads = static_cast<int>(bench.range(0));
-  if (unit_masses) set_unit_masses(scene.model);
-
-  moreau::StageTimer warmup_timer, timer;
-  for (int s = 0; s < kWarmupSteps; ++s) scene.formulation->step(scene.model, scene.state, warmup_timer, moreau::solver_thread_count(scene.model));
+// Steps a scene through the public World API on bench.range(0) threads: kWarmupSteps untimed,
+// then one timed step per benchmark iteration.
+void run_steps(benchmark::State& bench, const std::string& scene_file, const std::vector<std::string>& overrides = {}) {
+  moreau::World world = moreau::World::load(bench_scene(scene_file), overrides);
+  const int threads = static_cast<int>(bench.range(0));
+  for (int s = 0; s < kWarmupSteps; ++s) world.step(threads);
+  const std::map<std::string, double> warmup = world.stage_times();
 
   std::vector<double> step_ms;
   step_ms.reserve(static_cast<size_t>(bench.max_iterations));
   for (auto _ : bench) {
     const auto start = std::chrono::steady_clock::now();
-    scene.formulation->step(scene.model, scene.state, timer, moreau::solver_thread_count(scene.model));
+    world.step(threads);
     step_ms.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
   }
 
@@ -66,32 +54,34 @@ void run_steps(benchmark::State& bench, const std::string& scene_file, bool unit
   bench.counters["max_ms"] = slowest;
   bench.counters["max_over_median"] = slowest / median;
   bench.counters["p99_over_median"] = sorted[sorted.size() * 99 / 100] / median;
+  // Stage shares of the timed steps (the warm-up's time taken off).
+  std::map<std::string, double> timed = world.stage_times();
   double total = 0;
-  const std::vector<std::string> stages = moreau::xpbd_stage_names();
-  for (int s = 0; s < static_cast<int>(stages.size()); ++s) total += timer.seconds(s);
-  for (int s = 0; s < static_cast<int>(stages.size()); ++s) {
-    const double share = timer.seconds(s) / total;
-    if (share >= 0.01) bench.counters[stages[s] + "_%"] = 100 * share;
-  }
-  if (!scene.model.fluid.empty()) {
+  for (auto& [stage, seconds] : timed) total += (seconds -= warmup.at(stage));
+  for (const auto& [stage, seconds] : timed)
+    if (seconds / total >= 0.01) bench.counters[stage + "_%"] = 100 * seconds / total;
+  const long fluid_particles = world.array("fluid.position").count;
+  if (fluid_particles > 0) {
     // Per Jacobi iteration of the density constraint (lambda pass + correction pass + apply), and
-    // throughput in particle-steps per second (the issue's unit).
-    const double iterations = static_cast<double>(step_ms.size()) * scene.model.settings.substeps * scene.model.settings.iterations;
-    bench.counters["ms_per_density_iteration"] = 1e3 * timer.seconds(static_cast<int>(moreau::XpbdStage::fluid_density)) / iterations;
-    bench.counters["Mparticle_steps_per_s"] = scene.state.fluid.count / (median * 1e3);
+    // throughput in particle-steps per second.
+    const nlohmann::json settings = nlohmann::json::parse(std::ifstream(bench_scene(scene_file)))["settings"];
+    const double iterations = static_cast<double>(step_ms.size()) * settings["substeps"].get<int>() *
+                              settings["iterations"].get<int>();
+    bench.counters["ms_per_density_iteration"] = 1e3 * timed.at("fluid_density") / iterations;
+    bench.counters["Mparticle_steps_per_s"] = fluid_particles / (median * 1e3);
   }
 }
 
-void BM_Cloth50x50(benchmark::State& bench) { run_steps(bench, "cloth_50x50.json", true); }
+void BM_Cloth50x50(benchmark::State& bench) { run_steps(bench, "cloth_50x50.json"); }
 void BM_Cloth50x50Isometric(benchmark::State& bench) {
-  run_steps(bench, "cloth_50x50.json", true, {"objects.cloth.material.bending_model=\"isometric\""});
+  run_steps(bench, "cloth_50x50.json", {"objects.cloth.material.bending_model=\"isometric\""});
 }
-void BM_FemBar30x5x5(benchmark::State& bench) { run_steps(bench, "fem_bar_30x5x5.json", false); }
-void BM_DamBreak30k(benchmark::State& bench) { run_steps(bench, "dam_break_30k.json", false); }
-void BM_DamBreak120k(benchmark::State& bench) { run_steps(bench, "dam_break_120k.json", false); }
-void BM_Pyramid210(benchmark::State& bench) { run_steps(bench, "pyramid_210.json", false); }
-void BM_Boxes1000(benchmark::State& bench) { run_steps(bench, "boxes_1000.json", false); }
-void BM_ChainReleased(benchmark::State& bench) { run_steps(bench, "chain_100_released.json", false); }
+void BM_FemBar30x5x5(benchmark::State& bench) { run_steps(bench, "fem_bar_30x5x5.json"); }
+void BM_DamBreak30k(benchmark::State& bench) { run_steps(bench, "dam_break_30k.json"); }
+void BM_DamBreak120k(benchmark::State& bench) { run_steps(bench, "dam_break_120k.json"); }
+void BM_Pyramid210(benchmark::State& bench) { run_steps(bench, "pyramid_210.json"); }
+void BM_Boxes1000(benchmark::State& bench) { run_steps(bench, "boxes_1000.json"); }
+void BM_ChainReleased(benchmark::State& bench) { run_steps(bench, "chain_100_released.json"); }
 
 // 2,000 steps = 10 s of simulated time: the cloth falls, swings and settles; the bar sags and rings.
 BENCHMARK(BM_Cloth50x50)->Arg(1)->Arg(2)->Iterations(2000)->Unit(benchmark::kMillisecond)->UseRealTime();

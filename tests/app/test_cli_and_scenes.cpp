@@ -259,3 +259,24 @@ TEST(ClothValidation, ClothDrapedOverSphereEndsWithNoVertexInside) {
   // And the cloth really draped: its centre rests on the top of the sphere.
   EXPECT_LT(s.state.position[s.model.objects[cloth].particle_begin + 15 * 30 + 15].y(), 0.85);
 }
+
+namespace moreau {
+namespace {
+
+TEST(CommandLine, ClothMassIsAnAreaDensityOrAVertexMassNotBoth) {
+  std::string both = kValidCloth;
+  both.replace(both.find("\"area_density\": 0.1"), 19, "\"area_density\": 0.1, \"vertex_mass\": 1");
+  expect_bad_input("cloth-both-masses", both, {"objects[0].material.area_density", "vertex_mass"});
+  std::string neither = kValidCloth;
+  neither.replace(neither.find("\"area_density\": 0.1"), 19, "\"damping\": 0.0");
+  expect_bad_input("cloth-no-mass", neither, {"objects[0].material.area_density", "vertex_mass"});
+  // Given per vertex, every particle has that mass, the pinned ones included (their inverse mass is 0).
+  std::string per_vertex = kValidCloth;
+  per_vertex.replace(per_vertex.find("\"area_density\": 0.1"), 19, "\"vertex_mass\": 0.7");
+  const Scene s = test::scene_from_json(per_vertex);
+  ASSERT_EQ(s.model.particle_count(), 25);
+  for (Index p = 0; p < s.model.particle_count(); ++p) EXPECT_EQ(s.model.particle_mass[p], 0.7);
+}
+
+}  // namespace
+}  // namespace moreau

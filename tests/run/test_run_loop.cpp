@@ -1,5 +1,5 @@
 // The one run loop steps every engine the same way: a run continues from the state that earlier
-// Simulation::step calls left, so stepping n times and running the rest gives bit for bit the
+// World::step calls left, so stepping n times and running the rest gives bit for bit the
 // probes of one run over the whole time, for the constraint engine, FEM solids with rigid bodies
 // and joints, and a transient flow.
 #include <gtest/gtest.h>
@@ -30,7 +30,7 @@ struct Case {
   const char* scene;  // a file in scenes/, or the scene's JSON
   std::vector<std::string> overrides;
   double dt;
-  int steps;  // taken by Simulation::step before the run of the rest
+  int steps;  // taken by World::step before the run of the rest
 };
 
 std::string scene_path(const char* scene) {
@@ -45,13 +45,13 @@ TEST_P(RunLoopContinues, SteppingThenRunningEqualsOneRun) {
   const double total = 2 * c.steps * c.dt;
   const std::string dir = temp_dir("run-loop");
 
-  Simulation whole = Simulation::load(scene_path(c.scene), c.overrides);
+  World whole = World::load(scene_path(c.scene), c.overrides);
   RunOptions options;
   options.out_dir = dir + "/whole";
   options.duration = total;
   whole.run(options);
 
-  Simulation parts = Simulation::load(scene_path(c.scene), c.overrides);
+  World parts = World::load(scene_path(c.scene), c.overrides);
   for (int s = 0; s < c.steps; ++s) parts.step();
   EXPECT_NEAR(parts.time(), c.steps * c.dt, 1e-12);
   options.out_dir = dir + "/parts";
@@ -79,8 +79,8 @@ INSTANTIATE_TEST_SUITE_P(
 // A steady flow is one solve: one probe row and one frame, of the solution (not of the start).
 TEST(RunLoop, SteadyFlowWritesOnlyItsSolution) {
   const std::string dir = temp_dir("run-loop-steady");
-  Simulation sim = Simulation::load(scene_path("cavity_re1000.json"),
-                                    {"fluid.mesh.cells=[16,16]", "settings.newton.tolerance=1e-6"});
+  World sim = World::load(scene_path("cavity_re1000.json"),
+                          {"fluid.mesh.cells=[16,16]", "settings.newton.tolerance=1e-6"});
   RunOptions options;
   options.out_dir = dir;
   const RunResult r = sim.run(options);

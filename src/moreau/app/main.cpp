@@ -72,9 +72,9 @@ int main(int argc, char** argv) {
 
   try {
     if (memory_limit_gb > 0) moreau::set_memory_limit(memory_limit_gb * 1e9);
-    moreau::Simulation sim = moreau::Simulation::load(scene_path, overrides);
+    moreau::World world = moreau::World::load(scene_path, overrides);
     if (check->parsed()) {
-      fmt::print("{}", sim.summary());
+      fmt::print("{}", world.summary());
       fmt::print("scene is valid\n");
       return 0;
     }
@@ -83,9 +83,9 @@ int main(int argc, char** argv) {
     if (duration > 0) options.duration = duration;
     if (threads >= 0) options.threads = threads;
     options.progress = !quiet && isatty(STDERR_FILENO);
-    const moreau::RunResult r = sim.run(options);
+    const moreau::RunResult r = world.run(options);
     if (!quiet)
-      fmt::print("moreau: '{}' ran {} steps in {:.3f} s ({:.1f} steps/s); output in {}/\n", sim.name(), r.steps,
+      fmt::print("moreau: '{}' ran {} steps in {:.3f} s ({:.1f} steps/s); output in {}/\n", world.name(), r.steps,
                  r.wall_time_s, r.steps / std::max(r.wall_time_s, 1e-12), r.out_dir);
     return 0;
   } catch (const moreau::InputError& e) {

@@ -12,6 +12,7 @@
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/probe_csv.hpp"
 #include "moreau/model/diagnostics.hpp"
+#include "moreau/run/state_arrays.hpp"
 #include "moreau/scene/scene.hpp"
 #include "moreau/solvers/stage_timer.hpp"
 
@@ -44,6 +45,16 @@ class ConstraintEngine final : public Engine {
   void add_run_fields(nlohmann::json& j, bool completed) const override;
   std::vector<std::string> warnings() const override;
   std::string summary() const override;
+
+  std::string name() const override { return scene_.solver; }
+  std::vector<WorldObject> objects() const override;
+  std::vector<StateArray> state_arrays() override;
+  std::map<std::string, double> stage_times() const override {
+    std::map<std::string, double> times;
+    const std::vector<std::string> names = scene_.formulation->stage_names();
+    for (int s = 0; s < static_cast<int>(names.size()); ++s) times[names[s]] = timer_.seconds(s);
+    return times;
+  }
 
  private:
   Scene& scene_;
@@ -91,14 +102,54 @@ std::vector<std::string> ConstraintEngine::warnings() const {
       state_.fluid.max_cfl, model_.fluid.cfl_limit, state_.fluid.cfl_violations)};
 }
 
+const char* kind_name(ObjectKind kind) {
+  static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid", "rigid_body"};
+  return kinds[static_cast<int>(kind)];
+}
+
+std::vector<WorldObject> ConstraintEngine::objects() const {
+  std::vector<WorldObject> list;
+  for (const ObjectInfo& o : model_.objects) {
+    WorldObject w{o.name, kind_name(o.kind)};
+    if (o.has_particles()) {
+      w.first = o.particle_begin;
+      w.count = o.particle_count();
+    } else if (o.kind == ObjectKind::rigid_body) {
+      w.first = o.body;
+      w.count = 1;
+    } else if (o.kind == ObjectKind::fluid) {
+      for (Index i = 0; i < state_.fluid.count; ++i) w.count += state_.fluid.phase[i] == o.fluid_phase;
+    }
+    list.push_back(std::move(w));
+  }
+  return list;
+}
+
+std::vector<StateArray> ConstraintEngine::state_arrays() {
+  const long particles = model_.particle_count(), bodies = model_.rigid.count(), fluid = state_.fluid.count;
+  RigidBodyState& rb = state_.rigid;
+  FluidState& f = state_.fluid;
+  // Fluid positions are read only: the neighbour lists are kept across steps while particles
+  // stay within their skin, which a moved particle would leave unnoticed.
+  return {state_array("particle.position", "m", state_.position, particles, true),
+          state_array("particle.velocity", "m/s", state_.velocity, particles, true),
+          state_array("body.position", "m", rb.position, bodies, true),
+          state_array("body.orientation", "", rb.orientation, bodies, true),
+          state_array("body.velocity", "m/s", rb.velocity, bodies, true),
+          state_array("body.angular_velocity", "rad/s", rb.angular_velocity, bodies, true),
+          state_array("fluid.position", "m", f.position, fluid, false),
+          state_array("fluid.velocity", "m/s", f.velocity, fluid, true),
+          state_array("fluid.density", "kg/m^3", f.density, fluid, false),
+          state_array("fluid.pressure", "Pa", f.pressure, fluid, false)};
+}
+
 std::string ConstraintEngine::summary() const {
   const Model& m = model_;
   std::string s = fmt::format("scene '{}' ({}): solver {}, dt {} s, {} substeps x {} iterations, duration {} s\n",
                               scene_.name, scene_.file, scene_.solver, m.settings.dt, m.settings.substeps,
                               m.settings.iterations, scene_.duration);
   for (const auto& o : m.objects) {
-    static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid", "rigid_body"};
-    s += fmt::format("  {:<10} {:<16}", kinds[static_cast<int>(o.kind)], o.name);
+    s += fmt::format("  {:<10} {:<16}", kind_name(o.kind), o.name);
     if (o.kind == ObjectKind::fluid) {
       Index count = 0;
       for (Index p : m.fluid.initial_phase) count += p == o.fluid_phase;

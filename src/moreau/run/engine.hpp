@@ -5,12 +5,14 @@
 // Engines: the constraint engine (a registered Solver over the Model; constraint_engine.cpp),
 // FEM solids with rigid bodies and joints (solid_engine.cpp) and the Navier-Stokes flow
 // (flow_engine.cpp); engine_list.cpp picks one for a scene.
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
 
 #include "moreau/math/types.hpp"
+#include "moreau/world.hpp"
 
 namespace moreau {
 
@@ -51,6 +53,15 @@ class Engine {
 
   /// A human-readable account of what the scene builds (`moreau check`).
   virtual std::string summary() const = 0;
+
+  /// The name World::engine reports ("xpbd", "fem", "flow").
+  virtual std::string name() const = 0;
+  /// The scene's objects and where their items sit in the state arrays.
+  virtual std::vector<WorldObject> objects() const = 0;
+  /// Views of the current state (World::arrays lists them by engine).
+  virtual std::vector<StateArray> state_arrays() = 0;
+  /// Seconds spent in each stage of the steps so far.
+  virtual std::map<std::string, double> stage_times() const = 0;
 };
 
 /// The engine of a loaded scene, stepping the scene's own model and state (the scene must outlive

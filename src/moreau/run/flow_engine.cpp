@@ -13,6 +13,7 @@
 #include "moreau/fem/flow/flow_stepper.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/probe_csv.hpp"
+#include "moreau/run/state_arrays.hpp"
 #include "moreau/scene/scene.hpp"
 
 namespace moreau {
@@ -57,6 +58,16 @@ class FlowEngine final : public Engine {
 
   void add_run_fields(nlohmann::json& j, bool completed) const override;
   std::string summary() const override;
+
+  std::string name() const override { return "flow"; }
+  std::vector<WorldObject> objects() const override {
+    return {{"fluid", "fluid", 0, static_cast<long>(problem_.model.mesh.node_count())}};  // the scene's "fluid"
+  }
+  std::vector<StateArray> state_arrays() override {
+    const NavierStokesModel& m = problem_.model;
+    return {state_array("flow.solution", "", x_.data(), m.fields(), m.mesh.node_count(), true)};
+  }
+  std::map<std::string, double> stage_times() const override { return {{"assembly", assembly_s_}, {"solve", solve_s_}}; }
 
  private:
   bool steady() const { return problem_.integrator == FlowIntegrator::steady; }

@@ -18,7 +18,7 @@
 
 namespace moreau {
 
-RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& options) {
+RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& options, long& steps_taken) {
   const int requested_threads = options.threads.value_or(engine.requested_threads());
   const int threads = requested_threads > 0 ? requested_threads : omp_get_max_threads();
   const double duration = options.duration.value_or(scene.duration);
@@ -60,6 +60,7 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
       }
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       result.steps = s + 1;
+      ++steps_taken;
       if ((s + 1) % scene.output.every == 0 || s + 1 == steps) sample();
       progress.update(engine.time(), result.steps, wall);
     }

@@ -15,6 +15,7 @@
 #include "moreau/fem/scene/fem_output.hpp"
 #include "moreau/fem/solids/fem_assembly.hpp"
 #include "moreau/io/probe_csv.hpp"
+#include "moreau/run/state_arrays.hpp"
 #include "moreau/scene/scene.hpp"
 
 namespace moreau {
@@ -52,6 +53,22 @@ class SolidEngine final : public Engine {
 
   void add_run_fields(nlohmann::json& j, bool completed) const override;
   std::string summary() const override;
+
+  std::string name() const override { return "fem"; }
+  std::vector<WorldObject> objects() const override {
+    std::vector<WorldObject> list;
+    for (const FemSolid& s : problem_.model.solids) list.push_back({s.name, "solid", s.node_begin, s.mesh.node_count()});
+    for (size_t b = 0; b < problem_.rigid_bodies.size(); ++b)
+      list.push_back({problem_.rigid_bodies[b].name, "rigid_body", static_cast<long>(b), 1});
+    return list;
+  }
+  std::vector<StateArray> state_arrays() override {
+    const FemModel& m = problem_.model;
+    return {state_array("solid.displacement", "m", run_.solids.u.data(), m.dim, m.node_count, true),
+            state_array("solid.velocity", "m/s", run_.solids.v.data(), m.dim, m.node_count, true),
+            state_array("body.director_state", "", run_.bodies, static_cast<long>(run_.bodies.size()), true)};
+  }
+  std::map<std::string, double> stage_times() const override { return {{"assembly", assembly_s_}, {"solve", solve_s_}}; }
 
  private:
   NewtonResult advance(const NewtonSettings& newton);

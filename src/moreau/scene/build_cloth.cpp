@@ -47,7 +47,13 @@ void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
   const TriangleMesh mesh = read_cloth_mesh(object.object("mesh"), ctx);
 
   const JsonObject material = object.object("material");
-  const Real area_density = material.number("area_density", Range::positive());
+  // Mass: an area density (kg/m^2) lumped to the vertices, or one mass per vertex (kg), as
+  // position-based libraries often give every particle.
+  if (material.has("area_density") == material.has("vertex_mass"))
+    material.fail("area_density", "give the cloth's mass as either area_density (kg/m^2) or vertex_mass (kg per vertex)");
+  const bool per_vertex = material.has("vertex_mass");
+  const Real area_density = per_vertex ? 0 : material.number("area_density", Range::positive());
+  const Real vertex_mass = per_vertex ? material.number("vertex_mass", Range::positive()) : 0;
   const Real damping = material.number("damping", 0.0, Range::non_negative());
   const bool membrane = material.has("youngs_modulus");
   Real youngs = 0, poisson = 0, thickness = 0;
@@ -70,12 +76,13 @@ void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
   material.finish();
 
   // Lumped masses: a third of each triangle's mass to each of its vertices.
-  std::vector<Real> masses(mesh.vertices.size(), 0.0);
+  std::vector<Real> masses(mesh.vertices.size(), vertex_mass);
   Real edge_sum = 0;
   const auto edges = triangle_edges(mesh.triangles);
   for (const auto& t : mesh.triangles) {
     const Real area = 0.5 * (mesh.vertices[t[1]] - mesh.vertices[t[0]]).cross(mesh.vertices[t[2]] - mesh.vertices[t[0]]).norm();
-    for (Index v : t) masses[v] += area * area_density / 3;
+    if (!per_vertex)
+      for (Index v : t) masses[v] += area * area_density / 3;
   }
   for (const auto& e : edges) edge_sum += (mesh.vertices[e[0]] - mesh.vertices[e[1]]).norm();
   const Real mean_edge = edge_sum / edges.size();

@@ -295,7 +295,10 @@ json parse_json_file(const std::string& path) {
   if (!in) throw InputError(fmt::format("{}: cannot open scene file (does it exist and is it readable?)", path));
   std::stringstream buffer;
   buffer << in.rdbuf();
-  const std::string text = buffer.str();
+  return parse_json_text(buffer.str(), path);
+}
+
+json parse_json_text(const std::string& text, const std::string& path) {
   if (const size_t nul = text.find('\0'); nul != std::string::npos) {
     const auto [line, column] = line_and_column(text, nul);
     throw InputError(fmt::format("{}:{}:{}: the file contains a NUL byte; a scene file is UTF-8 JSON text", path, line, column));

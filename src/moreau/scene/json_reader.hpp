@@ -80,6 +80,8 @@ std::string closest_key(const std::string& key, const std::vector<std::string>& 
 
 /// Parses a scene file; syntax errors name line and column.
 nlohmann::json parse_json_file(const std::string& path);
+/// The same for JSON text; `source` names it in messages.
+nlohmann::json parse_json_text(const std::string& text, const std::string& source);
 
 /// Applies a command-line override `a.b.c=value`. Path segments index objects by key, arrays by
 /// number or, for arrays of named objects, by "name". The value is parsed as JSON, or taken as a

@@ -33,5 +33,8 @@ struct Scene {
 /// Reads, validates and builds a scene. `overrides` are "path=value" assignments applied to the
 /// JSON before validation. Throws InputError on any problem; nothing is written.
 Scene load_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+/// The same for scene JSON text; `source` names it in messages, and relative mesh paths are
+/// resolved against its directory (the working directory for a bare name).
+Scene load_scene_text(const std::string& text, const std::string& source, const std::vector<std::string>& overrides = {});
 
 }  // namespace moreau

@@ -207,10 +207,8 @@ ProbeSpec read_probe(const JsonObject& j, const Model& model) {
   return p;
 }
 
-}  // namespace
-
-Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
-  nlohmann::json root = parse_json_file(path);
+// Validates and builds the scene in `root` (read from `path`) after applying the overrides.
+Scene build_scene(nlohmann::json root, const std::string& path, const std::vector<std::string>& overrides) {
   for (const auto& o : overrides) apply_override(root, o, path);
 
   Scene scene;
@@ -259,6 +257,16 @@ Scene load_scene(const std::string& path, const std::vector<std::string>& overri
   scene.state.velocity = initial_velocity;
   scene.formulation = make_solver(scene.solver, scene.model);
   return scene;
+}
+
+}  // namespace
+
+Scene load_scene(const std::string& path, const std::vector<std::string>& overrides) {
+  return build_scene(parse_json_file(path), path, overrides);
+}
+
+Scene load_scene_text(const std::string& text, const std::string& source, const std::vector<std::string>& overrides) {
+  return build_scene(parse_json_text(text, source), source, overrides);
 }
 
 }  // namespace moreau
