@@ -133,9 +133,8 @@ void for_each_density_gradient(const FluidModel& fm, const FluidState& fluid, In
     }
   };
   visit(fluid.fluid_neighbors, fluid.position.data(), DensityNeighbor::fluid, [&](Index) { return fm.particle_volume; });
-  if (fluid.solid_neighbors.count.size() > static_cast<size_t>(i))
-    visit(fluid.solid_neighbors, fluid.solid_position.data(), DensityNeighbor::solid_sample,
-          [&](Index s) { return fm.solid.volume[s]; });
+  visit(fluid.solid_neighbors, fluid.solid_position.data(), DensityNeighbor::solid_sample,
+        [&](Index s) { return fm.solid.volume[s]; });
 }
 
 /// The rest-lattice denominator D_rest (1/(kg m^2)) of a particle of mass m (kg); used by the

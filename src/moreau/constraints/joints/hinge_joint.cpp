@@ -59,8 +59,7 @@ JointError hinge_error(const Joint& j, const JointEndPose& a, const JointEndPose
 
 }  // namespace
 
-const JointTypeRules kHingeJoint{hinge_rows, [](const Joint&) { return 5; },
-                                 [](const Joint& j) { return j.limited || j.drive != DriveMode::none; }, hinge_error,
+const JointTypeRules kHingeJoint{hinge_rows, [](const Joint&) { return 5; }, has_limit_or_drive, hinge_error,
                                  hinge_angle};
 
 }  // namespace moreau

@@ -63,8 +63,7 @@ JointError prismatic_error(const Joint& j, const JointEndPose& a, const JointEnd
 
 }  // namespace
 
-const JointTypeRules kPrismaticJoint{prismatic_rows, [](const Joint&) { return 0; },
-                                     [](const Joint& j) { return j.limited || j.drive != DriveMode::none; }, prismatic_error,
-                                     prismatic_slide};
+const JointTypeRules kPrismaticJoint{prismatic_rows, [](const Joint&) { return 0; }, has_limit_or_drive,
+                                     prismatic_error, prismatic_slide};
 
 }  // namespace moreau
