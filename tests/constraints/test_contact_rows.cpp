@@ -14,6 +14,8 @@ namespace {
 
 struct CornerOnPlane {
   RigidBodyState bodies;
+  std::vector<Vec3> start_position{2, Vec3::Zero()};  // the substep's start
+  std::vector<Quat> start_orientation{2, Quat::Identity()};
   RigidManifold manifold;
   std::array<RigidContactPoint, 2> points;
   Vec3 corner = Vec3(0.1, -0.1, 0.1);  // box frame
@@ -22,11 +24,10 @@ struct CornerOnPlane {
     bodies.resize(2);
     bodies.orientation[0] = Quat(Eigen::AngleAxis<Real>(0.3, Vec3(1, 0, 1).normalized()));
     bodies.position[0] = Vec3(0.2, 0, -0.1) - bodies.orientation[0] * corner + Vec3(0, -0.004, 0);  // 4 mm deep
-    bodies.start_position[0] = bodies.position[0] - Vec3(0.003, 0, 0.001);  // slid 3 mm along x, 1 along z
-    bodies.start_orientation[0] = bodies.orientation[0];
+    start_position[0] = bodies.position[0] - Vec3(0.003, 0, 0.001);  // slid 3 mm along x, 1 along z
+    start_orientation[0] = bodies.orientation[0];
     bodies.position[1] = Vec3::Zero();
-    bodies.orientation[1] = bodies.start_orientation[1] = Quat::Identity();
-    bodies.start_position[1] = Vec3::Zero();
+    bodies.orientation[1] = Quat::Identity();
     manifold.body_a = 0;
     manifold.body_b = 1;
     manifold.count = 2;
@@ -38,7 +39,9 @@ struct CornerOnPlane {
     points[1].geometry.core_a = -corner;  // the opposite corner, above the plane
     points[1].geometry.core_b = Vec3::Zero();
   }
-  ContactRows rows() { return manifold_rows(manifold, points.data(), bodies); }
+  ContactRows rows() {
+    return manifold_rows(manifold, points.data(), bodies, SubstepStart{nullptr, start_position.data(), start_orientation.data()});
+  }
 };
 
 TEST(ContactRows, CornerBelowAPlaneHasItsDepthSlipAndDerivatives) {

@@ -94,10 +94,9 @@ TEST(ParticleContactRows, ParticleBodyRowsAreThePenetrationIntoATurnedBoxAndItsD
   const Vec3 up = state.rigid.orientation[box] * Vec3::UnitY();
   state.position[p] = top + (gap - 0.004) * up;
   const std::vector<Vec3> x_start = state.position;
-  state.rigid.start_position = state.rigid.position;
-  state.rigid.start_orientation = state.rigid.orientation;
+  const SubstepStart start{x_start.data(), state.rigid.position.data(), state.rigid.orientation.data()};
 
-  const ParticleBodyContactRows result = particle_body_rows(model, state, x_start.data(), box, p, 0.6);
+  const ParticleBodyContactRows result = particle_body_rows(model, state, start, box, p, 0.6);
   const BodyRows& rows = result.rows;
   ASSERT_EQ(rows.size(), 3);
   EXPECT_NEAR(rows.C[0], -0.004, kExact);
@@ -116,7 +115,7 @@ TEST(ParticleContactRows, ParticleBodyRowsAreThePenetrationIntoATurnedBoxAndItsD
         if (e == 0) t.position[p] += d;
         else if (k < 3) t.rigid.position[box] += d;
         else t.rigid.orientation[box] = Quat(Eigen::AngleAxis<Real>(sign * kStep, Vec3::Unit(k % 3))) * t.rigid.orientation[box];
-        return particle_body_rows(model, t, x_start.data(), box, p, 0.6).rows;
+        return particle_body_rows(model, t, start, box, p, 0.6).rows;
       };
       const BodyRows plus = moved(1), minus = moved(-1);
       for (int r = 0; r < 3; ++r)

@@ -25,13 +25,15 @@ TEST(DensityRows, GradientsAreTheDerivativesOfTheConstraintAndSumToZero) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<Real> jitter(-0.001, 0.001);
   for (Index i = 0; i < f.count; ++i) f.position[i] += Vec3(jitter(rng), jitter(rng), jitter(rng));
+  FluidScratch scratch;
+  scratch.fit(fm);
 #pragma omp parallel num_threads(1)
-  update_fluid_neighbors(scene.model, f, 0);
+  update_fluid_neighbors(scene.model, f, scratch, 0);
   Index i = 0;
   for (Index k = 0; k < f.count; ++k)
     if (f.position[k].norm() < f.position[i].norm()) i = k;
 
-  const DensityEvaluation e = evaluate_density_constraint(fm, f, i);
+  const DensityEvaluation e = evaluate_density_constraint(fm, f, nullptr, i);
   EXPECT_TRUE(e.boundary_gradient.isZero());
   EXPECT_EQ(e.solid_weight, 0);
   std::vector<std::pair<Index, Vec3>> neighbours;
@@ -58,9 +60,9 @@ TEST(DensityRows, GradientsAreTheDerivativesOfTheConstraintAndSumToZero) {
   auto derivative = [&](Index moved, int axis) {
     const Vec3 keep = f.position[moved];
     f.position[moved](axis) = keep(axis) + eps;
-    const Real plus = evaluate_density_constraint(fm, f, i).C;
+    const Real plus = evaluate_density_constraint(fm, f, nullptr, i).C;
     f.position[moved](axis) = keep(axis) - eps;
-    const Real minus = evaluate_density_constraint(fm, f, i).C;
+    const Real minus = evaluate_density_constraint(fm, f, nullptr, i).C;
     f.position[moved] = keep;
     return (plus - minus) / (2 * eps);
   };

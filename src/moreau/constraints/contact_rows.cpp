@@ -5,10 +5,11 @@
 
 namespace moreau {
 
-ContactRows manifold_rows(const RigidManifold& mf, RigidContactPoint* points, const RigidBodyState& s) {
+ContactRows manifold_rows(const RigidManifold& mf, RigidContactPoint* points, const RigidBodyState& s,
+                          const SubstepStart& start) {
   const Index a = mf.body_a, b = mf.body_b;
   const Pose pa{s.position[a], s.orientation[a]}, pb{s.position[b], s.orientation[b]};
-  const Pose sa{s.start_position[a], s.start_orientation[a]}, sb{s.start_position[b], s.start_orientation[b]};
+  const Pose sa = start.body_pose(a), sb = start.body_pose(b);
   ContactRows rows;
   rows.end = {BodyEnd{BodyEndKind::body, a}, BodyEnd{BodyEndKind::body, b}};
   rows.static_friction = mf.static_friction;

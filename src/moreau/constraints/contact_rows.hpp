@@ -15,6 +15,7 @@
 #include <cmath>
 
 #include "moreau/constraints/body_rows.hpp"
+#include "moreau/constraints/substep_start.hpp"
 
 namespace moreau {
 
@@ -40,9 +41,10 @@ inline Vec3 contact_tangent(const Vec3& n) {
   return (std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
 }
 
-/// The manifold's rows at the bodies' current poses. Records on each point its normal and world
-/// offsets now, and on penetrating points their material (body-frame) points, which the velocity
-/// pass and the stuck slip read.
-ContactRows manifold_rows(const RigidManifold& manifold, RigidContactPoint* points, const RigidBodyState& bodies);
+/// The manifold's rows at the bodies' current poses, the slip measured from `start`. Records on
+/// each point its normal and world offsets now, and on penetrating points their material
+/// (body-frame) points, which the velocity pass and the stuck slip read.
+ContactRows manifold_rows(const RigidManifold& manifold, RigidContactPoint* points, const RigidBodyState& bodies,
+                          const SubstepStart& start);
 
 }  // namespace moreau

@@ -12,14 +12,14 @@ ParticleBodyNormal nearest_on_body(const Model& model, const State& state, Index
   return {sp, pose.orientation * sp.normal, pose.orientation * sp.point};
 }
 
-Vec3 particle_body_slip(const State& state, const Vec3* x_start, Index b, Index p, const Vec3& local) {
+Vec3 particle_body_slip(const State& state, const SubstepStart& start, Index b, Index p, const Vec3& local) {
   const RigidBodyState& s = state.rigid;
   const Vec3 body_point = s.position[b] + s.orientation[b] * local;
-  const Vec3 body_start = s.start_position[b] + s.start_orientation[b] * local;
-  return (state.position[p] - x_start[p]) - (body_point - body_start);
+  const Vec3 body_start = start.body_position[b] + start.body_orientation[b] * local;
+  return (state.position[p] - start.particle_position[p]) - (body_point - body_start);
 }
 
-ParticleBodyContactRows particle_body_rows(const Model& model, const State& state, const Vec3* x_start, Index b,
+ParticleBodyContactRows particle_body_rows(const Model& model, const State& state, const SubstepStart& start, Index b,
                                           Index p, Real static_friction) {
   const std::array<BodyEnd, 2> ends{BodyEnd{BodyEndKind::particle, p}, BodyEnd{BodyEndKind::body, b}};
   ParticleBodyContactRows result{BodyRows::zero(ends, 3, 0), static_friction};
@@ -28,7 +28,7 @@ ParticleBodyContactRows particle_body_rows(const Model& model, const State& stat
   const Real C = near.surface.distance - model.particle_collider_gap[p];
   if (C >= 0) return result;
   const Vec3& n = near.normal;
-  const Vec3 slip = particle_body_slip(state, x_start, b, p, near.surface.point);
+  const Vec3 slip = particle_body_slip(state, start, b, p, near.surface.point);
   const Vec3 t1 = contact_tangent(n), t2 = n.cross(t1);
   rows.C << C, slip.dot(t1), slip.dot(t2);
   rows.set_point_row(0, n, Vec3::Zero(), near.offset);

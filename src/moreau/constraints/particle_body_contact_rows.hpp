@@ -15,6 +15,7 @@
 // A Gauss-Seidel solver evaluates the friction rows after projecting the normal row (at the poses
 // it left), which particle_body_slip does on its own.
 #include "moreau/constraints/body_rows.hpp"
+#include "moreau/constraints/substep_start.hpp"
 #include "moreau/rigid/point_query.hpp"
 
 namespace moreau {
@@ -30,9 +31,8 @@ struct ParticleBodyNormal {
 
 ParticleBodyNormal nearest_on_body(const Model& model, const State& state, Index body, const Vec3& x);
 
-/// The slip of particle p against body b's material point `local` (body frame) over the substep;
-/// x_start holds the particles' positions at the substep's start.
-Vec3 particle_body_slip(const State& state, const Vec3* x_start, Index body, Index particle, const Vec3& local);
+/// The slip of particle p against body b's material point `local` (body frame) since `start`.
+Vec3 particle_body_slip(const State& state, const SubstepStart& start, Index body, Index particle, const Vec3& local);
 
 /// The contact's three rows and the friction coefficient mu_s of their cone.
 struct ParticleBodyContactRows {
@@ -42,7 +42,7 @@ struct ParticleBodyContactRows {
 
 /// The rows at the current poses (friction along t1 = contact_tangent(n) and t2 = n x t1). A
 /// contact not in penetration has zero rows.
-ParticleBodyContactRows particle_body_rows(const Model& model, const State& state, const Vec3* x_start, Index body,
+ParticleBodyContactRows particle_body_rows(const Model& model, const State& state, const SubstepStart& start, Index body,
                                           Index particle, Real static_friction);
 
 }  // namespace moreau

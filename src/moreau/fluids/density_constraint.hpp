@@ -28,11 +28,14 @@ struct DensityEvaluation {
   Real solid_weight;        // 1/(kg m^2)
 };
 
-/// C_i of fluid particle i over its current neighbour lists (call between list rebuilds).
+/// C_i of fluid particle i over its current neighbour lists (call between list rebuilds);
+/// `solid_inv_mass` holds the solid samples' inverse masses of this substep (split_solid_masses;
+/// unread without solids).
 /// Chunked so that the compiler vectorises the pair sums (pair_chunks.hpp); inlined into the
 /// solver's loop so that each of its instruction-set clones vectorises it for its own width.
 [[gnu::always_inline]] inline DensityEvaluation evaluate_density_constraint(const FluidModel& fm,
-                                                                              const FluidState& fluid, Index i) {
+                                                                              const FluidState& fluid,
+                                                                              const Real* solid_inv_mass, Index i) {
   const CubicSplineKernel kernel = fm.kernel;
   const Real V = fm.particle_volume, pad = 2 * kernel.h;
   const Vec3* x = fluid.position.data();
@@ -40,7 +43,6 @@ struct DensityEvaluation {
   const Real* wall_volume = fm.boundary.volume.data();
   const Vec3* xs = fluid.solid_position.data();
   const Real* solid_volume = fm.solid.volume.data();
-  const Real* solid_inv_mass = fluid.solid_inv_mass.data();
   const Real* w = fluid.inv_mass.data();
   const Vec3 xi = x[i];
   PairChunk chunk;

@@ -63,13 +63,13 @@ Index emit_fluid(const Model& model, FluidState& fluid, Real time) {
       const Vec3 layer_center = emitter.center + emitter.speed * age * emitter.normal;
       for (const Vec3& offset : emitter.opening) {
         const Index i = fluid.count++;
-        fluid.position[i] = fluid.substep_start[i] = fluid.listed_position[i] = layer_center + offset;
+        fluid.position[i] = fluid.listed_position[i] = layer_center + offset;
         fluid.velocity[i] = emitter.speed * emitter.normal;
         fluid.phase[i] = emitter.phase;
         fluid.id[i] = fluid.next_id++;
         fluid.mass[i] = phase.particle_mass;
         fluid.inv_mass[i] = 1 / phase.particle_mass;
-        fluid.lambda[i] = fluid.pressure[i] = 0;
+        fluid.pressure[i] = 0;
         fluid.density[i] = phase.rest_density;
         ++added;
       }

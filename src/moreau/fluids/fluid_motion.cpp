@@ -6,37 +6,37 @@
 
 namespace moreau {
 
-void predict_fluid(const Model& model, FluidState& fluid, Real h) {
+void predict_fluid(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h) {
   const Vec3 dv = h * model.settings.gravity;
   const Index n = fluid.count;
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
-    fluid.substep_start[i] = fluid.position[i];
+    scratch.substep_start[i] = fluid.position[i];
     fluid.velocity[i] += dv;
     fluid.position[i] += h * fluid.velocity[i];
     fluid.pressure[i] = 0;
   }
 }
 
-void apply_fluid_corrections(const Model& model, FluidState& fluid, Real h, Real time) {
+void apply_fluid_corrections(const Model& model, FluidState& fluid, const FluidScratch& scratch, Real h, Real time) {
   const FluidModel& fm = model.fluid;
   const Real r = fm.particle_radius;
   const Real pressure_scale = -1 / (fm.particle_volume * h * h);
   const Index n = fluid.count;
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
-    Vec3 x = fluid.position[i] + fluid.correction[i];
-    fluid.pressure[i] += pressure_scale * fluid.lambda[i];
+    Vec3 x = fluid.position[i] + scratch.correction[i];
+    fluid.pressure[i] += pressure_scale * scratch.lambda[i];
     for (const Collider& c : model.colliders) x = keep_clear_of_collider(c, c.position_at(time), x, r);
     fluid.position[i] = x;
   }
 }
 
-void update_fluid_velocity(FluidState& fluid, Real h) {
+void update_fluid_velocity(FluidState& fluid, const FluidScratch& scratch, Real h) {
   const Real inv_h = 1 / h;
   const Index n = fluid.count;
 #pragma omp for schedule(static)
-  for (Index i = 0; i < n; ++i) fluid.velocity[i] = (fluid.position[i] - fluid.substep_start[i]) * inv_h;
+  for (Index i = 0; i < n; ++i) fluid.velocity[i] = (fluid.position[i] - scratch.substep_start[i]) * inv_h;
 }
 
 Real fluid_cfl_number(const Model& model, FluidState& fluid, Real h) {

@@ -8,6 +8,7 @@
 // including the inside walls of a tank (`"inside": true`). This position clamp is the hard
 // guarantee against leaks; the wall samples in the density constraint are what make the fluid
 // next to a wall have the right density (no sticking, no gap).
+#include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 
 namespace moreau {
@@ -15,14 +16,14 @@ namespace moreau {
 struct Model;
 
 /// x_start = x; v += h g; x += h v. Also clears the substep's pressure sum.
-void predict_fluid(const Model& model, FluidState& fluid, Real h);
+void predict_fluid(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h);
 
 /// x += dx of the last density iteration, accumulates the pressure p = -lambda / (V h^2), and
 /// pushes particles out of colliders placed at `time`.
-void apply_fluid_corrections(const Model& model, FluidState& fluid, Real h, Real time);
+void apply_fluid_corrections(const Model& model, FluidState& fluid, const FluidScratch& scratch, Real h, Real time);
 
 /// v = (x - x_start) / h.
-void update_fluid_velocity(FluidState& fluid, Real h);
+void update_fluid_velocity(FluidState& fluid, const FluidScratch& scratch, Real h);
 
 /// The CFL number max|v| h / (2 r) of this substep length h; records it in the state. Serial.
 Real fluid_cfl_number(const Model& model, FluidState& fluid, Real h);

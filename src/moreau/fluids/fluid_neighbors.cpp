@@ -31,18 +31,18 @@ bool moved_past_skin(const Model& model, const FluidState& fluid, Real time) {
 }
 
 // Carries every per-particle array along the grid's z-order sort (every thread).
-void permute_particles(FluidState& fluid) {
+void permute_particles(FluidState& fluid, FluidScratch& scratch) {
   const Index n = fluid.count;
   const std::vector<Index>& order = fluid.fluid_grid.order();
-  permute(fluid.position, fluid.scratch_vec, order, n);
-  permute(fluid.velocity, fluid.scratch_vec, order, n);
-  permute(fluid.substep_start, fluid.scratch_vec, order, n);
-  permute(fluid.phase, fluid.scratch_index, order, n);
-  permute(fluid.id, fluid.scratch_index, order, n);
-  permute(fluid.inv_mass, fluid.scratch_real, order, n);
-  permute(fluid.mass, fluid.scratch_real, order, n);
-  permute(fluid.pressure, fluid.scratch_real, order, n);
-  permute(fluid.density, fluid.scratch_real, order, n);
+  permute(fluid.position, scratch.reorder_vec, order, n);
+  permute(fluid.velocity, scratch.reorder_vec, order, n);
+  permute(scratch.substep_start, scratch.reorder_vec, order, n);
+  permute(fluid.phase, scratch.reorder_index, order, n);
+  permute(fluid.id, scratch.reorder_index, order, n);
+  permute(fluid.inv_mass, scratch.reorder_real, order, n);
+  permute(fluid.mass, scratch.reorder_real, order, n);
+  permute(fluid.pressure, scratch.reorder_real, order, n);
+  permute(fluid.density, scratch.reorder_real, order, n);
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) fluid.listed_position[i] = fluid.position[i];
 }
@@ -133,7 +133,7 @@ void place_boundary_samples(const Model& model, FluidState& fluid, Real time) {
   }
 }
 
-bool update_fluid_neighbors(const Model& model, FluidState& fluid, Real time) {
+bool update_fluid_neighbors(const Model& model, FluidState& fluid, FluidScratch& scratch, Real time) {
   const FluidModel& fm = model.fluid;
   const bool moving_walls = fm.boundary.moving;
 #pragma omp single
@@ -149,7 +149,7 @@ bool update_fluid_neighbors(const Model& model, FluidState& fluid, Real time) {
     }
   }
   if (!fluid.rebuilding) return false;
-  permute_particles(fluid);
+  permute_particles(fluid, scratch);
   if (moving_walls || !fluid.boundary_grid_built) {
     // Moving walls were placed by the step at the start of this substep; static ones once, here.
     if (!moving_walls) place_boundary_samples(model, fluid, time);

@@ -11,6 +11,7 @@
 // the reaction is gathered over). Solid samples move every substep, so a scene with coupled
 // solids rebuilds every substep whatever the skin.
 // Rows are owned by their particle, so the parallel fill does not depend on the thread count.
+#include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 
 namespace moreau {
@@ -21,7 +22,7 @@ struct Model;
 /// substep's prediction, after place_solid_samples and, when walls move, after
 /// place_boundary_samples for `time`.
 /// Returns true if it rebuilt.
-bool update_fluid_neighbors(const Model& model, FluidState& fluid, Real time);
+bool update_fluid_neighbors(const Model& model, FluidState& fluid, FluidScratch& scratch, Real time);
 
 /// Places the wall samples of kinematic colliders at `time` (every thread; orphaned omp for).
 void place_boundary_samples(const Model& model, FluidState& fluid, Real time);

@@ -22,16 +22,9 @@ FluidState make_fluid_state(const FluidModel& fm) {
   }
   s.next_id = s.count;
   s.emitted_layers.assign(fm.emitters.size(), 0);
-  s.substep_start = s.position;
   s.listed_position = s.position;
-  s.lambda.assign(capacity, 0);
   s.pressure.assign(capacity, 0);
   s.density.assign(capacity, 0);
-  s.correction.assign(capacity, Vec3::Zero());
-  s.wall_gradient.assign(capacity, Vec3::Zero());
-  s.scratch_vec.assign(capacity, Vec3::Zero());
-  s.scratch_index.assign(capacity, 0);
-  s.scratch_real.assign(capacity, 0);
   s.boundary_position.assign(fm.boundary.size(), Vec3::Zero());
   // Rows sized for a compressed neighbourhood; they grow (once) if a row ever overflows.
   s.fluid_neighbors.stride = 64;
@@ -41,10 +34,6 @@ FluidState make_fluid_state(const FluidModel& fm) {
   s.boundary_neighbors.count.assign(capacity, 0);
   s.boundary_neighbors.entries.assign(capacity * s.boundary_neighbors.stride, 0);
   s.solid_position.assign(fm.solid.size(), Vec3::Zero());
-  s.solid_reaction.assign(fm.solid.size(), Vec3::Zero());
-  s.solid_contacts.assign(capacity, 0);
-  s.solid_inv_mass.assign(fm.solid.size(), 0);  // set per substep by split_solid_masses
-  s.solid_share.assign(fm.solid.coupled_particle.empty() ? 0 : fm.solid.coupled_particle.back() + 1, 1.0);
   s.solid_neighbors.stride = fm.solid.size() > 0 ? 48 : 1;
   s.solid_neighbors.count.assign(capacity, 0);
   s.solid_neighbors.entries.assign(capacity * s.solid_neighbors.stride, 0);

@@ -1,5 +1,7 @@
 #pragma once
-// What a step changes about the fluids. Arrays hold `capacity` entries; the first `count` are live.
+// What a step changes about the fluids and what the next step, a probe or the output reads; the
+// step's per-iteration buffers are the solver's (fluid_scratch.hpp). Arrays hold `capacity`
+// entries; the first `count` are live.
 // Whenever the neighbour lists are rebuilt, the live particles are re-sorted along the z-order
 // curve of the neighbour grid (every per-particle array moves together; `id` keeps each
 // particle's original number for output).
@@ -24,30 +26,19 @@ struct FixedStrideLists {
 struct FluidState {
   Index count = 0;
   std::vector<Vec3> position, velocity;  // m, m/s
-  std::vector<Vec3> substep_start;       // m
   std::vector<Vec3> listed_position;     // m, positions when the lists were built
   std::vector<Index> phase, id;
   Index next_id = 0;                     // id of the next emitted particle
   std::vector<Index> emitted_layers;     // per emitter: layers released so far
   std::vector<Real> inv_mass, mass;      // 1/kg, kg (copies of the phase's, sorted with the particles)
-  std::vector<Real> lambda;              // density multiplier of the current iteration, kg m^2
   std::vector<Real> pressure;            // Pa, -sum over the substep's iterations of lambda / (V h^2)
   std::vector<Real> density;             // kg/m^3 at the last evaluation
-  std::vector<Vec3> correction;          // m, Jacobi position correction of the current iteration
-  std::vector<Vec3> wall_gradient;       // 1/m, sum_b V_b grad W_ib over wall and solid samples, current iteration
-  std::vector<Vec3> scratch_vec;         // m or m/s, reorder and velocity-pass scratch
-  std::vector<Index> scratch_index;
-  std::vector<Real> scratch_real;
 
   // Collider wall samples in world space at the time of the current substep.
   std::vector<Vec3> boundary_position;
-  // Cloth and soft-body samples in world space (from the solid's current particle positions), and
-  // their reaction of the current iteration: -V_s sum_i lambda_i grad W(x_i - x_s), kg m (see solid_coupling.hpp).
+  // Cloth, soft-body and rigid-body samples in world space (from the solids' current positions,
+  // solid_coupling.hpp).
   std::vector<Vec3> solid_position;
-  std::vector<Vec3> solid_reaction;
-  std::vector<Real> solid_inv_mass;      // 1/kg per solid sample, this substep's split (split_solid_masses)
-  std::vector<Real> solid_share;         // per model particle: 1 / c_k of the split (coupled particles only)
-  std::vector<Index> solid_contacts;     // per fluid particle: solid samples it touches (project_solid_contacts)
 
   // Neighbour search.
   GridFrame frame;

@@ -22,7 +22,7 @@ Vec3 fluid_vorticity(const Model& model, const FluidState& fluid, Index i) {
 }
 
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Real dt) {
+void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, FluidScratch& scratch, Real dt) {
   const FluidModel& fm = model.fluid;
   bool any_viscosity = false, any_xsph = false, any_vorticity = false;
   for (const FluidPhase& p : fm.phases) {
@@ -38,8 +38,8 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Rea
   const Index n = fluid.count;
   const Vec3* x = fluid.position.data();
   const Vec3* v = fluid.velocity.data();
-  std::vector<Vec3>& omega = fluid.correction;        // free between steps: the vorticity here
-  std::vector<Real>& omega_norm = fluid.scratch_real;  // and its magnitude
+  std::vector<Vec3>& omega = scratch.correction;        // free between steps: the vorticity here
+  std::vector<Real>& omega_norm = scratch.reorder_real;  // and its magnitude
   if (any_vorticity) {
 #pragma omp for schedule(static)
     for (Index i = 0; i < n; ++i) {
@@ -48,7 +48,7 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Rea
     }
   }
 
-  std::vector<Vec3>& v_new = fluid.scratch_vec;
+  std::vector<Vec3>& v_new = scratch.reorder_vec;
   const Real* w = fluid.inv_mass.data();
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {

@@ -19,6 +19,7 @@
 // momentum in multi-fluid scenes too. Viscosity acts along x_ij and also conserves angular
 // momentum; XSPH does not (it damps rigid rotation near a free surface).
 // All three read the velocities from before the pass (Jacobi), so the result is order-free.
+#include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 
 namespace moreau {
@@ -27,7 +28,7 @@ struct Model;
 
 /// Applies viscosity, XSPH and vorticity confinement over the step dt. Call inside an OpenMP
 /// parallel region.
-void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Real dt);
+void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, FluidScratch& scratch, Real dt);
 
 /// The SPH curl of the velocity at particle i (1/s).
 Vec3 fluid_vorticity(const Model& model, const FluidState& fluid, Index i);

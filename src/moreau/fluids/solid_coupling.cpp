@@ -14,7 +14,7 @@ namespace {
 
 // dx_p = w_p sum_s b_ps R_s for every particle of a coupled solid (the table lists each
 // particle's samples in a fixed order). Every thread; orphaned omp for.
-void move_solid_particles(const Model& model, const FluidState& fluid, Vec3* x) {
+void move_solid_particles(const Model& model, const FluidScratch& scratch, Vec3* x) {
   const FluidSolidSamples& s = model.fluid.solid;
   const Index particles = static_cast<Index>(s.coupled_particle.size());
 #pragma omp for schedule(static)
@@ -24,14 +24,15 @@ void move_solid_particles(const Model& model, const FluidState& fluid, Vec3* x) 
     if (w <= 0) continue;
     Vec3 dx = Vec3::Zero();
     for (Index e = s.coupled_begin[q]; e < s.coupled_begin[q + 1]; ++e)
-      dx += s.coupled_weight[e] * fluid.solid_reaction[s.coupled_sample[e]];
+      dx += s.coupled_weight[e] * scratch.solid_reaction[s.coupled_sample[e]];
     x[p] += w * dx;
   }
 }
 
 // Each dynamic sampled body takes the reactions of its samples (see the header). Every thread;
 // orphaned omp for over the bodies, each summing its own samples in order.
-void move_rigid_bodies(const Model& model, const FluidState& fluid, RigidBodyState& rigid) {
+void move_rigid_bodies(const Model& model, const FluidState& fluid, const FluidScratch& scratch,
+                       RigidBodyState& rigid) {
   const FluidSolidSamples& s = model.fluid.solid;
   const Index bodies = static_cast<Index>(s.sampled_body.size());
 #pragma omp for schedule(static)
@@ -40,8 +41,8 @@ void move_rigid_bodies(const Model& model, const FluidState& fluid, RigidBodySta
     if (!model.rigid.is_dynamic(b)) continue;
     Vec3 force = Vec3::Zero(), moment = Vec3::Zero();
     for (Index k = s.body_begin[j]; k < s.body_begin[j + 1]; ++k) {
-      force += fluid.solid_reaction[k];
-      moment += (fluid.solid_position[k] - rigid.position[b]).cross(fluid.solid_reaction[k]);
+      force += scratch.solid_reaction[k];
+      moment += (fluid.solid_position[k] - rigid.position[b]).cross(scratch.solid_reaction[k]);
     }
     const BodyHandle body = rigid_body_handle(model.rigid, rigid, b);
     body.apply_position_impulse(force, Vec3::Zero());
@@ -49,9 +50,9 @@ void move_rigid_bodies(const Model& model, const FluidState& fluid, RigidBodySta
   }
 }
 
-void move_solids(const Model& model, State& state) {
-  move_solid_particles(model, state.fluid, state.position.data());
-  if (!model.fluid.solid.sampled_body.empty()) move_rigid_bodies(model, state.fluid, state.rigid);
+void move_solids(const Model& model, State& state, const FluidScratch& scratch) {
+  move_solid_particles(model, scratch, state.position.data());
+  if (!model.fluid.solid.sampled_body.empty()) move_rigid_bodies(model, state.fluid, scratch, state.rigid);
 }
 
 }  // namespace
@@ -75,7 +76,7 @@ void place_solid_samples(const Model& model, State& state) {
   }
 }
 
-void split_solid_masses(const Model& model, FluidState& fluid) {
+void split_solid_masses(const Model& model, const FluidState& fluid, FluidScratch& scratch) {
   const FluidSolidSamples& s = model.fluid.solid;
   const Index particles = static_cast<Index>(s.coupled_particle.size()), samples = s.size();
   // c_k = max(1, sum_s b_sk n_s), n_s the fluid particles within h of sample s.
@@ -84,7 +85,7 @@ void split_solid_masses(const Model& model, FluidState& fluid) {
     Real pairs = 0;
     for (Index e = s.coupled_begin[q]; e < s.coupled_begin[q + 1]; ++e)
       pairs += s.coupled_weight[e] * fluid.solid_fluids.count[s.coupled_sample[e]];
-    fluid.solid_share[s.coupled_particle[q]] = 1 / std::max<Real>(1, pairs);
+    scratch.solid_share[s.coupled_particle[q]] = 1 / std::max<Real>(1, pairs);
   }
   // Rigid samples: w_s = w_bs / c_b, c_b = max(1, sum_s n_s) over the body's samples.
   const Index bodies = static_cast<Index>(s.sampled_body.size());
@@ -93,7 +94,7 @@ void split_solid_masses(const Model& model, FluidState& fluid) {
     Real pairs = 0;
     for (Index k = s.body_begin[j]; k < s.body_begin[j + 1]; ++k) pairs += fluid.solid_fluids.count[k];
     const Real share = 1 / std::max<Real>(1, pairs);
-    for (Index k = s.body_begin[j]; k < s.body_begin[j + 1]; ++k) fluid.solid_inv_mass[k] = s.body_weight[k] * share;
+    for (Index k = s.body_begin[j]; k < s.body_begin[j + 1]; ++k) scratch.solid_inv_mass[k] = s.body_weight[k] * share;
   }
   // Cloth and soft-body samples: w_s = sum_k b_k^2 w_k / c_k.
 #pragma omp for schedule(static)
@@ -103,20 +104,20 @@ void split_solid_masses(const Model& model, FluidState& fluid) {
     for (int slot = 0; slot < 4; ++slot) {
       const Index p = s.particle[k][slot];
       const Real b = s.weight[k][slot];
-      if (b != 0) w += b * b * model.particle_inv_mass[p] * fluid.solid_share[p];
+      if (b != 0) w += b * b * model.particle_inv_mass[p] * scratch.solid_share[p];
     }
-    fluid.solid_inv_mass[k] = w;
+    scratch.solid_inv_mass[k] = w;
   }
 }
 
-void apply_solid_reactions(const Model& model, State& state) {
+void apply_solid_reactions(const Model& model, State& state, FluidScratch& scratch) {
   FluidState& fluid = state.fluid;
   const FluidSolidSamples& s = model.fluid.solid;
   const CubicSplineKernel kernel = model.fluid.kernel;
   const Real pad = 2 * kernel.h;
   const Index n = s.size();
   const Vec3* xf = fluid.position.data();
-  const Real* lambda = fluid.lambda.data();
+  const Real* lambda = scratch.lambda.data();
   // R_s = -V_s sum_i lambda_i grad W(x_i - x_s), with grad W(r) = g(|r|) r.
 #pragma omp for schedule(static)
   for (Index k = 0; k < n; ++k) {
@@ -135,12 +136,12 @@ void apply_solid_reactions(const Model& model, State& state) {
         rx[l] += c * chunk.rx[l], ry[l] += c * chunk.ry[l], rz[l] += c * chunk.rz[l];
       }
     }
-    fluid.solid_reaction[k] = s.volume[k] * Vec3(sum_lanes(rx), sum_lanes(ry), sum_lanes(rz));
+    scratch.solid_reaction[k] = s.volume[k] * Vec3(sum_lanes(rx), sum_lanes(ry), sum_lanes(rz));
   }
-  move_solids(model, state);
+  move_solids(model, state, scratch);
 }
 
-void project_solid_contacts(const Model& model, State& state, Real time) {
+void project_solid_contacts(const Model& model, State& state, FluidScratch& scratch, Real time) {
   FluidState& fluid = state.fluid;
   const FluidModel& fm = model.fluid;
   const FluidSolidSamples& s = fm.solid;
@@ -157,7 +158,7 @@ void project_solid_contacts(const Model& model, State& state, Real time) {
     // gravity, or +y without gravity).
     const Vec3 up = model.settings.gravity.norm() > 0 ? Vec3(-model.settings.gravity.normalized()) : Vec3::UnitY();
     const Vec3 normal = d > 1e-9 * reach ? Vec3(r / d) : up;
-    p = (reach - d) / (w[i] + fluid.solid_inv_mass[k]) * normal;
+    p = (reach - d) / (w[i] + scratch.solid_inv_mass[k]) * normal;
     return true;
   };
   // Fluid side: dx_i = w_i sum_s p_is (the contact count n_i kept for the solid side).
@@ -170,8 +171,8 @@ void project_solid_contacts(const Model& model, State& state, Real time) {
     Index contacts = 0;
     for (Index e = 0; e < count; ++e)
       if (pair_share(i, row[e], xi, p)) sum += p, ++contacts;
-    fluid.solid_contacts[i] = contacts;
-    fluid.correction[i] = contacts > 0 ? Vec3(w[i] / contacts * sum) : Vec3::Zero();
+    scratch.solid_contacts[i] = contacts;
+    scratch.correction[i] = contacts > 0 ? Vec3(w[i] / contacts * sum) : Vec3::Zero();
   }
   // Solid side: R_s = -sum_i p_is.
 #pragma omp for schedule(static)
@@ -181,16 +182,16 @@ void project_solid_contacts(const Model& model, State& state, Real time) {
     Vec3 sum = Vec3::Zero(), p;
     for (Index e = 0; e < count; ++e) {
       const Index i = row[e];
-      if (pair_share(i, k, fluid.position[i], p)) sum -= p / fluid.solid_contacts[i];
+      if (pair_share(i, k, fluid.position[i], p)) sum -= p / scratch.solid_contacts[i];
     }
-    fluid.solid_reaction[k] = sum;
+    scratch.solid_reaction[k] = sum;
   }
-  move_solids(model, state);
+  move_solids(model, state, scratch);
   const Real r = fm.particle_radius;
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
-    if (fluid.solid_contacts[i] == 0) continue;
-    Vec3 xi = fluid.position[i] + fluid.correction[i];
+    if (scratch.solid_contacts[i] == 0) continue;
+    Vec3 xi = fluid.position[i] + scratch.correction[i];
     for (const Collider& c : model.colliders) xi = keep_clear_of_collider(c, c.position_at(time), xi, r);
     fluid.position[i] = xi;
   }

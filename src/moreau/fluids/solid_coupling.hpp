@@ -27,6 +27,7 @@
 // eq. 6-9), summed over the body's samples in their fixed order:
 //   dx_b = (1/m) sum_s R_s,   q_b += 1/2 [I^-1 sum_s (x_s - x_b) x R_s, 0] q_b.
 // Linear momentum is kept exactly; the moments too, as R_s acts at x_s on the line of x_i - x_s.
+#include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 
 namespace moreau {
@@ -48,16 +49,16 @@ struct State;
 /// them, and its generalised inverse mass at sample s is at most w_bs = 1/m + |s|^2 max(I^-1) for
 /// any direction, so its samples get w_s = w_bs / c_b.
 /// Once per substep, after the neighbour lists (every thread).
-void split_solid_masses(const Model& model, FluidState& fluid);
+void split_solid_masses(const Model& model, const FluidState& fluid, FluidScratch& scratch);
 
 /// x_s = sum_k b_k x_k for every cloth and soft-body sample, from the model's particle positions,
 /// and x_s = x_b + q_b s for every rigid-body sample. Call inside an OpenMP parallel region.
 void place_solid_samples(const Model& model, State& state);
 
-/// After project_fluid_density (which left the multipliers in fluid.lambda): the reaction R_s of
+/// After project_fluid_density (which left the multipliers in scratch.lambda): the reaction R_s of
 /// every sample, then the solid particles' and rigid bodies' corrections. Call inside a parallel
 /// region.
-void apply_solid_reactions(const Model& model, State& state);
+void apply_solid_reactions(const Model& model, State& state, FluidScratch& scratch);
 
 /// Keeps fluid particles at least FluidModel::solid_contact_distance from every solid sample: a
 /// position-level contact, split by inverse mass and averaged over the particle's contacts,
@@ -68,6 +69,6 @@ void apply_solid_reactions(const Model& model, State& state);
 /// sits 2r from the samples, beyond d_c = 1.5 r, so the contact does not touch the hydrostatics.
 /// Moves fluid and solid particles (fluid particles stay clear of the colliders at `time`). Call
 /// inside a parallel region, after the density projection.
-void project_solid_contacts(const Model& model, State& state, Real time);
+void project_solid_contacts(const Model& model, State& state, FluidScratch& scratch, Real time);
 
 }  // namespace moreau

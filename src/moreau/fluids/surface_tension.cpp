@@ -12,7 +12,7 @@ Real cohesion_spline(Real r, Real h) {
   return 2 * r > h ? scale * a : scale * (2 * a - std::pow(h, 6) / 64);
 }
 
-void apply_fluid_surface_tension(const Model& model, FluidState& fluid, Real dt) {
+void apply_fluid_surface_tension(const Model& model, FluidState& fluid, FluidScratch& scratch, Real dt) {
   const FluidModel& fm = model.fluid;
   bool any = false;
   for (const FluidPhase& p : fm.phases) any |= p.surface_tension > 0;
@@ -20,8 +20,8 @@ void apply_fluid_surface_tension(const Model& model, FluidState& fluid, Real dt)
   const CubicSplineKernel& kernel = fm.kernel;
   const Real h = kernel.h, V = fm.particle_volume;
   const Index n = fluid.count;
-  std::vector<Vec3>& normal = fluid.correction;  // free between steps
-  std::vector<Vec3>& v_new = fluid.scratch_vec;
+  std::vector<Vec3>& normal = scratch.correction;  // free between steps
+  std::vector<Vec3>& v_new = scratch.reorder_vec;
   // Calls pair(j, r, d) for the neighbours j of i in i's phase with 0 < d = |r| < h, r = x_i - x_j.
   auto for_each_same_phase_pair = [&](Index i, auto&& pair) {
     const Index* row = fluid.fluid_neighbors.row(i);

@@ -18,6 +18,7 @@
 // Sign: with grad W(r) = g(|r|) r, g < 0, the normal as written points into the fluid; with the
 // opposite sign the curvature term is anti-diffusive and a blob blows apart (measured). At the
 // scene lattice (h = 4r) cohesion dominates: per neighbour it is ~40x the curvature term.
+#include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 
 namespace moreau {
@@ -28,7 +29,7 @@ struct Model;
 Real cohesion_spline(Real r, Real h);
 
 /// Applies surface tension over the step dt to every phase with gamma > 0. Call inside an OpenMP
-/// parallel region (uses FluidState::correction as the normals and scratch_vec for the result).
-void apply_fluid_surface_tension(const Model& model, FluidState& fluid, Real dt);
+/// parallel region (uses FluidScratch::correction as the normals and reorder_vec for the result).
+void apply_fluid_surface_tension(const Model& model, FluidState& fluid, FluidScratch& scratch, Real dt);
 
 }  // namespace moreau

@@ -17,8 +17,6 @@ State make_rest_state(const Model& model) {
   s.rigid.orientation = rb.initial_orientation;
   s.rigid.velocity = rb.initial_velocity;
   s.rigid.angular_velocity = rb.initial_angular_velocity;
-  s.rigid.start_position = s.rigid.position;
-  s.rigid.start_orientation = s.rigid.orientation;
   s.joint_lambda.assign(model.joints.size(), JointMultipliers{});
   return s;
 }

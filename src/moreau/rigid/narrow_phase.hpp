@@ -22,16 +22,10 @@
 #include <array>
 #include <vector>
 
+#include "moreau/math/pose.hpp"
 #include "moreau/rigid/rigid_shape.hpp"
 
 namespace moreau {
-
-struct Pose {
-  Vec3 position = Vec3::Zero();
-  Quat orientation = Quat::Identity();
-  Vec3 to_world(const Vec3& local) const { return position + orientation * local; }
-  Vec3 to_local(const Vec3& world) const { return orientation.conjugate() * (world - position); }
-};
 
 /// Which frame a contact normal is stored in (it turns with that body between substeps), or
 /// whether it is recomputed from the cores each substep (round against round).

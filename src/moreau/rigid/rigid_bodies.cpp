@@ -7,10 +7,6 @@ void RigidBodyState::resize(Index n) {
   orientation.resize(n, Quat::Identity());
   velocity.resize(n);
   angular_velocity.resize(n);
-  start_position.resize(n);
-  start_orientation.resize(n, Quat::Identity());
-  velocity_before.resize(n, Vec3::Zero());
-  angular_velocity_before.resize(n, Vec3::Zero());
 }
 
 }  // namespace moreau

@@ -41,10 +41,6 @@ struct RigidBodyState {
   std::vector<Quat> orientation;              // principal frame -> world
   std::vector<Vec3> velocity;                 // m/s
   std::vector<Vec3> angular_velocity;         // rad/s, world frame
-  std::vector<Vec3> start_position;           // at the start of the substep
-  std::vector<Quat> start_orientation;
-  std::vector<Vec3> velocity_before;          // after prediction, before the solve (restitution)
-  std::vector<Vec3> angular_velocity_before;
 
   void resize(Index n);
 };

@@ -13,13 +13,22 @@ Quat rotate_by_angular_velocity(const Quat& q, const Vec3& w, Real h) {
   return (Quat(Eigen::AngleAxisd(angle, w.normalized())) * q).normalized();
 }
 
-void predict_rigid_bodies(const Model& model, RigidBodyState& s, Real h) {
+void RigidSubstepStart::fit(Index n) {
+  const size_t size = static_cast<size_t>(n);
+  if (position.size() == size) return;
+  position.assign(size, Vec3::Zero());
+  orientation.assign(size, Quat::Identity());
+  velocity.assign(size, Vec3::Zero());
+  angular_velocity.assign(size, Vec3::Zero());
+}
+
+void predict_rigid_bodies(const Model& model, RigidBodyState& s, RigidSubstepStart& start, Real h) {
   const RigidBodyModel& m = model.rigid;
   const Vec3 dv = h * model.settings.gravity;
 #pragma omp for schedule(static)
   for (Index b = 0; b < m.count(); ++b) {
-    s.start_position[b] = s.position[b];
-    s.start_orientation[b] = s.orientation[b];
+    start.position[b] = s.position[b];
+    start.orientation[b] = s.orientation[b];
     switch (m.body_motion[b]) {
       case BodyMotion::fixed: break;
       case BodyMotion::kinematic:
@@ -42,18 +51,18 @@ void predict_rigid_bodies(const Model& model, RigidBodyState& s, Real h) {
       }
     }
     // The velocities after prediction, before the solve (restitution's vbar).
-    s.velocity_before[b] = s.velocity[b];
-    s.angular_velocity_before[b] = s.angular_velocity[b];
+    start.velocity[b] = s.velocity[b];
+    start.angular_velocity[b] = s.angular_velocity[b];
   }
 }
 
-void update_rigid_body_velocities(const Model& model, RigidBodyState& s, Real h) {
+void update_rigid_body_velocities(const Model& model, RigidBodyState& s, const RigidSubstepStart& start, Real h) {
   const RigidBodyModel& m = model.rigid;
 #pragma omp for schedule(static)
   for (Index b = 0; b < m.count(); ++b) {
     if (!m.is_dynamic(b)) continue;
-    s.velocity[b] = (s.position[b] - s.start_position[b]) / h;
-    const Quat dq = s.orientation[b] * s.start_orientation[b].conjugate();
+    s.velocity[b] = (s.position[b] - start.position[b]) / h;
+    const Quat dq = s.orientation[b] * start.orientation[b].conjugate();
     const Vec3 w = 2.0 / h * dq.vec();
     s.angular_velocity[b] = dq.w() >= 0 ? w : Vec3(-w);
   }

@@ -5,6 +5,8 @@
 //   after the solve:   v = (x - x_prev)/h;  dq = q q_prev^-1;  w = 2 dq_xyz / h (negated if dq_w < 0)
 // The gyroscopic term is evaluated in the principal frame, where I is diagonal. Kinematic bodies
 // move with their prescribed velocities; fixed bodies stay.
+#include <vector>
+
 #include "moreau/math/types.hpp"
 
 namespace moreau {
@@ -12,8 +14,21 @@ namespace moreau {
 struct Model;
 struct RigidBodyState;
 
-void predict_rigid_bodies(const Model& model, RigidBodyState& bodies, Real h);
-void update_rigid_body_velocities(const Model& model, RigidBodyState& bodies, Real h);
+/// What a substep's prediction remembers of the bodies (a solver's workspace, not the State):
+/// the poses at the substep's start (x_prev, q_prev: the velocity update and the friction slip)
+/// and the velocities after prediction, before the solve (restitution's vbar).
+struct RigidSubstepStart {
+  std::vector<Vec3> position;          // m
+  std::vector<Quat> orientation;
+  std::vector<Vec3> velocity;          // m/s
+  std::vector<Vec3> angular_velocity;  // rad/s, world frame
+
+  /// Sizes the buffers for n bodies (nothing is reallocated when they already fit).
+  void fit(Index n);
+};
+
+void predict_rigid_bodies(const Model& model, RigidBodyState& bodies, RigidSubstepStart& start, Real h);
+void update_rigid_body_velocities(const Model& model, RigidBodyState& bodies, const RigidSubstepStart& start, Real h);
 
 /// Exact rotation of q by the world angular velocity w over time h (kinematic bodies).
 Quat rotate_by_angular_velocity(const Quat& q, const Vec3& w, Real h);

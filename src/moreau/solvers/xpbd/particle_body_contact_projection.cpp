@@ -6,6 +6,7 @@
 #include "moreau/constraints/particle_contact_rows.hpp"
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/body_handle.hpp"
+#include "moreau/rigid/rigid_motion.hpp"
 #include "moreau/solvers/xpbd/particle_contact_projection.hpp"
 
 namespace moreau {
@@ -14,7 +15,7 @@ void reset_particle_body_contacts(State& state) {
   std::fill(state.particle_body_contacts.lambda_normal.begin(), state.particle_body_contacts.lambda_normal.end(), 0);
 }
 
-void project_particle_body_contacts(const Model& model, State& state, const Vec3* x_start) {
+void project_particle_body_contacts(const Model& model, State& state, const SubstepStart& start) {
   ParticleBodyContacts& c = state.particle_body_contacts;
   RigidBodyState& s = state.rigid;
   for (size_t q = 0; q < c.size(); ++q) {
@@ -28,7 +29,7 @@ void project_particle_body_contacts(const Model& model, State& state, const Vec3
     c.offset[q] = near.offset;
     apply_positional_correction(hp, hb, n, C, Vec3::Zero(), near.offset, 0, c.lambda_normal[q]);
     // Static friction: the slip of the particle against the body's material point over the substep.
-    const Vec3 dp_t = tangential_part(particle_body_slip(state, x_start, b, p, near.surface.point), n);
+    const Vec3 dp_t = tangential_part(particle_body_slip(state, start, b, p, near.surface.point), n);
     const Real slip = dp_t.norm();
     if (slip <= 0) continue;
     const Vec3 t = dp_t / slip;
@@ -40,7 +41,8 @@ void project_particle_body_contacts(const Model& model, State& state, const Vec3
   }
 }
 
-void particle_body_contact_velocities(const Model& model, State& state, const Vec3* velocity_before, Real h) {
+void particle_body_contact_velocities(const Model& model, State& state, const Vec3* velocity_before,
+                                      const RigidSubstepStart& bodies_before, Real h) {
   ParticleBodyContacts& c = state.particle_body_contacts;
   const RigidBodyModel& m = model.rigid;
   RigidBodyState& s = state.rigid;
@@ -53,7 +55,7 @@ void particle_body_contact_velocities(const Model& model, State& state, const Ve
     const BodyVelocityHandle vp = particle_velocity_handle(state.velocity[p], model.particle_inv_mass[p]);
     const BodyVelocityHandle vb = rigid_body_velocity_handle(m, s, b);
     const Vec3 v = vp.point_velocity(Vec3::Zero()) - vb.point_velocity(r);
-    const Vec3 before = velocity_before[p] - (s.velocity_before[b] + s.angular_velocity_before[b].cross(r));
+    const Vec3 before = velocity_before[p] - (bodies_before.velocity[b] + bodies_before.angular_velocity[b].cross(r));
     const Real w = vp.weight(Vec3::Zero(), n) + vb.weight(r, n);
     const Vec3 dv = contact_velocity_change(v, before, n, c.lambda_normal[q], w, c.dynamic_friction[q],
                                             c.restitution[q], h, g);

@@ -10,21 +10,23 @@
 // Velocity pass, once per substep, per contact that pushed: dynamic friction and restitution with
 // the laws of the particle contacts (particle_contact_projection.hpp), applied as an impulse
 // between the particle and the body's material point (eq. 33).
-#include "moreau/math/types.hpp"
+#include "moreau/constraints/substep_start.hpp"
 
 namespace moreau {
 
 struct Model;
 struct State;
+struct RigidSubstepStart;
 
 /// Clears the multipliers at the start of a substep.
 void reset_particle_body_contacts(State& state);
 
-/// Projection of all contacts in order; one thread. `x_start`: particle positions at the substep's start.
-void project_particle_body_contacts(const Model& model, State& state, const Vec3* x_start);
+/// Projection of all contacts in order; one thread; the friction slip measured from `start`.
+void project_particle_body_contacts(const Model& model, State& state, const SubstepStart& start);
 
 /// Velocity pass (dynamic friction, restitution) of the contacts that pushed this substep; one
-/// thread. `velocity_before`: particle velocities after prediction.
-void particle_body_contact_velocities(const Model& model, State& state, const Vec3* velocity_before, Real h);
+/// thread. `velocity_before` and `bodies_before`: the particles' and bodies' velocities after prediction.
+void particle_body_contact_velocities(const Model& model, State& state, const Vec3* velocity_before,
+                                      const RigidSubstepStart& bodies_before, Real h);
 
 }  // namespace moreau

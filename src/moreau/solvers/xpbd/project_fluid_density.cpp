@@ -1,12 +1,13 @@
 #include "moreau/solvers/xpbd/project_fluid_density.hpp"
 
 #include "moreau/fluids/density_constraint.hpp"
+#include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/model/model.hpp"
 
 namespace moreau {
 
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-void project_fluid_density(const Model& model, FluidState& fluid, Real h) {
+void project_fluid_density(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h) {
   const FluidModel& fm = model.fluid;
   const CubicSplineKernel kernel = fm.kernel;
   const Real V = fm.particle_volume, pad = 2 * kernel.h;
@@ -15,22 +16,23 @@ void project_fluid_density(const Model& model, FluidState& fluid, Real h) {
   const Real* w = fluid.inv_mass.data();
   const Real* mass = fluid.mass.data();
   const Index* phase = fluid.phase.data();
+  const Real* solid_inv_mass = scratch.solid_inv_mass.data();
 
   // Multipliers.
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
-    const auto [C, grad_i, wall_gradient, neighbor_term, solid_term] = evaluate_density_constraint(fm, fluid, i);
-    fluid.wall_gradient[i] = wall_gradient;
+    const auto [C, grad_i, wall_gradient, neighbor_term, solid_term] = evaluate_density_constraint(fm, fluid, solid_inv_mass, i);
+    scratch.wall_gradient[i] = wall_gradient;
     const FluidPhase& ph = fm.phases[phase[i]];
     fluid.density[i] = ph.rest_density * (1 + C);
     const Real denominator = w[i] * grad_i.squaredNorm() + V * V * neighbor_term + solid_term + ph.relaxation;
-    fluid.lambda[i] = C > 0 ? -C / denominator : 0;
+    scratch.lambda[i] = C > 0 ? -C / denominator : 0;
   }
 
   // Corrections (positions are only read here, so a second array keeps this Jacobi).
   // s_ij = -k (W_ij / W(dq h))^4 g_ref h (m_i + m_j) / 2 h_sub^2.
   const Real tensile = fm.tensile_k * fm.tensile_reference * h * h * 0.5, inv_w_dq = fm.tensile_inv_w_dq;
-  const Real* lambda = fluid.lambda.data();
+  const Real* lambda = scratch.lambda.data();
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
     const Vec3 xi = x[i];
@@ -51,8 +53,8 @@ void project_fluid_density(const Model& model, FluidState& fluid, Real h) {
       }
     }
     Vec3 correction = V * Vec3(sum_lanes(dx), sum_lanes(dy), sum_lanes(dz));
-    correction += lambda_i * fluid.wall_gradient[i];
-    fluid.correction[i] = w[i] * correction;
+    correction += lambda_i * scratch.wall_gradient[i];
+    scratch.correction[i] = w[i] * correction;
   }
 }
 

@@ -29,10 +29,11 @@ namespace moreau {
 
 struct Model;
 struct FluidState;
+struct FluidScratch;
 
-/// One Jacobi iteration: every lambda_i, then every correction into FluidState::correction
+/// One Jacobi iteration: every lambda_i, then every correction into FluidScratch::correction
 /// (apply_fluid_corrections moves the particles). Call inside an
 /// OpenMP parallel region (orphaned omp for loops with barriers).
-void project_fluid_density(const Model& model, FluidState& fluid, Real h);
+void project_fluid_density(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h);
 
 }  // namespace moreau

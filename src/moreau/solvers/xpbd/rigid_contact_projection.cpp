@@ -5,6 +5,7 @@
 
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/body_handle.hpp"
+#include "moreau/rigid/rigid_motion.hpp"
 #include "moreau/solvers/xpbd/contact_blocks.hpp"
 
 namespace moreau {
@@ -28,8 +29,8 @@ struct NetImpulse {
 // Solves one manifold's position block and applies its impulses:
 // x += p / m, q += 1/2 [I^-1 (r x p), 0] q with the world inverse inertia of the solve.
 void project_manifold(RigidManifold& mf, RigidContactPoint* points, const BodyHandle& ha, const BodyHandle& hb,
-                      const RigidBodyState& s) {
-  const ContactRows rows = manifold_rows(mf, points, s);
+                      const RigidBodyState& s, const SubstepStart& start) {
+  const ContactRows rows = manifold_rows(mf, points, s, start);
   if (rows.points == 0) {
     mf.sliding = false;
     return;
@@ -72,25 +73,24 @@ void reset_rigid_contacts(State& state) {
   }
 }
 
-void project_rigid_contacts(const Model& model, State& state) {
+void project_rigid_contacts(const Model& model, State& state, const SubstepStart& start) {
   const RigidBodyModel& m = model.rigid;
   RigidBodyState& s = state.rigid;
   RigidContacts& contacts = state.rigid_contacts;
   for (RigidManifold& mf : contacts.manifolds) {
     const BodyHandle ha = rigid_body_handle(m, s, mf.body_a), hb = rigid_body_handle(m, s, mf.body_b);
     RigidContactPoint* points = contacts.points.data() + mf.first;
-    project_manifold(mf, points, ha, hb, s);
+    project_manifold(mf, points, ha, hb, s, start);
     for (Index i = 0; i < mf.count; ++i) mf.touching |= points[i].touching;
   }
 }
 
-void accumulate_stuck_slip(State& state) {
+void accumulate_stuck_slip(State& state, const SubstepStart& start) {
   const RigidBodyState& s = state.rigid;
   RigidContacts& contacts = state.rigid_contacts;
   for (RigidManifold& mf : contacts.manifolds) {
     const Pose pa{s.position[mf.body_a], s.orientation[mf.body_a]}, pb{s.position[mf.body_b], s.orientation[mf.body_b]};
-    const Pose sa{s.start_position[mf.body_a], s.start_orientation[mf.body_a]};
-    const Pose sb{s.start_position[mf.body_b], s.start_orientation[mf.body_b]};
+    const Pose sa = start.body_pose(mf.body_a), sb = start.body_pose(mf.body_b);
     for (Index i = mf.first; i < mf.first + mf.count; ++i) {
       RigidContactPoint& c = contacts.points[i];
       if (mf.sliding || !c.touching) {
@@ -104,7 +104,7 @@ void accumulate_stuck_slip(State& state) {
   }
 }
 
-void rigid_contact_velocities(const Model& model, State& state, Real h) {
+void rigid_contact_velocities(const Model& model, State& state, const RigidSubstepStart& before_solve, Real h) {
   const RigidBodyModel& m = model.rigid;
   RigidBodyState& s = state.rigid;
   RigidContacts& contacts = state.rigid_contacts;
@@ -123,8 +123,8 @@ void rigid_contact_velocities(const Model& model, State& state, Real h) {
       const int r0 = rows.size();
       const Vec3& n = c.normal;
       const Vec3 v = va.point_velocity(c.offset_a) - vb.point_velocity(c.offset_b);
-      const Vec3 before = (s.velocity_before[a] + s.angular_velocity_before[a].cross(c.offset_a)) -
-                          (s.velocity_before[b] + s.angular_velocity_before[b].cross(c.offset_b));
+      const Vec3 before = (before_solve.velocity[a] + before_solve.angular_velocity[a].cross(c.offset_a)) -
+                          (before_solve.velocity[b] + before_solve.angular_velocity[b].cross(c.offset_b));
       const Real restitution = std::abs(n.dot(v)) <= resting_speed ? 0 : mf.restitution;
       const Vec3 t1 = contact_tangent(n);
       rows.direction[r0] = n;

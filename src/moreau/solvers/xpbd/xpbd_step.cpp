@@ -122,6 +122,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   const int substeps = model.settings.substeps, iterations = model.settings.iterations;
   const Real h = dt / substeps;
   const SubstepContext ctx{state.position.data(), work.substep_start.data(), model.particle_inv_mass.data(), h};
+  const SubstepStart start = work.substep_start_view();
   const Real start_time = state.time;
   const bool fluids = !model.fluid.empty(), coupled_solids = model.fluid.solid.size() > 0;
   FluidState& fluid = state.fluid;
@@ -144,14 +145,14 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
         }
       }
       predict(model, state, work, h);
-      if (rigid) predict_rigid_bodies(model, state.rigid, h);
-      if (fluids) predict_fluid(model, fluid, h);
+      if (rigid) predict_rigid_bodies(model, state.rigid, work.bodies, h);
+      if (fluids) predict_fluid(model, fluid, work.fluid, h);
       lap(XpbdStage::predict);
       if (fluids) {
         if (model.fluid.boundary.moving) place_boundary_samples(model, fluid, substep_end);
         if (coupled_solids) place_solid_samples(model, state);
-        update_fluid_neighbors(model, fluid, substep_end);
-        if (coupled_solids) split_solid_masses(model, fluid);
+        update_fluid_neighbors(model, fluid, work.fluid, substep_end);
+        if (coupled_solids) split_solid_masses(model, fluid, work.fluid);
         lap(XpbdStage::fluid_neighbors);
       }
       for (int it = 0; it < iterations; ++it) {
@@ -162,12 +163,12 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
         // The fluid before the contacts: what it pushes into a collider, the contacts push out.
         if (fluids) {
           if (coupled_solids) place_solid_samples(model, state);
-          project_fluid_density(model, fluid, h);
-          if (coupled_solids) apply_solid_reactions(model, state);
-          apply_fluid_corrections(model, fluid, h, substep_end);
+          project_fluid_density(model, fluid, work.fluid, h);
+          if (coupled_solids) apply_solid_reactions(model, state, work.fluid);
+          apply_fluid_corrections(model, fluid, work.fluid, h, substep_end);
           if (coupled_solids) {
             place_solid_samples(model, state);
-            project_solid_contacts(model, state, substep_end);
+            project_solid_contacts(model, state, work.fluid, substep_end);
           }
           lap(XpbdStage::fluid_density);
         }
@@ -181,24 +182,24 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
             solve_joint_forest(model, state, h);
             project_joints(model, state, work.joint_drive_start.data(), h);
             timer.lap(XpbdStage::joints);
-            project_rigid_contacts(model, state);
-            project_particle_body_contacts(model, state, work.substep_start.data());
+            project_rigid_contacts(model, state, start);
+            project_particle_body_contacts(model, state, start);
             timer.lap(XpbdStage::rigid_contacts);
           }
         }
       }
       update_velocity(model, state, work.substep_start.data(), h);
-      if (rigid) update_rigid_body_velocities(model, state.rigid, h);
-      if (fluids) update_fluid_velocity(fluid, h);
+      if (rigid) update_rigid_body_velocities(model, state.rigid, work.bodies, h);
+      if (fluids) update_fluid_velocity(fluid, work.fluid, h);
       lap(XpbdStage::update_velocity);
       particle_contact_velocities(model, state, work.velocity_before.data(), h);
       collider_contact_velocities(model, state, work.velocity_before.data(), h);
       if (rigid) {
 #pragma omp single
         {
-          accumulate_stuck_slip(state);
-          rigid_contact_velocities(model, state, h);
-          particle_body_contact_velocities(model, state, work.velocity_before.data(), h);
+          accumulate_stuck_slip(state, start);
+          rigid_contact_velocities(model, state, work.bodies, h);
+          particle_body_contact_velocities(model, state, work.velocity_before.data(), work.bodies, h);
           damp_joints(model, state, h);
         }
       }
@@ -206,8 +207,8 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
       lap(XpbdStage::velocity_pass);
     }
     if (fluids) {
-      apply_fluid_velocity_corrections(model, fluid, dt);
-      apply_fluid_surface_tension(model, fluid, dt);
+      apply_fluid_velocity_corrections(model, fluid, work.fluid, dt);
+      apply_fluid_surface_tension(model, fluid, work.fluid, dt);
       lap(XpbdStage::fluid_velocity);
     }
   }

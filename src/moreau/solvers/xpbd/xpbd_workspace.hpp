@@ -7,7 +7,10 @@
 #include <vector>
 
 #include "moreau/collision/contacts.hpp"
+#include "moreau/constraints/substep_start.hpp"
+#include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/math/types.hpp"
+#include "moreau/rigid/rigid_motion.hpp"
 
 namespace moreau {
 
@@ -16,11 +19,18 @@ struct Model;
 struct XpbdWorkspace {
   std::vector<Vec3> substep_start;      // m, particle positions at the start of the current substep
   std::vector<Vec3> velocity_before;    // m/s, particle velocities after prediction (restitution)
+  RigidSubstepStart bodies;             // body poses at the substep start, velocities after prediction
   std::vector<Real> joint_drive_start;  // per joint: hinge angle (rad) or slide (m) at the substep start
   ContactScratch contact_scratch;       // reused buffers of particle-pair detection
+  FluidScratch fluid;                   // the particle fluid's substep and iteration buffers
 
   /// Sizes the buffers for `model` (nothing is reallocated when they already fit).
   void fit(const Model& model);
+
+  /// The configuration the friction rows measure their slip from.
+  SubstepStart substep_start_view() const {
+    return {substep_start.data(), bodies.position.data(), bodies.orientation.data()};
+  }
 };
 
 }  // namespace moreau

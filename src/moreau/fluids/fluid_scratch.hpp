@@ -1,0 +1,33 @@
+#pragma once
+// Buffers the particle fluid's step rewrites every substep or iteration and nothing outside the
+// step reads: a solver keeps them in its workspace, next to the FluidState. Per-particle arrays
+// hold the fluid's capacity and move with the particles when the neighbour search re-sorts them
+// (substep_start) or are rewritten before they are read (the rest).
+#include <vector>
+
+#include "moreau/math/types.hpp"
+
+namespace moreau {
+
+struct FluidModel;
+
+struct FluidScratch {
+  std::vector<Vec3> substep_start;      // m, positions at the start of the substep
+  std::vector<Real> lambda;             // density multiplier of the current iteration, kg m^2
+  std::vector<Vec3> correction;         // m, Jacobi correction of the current iteration; the velocity
+                                        // passes reuse it (vorticity, surface normals)
+  std::vector<Vec3> wall_gradient;      // 1/m, sum_b V_b grad W_ib over wall and solid samples
+  std::vector<Vec3> reorder_vec;        // the re-sort's and the velocity passes' second buffers
+  std::vector<Index> reorder_index;
+  std::vector<Real> reorder_real;
+  // Coupling with cloth, soft bodies and rigid bodies (solid_coupling.hpp).
+  std::vector<Vec3> solid_reaction;     // kg m, per solid sample: -V_s sum_i lambda_i grad W(x_i - x_s)
+  std::vector<Real> solid_inv_mass;     // 1/kg, per solid sample: this substep's split (split_solid_masses)
+  std::vector<Real> solid_share;        // per model particle: 1 / c_k of the split (coupled particles only)
+  std::vector<Index> solid_contacts;    // per fluid particle: solid samples it touches
+
+  /// Sizes the buffers for the model's fluid (nothing is reallocated when they already fit).
+  void fit(const FluidModel& fluid);
+};
+
+}  // namespace moreau
