@@ -8,7 +8,7 @@
 #include <cstdio>
 #include <random>
 
-#include "moreau/rigid/point_query.hpp"
+#include "moreau/collision/point_query.hpp"
 #include "test_helpers.hpp"
 
 namespace moreau {
@@ -17,12 +17,12 @@ namespace {
 using test::run_steps;
 using test::scene_from_json;
 
-std::vector<RigidShape> query_shapes() {
+std::vector<Shape> query_shapes() {
   std::vector<Vec3> points;
   std::mt19937 rng(7);
   std::uniform_real_distribution<Real> u(-0.4, 0.4);
   for (int k = 0; k < 40; ++k) points.emplace_back(u(rng), 0.5 * u(rng), u(rng));
-  RigidShape hull;
+  Shape hull;
   hull.type = ShapeType::convex_hull;
   hull.polyhedron = convex_hull(points);
   return {make_sphere(0.3), make_box(Vec3(0.3, 0.2, 0.1)), make_capsule(0.15, 0.25), make_cylinder(0.2, 0.3),
@@ -54,7 +54,7 @@ TEST(PointQuery, NearestSurfacePointIsOnTheSurfaceAndTheDistanceGradientIsTheNor
   //  - hulls: d matches a dense sampling of the faces to its spacing (outside points).
   std::mt19937 rng(11);
   std::uniform_real_distribution<Real> u(-0.6, 0.6);
-  for (const RigidShape& shape : query_shapes()) {
+  for (const Shape& shape : query_shapes()) {
     for (int k = 0; k < 300; ++k) {
       const Vec3 p(u(rng), u(rng), u(rng));
       const SurfacePoint s = nearest_surface_point(shape, p);

@@ -2,8 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace moreau {
+
+void unsupported_collider_shape(ShapeType type) {
+  throw std::logic_error("a collider is a plane, box, sphere or capsule, not shape type " +
+                         std::to_string(static_cast<int>(type)));
+}
 
 namespace {
 
@@ -35,29 +41,29 @@ ColliderDistance sphere_distance(const Vec3& center, Real radius, const Vec3& x)
 namespace {
 
 ColliderDistance solid_distance(const Collider& c, const Vec3& center, const Vec3& x) {
-  switch (c.shape) {
-    case ColliderShape::plane:
+  switch (c.shape.type) {
+    case ShapeType::plane:
       return {c.normal.dot(x - center), c.normal};
-    case ColliderShape::sphere:
-      return sphere_distance(center, c.radius, x);
-    case ColliderShape::box: {
-      const ColliderDistance local = box_distance(c.half_extents, c.rotation.transpose() * (x - center));
+    case ShapeType::sphere:
+      return sphere_distance(center, c.shape.radius, x);
+    case ShapeType::box: {
+      const ColliderDistance local = box_distance(c.shape.half_extents, c.rotation.transpose() * (x - center));
       return {local.distance, c.rotation * local.normal};
     }
-    case ColliderShape::capsule: {
+    case ShapeType::capsule: {
       const Vec3 axis = c.rotation.col(1);
-      const Real s = std::clamp(axis.dot(x - center), -c.half_height, c.half_height);
-      return sphere_distance(center + s * axis, c.radius, x);
+      const Real s = std::clamp(axis.dot(x - center), -c.shape.half_height, c.shape.half_height);
+      return sphere_distance(center + s * axis, c.shape.radius, x);
     }
+    default: unsupported_collider_shape(c.shape.type);
   }
-  return {1e30, Vec3::UnitY()};
 }
 
 }  // namespace
 
 Vec3 keep_clear_of_collider(const Collider& c, const Vec3& center, const Vec3& x, Real gap) {
-  if (c.inside && c.shape == ColliderShape::box) {
-    const Vec3 limit = (c.half_extents.array() - gap).max(0.0);
+  if (c.inside && c.shape.type == ShapeType::box) {
+    const Vec3 limit = (c.shape.half_extents.array() - gap).max(0.0);
     const Vec3 q = c.rotation.transpose() * (x - center);
     const Vec3 clamped = q.cwiseMax(-limit).cwiseMin(limit);
     return clamped == q ? x : Vec3(center + c.rotation * clamped);

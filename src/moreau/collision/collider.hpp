@@ -1,24 +1,21 @@
 #pragma once
-// Analytic collider shapes (plane, box, sphere, capsule) that particles collide with, static or
-// kinematic (moving with a prescribed constant velocity). Each shape answers one question: the
-// signed distance from a point to its surface and the outward normal there.
+// Colliders: fixed or kinematic (moving with a prescribed constant velocity) shapes that
+// particles, fluids and rigid bodies collide with. A collider's shape is a plane, box, sphere or
+// capsule of the one shape type rigid bodies use (shape.hpp), so a collider joins the rigid
+// contacts as a body of infinite mass. For particles each shape answers one question: the signed
+// distance from a point to its surface and the outward normal there.
 #include <string>
 
-#include "moreau/math/types.hpp"
+#include "moreau/collision/shape.hpp"
 
 namespace moreau {
 
-enum class ColliderShape { plane, box, sphere, capsule };
-
 struct Collider {
-  ColliderShape shape = ColliderShape::plane;
+  Shape shape = make_plane();         // plane, box, sphere or capsule, in the collider's frame
   Vec3 position = Vec3::Zero();       // m: plane point, box/sphere center, capsule center at t = 0
-  Mat3 rotation = Mat3::Identity();   // local -> world (box, capsule)
+  Mat3 rotation = Mat3::Identity();   // collider frame -> world (box, capsule)
   Vec3 velocity = Vec3::Zero();       // m/s, kinematic translation
-  Vec3 normal = Vec3::UnitY();        // plane normal (unit)
-  Vec3 half_extents = Vec3::Zero();   // m, box
-  Real radius = 0;                    // m, sphere and capsule
-  Real half_height = 0;               // m, capsule: half length of the segment along local y
+  Vec3 normal = Vec3::UnitY();        // plane normal (unit, world)
   Real static_friction = 0.5;         // mu_s
   Real dynamic_friction = 0.5;        // mu_k
   Real restitution = 0;               // e
@@ -27,6 +24,10 @@ struct Collider {
 
   Vec3 position_at(Real time) const { return position + time * velocity; }
 };
+
+/// The four shapes above are the ones a collider takes (the scene builder makes no other); a
+/// switch over a collider's shape ends with this for the rest.
+[[noreturn]] void unsupported_collider_shape(ShapeType type);
 
 struct ColliderDistance {
   Real distance;  // m, negative inside

@@ -1,7 +1,7 @@
 #include "moreau/constraints/contact_rows.hpp"
 
 #include "moreau/rigid/rigid_bodies.hpp"
-#include "moreau/rigid/rigid_contacts.hpp"
+#include "moreau/collision/rigid_contacts.hpp"
 
 namespace moreau {
 

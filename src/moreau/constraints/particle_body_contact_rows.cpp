@@ -2,7 +2,7 @@
 
 #include "moreau/constraints/contact_rows.hpp"
 #include "moreau/model/state.hpp"
-#include "moreau/rigid/narrow_phase.hpp"
+#include "moreau/collision/narrow_phase.hpp"
 
 namespace moreau {
 

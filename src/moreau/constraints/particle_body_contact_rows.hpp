@@ -16,7 +16,7 @@
 // it left), which particle_body_slip does on its own.
 #include "moreau/constraints/body_rows.hpp"
 #include "moreau/constraints/substep_start.hpp"
-#include "moreau/rigid/point_query.hpp"
+#include "moreau/collision/point_query.hpp"
 
 namespace moreau {
 

@@ -43,41 +43,41 @@ std::vector<Vec3> sample_collider_surface(const Collider& c, Real spacing, Real 
   // Moving the surface into the solid grows a container and shrinks a solid (not below half size).
   const Real grow = c.inside ? depth : -depth;
   auto offset_radius = [&](Real radius) { return std::max(0.5 * radius, radius + grow); };
-  switch (c.shape) {
-    case ColliderShape::box: {
-      const Vec3 half = c.half_extents.unaryExpr(offset_radius);
+  switch (c.shape.type) {
+    case ShapeType::box: {
+      const Vec3 half = c.shape.half_extents.unaryExpr(offset_radius);
       std::vector<Vec3> points = box_surface(half, spacing);
       for (Vec3& p : points) p = c.rotation * p;
       return points;
     }
-    case ColliderShape::sphere: {
-      const Real radius = offset_radius(c.radius);
+    case ShapeType::sphere: {
+      const Real radius = offset_radius(c.shape.radius);
       const int count = std::max(12, static_cast<int>(std::ceil(4 * kPi * radius * radius / (spacing * spacing))));
       std::vector<Vec3> points = fibonacci_sphere(count);
       for (Vec3& p : points) p *= radius;
       return points;
     }
-    case ColliderShape::capsule: {
+    case ShapeType::capsule: {
       // Cylinder along local y, then two hemispherical caps.
-      const Real radius = offset_radius(c.radius);
+      const Real radius = offset_radius(c.shape.radius);
       std::vector<Vec3> points;
       const int around = std::max(8, static_cast<int>(std::ceil(2 * kPi * radius / spacing)));
-      const int along = std::max(1, static_cast<int>(std::ceil(2 * c.half_height / spacing)));
+      const int along = std::max(1, static_cast<int>(std::ceil(2 * c.shape.half_height / spacing)));
       for (int a = 0; a <= along; ++a)
         for (int k = 0; k < around; ++k) {
           const Real phi = 2 * kPi * k / around;
           points.push_back(c.rotation *
-                           Vec3(radius * std::cos(phi), -c.half_height + 2 * c.half_height * a / along, radius * std::sin(phi)));
+                           Vec3(radius * std::cos(phi), -c.shape.half_height + 2 * c.shape.half_height * a / along, radius * std::sin(phi)));
         }
       const int cap = std::max(12, static_cast<int>(std::ceil(4 * kPi * radius * radius / (spacing * spacing))));
       for (const Vec3& u : fibonacci_sphere(cap)) {
         if (std::abs(u.y()) < 1e-12) continue;
-        const Vec3 local = radius * u + Vec3(0, u.y() > 0 ? c.half_height : -c.half_height, 0);
+        const Vec3 local = radius * u + Vec3(0, u.y() > 0 ? c.shape.half_height : -c.shape.half_height, 0);
         points.push_back(c.rotation * local);
       }
       return points;
     }
-    case ColliderShape::plane: {
+    case ShapeType::plane: {
       // A square patch parallel to the plane, `depth` behind it, around the projection of plane_center.
       const Vec3 n = c.normal;
       const Vec3 t1 = (std::abs(n.x()) < 0.9 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
@@ -91,8 +91,8 @@ std::vector<Vec3> sample_collider_surface(const Collider& c, Real spacing, Real 
                            (-plane_half_size + 2 * plane_half_size * j / m) * t2);
       return points;
     }
+    default: unsupported_collider_shape(c.shape.type);
   }
-  return {};
 }
 
 std::vector<Real> akinci_volumes(const std::vector<Vec3>& world, Real spacing, const CubicSplineKernel& kernel) {

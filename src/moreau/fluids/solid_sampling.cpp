@@ -6,7 +6,7 @@
 
 #include "moreau/fluids/boundary_sampling.hpp"
 #include "moreau/model/model.hpp"
-#include "moreau/rigid/shape_surface.hpp"
+#include "moreau/collision/shape_surface.hpp"
 
 namespace moreau {
 

@@ -9,7 +9,7 @@
 
 #include "moreau/collision/collider_surface.hpp"
 #include "moreau/errors.hpp"
-#include "moreau/rigid/shape_surface.hpp"
+#include "moreau/collision/shape_surface.hpp"
 
 namespace moreau {
 

@@ -3,11 +3,11 @@
 // Buffers are sized when the state is created; contact buffers only grow.
 #include <vector>
 
-#include "moreau/collision/contacts.hpp"
+#include "moreau/collision/particle_contacts.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 #include "moreau/model/model.hpp"
-#include "moreau/rigid/particle_body_contacts.hpp"
-#include "moreau/rigid/rigid_contacts.hpp"
+#include "moreau/collision/particle_body_contacts.hpp"
+#include "moreau/collision/rigid_contacts.hpp"
 
 namespace moreau {
 

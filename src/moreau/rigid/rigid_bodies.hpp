@@ -5,7 +5,7 @@
 // that frame. Colliders take part as kinematic bodies with infinite mass.
 #include <vector>
 
-#include "moreau/rigid/rigid_shape.hpp"
+#include "moreau/collision/shape.hpp"
 
 namespace moreau {
 
@@ -16,7 +16,7 @@ enum class BodyMotion {
 };
 
 struct RigidBodyModel {
-  std::vector<RigidShape> body_shape;
+  std::vector<Shape> body_shape;
   std::vector<Index> body_object;            // owning scene object
   std::vector<BodyMotion> body_motion;
   std::vector<Real> body_mass;               // kg (0 for colliders)

@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "moreau/geometry/mesh_readers.hpp"
-#include "moreau/rigid/mesh_shape.hpp"
+#include "moreau/collision/mesh_shape.hpp"
 #include "moreau/scene/object_builders.hpp"
 
 namespace moreau {
@@ -27,14 +27,14 @@ Quat read_orientation(const JsonObject& object) {
   return Quat(rotation_from_degrees(object.vec3("rotation_deg", Vec3::Zero())));
 }
 
-RigidShape read_shape(const JsonObject& shape, const SceneBuildContext& ctx) {
+Shape read_shape(const JsonObject& shape, const SceneBuildContext& ctx) {
   const std::string type = shape.choice("type", {"sphere", "box", "capsule", "cylinder", "convex_hull", "triangle_mesh"});
   shape.expect_keys(type == "sphere"          ? std::vector<std::string>{"type", "radius"}
                     : type == "box"           ? std::vector<std::string>{"type", "half_extents", "size"}
                     : type == "convex_hull"   ? std::vector<std::string>{"type", "mesh", "scale"}
                     : type == "triangle_mesh" ? std::vector<std::string>{"type", "mesh", "scale", "thickness"}
                                               : std::vector<std::string>{"type", "radius", "half_height"});
-  RigidShape s;
+  Shape s;
   if (type == "sphere") {
     s = make_sphere(shape.number("radius", Range::positive()));
   } else if (type == "box") {
@@ -82,7 +82,7 @@ RigidShape read_shape(const JsonObject& shape, const SceneBuildContext& ctx) {
 void build_rigid_body(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx) {
   RigidBodyModel& m = ctx.model.rigid;
   const JsonObject shape_json = object.object("shape");
-  RigidShape shape = read_shape(shape_json, ctx);
+  Shape shape = read_shape(shape_json, ctx);
   MassProperties props = mass_properties(shape);
   // Principal frame: the shape's own frame for primitives, its inertia eigenvectors for hulls.
   const Mat3 principal = move_to_principal_frame(shape, props);
@@ -148,7 +148,7 @@ void add_colliders_as_bodies(Model& model) {
     ObjectInfo& info = model.objects[o];
     if (info.kind != ObjectKind::collider) continue;
     const Collider& c = model.colliders[info.collider];
-    auto add = [&](RigidShape shape, const Vec3& position, const Quat& orientation) {
+    auto add = [&](Shape shape, const Vec3& position, const Quat& orientation) {
       m.body_shape.push_back(std::move(shape));
       m.body_object.push_back(static_cast<Index>(o));
       m.body_motion.push_back(c.velocity == Vec3::Zero() ? BodyMotion::fixed : BodyMotion::kinematic);
@@ -171,26 +171,27 @@ void add_colliders_as_bodies(Model& model) {
       add(make_plane(), point, Quat::FromTwoVectors(Vec3::UnitY(), normal));
     };
     if (info.body < 0) info.body = m.count();
-    switch (c.shape) {
-      case ColliderShape::plane: plane(c.position, c.normal); break;
-      case ColliderShape::box:
+    switch (c.shape.type) {
+      case ShapeType::plane: plane(c.position, c.normal); break;
+      case ShapeType::box:
         if (c.inside) {
           // A container: its six walls, each a plane facing inwards.
           for (int axis = 0; axis < 3; ++axis)
             for (int side : {-1, 1}) {
               const Vec3 n = c.rotation.col(axis) * Real(-side);
-              plane(c.position + c.rotation.col(axis) * (side * c.half_extents[axis]), n);
+              plane(c.position + c.rotation.col(axis) * (side * c.shape.half_extents[axis]), n);
             }
         } else {
-          add(make_box(c.half_extents), c.position, Quat(c.rotation));
+          add(c.shape, c.position, Quat(c.rotation));
         }
         break;
-      case ColliderShape::sphere:
-        if (!c.inside) add(make_sphere(c.radius), c.position, Quat::Identity());
+      case ShapeType::sphere:
+        if (!c.inside) add(c.shape, c.position, Quat::Identity());
         break;
-      case ColliderShape::capsule:
-        if (!c.inside) add(make_capsule(c.radius, c.half_height), c.position, Quat(c.rotation));
+      case ShapeType::capsule:
+        if (!c.inside) add(c.shape, c.position, Quat(c.rotation));
         break;
+      default: unsupported_collider_shape(c.shape.type);
     }
   }
 }

@@ -14,7 +14,7 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
-#include "moreau/rigid/particle_body_contacts.hpp"
+#include "moreau/collision/particle_body_contacts.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
 #include "moreau/solvers/xpbd/joint_projection.hpp"
 #include "moreau/solvers/xpbd/particle_body_contact_projection.hpp"

@@ -6,7 +6,7 @@
 // without this workspace.
 #include <vector>
 
-#include "moreau/collision/contacts.hpp"
+#include "moreau/collision/particle_contacts.hpp"
 #include "moreau/constraints/substep_start.hpp"
 #include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/math/types.hpp"

@@ -2,14 +2,14 @@
 #include <cmath>
 #include <limits>
 
-#include "moreau/rigid/narrow_phase_parts.hpp"
-#include "moreau/rigid/point_query.hpp"
+#include "moreau/collision/narrow_phase_parts.hpp"
+#include "moreau/collision/point_query.hpp"
 
 namespace moreau::narrow {
 
 namespace {
 
-Vec3 world_support(const RigidShape& s, const Pose& p, const Vec3& direction) {
+Vec3 world_support(const Shape& s, const Pose& p, const Vec3& direction) {
   return p.to_world(s.polyhedron.vertices[s.polyhedron.support_vertex(p.orientation.conjugate() * direction)]);
 }
 
@@ -19,7 +19,7 @@ struct FaceAxis {
 };
 
 // Deepest separation of `other` from each face plane of `self` (both posed).
-FaceAxis best_face_axis(const RigidShape& self, const Pose& ps, const RigidShape& other, const Pose& po) {
+FaceAxis best_face_axis(const Shape& self, const Pose& ps, const Shape& other, const Pose& po) {
   FaceAxis best;
   const ConvexPolyhedron& poly = self.polyhedron;
   for (Index f = 0; f < static_cast<Index>(poly.faces.size()); ++f) {
@@ -31,7 +31,7 @@ FaceAxis best_face_axis(const RigidShape& self, const Pose& ps, const RigidShape
   return best;
 }
 
-Feature face_feature(const RigidShape& s, const Pose& p, Index f) {
+Feature face_feature(const Shape& s, const Pose& p, Index f) {
   Feature out;
   const auto& face = s.polyhedron.faces[f];
   for (Index v : face)
@@ -42,7 +42,7 @@ Feature face_feature(const RigidShape& s, const Pose& p, Index f) {
 }
 
 // The face of `s` whose normal is most opposite to world direction n.
-Index incident_face(const RigidShape& s, const Pose& p, const Vec3& n) {
+Index incident_face(const Shape& s, const Pose& p, const Vec3& n) {
   const Vec3 local = p.orientation.conjugate() * n;
   Index best = 0;
   Real best_dot = std::numeric_limits<Real>::infinity();
@@ -53,7 +53,7 @@ Index incident_face(const RigidShape& s, const Pose& p, const Vec3& n) {
 }
 
 // The edge of `s` parallel to world direction d that is furthest along `axis`.
-void support_edge(const RigidShape& s, const Pose& p, const Vec3& d, const Vec3& axis, Vec3& e0, Vec3& e1) {
+void support_edge(const Shape& s, const Pose& p, const Vec3& d, const Vec3& axis, Vec3& e0, Vec3& e1) {
   const Vec3 dl = p.orientation.conjugate() * d, al = p.orientation.conjugate() * axis;
   const ConvexPolyhedron& poly = s.polyhedron;
   Real best = -std::numeric_limits<Real>::infinity();
@@ -68,7 +68,7 @@ void support_edge(const RigidShape& s, const Pose& p, const Vec3& d, const Vec3&
 
 }  // namespace
 
-void collide_polyhedra(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+void collide_polyhedra(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                        Candidates& out) {
   const FaceAxis face_a = best_face_axis(a, pa, b, pb);
   if (face_a.separation > margin) return;
@@ -120,7 +120,7 @@ void collide_polyhedra(const RigidShape& a, const Pose& pa, const RigidShape& b,
   }
 }
 
-void collide_sphere_polyhedron(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+void collide_sphere_polyhedron(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                                Candidates& out) {
   const SurfacePoint near = nearest_polyhedron_point(b.polyhedron, pb.to_local(pa.position));
   const Real separation = near.distance - a.radius;

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "moreau/rigid/narrow_phase_parts.hpp"
+#include "moreau/collision/narrow_phase_parts.hpp"
 
 namespace moreau::narrow {
 
@@ -21,7 +21,7 @@ constexpr int kCapPoints = 8;
 
 }  // namespace
 
-Feature support_feature(const RigidShape& s, const Pose& pose, const Vec3& direction) {
+Feature support_feature(const Shape& s, const Pose& pose, const Vec3& direction) {
   Feature f;
   const Vec3 d = pose.orientation.conjugate() * direction.normalized();
   auto add = [&](const Vec3& local) { f.points[f.count++] = pose.to_world(local); };
@@ -168,7 +168,7 @@ void contacts_from_features(const Feature& fa, const Feature& fb, const Vec3& n,
 namespace {
 
 struct MprShape {
-  const RigidShape* shape;
+  const Shape* shape;
   const Pose* pose;
   Real inflate;  // m, grows the shape so that near misses within the margin overlap
 };
@@ -188,7 +188,7 @@ void mpr_center(const void* object, ccd_vec3_t* out) {
 
 }  // namespace
 
-void collide_convex_mpr(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+void collide_convex_mpr(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                         Candidates& out) {
   const MprShape sa{&a, &pa, 0.5 * margin}, sb{&b, &pb, 0.5 * margin};
   ccd_t ccd;

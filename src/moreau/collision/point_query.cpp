@@ -1,11 +1,11 @@
-#include "moreau/rigid/point_query.hpp"
+#include "moreau/collision/point_query.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "moreau/rigid/mesh_shape.hpp"
-#include "moreau/rigid/narrow_phase_parts.hpp"
+#include "moreau/collision/mesh_shape.hpp"
+#include "moreau/collision/narrow_phase_parts.hpp"
 
 namespace moreau {
 
@@ -100,7 +100,7 @@ SurfacePoint nearest_polyhedron_point(const ConvexPolyhedron& poly, const Vec3& 
   return best;
 }
 
-SurfacePoint nearest_surface_point(const RigidShape& shape, const Vec3& p) {
+SurfacePoint nearest_surface_point(const Shape& shape, const Vec3& p) {
   switch (shape.type) {
     case ShapeType::sphere: return nearest_round_point(0, shape.radius, p);
     case ShapeType::capsule: return nearest_round_point(shape.half_height, shape.radius, p);

@@ -1,4 +1,4 @@
-#include "moreau/collision/contacts.hpp"
+#include "moreau/collision/particle_contacts.hpp"
 
 #include <omp.h>
 

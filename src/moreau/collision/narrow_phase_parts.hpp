@@ -2,7 +2,7 @@
 // Internal pieces of the narrow phase, shared by its source files (not part of the engine's API).
 #include <array>
 
-#include "moreau/rigid/narrow_phase.hpp"
+#include "moreau/collision/narrow_phase.hpp"
 
 namespace moreau::narrow {
 
@@ -38,7 +38,7 @@ struct Feature {
 };
 
 /// The feature of `shape` (posed) furthest along world direction `direction`.
-Feature support_feature(const RigidShape& shape, const Pose& pose, const Vec3& direction);
+Feature support_feature(const Shape& shape, const Pose& pose, const Vec3& direction);
 
 enum class Reference { automatic, a, b };
 
@@ -57,13 +57,13 @@ void closest_points_of_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, 
                                 Vec3& on_q);
 
 /// Box/hull against box/hull by separating axes.
-void collide_polyhedra(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+void collide_polyhedra(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                        Candidates& out);
 /// Sphere A against box/hull B.
-void collide_sphere_polyhedron(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+void collide_sphere_polyhedron(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                                Candidates& out);
 /// Any convex pair by Minkowski portal refinement (libccd) for the normal, then feature clipping.
-void collide_convex_mpr(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+void collide_convex_mpr(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                         Candidates& out);
 
 }  // namespace moreau::narrow

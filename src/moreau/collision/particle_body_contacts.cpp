@@ -1,12 +1,12 @@
-#include "moreau/rigid/particle_body_contacts.hpp"
+#include "moreau/collision/particle_body_contacts.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "moreau/constraints/particle_body_contact_rows.hpp"
 #include "moreau/model/state.hpp"
-#include "moreau/rigid/narrow_phase.hpp"
-#include "moreau/rigid/point_query.hpp"
+#include "moreau/collision/narrow_phase.hpp"
+#include "moreau/collision/point_query.hpp"
 
 namespace moreau {
 
@@ -43,7 +43,7 @@ void detect_particle_body_contacts(const Model& model, State& state) {
 
   for (Index b = 0; b < m.count(); ++b) {
     if (!takes_part(model, b)) continue;
-    const RigidShape& shape = m.body_shape[b];
+    const Shape& shape = m.body_shape[b];
     const Real body_reach = k * dt * (s.velocity[b].norm() + s.angular_velocity[b].norm() * shape.bounding_radius());
     // World bounds: |R| times the body-frame half extents.
     const Mat3 R = s.orientation[b].toRotationMatrix();

@@ -23,7 +23,7 @@
 // Coefficients combine as the mean of the two bodies' (Mueller 2020).
 #include <vector>
 
-#include "moreau/rigid/narrow_phase.hpp"
+#include "moreau/collision/narrow_phase.hpp"
 
 namespace moreau {
 

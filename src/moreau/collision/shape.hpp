@@ -30,7 +30,7 @@ struct ConvexPolyhedron {
 
 struct MeshShape;
 
-struct RigidShape {
+struct Shape {
   ShapeType type = ShapeType::sphere;
   Real radius = 0;                   // m: sphere, capsule, cylinder
   Real half_height = 0;              // m: capsule segment / cylinder, along the local y axis
@@ -56,25 +56,25 @@ struct MassProperties {
   Mat3 inertia = Mat3::Zero();      // kg m^2 per kg/m^3 of density, about the centroid
 };
 
-RigidShape make_sphere(Real radius);
-RigidShape make_box(const Vec3& half_extents);
-RigidShape make_capsule(Real radius, Real half_height);
-RigidShape make_cylinder(Real radius, Real half_height);
+Shape make_sphere(Real radius);
+Shape make_box(const Vec3& half_extents);
+Shape make_capsule(Real radius, Real half_height);
+Shape make_cylinder(Real radius, Real half_height);
 /// Half-space y <= 0 of its body frame (colliders only).
-RigidShape make_plane();
+Shape make_plane();
 /// A triangle mesh shape (its vertices in the body frame; mesh_shape.hpp).
-RigidShape make_triangle_mesh(std::shared_ptr<const MeshShape> mesh);
+Shape make_triangle_mesh(std::shared_ptr<const MeshShape> mesh);
 
 /// Convex hull of `points` (computed with qhull); coplanar facets merged into polygons. Throws
 /// std::invalid_argument when the points span no volume.
 ConvexPolyhedron convex_hull(const std::vector<Vec3>& points);
 
 /// Volume, centroid and inertia (per unit density) of a primitive or polyhedron in its own frame.
-MassProperties mass_properties(const RigidShape& shape);
+MassProperties mass_properties(const Shape& shape);
 
 /// Moves a shape into its principal frame: returns the rotation R (principal -> given frame) such
 /// that R^T I R is diagonal, and rewrites the polyhedron as R^T (x - centroid). Primitives are
 /// already principal; for them R = identity.
-Mat3 move_to_principal_frame(RigidShape& shape, MassProperties& props);
+Mat3 move_to_principal_frame(Shape& shape, MassProperties& props);
 
 }  // namespace moreau

@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "moreau/math/pose.hpp"
-#include "moreau/rigid/rigid_shape.hpp"
+#include "moreau/collision/shape.hpp"
 
 namespace moreau {
 
@@ -44,7 +44,7 @@ struct ContactManifold {
 };
 
 /// Contacts between A and B whose separation is below `margin` (m); count = 0 if none.
-ContactManifold collide_shapes(const RigidShape& a, const Pose& pose_a, const RigidShape& b, const Pose& pose_b,
+ContactManifold collide_shapes(const Shape& a, const Pose& pose_a, const Shape& b, const Pose& pose_b,
                                Real margin);
 
 /// The same manifold seen from the other body: A and B swapped, the normal reversed.
@@ -52,7 +52,7 @@ void swap_sides(ContactManifold& m);
 
 /// Contacts of a convex shape (A) with a triangle mesh (B), one manifold per triangle whose slab it
 /// touches (mesh_shape.hpp), appended to `out`.
-void collide_with_mesh(const RigidShape& convex, const Pose& pose, const RigidShape& mesh, const Pose& mesh_pose,
+void collide_with_mesh(const Shape& convex, const Pose& pose, const Shape& mesh, const Pose& mesh_pose,
                        Real margin, std::vector<ContactManifold>& out);
 
 /// World-space unit normal (B to A) of a contact in the current poses.

@@ -4,8 +4,8 @@
 #include <Eigen/Geometry>
 #include <cmath>
 
-#include "moreau/rigid/narrow_phase.hpp"
-#include "moreau/rigid/rigid_shape.hpp"
+#include "moreau/collision/narrow_phase.hpp"
+#include "moreau/collision/shape.hpp"
 
 namespace moreau {
 namespace {
@@ -60,7 +60,7 @@ TEST(RigidShapes, HullOfRotatedBoxCornersIsThatBox) {
   for (int k = 0; k < 8; ++k)
     points.push_back(offset + q * Vec3((k & 1 ? 1 : -1) * e.x(), (k & 2 ? 1 : -1) * e.y(), (k & 4 ? 1 : -1) * e.z()));
   points.push_back(offset);  // an interior point qhull must drop
-  RigidShape s;
+  Shape s;
   s.type = ShapeType::convex_hull;
   s.polyhedron = convex_hull(points);
   EXPECT_EQ(s.polyhedron.vertices.size(), 8u);
@@ -102,7 +102,7 @@ std::vector<Real> separations(const ContactManifold& m, const Pose& a, const Pos
 }
 
 TEST(NarrowPhase, BoxRestingOnBoxGivesFourCornersAtThePenetration) {
-  const RigidShape box = make_box(Vec3(0.5, 0.5, 0.5));
+  const Shape box = make_box(Vec3(0.5, 0.5, 0.5));
   const Pose lower{Vec3::Zero(), Quat::Identity()};
   const Pose upper{Vec3(0.1, 0.99, -0.05), Quat(Eigen::AngleAxisd(0.2, Vec3::UnitY()))};
   const ContactManifold m = collide_shapes(box, upper, box, lower, 0.05);
@@ -117,7 +117,7 @@ TEST(NarrowPhase, BoxRestingOnBoxGivesFourCornersAtThePenetration) {
 
 TEST(NarrowPhase, EdgeOnEdgeContactIsOnePointAtTheTrueDistance) {
   // Two unit cubes turned 45 degrees about perpendicular axes meet edge to edge.
-  const RigidShape box = make_box(Vec3(0.5, 0.5, 0.5));
+  const Shape box = make_box(Vec3(0.5, 0.5, 0.5));
   const Real reach = 0.5 * std::sqrt(2.0);
   const Pose a{Vec3(0, 2 * reach - 0.02, 0), Quat(Eigen::AngleAxisd(kPi / 4, Vec3::UnitZ()))};
   const Pose b{Vec3::Zero(), Quat(Eigen::AngleAxisd(kPi / 4, Vec3::UnitX()))};
@@ -128,7 +128,7 @@ TEST(NarrowPhase, EdgeOnEdgeContactIsOnePointAtTheTrueDistance) {
 }
 
 TEST(NarrowPhase, SphereAgainstBoxFaceEdgeAndInside) {
-  const RigidShape box = make_box(Vec3(1, 1, 1)), ball = make_sphere(0.5);
+  const Shape box = make_box(Vec3(1, 1, 1)), ball = make_sphere(0.5);
   const Pose at_box{Vec3::Zero(), Quat::Identity()};
   // Above the top face.
   ContactManifold m = collide_shapes(ball, {Vec3(0.3, 1.4, 0), Quat::Identity()}, box, at_box, 0.01);
@@ -149,7 +149,7 @@ TEST(NarrowPhase, SphereAgainstBoxFaceEdgeAndInside) {
 
 TEST(NarrowPhase, CapsuleLyingOnBoxTouchesAtBothEnds) {
   // Capsule along x (its y axis turned by 90 degrees) lying on a box; the pair goes through MPR.
-  const RigidShape capsule = make_capsule(0.1, 0.4), box = make_box(Vec3(1, 0.5, 1));
+  const Shape capsule = make_capsule(0.1, 0.4), box = make_box(Vec3(1, 0.5, 1));
   const Pose cap{Vec3(0.2, 0.595, 0.1), Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitZ()))};
   const Pose ground{Vec3::Zero(), Quat::Identity()};
   const ContactManifold m = collide_shapes(capsule, cap, box, ground, 0.02);
@@ -159,7 +159,7 @@ TEST(NarrowPhase, CapsuleLyingOnBoxTouchesAtBothEnds) {
 }
 
 TEST(NarrowPhase, CylinderStandingOnPlaneTouchesOnItsRim) {
-  const RigidShape cylinder = make_cylinder(0.3, 0.5), plane = make_plane();
+  const Shape cylinder = make_cylinder(0.3, 0.5), plane = make_plane();
   const Pose standing{Vec3(0, 0.49, 0), Quat::Identity()};
   const Pose ground{Vec3::Zero(), Quat::Identity()};
   const ContactManifold m = collide_shapes(cylinder, standing, plane, ground, 0.02);
@@ -173,7 +173,7 @@ TEST(NarrowPhase, CylinderStandingOnPlaneTouchesOnItsRim) {
 }
 
 TEST(NarrowPhase, SeparatedBeyondTheMarginGivesNothing) {
-  const RigidShape box = make_box(Vec3(0.5, 0.5, 0.5));
+  const Shape box = make_box(Vec3(0.5, 0.5, 0.5));
   const Pose a{Vec3(0, 1.2, 0), Quat::Identity()}, b{Vec3::Zero(), Quat::Identity()};
   EXPECT_EQ(collide_shapes(box, a, box, b, 0.1).count, 0);
   EXPECT_EQ(collide_shapes(box, a, box, b, 0.3).count, 4);  // within the margin: speculative points

@@ -1,10 +1,10 @@
-#include "moreau/rigid/narrow_phase.hpp"
+#include "moreau/collision/narrow_phase.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "moreau/rigid/mesh_shape.hpp"
-#include "moreau/rigid/narrow_phase_parts.hpp"
+#include "moreau/collision/mesh_shape.hpp"
+#include "moreau/collision/narrow_phase_parts.hpp"
 
 namespace moreau {
 
@@ -109,12 +109,12 @@ struct Core {
   Real radius;
 };
 
-Core round_core(const RigidShape& s, const Pose& pose) {
+Core round_core(const Shape& s, const Pose& pose) {
   const Vec3 axis = pose.orientation * Vec3(0, s.half_height, 0);
   return {pose.position - axis, pose.position + axis, s.radius};
 }
 
-void collide_round(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin,
+void collide_round(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                    Candidates& out) {
   const Core ca = round_core(a, pa), cb = round_core(b, pb);
   Vec3 on_a, on_b;
@@ -142,7 +142,7 @@ void collide_round(const RigidShape& a, const Pose& pa, const RigidShape& b, con
 }
 
 // A shape against the half-space y <= 0 of the plane's frame (B is the plane).
-void collide_plane(const RigidShape& a, const Pose& pa, const Pose& plane, Real margin, Candidates& out) {
+void collide_plane(const Shape& a, const Pose& pa, const Pose& plane, Real margin, Candidates& out) {
   const Vec3 n = plane.orientation * Vec3::UnitY();
   const Real offset = n.dot(plane.position);
   out.normal = n;
@@ -187,10 +187,10 @@ void swap_sides(ContactManifold& m) {
   else if (m.frame == NormalFrame::body_b) m.frame = NormalFrame::body_a;
 }
 
-ContactManifold collide_shapes(const RigidShape& a, const Pose& pa, const RigidShape& b, const Pose& pb, Real margin) {
+ContactManifold collide_shapes(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin) {
   using namespace narrow;
   // Put the plane, the polyhedron or the non-round shape second; remember to swap back.
-  auto rank = [](const RigidShape& s) {
+  auto rank = [](const Shape& s) {
     switch (s.type) {
       case ShapeType::sphere: return 0;
       case ShapeType::capsule: return 1;
@@ -224,7 +224,7 @@ ContactManifold collide_shapes(const RigidShape& a, const Pose& pa, const RigidS
   return reduce_to_manifold(c, pa, pb);
 }
 
-void collide_with_mesh(const RigidShape& convex, const Pose& pose, const RigidShape& mesh, const Pose& mesh_pose,
+void collide_with_mesh(const Shape& convex, const Pose& pose, const Shape& mesh, const Pose& mesh_pose,
                        Real margin, std::vector<ContactManifold>& out) {
   const MeshShape& m = *mesh.mesh;
   if (convex.type == ShapeType::plane || convex.type == ShapeType::triangle_mesh) return;

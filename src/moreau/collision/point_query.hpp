@@ -11,7 +11,7 @@
 //             projection) or edge
 //   plane     the half-space y <= 0: d = y
 //   mesh      the nearest triangle within one grid cell (mesh_shape.hpp); none: d = +infinity
-#include "moreau/rigid/rigid_shape.hpp"
+#include "moreau/collision/shape.hpp"
 
 namespace moreau {
 
@@ -21,7 +21,7 @@ struct SurfacePoint {
   Vec3 point = Vec3::Zero();       // body frame, on the surface
 };
 
-SurfacePoint nearest_surface_point(const RigidShape& shape, const Vec3& p);
+SurfacePoint nearest_surface_point(const Shape& shape, const Vec3& p);
 
 /// The same for a convex polyhedron alone.
 SurfacePoint nearest_polyhedron_point(const ConvexPolyhedron& poly, const Vec3& p);

@@ -18,13 +18,13 @@
 
 namespace moreau {
 
-struct RigidShape;
+struct Shape;
 struct SurfacePoint;  // point_query.hpp
 
 struct MeshShape {
   TriangleMesh surface;                // body frame
   std::vector<Vec3> normals;           // unit front normals, per triangle
-  std::vector<RigidShape> prisms;      // the slab behind each triangle (convex hulls)
+  std::vector<Shape> prisms;      // the slab behind each triangle (convex hulls)
   Real thickness = 0;                  // m
   Vec3 lower = Vec3::Zero(), upper = Vec3::Zero();  // body-frame bounds of the slabs
 

@@ -1,11 +1,11 @@
-#include "moreau/rigid/shape_surface.hpp"
+#include "moreau/collision/shape_surface.hpp"
 
 #include "moreau/geometry/primitive_meshes.hpp"
-#include "moreau/rigid/mesh_shape.hpp"
+#include "moreau/collision/mesh_shape.hpp"
 
 namespace moreau {
 
-TriangleMesh shape_surface(const RigidShape& s) {
+TriangleMesh shape_surface(const Shape& s) {
   switch (s.type) {
     case ShapeType::sphere: return lat_long_sphere(s.radius, 0);
     case ShapeType::capsule: return lat_long_sphere(s.radius, s.half_height);

@@ -1,12 +1,12 @@
-#include "moreau/rigid/mesh_shape.hpp"
+#include "moreau/collision/mesh_shape.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
-#include "moreau/rigid/point_query.hpp"
-#include "moreau/rigid/rigid_shape.hpp"
+#include "moreau/collision/point_query.hpp"
+#include "moreau/collision/shape.hpp"
 
 namespace moreau {
 
@@ -54,7 +54,7 @@ std::shared_ptr<const MeshShape> make_mesh_shape(const TriangleMesh& mesh, Real 
     std::vector<Vec3> corners;
     for (Index v : t) corners.push_back(X[v]);
     for (Index v : t) corners.push_back(X[v] - thickness * unit);
-    RigidShape prism;
+    Shape prism;
     prism.type = ShapeType::convex_hull;
     prism.polyhedron = convex_hull(corners);
     for (const Vec3& v : corners) m.lower = m.lower.cwiseMin(v), m.upper = m.upper.cwiseMax(v);

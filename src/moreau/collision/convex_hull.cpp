@@ -9,7 +9,7 @@ extern "C" {
 #include <cmath>
 #include <stdexcept>
 
-#include "moreau/rigid/rigid_shape.hpp"
+#include "moreau/collision/shape.hpp"
 
 namespace moreau {
 

@@ -1,4 +1,4 @@
-#include "moreau/rigid/rigid_contacts.hpp"
+#include "moreau/collision/rigid_contacts.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +15,7 @@ namespace {
 Pose body_pose(const RigidBodyState& s, Index b) { return {s.position[b], s.orientation[b]}; }
 // World bounds of body b grown by its margin; planes are unbounded.
 void body_bounds(const RigidBodyModel& m, const RigidBodyState& s, Index b, Real margin, Vec3& lo, Vec3& hi) {
-  const RigidShape& shape = m.body_shape[b];
+  const Shape& shape = m.body_shape[b];
   if (shape.type == ShapeType::plane) {
     lo = Vec3::Constant(-1e300);
     hi = Vec3::Constant(1e300);
@@ -134,7 +134,7 @@ void detect_rigid_contacts(const Model& model, State& state, int threads) {
 #pragma omp parallel for schedule(dynamic, 16) num_threads(threads)
   for (Index p = 0; p < pairs; ++p) {
     const Index a = bp.pairs[p][0], b = bp.pairs[p][1];
-    const RigidShape &sa = m.body_shape[a], &sb = m.body_shape[b];
+    const Shape &sa = m.body_shape[a], &sb = m.body_shape[b];
     const Real margin = pair_margin(a, b);
     std::vector<ContactManifold>& found = bp.pair_manifolds[p];
     found.clear();

@@ -1,4 +1,4 @@
-#include "moreau/rigid/rigid_shape.hpp"
+#include "moreau/collision/shape.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "moreau/rigid/mesh_shape.hpp"
+#include "moreau/collision/mesh_shape.hpp"
 
 namespace moreau {
 
@@ -53,7 +53,7 @@ Index ConvexPolyhedron::support_vertex(const Vec3& direction) const {
   return best;
 }
 
-Real RigidShape::bounding_radius() const {
+Real Shape::bounding_radius() const {
   switch (type) {
     case ShapeType::sphere: return radius;
     case ShapeType::capsule: return radius + half_height;
@@ -70,7 +70,7 @@ Real RigidShape::bounding_radius() const {
   return 0;
 }
 
-Vec3 RigidShape::support(const Vec3& d) const {
+Vec3 Shape::support(const Vec3& d) const {
   switch (type) {
     case ShapeType::sphere: return radius * d.normalized();
     case ShapeType::capsule: return Vec3(0, d.y() >= 0 ? half_height : -half_height, 0) + radius * d.normalized();
@@ -88,7 +88,7 @@ Vec3 RigidShape::support(const Vec3& d) const {
   return Vec3::Zero();
 }
 
-Vec3 RigidShape::local_half_extents() const {
+Vec3 Shape::local_half_extents() const {
   switch (type) {
     case ShapeType::sphere: return Vec3::Constant(radius);
     case ShapeType::capsule: return Vec3(radius, radius + half_height, radius);
@@ -105,22 +105,22 @@ Vec3 RigidShape::local_half_extents() const {
   return Vec3::Constant(std::numeric_limits<Real>::infinity());
 }
 
-RigidShape make_sphere(Real radius) {
-  RigidShape s;
+Shape make_sphere(Real radius) {
+  Shape s;
   s.type = ShapeType::sphere;
   s.radius = radius;
   return s;
 }
 
-RigidShape make_triangle_mesh(std::shared_ptr<const MeshShape> mesh) {
-  RigidShape s;
+Shape make_triangle_mesh(std::shared_ptr<const MeshShape> mesh) {
+  Shape s;
   s.type = ShapeType::triangle_mesh;
   s.mesh = std::move(mesh);
   return s;
 }
 
-RigidShape make_box(const Vec3& e) {
-  RigidShape s;
+Shape make_box(const Vec3& e) {
+  Shape s;
   s.type = ShapeType::box;
   s.half_extents = e;
   ConvexPolyhedron& p = s.polyhedron;
@@ -134,8 +134,8 @@ RigidShape make_box(const Vec3& e) {
 
 namespace {
 // A round shape along its local y axis (capsule or cylinder).
-RigidShape make_round(ShapeType type, Real radius, Real half_height) {
-  RigidShape s;
+Shape make_round(ShapeType type, Real radius, Real half_height) {
+  Shape s;
   s.type = type;
   s.radius = radius;
   s.half_height = half_height;
@@ -143,12 +143,12 @@ RigidShape make_round(ShapeType type, Real radius, Real half_height) {
 }
 }  // namespace
 
-RigidShape make_capsule(Real radius, Real half_height) { return make_round(ShapeType::capsule, radius, half_height); }
+Shape make_capsule(Real radius, Real half_height) { return make_round(ShapeType::capsule, radius, half_height); }
 
-RigidShape make_cylinder(Real radius, Real half_height) { return make_round(ShapeType::cylinder, radius, half_height); }
+Shape make_cylinder(Real radius, Real half_height) { return make_round(ShapeType::cylinder, radius, half_height); }
 
-RigidShape make_plane() {
-  RigidShape s;
+Shape make_plane() {
+  Shape s;
   s.type = ShapeType::plane;
   return s;
 }
@@ -181,7 +181,7 @@ MassProperties polyhedron_mass_properties(const ConvexPolyhedron& p) {
 
 }  // namespace
 
-MassProperties mass_properties(const RigidShape& s) {
+MassProperties mass_properties(const Shape& s) {
   MassProperties m;
   const Real r = s.radius, r2 = r * r, a = s.half_height;
   switch (s.type) {
@@ -221,7 +221,7 @@ MassProperties mass_properties(const RigidShape& s) {
   return m;
 }
 
-Mat3 move_to_principal_frame(RigidShape& shape, MassProperties& props) {
+Mat3 move_to_principal_frame(Shape& shape, MassProperties& props) {
   if (shape.type != ShapeType::convex_hull) return Mat3::Identity();
   Eigen::SelfAdjointEigenSolver<Mat3> eig(props.inertia);
   Mat3 R = eig.eigenvectors();
