@@ -132,7 +132,7 @@ TEST(CommandLine, FluidInputErrorsNameTheirKey) {
                    {"objects[2].particle_radius", "share one particle radius"});
   expect_bad_input("no_volume", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05})"),
                    {"objects[1].block", "exactly one of", "emitter"});
-  expect_bad_input("viscous", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "viscosity": 10,
+  expect_bad_input("viscous", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "viscosity": 1e4,
       "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})"),
                    {"objects[1].viscosity", "0.125 h^2 / nu"});
   const std::string jet = R"({"name": "jet", "kind": "fluid", "particle_radius": 0.05, "emitter": )";

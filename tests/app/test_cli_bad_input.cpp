@@ -105,7 +105,7 @@ TEST(CliBadInput, FemEnergyAndMomentumProbesTakeNoObject) {
   const std::string dir = test::temp_dir("femprobe");
   std::ofstream(dir + "/beam.json") << R"({"name": "beam",
     "settings": {"solver": "fem", "dt": 0.01, "duration": 0.02, "integrator": "midpoint", "gravity": [0, 0, 0]},
-    "solids": [{"name": "beam", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 0.1, 0.1], "cells": [4, 1, 1], "element": "hex8"},
+    "objects": [{"name": "beam", "kind": "solid", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 0.1, 0.1], "cells": [4, 1, 1], "element": "hex8"},
                 "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.3, "density": 1000}}],
     "probes": [{"name": "E", "type": "energy", "object": "nothing"}]})";
   expect_bad_input(fmt::format("check {}/beam.json", dir), "probes[0].object: unknown key; allowed here: name, type, quantity");
@@ -132,10 +132,10 @@ TEST(CliBadInput, ScenesTooLargeForMemoryAreRefusedBeforeAllocating) {
   expect_bad_input(fmt::format("check {}/soft.json", dir), "objects[0].mesh.cells: 4.8e+10 tetrahedra need at least 1.44e+04 GB");
   expect_bad_input(fmt::format("check {}/soft.json", dir), "raise the limit with --memory-limit <GB>");
   const std::string scenes = std::string(MOREAU_SOURCE_DIR) + "/scenes/";
-  expect_bad_input(fmt::format("check {}cavity_re1000.json --set fluid.mesh.cells=[100000,100000]", scenes),
-                   "fluid.mesh.cells: 1e+10 cells need at least 6e+04 GB");
-  expect_bad_input(fmt::format("check {}fem_beam.json --set solids.beam.mesh.cells=[100000,100000,2]", scenes),
-                   "solids[0].mesh.cells: 2e+10 cells need at least 2e+05 GB");
+  expect_bad_input(fmt::format("check {}cavity_re1000.json --set objects.fluid.mesh.cells=[100000,100000]", scenes),
+                   "objects[0].mesh.cells: 1e+10 cells need at least 6e+04 GB");
+  expect_bad_input(fmt::format("check {}fem_beam.json --set objects.beam.mesh.cells=[100000,100000,2]", scenes),
+                   "objects[0].mesh.cells: 2e+10 cells need at least 2e+05 GB");
   // A small scene under a smaller limit given on the command line.
   const std::string small = fmt::format("{}/soft.json --set objects.b.mesh.cells=[40,40,40]", dir);
   expect_bad_input(fmt::format("check {} --memory-limit 0.1", small),
@@ -204,7 +204,7 @@ TEST(CliNumericalFailure, ANonFiniteLoadNamesItselfAndTheTime) {
   for (const std::string load : {"1/(t-t)", "0/0"}) {
     const std::string scene = test::write_scene("nonfinite", fmt::format(R"({{"name": "beam",
       "settings": {{"solver": "fem", "integrator": "midpoint", "dt": 0.01, "duration": 0.05, "gravity": [0, 0, 0]}},
-      "solids": [{{"name": "bar", "mesh": {{"type": "box", "min": [0, 0, 0], "max": [1, 0.1, 0.1], "cells": [4, 1, 1]}},
+      "objects": [{{"name": "bar", "kind": "solid", "mesh": {{"type": "box", "min": [0, 0, 0], "max": [1, 0.1, 0.1], "cells": [4, 1, 1]}},
                   "material": {{"youngs_modulus": 1e6, "poisson_ratio": 0.3, "density": 1000}},
                   "dirichlet": [{{"where": {{"boundary": "left"}}, "value": [0, 0, 0]}}],
                   "loads": [{{"type": "traction", "where": {{"boundary": "right"}}, "value": [0, "{}", 0]}}]}}]}})",
@@ -212,7 +212,7 @@ TEST(CliNumericalFailure, ANonFiniteLoadNamesItselfAndTheTime) {
     const std::string out = fs::path(scene).parent_path().string() + "/out";
     const test::CommandResult r = test::run_moreau(fmt::format("run {} --out {} --quiet", scene, out));
     EXPECT_EQ(r.exit_code, 3) << load << "\n" << r.output;
-    EXPECT_NE(r.output.find("solids[0].loads[0].value[1]"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("objects[0].loads[0].value[1]"), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("at t = 0.005 s"), std::string::npos) << r.output;  // the midpoint rule loads at t + dt/2
     EXPECT_NE(r.output.find("step 1"), std::string::npos) << r.output;
     std::ifstream summary(out + "/run.json");

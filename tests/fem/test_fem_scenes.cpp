@@ -35,7 +35,7 @@ TEST(FemScenes, StaticUniaxialTensionMatchesTheHomogeneousSolution) {
   const std::string scene = write_scene("fem_tension", fmt::format(R"({{"name": "tension",
     "settings": {{"solver": "fem", "integrator": "static", "dt": 0.25, "duration": 1, "gravity": [0, 0, 0],
                  "newton": {{"tolerance": 1e-12}}}},
-    "solids": [{{"name": "bar", "mesh": {{"type": "box", "min": [0, 0, 0], "max": [1, 0.2, 0.2], "cells": [5, 2, 2]}},
+    "objects": [{{"name": "bar", "kind": "solid", "mesh": {{"type": "box", "min": [0, 0, 0], "max": [1, 0.2, 0.2], "cells": [5, 2, 2]}},
                 "material": {{"youngs_modulus": {}, "poisson_ratio": {}, "density": 1000}},
                 "loads": [{{"type": "traction", "where": {{"boundary": "right"}}, "value": ["{}*t", 0, 0]}}],
                 "dirichlet": [{{"where": {{"boundary": "left"}}, "value": [0, null, null]}},
@@ -123,7 +123,7 @@ $EndElements
   std::ofstream(scene) << fmt::format(R"({{"name": "plate",
     "settings": {{"solver": "fem", "integrator": "static", "dt": 0.5, "duration": 1, "gravity": [0, 0, 0],
                  "newton": {{"tolerance": 1e-12}}, "output": {{"formats": []}}}},
-    "solids": [{{"name": "plate", "mesh": {{"type": "msh", "file": "plate.msh"}},
+    "objects": [{{"name": "plate", "kind": "solid", "mesh": {{"type": "msh", "file": "plate.msh"}},
                 "material": {{"youngs_modulus": {}, "poisson_ratio": {}, "density": 1000}},
                 "loads": [{{"type": "traction", "where": {{"boundary": "right"}}, "value": ["{}*t", 0]}}],
                 "dirichlet": [{{"where": {{"boundary": "left"}}, "value": [0, null]}},
@@ -165,7 +165,7 @@ $EndElements
   EXPECT_NEAR(reversed_rows.back()[2], rows.back()[2], 1e-12);
   // A boundary the file does not name is reported with the names it does.
   std::ofstream(dir + "/bad.json") << R"({"name": "bad", "settings": {"solver": "fem"},
-    "solids": [{"name": "p", "mesh": {"type": "msh", "file": "plate.msh"}, "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.3, "density": 1},
+    "objects": [{"name": "p", "kind": "solid", "mesh": {"type": "msh", "file": "plate.msh"}, "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.3, "density": 1},
                 "dirichlet": [{"where": {"boundary": "top"}, "value": [0, 0]}]}]})";
   const auto bad = test::run_moreau(fmt::format("run {} --out {} --quiet", dir + "/bad.json", dir + "/bad_out"));
   EXPECT_EQ(bad.exit_code, 2) << bad.output;
@@ -178,7 +178,7 @@ TEST(FemScenes, DynamicRunKeepsEnergyAfterAPulse) {
   // relative (Newton tolerance 1e-10) over 75 steps of 0.02 s.
   const std::string scene = write_scene("fem_beam", R"J({"name": "beam",
     "settings": {"solver": "fem", "dt": 0.02, "duration": 2, "integrator": "energy_momentum", "gravity": [0, 0, 0]},
-    "solids": [{"name": "beam", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 0.1, 0.1], "cells": [20, 2, 2]},
+    "objects": [{"name": "beam", "kind": "solid", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 0.1, 0.1], "cells": [20, 2, 2]},
                 "material": {"model": "neo_hookean", "youngs_modulus": 1e7, "poisson_ratio": 0.3, "density": 1000},
                 "loads": [{"type": "nodal_force", "where": {"box": {"min": [0.9, -1, -1], "max": [2, 2, 2]}},
                            "value": ["0", "1*(t<0.5)", "0"]}],
@@ -210,7 +210,7 @@ TEST(FemScenes, StrongPulseAsksForASmallerStepAndRunsWithIt) {
   // is 1e-10 of the step's forces).
   const std::string text = R"J({"name": "pulse_bar",
     "settings": {"solver": "fem", "dt": 0.02, "duration": 2, "integrator": "energy_momentum", "gravity": [0, 0, 0]},
-    "solids": [{"name": "bar", "mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 0.1], "cells": [40, 4]},
+    "objects": [{"name": "bar", "kind": "solid", "mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 0.1], "cells": [40, 4]},
                 "material": {"model": "neo_hookean", "youngs_modulus": 5e4, "poisson_ratio": 0.3, "density": 100},
                 "loads": [{"type": "nodal_force", "where": {"boundary": "right"}, "value": ["180*(t<0.3)", "45*(t<0.3)"]}]}],
     "probes": [{"name": "E", "type": "energy", "quantity": "total"}]})J";
@@ -238,7 +238,7 @@ TEST(FemScenes, ResultsAreBitIdenticalOnOneAndTwoThreads) {
   const std::string scene = write_scene("fem_threads", R"J({"name": "twist",
     "settings": {"solver": "fem", "dt": 0.01, "duration": 0.2, "integrator": "energy_momentum", "gravity": [0, -9.81, 0],
                  "output": {"formats": []}},
-    "solids": [{"name": "block", "mesh": {"type": "box", "min": [0, 0, 0], "max": [0.4, 0.2, 0.2], "cells": [8, 4, 4], "element": "tet4"},
+    "objects": [{"name": "block", "kind": "solid", "mesh": {"type": "box", "min": [0, 0, 0], "max": [0.4, 0.2, 0.2], "cells": [8, 4, 4], "element": "tet4"},
                 "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000}, "velocity": [0, 0, 0],
                 "dirichlet": [{"where": {"boundary": "left"}, "value": ["0", "0.05*sin(10*t)", "0"]}]}],
     "probes": [{"name": "tip", "type": "point", "object": "block", "nearest": [0.4, 0.2, 0.2]},
@@ -304,7 +304,7 @@ TEST(FemScenes, HingedBeamShowcaseKeepsEnergyAndJoints) {
 TEST(FemScenes, BadInputNamesItsKey) {
   auto scene = [](const std::string& solid_extra, const std::string& settings_extra = "") {
     return R"({"name": "f", "settings": {"solver": "fem")" + settings_extra + R"(},
-      "solids": [{"name": "s", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [2, 2, 2]},
+      "objects": [{"name": "s", "kind": "solid", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [2, 2, 2]},
                   "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000})" +
            solid_extra + "}]}";
   };
@@ -317,25 +317,34 @@ TEST(FemScenes, BadInputNamesItsKey) {
     EXPECT_FALSE(fs::exists(out)) << "bad input must not leave output behind";
   };
   expect_bad("fem_boundary", scene(R"(, "dirichlet": [{"where": {"boundary": "side"}, "value": [0, 0, 0]}])"),
-             {"solids[0].dirichlet[0].where.boundary", "'side'", "left"});
+             {"objects[0].dirichlet[0].where.boundary", "'side'", "left"});
   expect_bad("fem_expression", scene(R"(, "loads": [{"type": "nodal_force", "where": {"boundary": "top"}, "value": [0, "sin(", 0]}])"),
-             {"solids[0].loads[0].value", "not a valid expression"});
+             {"objects[0].loads[0].value", "not a valid expression"});
   expect_bad("fem_components", scene(R"(, "loads": [{"type": "nodal_force", "where": {"boundary": "top"}, "value": [0, 1]}])"),
-             {"solids[0].loads[0].value", "3 entries"});
+             {"objects[0].loads[0].value", "3 entries"});
   expect_bad("fem_traction", scene(R"(, "loads": [{"type": "traction", "where": {"box": {"min": [0, 0, 0], "max": [1, 1, 1]}}, "value": [0, 1, 0]}])"),
-             {"solids[0].loads[0].where", "named boundary"});
+             {"objects[0].loads[0].where", "named boundary"});
   expect_bad("fem_static", scene("", R"(, "integrator": "static")"), {"Dirichlet", "rigid motion"});
   expect_bad("fem_material", scene(R"(, "dirichlet": [])").replace(scene("").find("\"youngs_modulus\""), 0, "\"lame_mu\": 1, "),
-             {"solids[0].material", "either"});
+             {"objects[0].material", "either"});
   expect_bad("fem_integrator", scene("", R"(, "integrator": "rk4")"), {"settings.integrator", "energy_momentum"});
   expect_bad("fem_linear_solver", scene("", R"(, "linear_solver": {"type": "gmres"})"), {"settings.linear_solver", "fluids"});
   const std::string body = R"({"name": "f", "settings": {"solver": "fem", "integrator": "static"},
-      "rigid_bodies": [{"name": "b", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}, "density": 1000}]})";
-  expect_bad("fem_rigid_static", body, {"rigid_bodies", "dynamic integrator"});
+      "objects": [{"name": "b", "kind": "rigid_body", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}, "density": 1000}]})";
+  expect_bad("fem_rigid_static", body, {"objects[0].kind", "dynamic integrator"});
   const std::string joint = R"({"name": "f", "settings": {"solver": "fem"},
-      "rigid_bodies": [{"name": "b", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}, "density": 1000}],
+      "objects": [{"name": "b", "kind": "rigid_body", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}, "density": 1000}],
       "joints": [{"name": "j", "type": "spherical", "bodies": ["b", "nowhere"], "anchor": [0, 0, 0]}]})";
   expect_bad("fem_joint_end", joint, {"joints[0].bodies", "'nowhere'"});
+  // One vocabulary with the constraint engine: its kinds are named as such, the old FEM lists
+  // point at "objects", and a joint is a "hinge" in both engines.
+  expect_bad("fem_cloth", scene("").replace(scene("").find("\"kind\": \"solid\""), 15, "\"kind\": \"cloth\""),
+             {"objects[0].kind", "'cloth'", "constraint engine"});
+  expect_bad("fem_old_solids", R"({"name": "f", "settings": {"solver": "fem"}, "solids": []})", {"solids", "\"objects\""});
+  expect_bad("fem_revolute", std::string(joint).replace(joint.find("\"spherical\""), 11, "\"revolute\""),
+             {"joints[0].type", "'revolute'", "hinge"});
+  expect_bad("fem_same_name", scene(R"(}, {"name": "s", "kind": "rigid_body", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}, "density": 1)"),
+             {"objects[1].name", "'s'"});
 }
 
 }  // namespace

@@ -61,7 +61,7 @@ TEST(FlowScenes, CylinderBenchmark2D1DragLiftAndPressureDrop) {
   std::vector<Real> lift, dp;
   for (int n : {2, 8}) {
     const std::string out = test::temp_dir(fmt::format("cylinder{}", n)) + "/out";
-    const auto rows = test::run_scene(scene_path("cylinder_re20.json"), out, fmt::format("--set fluid.mesh.parameters.N={}", n));
+    const auto rows = test::run_scene(scene_path("cylinder_re20.json"), out, fmt::format("--set objects.fluid.mesh.parameters.N={}", n));
     ASSERT_EQ(rows.size(), 1u);
     // time, force.x, force.y, coefficient.x, coefficient.y, dp
     const auto& r = rows[0];
@@ -87,7 +87,7 @@ TEST(FlowScenes, CavitySceneMatchesGhiaAndWritesFrames) {
   // vorticity.
   const std::string out = test::temp_dir("cavity_scene") + "/out";
   test::run_scene(scene_path("cavity_re1000.json"), out,
-                  "--set fluid.viscosity=0.01 --set fluid.continuation.viscosity=[0.01] --set fluid.mesh.cells=[64,64]");
+                  "--set objects.fluid.viscosity=0.01 --set objects.fluid.continuation.viscosity=[0.01] --set objects.fluid.mesh.cells=[64,64]");
   const auto u = read_line(out + "/line_vertical_centreline.csv", 1, 2);
   const auto v = read_line(out + "/line_horizontal_centreline.csv", 0, 3);
   ASSERT_EQ(u.size(), 129u);
@@ -111,9 +111,10 @@ TEST(FlowScenes, PicardFallbackRescuesNewtonFromRest) {
   // there in 5; run.json must report the Picard iterations.
   const std::string base = R"({"name": "cavity", "settings": {"solver": "fem", "integrator": "steady", "gravity": [0, 0, 0],
       "newton": {"tolerance": 1e-8, "picard_fallback": PICARD, "max_iterations": 6}},
-    "fluid": {"mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [64, 64]}, "density": 1, "viscosity": 0.001,
+    "objects": [{"name": "fluid", "kind": "fluid", "mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [64, 64]},
+      "density": 1, "viscosity": 0.001,
       "boundaries": [{"where": {"side": "top"}, "velocity": [1, 0]}, {"where": {"side": ["left", "right", "bottom"]}, "type": "no_slip"}],
-      "pressure_reference": {"point": [0, 0], "value": 0}},
+      "pressure_reference": {"point": [0, 0], "value": 0}}],
     "probes": [{"name": "centre", "type": "point", "at": [0.5, 0.5]}]})";
   std::string without = base, with = base;
   without.replace(without.find("PICARD"), 6, "false");
@@ -142,9 +143,10 @@ TEST(FlowScenes, NewtonsLineSearchReachesRe1000FromRest) {
   // values u = -0.0608, v = 0.02526; 0.01 as above), and no Picard iteration ran.
   const std::string scene = test::write_scene("newton_from_rest", R"({"name": "cavity", "settings": {"solver": "fem",
       "integrator": "steady", "gravity": [0, 0, 0], "newton": {"tolerance": 1e-8, "picard_fallback": false}},
-    "fluid": {"mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [64, 64]}, "density": 1, "viscosity": 0.001,
+    "objects": [{"name": "fluid", "kind": "fluid", "mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [64, 64]},
+      "density": 1, "viscosity": 0.001,
       "boundaries": [{"where": {"side": "top"}, "velocity": [1, 0]}, {"where": {"side": ["left", "right", "bottom"]}, "type": "no_slip"}],
-      "pressure_reference": {"point": [0, 0], "value": 0}},
+      "pressure_reference": {"point": [0, 0], "value": 0}}],
     "probes": [{"name": "centre", "type": "point", "at": [0.5, 0.5]}]})");
   const std::string out = (fs::path(scene).parent_path() / "out").string();
   const auto rows = test::run_scene(scene, out);
@@ -163,7 +165,7 @@ TEST(FlowScenes, Cavity3DSceneWithGmresMatchesUmfpackAndIsMirrorSymmetric) {
   const char* overrides[2] = {"", "--set 'settings.linear_solver={\"type\": \"direct\"}'"};
   for (int k = 0; k < 2; ++k) {
     const std::string out = test::temp_dir(fmt::format("cavity3d_{}", k)) + "/out";
-    const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet --set 'fluid.mesh.cells=[8,8,8]' {}",
+    const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet --set 'objects.fluid.mesh.cells=[8,8,8]' {}",
                                                 scene_path("cavity3d_re400.json"), out, overrides[k]));
     ASSERT_EQ(r.exit_code, 0) << r.output;
     u[k] = read_line(out + "/line_vertical_centreline.csv", 1, 3);
@@ -194,7 +196,7 @@ TEST(FlowScenes, TransientRunIsBitIdenticalOnOneAndTwoThreads) {
       const std::string out = test::temp_dir(fmt::format("flow_threads{}_{}", threads, linear)) + "/out";
       const auto r = test::run_moreau(fmt::format(
           "run {} --out {} --quiet --threads {} --set settings.integrator=midpoint --set settings.dt=0.05 "
-          "--set settings.duration=0.3 --set fluid.mesh.parameters.N=1 --set settings.linear_solver.type={}",
+          "--set settings.duration=0.3 --set objects.fluid.mesh.parameters.N=1 --set settings.linear_solver.type={}",
           scene_path("cylinder_re20.json"), out, threads, linear));
       ASSERT_EQ(r.exit_code, 0) << r.output;
       csv[threads - 1] = read_text(out + "/probes.csv");
@@ -205,10 +207,11 @@ TEST(FlowScenes, TransientRunIsBitIdenticalOnOneAndTwoThreads) {
 }
 
 TEST(FlowScenes, BadInputNamesItsKey) {
-  auto scene = [](const std::string& fluid_extra, const std::string& boundaries, const std::string& top_extra = "") {
+  auto scene = [](const std::string& fluid_extra, const std::string& boundaries, const std::string& top_extra = "",
+                  const std::string& more_objects = "") {
     return R"({"name": "f", "settings": {"solver": "fem", "integrator": "steady"},
-      "fluid": {"mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [4, 4]}, "density": 1, "viscosity": 0.01,
-                "boundaries": )" + boundaries + fluid_extra + "}" + top_extra + "}";
+      "objects": [{"name": "fluid", "kind": "fluid", "mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [4, 4]},
+                   "density": 1, "viscosity": 0.01, "boundaries": )" + boundaries + fluid_extra + "}" + more_objects + "]" + top_extra + "}";
   };
   const std::string closed = R"([{"where": {"side": "top"}, "velocity": [1, 0]}, {"where": {"side": ["left", "right", "bottom"]}, "type": "no_slip"}])";
   const std::string open = R"J([{"where": {"side": ["top", "bottom"]}, "type": "no_slip"}, {"where": {"side": "left"}, "velocity": ["y*(1-y)", 0]}, {"where": {"side": "right"}, "type": "outflow"}])J";
@@ -220,29 +223,32 @@ TEST(FlowScenes, BadInputNamesItsKey) {
     for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "missing '" << n << "' in: " << r.output;
     EXPECT_FALSE(fs::exists(out)) << "bad input must not leave output behind";
   };
-  expect_bad("flow_undetermined", scene("", closed), {"fluid.boundaries", "pressure_reference"});
-  expect_bad("flow_overfixed", scene(R"(, "pressure_reference": {"mean": 0})", open), {"fluid.pressure_reference", "outflow"});
-  expect_bad("flow_side", scene("", R"([{"where": {"side": "lid"}, "velocity": [1, 0]}])"), {"fluid.boundaries[0].where.side", "'lid'", "top"});
+  expect_bad("flow_undetermined", scene("", closed), {"objects[0].boundaries", "pressure_reference"});
+  expect_bad("flow_overfixed", scene(R"(, "pressure_reference": {"mean": 0})", open), {"objects[0].pressure_reference", "outflow"});
+  expect_bad("flow_side", scene("", R"([{"where": {"side": "lid"}, "velocity": [1, 0]}])"), {"objects[0].boundaries[0].where.side", "'lid'", "top"});
   expect_bad("flow_expression", scene("", R"([{"where": {"side": "left"}, "velocity": ["sin(", 0]}])"),
-             {"fluid.boundaries[0].velocity", "not a valid expression"});
+             {"objects[0].boundaries[0].velocity", "not a valid expression"});
   expect_bad("flow_outflow_velocity", scene("", R"([{"where": {"side": "left"}, "type": "outflow", "velocity": [1, 0]}])"),
-             {"fluid.boundaries[0].velocity", "outflow"});
+             {"objects[0].boundaries[0].velocity", "outflow"});
   expect_bad("flow_triangles", scene("", open).replace(scene("", open).find("\"cells\""), 0, "\"element\": \"tri3\", "),
-             {"fluid.mesh", "quadrilateral"});
+             {"objects[0].mesh", "quadrilateral"});
   expect_bad("flow_continuation", scene(R"(, "continuation": {"viscosity": [0.1]})", open).replace(
                                       scene("", open).find("\"steady\""), 8, "\"midpoint\""),
-             {"fluid.continuation", "steady"});
+             {"objects[0].continuation", "steady"});
   expect_bad("flow_probe", scene("", open, R"(, "probes": [{"name": "p", "type": "point", "at": [2, 0.5]}])"),
              {"probes[0].at", "outside"});
   expect_bad("flow_geo", scene("", open).replace(scene("", open).find("\"type\": \"rectangle\""), 19, "\"type\": \"geo\", \"file\": \"none.geo\""),
-             {"fluid.mesh.file", "none.geo"});
+             {"objects[0].mesh.file", "none.geo"});
   const std::string gmres_in_direct = R"("integrator": "steady", "linear_solver": {"type": "direct", "restart": 20})";
   expect_bad("flow_linear_key", scene("", open).replace(scene("", open).find("\"integrator\": \"steady\""), 22, gmres_in_direct),
              {"settings.linear_solver.restart", "gmres"});
   const std::string unknown_solver = R"("integrator": "steady", "linear_solver": {"type": "cg"})";
   expect_bad("flow_linear_type", scene("", open).replace(scene("", open).find("\"integrator\": \"steady\""), 22, unknown_solver),
              {"settings.linear_solver.type", "'cg'", "gmres"});
-  expect_bad("flow_with_solid", scene("", open, R"(, "solids": [])"), {"solids", "fluid-structure"});
+  expect_bad("flow_with_solid",
+             scene("", open, "", R"(, {"name": "s", "kind": "solid", "mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [1, 1]},
+                                  "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000}})"),
+             {"objects[0].kind", "immersed fluid-structure coupling"});
 }
 
 }  // namespace

@@ -223,9 +223,9 @@ TEST(FluidConservation, CollidingBlobsKeepLinearAndAngularMomentum) {
   // whose moment about x_s differs by h v_ij x dx. XSPH is off: it smooths velocity differences
   // along W_ij rather than along x_ij and damps rotation, so it does not conserve angular momentum.
   Scene scene = scene_from_json(R"({"name": "blobs", "settings": {"dt": 0.002, "substeps": 4, "gravity": [0, 0, 0]},
-    "objects": [{"name": "a", "kind": "fluid", "particle_radius": 0.01, "viscosity": 1e-3, "xsph": 0,
+    "objects": [{"name": "a", "kind": "fluid", "particle_radius": 0.01, "viscosity": 1, "xsph": 0,
                  "block": {"min": [-0.2, 0, 0], "max": [-0.08, 0.12, 0.12]}, "velocity": [1, 0, 0]},
-                {"name": "b", "kind": "fluid", "particle_radius": 0.01, "viscosity": 1e-3, "xsph": 0, "density": 800,
+                {"name": "b", "kind": "fluid", "particle_radius": 0.01, "viscosity": 0.8, "xsph": 0, "density": 800,
                  "block": {"min": [0.08, 0.06, 0], "max": [0.2, 0.18, 0.12]}, "velocity": [-1, 0, 0]}]})");
   const Vec3 p0 = linear_momentum(scene.model, scene.state, -1);
   const Vec3 L0 = angular_momentum(scene.model, scene.state, -1, Vec3::Zero());

@@ -17,11 +17,11 @@ namespace fs = std::filesystem;
 // A transient flow small enough for a test: the lid-driven cavity on 16 x 16 cells by BDF2.
 constexpr const char* kTransientCavity = R"({"name": "transient_cavity",
   "settings": {"solver": "fem", "integrator": "bdf2", "dt": 0.05, "gravity": [0, 0, 0]},
-  "fluid": {"mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [16, 16]},
-            "density": 1.0, "viscosity": 0.01,
-            "boundaries": [{"where": {"side": "top"}, "velocity": ["1", "0"]},
-                           {"where": {"side": ["left", "right", "bottom"]}, "type": "no_slip"}],
-            "pressure_reference": {"mean": 0}},
+  "objects": [{"name": "fluid", "kind": "fluid", "mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [16, 16]},
+               "density": 1.0, "viscosity": 0.01,
+               "boundaries": [{"where": {"side": "top"}, "velocity": ["1", "0"]},
+                              {"where": {"side": ["left", "right", "bottom"]}, "type": "no_slip"}],
+               "pressure_reference": {"mean": 0}}],
   "probes": [{"name": "centre", "type": "point", "at": [0.5, 0.5]},
              {"name": "lid_force", "type": "boundary_force", "where": {"side": "top"}}]})";
 
@@ -80,7 +80,7 @@ INSTANTIATE_TEST_SUITE_P(
 TEST(RunLoop, SteadyFlowWritesOnlyItsSolution) {
   const std::string dir = temp_dir("run-loop-steady");
   World sim = World::load(scene_path("cavity_re1000.json"),
-                          {"fluid.mesh.cells=[16,16]", "settings.newton.tolerance=1e-6"});
+                          {"objects.fluid.mesh.cells=[16,16]", "settings.newton.tolerance=1e-6"});
   RunOptions options;
   options.out_dir = dir;
   const RunResult r = sim.run(options);

@@ -97,7 +97,7 @@ TEST(World, OffersTheFemAndFlowEnginesFields) {
   solids.step();
   EXPECT_GT(solids.stage_times().at("solve"), 0);
 
-  World flow = World::load(repository_scene("cavity_re1000.json"), {"fluid.mesh.cells=[8,8]"});
+  World flow = World::load(repository_scene("cavity_re1000.json"), {"objects.fluid.mesh.cells=[8,8]"});
   EXPECT_EQ(flow.engine(), "flow");
   const StateArray solution = flow.array("flow.solution");
   EXPECT_EQ(solution.components, 3);  // u, v, p in 2D

@@ -48,7 +48,7 @@ class FlowEngine final : public Engine {
     for (const FlowProbe& p : problem_.probes) evaluate_flow_probe(p, problem_, x_, *last_step_, last_iterations_, values);
   }
   void open_frames(const std::string& out_dir, const std::string& scene_name) override {
-    frames_.emplace(problem_.model, out_dir, scene_name);
+    frames_.emplace(problem_.model, problem_.name, out_dir, scene_name);
   }
   void write_frame() override { frames_->write(x_, time_); }
   void write_final_output(const std::string& out_dir) const override {
@@ -61,7 +61,7 @@ class FlowEngine final : public Engine {
 
   std::string name() const override { return "flow"; }
   std::vector<WorldObject> objects() const override {
-    return {{"fluid", "fluid", 0, static_cast<long>(problem_.model.mesh.node_count())}};  // the scene's "fluid"
+    return {{problem_.name, "fluid", 0, static_cast<long>(problem_.model.mesh.node_count())}};
   }
   std::vector<StateArray> state_arrays() override {
     const NavierStokesModel& m = problem_.model;

@@ -1,5 +1,6 @@
-// Scenes of the FEM engine ("solver": "fem"): "solids" with a mesh, a hyperelastic material,
-// loads and Dirichlet conditions, and FEM probes (docs/scene-format.md, "FEM scenes").
+// Scenes of the FEM engine ("solver": "fem"): "objects" of kind "solid" (a mesh, a hyperelastic
+// material, loads and Dirichlet conditions), "rigid_body" (director bodies) and "fluid"
+// (build_flow.cpp), "joints" and FEM probes (docs/scene-format.md, "FEM scenes").
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -119,7 +120,7 @@ Vec3 end_direction(const EndRef& e, const FemProblem& problem, const Vec3& direc
 FemJoint read_fem_joint(const JsonObject& j, const FemProblem& problem) {
   FemJoint joint;
   joint.name = j.string("name");
-  const std::string type = j.choice("type", {"spherical", "revolute"});
+  const std::string type = j.choice("type", {"spherical", "hinge"});
   const auto& bodies = j.raw("bodies");
   if (!bodies.is_array() || bodies.size() != 2 || !bodies[0].is_string() || !bodies[1].is_string())
     j.fail("bodies", "expected two names: [\"a\", \"b\"] (\"world\", a rigid body or a solid)");
@@ -129,7 +130,7 @@ FemJoint read_fem_joint(const JsonObject& j, const FemProblem& problem) {
   if (ends[0].kind == ends[1].kind && ends[0].index == ends[1].index) j.fail("bodies", "a joint cannot join an end to itself");
   const Vec3 anchor = j.vec3("anchor");
   // A solid end holds its node nearest to the anchor (spherical) or every node on the hinge axis
-  // (revolute).
+  // (hinge).
   auto nearest_node = [&](Index solid) {
     const FemSolid& s = problem.model.solids[solid];
     Index best = 0;
@@ -152,7 +153,7 @@ FemJoint read_fem_joint(const JsonObject& j, const FemProblem& problem) {
   if (axis_in.norm() <= 0) j.fail("axis", "the hinge axis must not be zero");
   const Vec3 axis = axis_in.normalized();
   if (ends[0].kind == FemJointEndKind::node && ends[1].kind == FemJointEndKind::node)
-    j.fail("bodies", "a revolute joint joins a rigid body (or the world) to another body, the world or a solid");
+    j.fail("bodies", "a hinge joins a rigid body (or the world) to another body, the world or a solid");
   if (ends[0].kind == FemJointEndKind::node) std::swap(ends[0], ends[1]);
   if (ends[1].kind == FemJointEndKind::node) {
     // Every node of the solid on the axis line through the anchor is held to end a's point there.
@@ -166,7 +167,7 @@ FemJoint read_fem_joint(const JsonObject& j, const FemProblem& problem) {
                             point_end(ends[1], problem, s.mesh.nodes[n], s.node_begin + n)});
     }
     if (joint.rows.size() < 2)
-      j.fail("anchor", fmt::format("solid '{}' has {} node(s) on the hinge axis through the anchor; a revolute joint to a "
+      j.fail("anchor", fmt::format("solid '{}' has {} node(s) on the hinge axis through the anchor; a hinge to a "
                                    "solid needs at least two (place the axis along a mesh edge)",
                                    s.name, joint.rows.size()));
     j.finish();
@@ -213,7 +214,7 @@ FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
     p.type = q == "displacement" ? FemProbeType::displacement : q == "position" ? FemProbeType::position : FemProbeType::velocity;
   } else if (type == "energy") {
     p.type = FemProbeType::energy;
-    p.quantity = j.choice("quantity", "total", {"kinetic", "strain", "potential", "total"});
+    p.quantity = j.choice("quantity", "total", {"kinetic", "elastic", "potential", "total"});
   } else if (type == "momentum") {
     p.type = FemProbeType::momentum;
     p.quantity = j.choice("quantity", "linear", {"linear", "angular"});
@@ -259,34 +260,64 @@ void read_solid_settings(const JsonObject& settings, FemProblem& problem) {
   }
 }
 
+// The objects of a FEM scene by kind (indices into `all`, whose entries track the keys read).
+struct FemObjects {
+  std::vector<JsonObject> all;
+  std::vector<size_t> solids, bodies, fluids;
+};
+
+FemObjects read_fem_objects(const JsonObject& top) {
+  for (const char* key : {"solids", "rigid_bodies", "fluid"})
+    if (top.has(key))
+      top.fail(key, "a FEM scene lists its solids, rigid bodies and fluid under \"objects\", each with a \"name\" and a "
+                    "\"kind\": \"solid\", \"rigid_body\" or \"fluid\"");
+  FemObjects objects{top.object_list("objects"), {}, {}, {}};
+  if (objects.all.empty())
+    top.fail("objects", "a \"solver\": \"fem\" scene needs at least one object: a solid, a rigid body or a fluid");
+  std::vector<std::string> names;
+  for (size_t i = 0; i < objects.all.size(); ++i) {
+    const JsonObject& o = objects.all[i];
+    const std::string name = o.string("name");
+    if (std::find(names.begin(), names.end(), name) != names.end())
+      o.fail("name", fmt::format("another object is already named '{}'; names must be unique", name));
+    names.push_back(name);
+    const nlohmann::json& kind_raw = o.has("kind") ? o.raw("kind") : nlohmann::json();
+    for (const char* xpbd_kind : {"cloth", "soft_body", "collider"})
+      if (kind_raw == xpbd_kind)
+        o.fail("kind", fmt::format("'{}' is a kind of the constraint engine (\"solver\": \"xpbd\"); a FEM scene holds "
+                                   "\"solid\", \"rigid_body\" and \"fluid\" objects",
+                                   xpbd_kind));
+    const std::string kind = o.choice("kind", {"solid", "rigid_body", "fluid"});
+    (kind == "solid" ? objects.solids : kind == "rigid_body" ? objects.bodies : objects.fluids).push_back(i);
+  }
+  if (objects.fluids.size() > 1)
+    objects.all[objects.fluids[1]].fail("kind", "a FEM scene holds one fluid (one Navier-Stokes mesh)");
+  if (!objects.fluids.empty() && (!objects.solids.empty() || !objects.bodies.empty() || top.has("joints")))
+    objects.all[objects.fluids[0]].fail(
+        "kind", "a fluid together with solids, rigid bodies or joints needs immersed fluid-structure coupling (the "
+                "solid as a momentum source in the fluid), which the FEM engine does not have; run the fluid and the "
+                "solids as separate scenes");
+  return objects;
+}
+
 }  // namespace
 
 void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gravity, int threads) {
   const std::optional<JsonObject> settings = top.optional_object("settings");
-  if (top.has("fluid")) {
-    for (const char* key : {"solids", "rigid_bodies", "joints"})
-      if (top.has(key))
-        top.fail(key, "a scene with a \"fluid\" has no solids, rigid bodies or joints yet (fluid-structure interaction is "
-                      "not available in this version)");
-    build_flow_scene(top, settings ? &*settings : nullptr, problem, gravity, threads);
+  FemObjects objects = read_fem_objects(top);
+  if (!objects.fluids.empty()) {
+    build_flow_scene(top, objects.all[objects.fluids[0]], settings ? &*settings : nullptr, problem, gravity, threads);
     return;
   }
   if (settings) read_solid_settings(*settings, problem);
   FemModel& model = problem.model;
   problem.threads = threads;
-  if (top.has("objects"))
-    top.fail("objects", "a \"solver\": \"fem\" scene has \"solids\", \"rigid_bodies\", \"joints\" and \"probes\", not objects");
-  const auto solids = top.object_list("solids");
-  const auto bodies = top.object_list("rigid_bodies");
-  if (solids.empty() && bodies.empty())
-    top.fail("solids", "a \"solver\": \"fem\" scene needs at least one solid or rigid body");
-  if (solids.empty()) model.dim = 3;
+  if (objects.solids.empty()) model.dim = 3;
   std::vector<Vec3> velocities;
-  for (const JsonObject& sj : solids) {
+  for (size_t i : objects.solids) {
+    const JsonObject& sj = objects.all[i];
     FemSolid solid;
     solid.name = sj.string("name");
-    for (const FemSolid& other : model.solids)
-      if (other.name == solid.name) sj.fail("name", fmt::format("another solid is already named '{}'", solid.name));
     solid.mesh = read_fem_mesh(sj.object("mesh"), top.file() + ": " + sj.path_of("mesh"), MeshUse::solid);
     if (model.solids.empty()) model.dim = solid.mesh.dim;
     if (solid.mesh.dim != model.dim) sj.fail("mesh", "all solids of a scene must be 2D (rectangle) or all 3D (box)");
@@ -298,13 +329,10 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
     read_dirichlet(sj, model, index);
     sj.finish();
   }
-  for (const JsonObject& bj : bodies) {
+  for (size_t i : objects.bodies) {
+    const JsonObject& bj = objects.all[i];
     FemRigidBody rb;
     rb.name = bj.string("name");
-    for (const FemSolid& other : model.solids)
-      if (other.name == rb.name) bj.fail("name", fmt::format("a solid is already named '{}'", rb.name));
-    for (const FemRigidBody& other : problem.rigid_bodies)
-      if (other.name == rb.name) bj.fail("name", fmt::format("another rigid body is already named '{}'", rb.name));
     rb.mesh = read_fem_mesh(bj.object("mesh"), top.file() + ": " + bj.path_of("mesh"), MeshUse::solid);
     if (rb.mesh.dim != 3) bj.fail("mesh", "a rigid body's mesh is 3D (\"type\": \"box\")");
     rb.body = director_body_from_mesh(rb.mesh, bj.number("density", Range::positive()));
@@ -314,9 +342,9 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
     problem.rigid_bodies.push_back(std::move(rb));
   }
   if (!problem.rigid_bodies.empty() && model.dim == 2)
-    top.fail("rigid_bodies", "rigid bodies are 3D; a scene with 2D (rectangle) solids cannot have them");
+    top.fail("objects", "rigid bodies are 3D; a scene with 2D (rectangle) solids cannot have them");
   if (!problem.rigid_bodies.empty() && problem.integrator == FemIntegrator::static_load_steps)
-    top.fail("rigid_bodies", "rigid bodies need a dynamic integrator (\"midpoint\" or \"energy_momentum\")");
+    objects.all[objects.bodies[0]].fail("kind", "rigid bodies need a dynamic integrator (\"midpoint\" or \"energy_momentum\")");
   problem.gravity = gravity;
   // Gravity acts on every solid as a body load rho g.
   if (gravity.head(model.dim).norm() > 0)
@@ -330,7 +358,7 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
     }
   finalize_fem_model(model);
   if (problem.integrator == FemIntegrator::static_load_steps && model.free_count > 0 && model.prescribed.empty())
-    top.fail("solids", "a static solve needs Dirichlet conditions that hold the solids against rigid motion");
+    top.fail("objects", "a static solve needs Dirichlet conditions that hold the solids against rigid motion");
   problem.initial_velocity = VectorX::Zero(model.dof_count());
   for (size_t i = 0; i < model.solids.size(); ++i)
     for (Index n = 0; n < model.solids[i].mesh.node_count(); ++n)

@@ -147,10 +147,10 @@ void read_flow_settings(const JsonObject* settings, const JsonObject& fluid, Flo
 
 }  // namespace
 
-void build_flow_scene(const JsonObject& top, const JsonObject* settings, FemProblem& fem, const Vec3& gravity,
-                      int threads) {
-  const JsonObject fluid = top.object("fluid");
+void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const JsonObject* settings, FemProblem& fem,
+                      const Vec3& gravity, int threads) {
   FlowProblem& problem = fem.flow.emplace();
+  problem.name = fluid.string("name");
   read_flow_settings(settings, fluid, problem);
   fem.threads = threads;
   NavierStokesModel& m = problem.model;

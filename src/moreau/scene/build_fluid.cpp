@@ -102,7 +102,10 @@ void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
   phase.object = static_cast<Index>(model.objects.size());
   phase.rest_density = object.number("density", 1000.0, Range::positive());
   phase.particle_mass = phase.rest_density * fm.particle_volume;
-  phase.viscosity = object.number("viscosity", 1.0e-6, Range::non_negative());
+  // The scene gives the dynamic viscosity mu (Pa s), as for the FEM engine's fluid; the SPH
+  // Laplacian uses the kinematic nu = mu / rho0.
+  const Real dynamic_viscosity = object.number("viscosity", 1.0e-3, Range::non_negative());
+  phase.viscosity = dynamic_viscosity / phase.rest_density;
   phase.xsph = object.number("xsph", 0.01, Range::closed(0, 1));
   phase.vorticity = object.number("vorticity", 0.0, Range::non_negative());
   phase.surface_tension = object.number("surface_tension", 0.0, Range::non_negative());
@@ -113,9 +116,9 @@ void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
   // Explicit viscosity is stable for dt <= 0.125 h^2 / nu (Monaghan 2005, sec. 6.4).
   const Real viscous_limit = 0.125 * fm.kernel.h2 / std::max(phase.viscosity, 1e-300);
   if (model.settings.dt > viscous_limit)
-    object.fail("viscosity", fmt::format("explicit viscosity needs dt <= 0.125 h^2 / nu = {:.3g} s with h = 4 r = {} m; "
-                                         "settings.dt is {} s: lower the viscosity or dt",
-                                         viscous_limit, fm.kernel.h, model.settings.dt));
+    object.fail("viscosity", fmt::format("explicit viscosity needs dt <= 0.125 h^2 / nu = {:.3g} s with h = 4 r = {} m and "
+                                         "nu = mu / rho0 = {:.3g} m^2/s; settings.dt is {} s: lower the viscosity or dt",
+                                         viscous_limit, fm.kernel.h, phase.viscosity, model.settings.dt));
 
   std::vector<Vec3> points;
   const int sources = object.has("block") + object.has("blocks") + object.has("mesh");

@@ -14,13 +14,14 @@ namespace moreau {
 /// Marks the FEM keys of "settings" (integrator, newton) as known; build_fem_scene reads them.
 void allow_fem_settings(const JsonObject& settings);
 
-/// "solids", "rigid_bodies", "joints", "probes" or a "fluid", and the FEM settings; gravity
-/// (m/s^2) becomes a body load on every solid and fluid and a force m g on every rigid body.
+/// The "objects" (solids and rigid bodies, or one fluid), "joints" and "probes", and the FEM
+/// settings; gravity (m/s^2) becomes a body load on every solid and fluid and a force m g on
+/// every rigid body.
 void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gravity, int threads);
 
-/// The "fluid" of a FEM scene (settings: the scene's "settings", if any).
-void build_flow_scene(const JsonObject& top, const JsonObject* settings, FemProblem& problem, const Vec3& gravity,
-                      int threads);
+/// The fluid object of a FEM scene (settings: the scene's "settings", if any).
+void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const JsonObject* settings, FemProblem& problem,
+                      const Vec3& gravity, int threads);
 
 // --- shared readers ---
 

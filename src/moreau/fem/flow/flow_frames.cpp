@@ -4,6 +4,7 @@
 
 #include "moreau/fem/flow/flow_problem.hpp"
 #include "moreau/fem/scene/fem_output.hpp"
+#include "moreau/io/frame_writer.hpp"
 
 namespace moreau {
 
@@ -25,7 +26,7 @@ void FlowFrameWriter::write(const VectorX& x, Real time) {
   } else {
     vectors.push_back({"vorticity", curl});
   }
-  const std::string file = fmt::format("frames/fluid_{:06d}.vtu", frame_++);
+  const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(fluid_name_), frame_++);
   write_vtu(out_dir_ + "/" + file, model_.mesh.nodes, model_.mesh.cells, model_.mesh.nodes_per_cell(),
             vtk_cell(model_.mesh.element), vectors, {}, scalars);
   entries_.push_back({time, 0, file});

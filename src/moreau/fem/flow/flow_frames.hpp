@@ -1,6 +1,7 @@
 #pragma once
-// Frames of a flow run: one .vtu per output step with the velocity, the pressure and the vorticity
-// at the nodes (2D in the xy plane, the vorticity a scalar there), and <scene>.pvd.
+// Frames of a flow run: one .vtu per output step (frames/<fluid>_<frame>.vtu) with the velocity,
+// the pressure and the vorticity at the nodes (2D in the xy plane, the vorticity a scalar there),
+// and <scene>.pvd.
 #include <string>
 #include <vector>
 
@@ -11,14 +12,14 @@ namespace moreau {
 
 class FlowFrameWriter {
  public:
-  FlowFrameWriter(const NavierStokesModel& model, std::string out_dir, std::string scene_name)
-      : model_(model), out_dir_(std::move(out_dir)), scene_name_(std::move(scene_name)) {}
+  FlowFrameWriter(const NavierStokesModel& model, std::string fluid_name, std::string out_dir, std::string scene_name)
+      : model_(model), fluid_name_(std::move(fluid_name)), out_dir_(std::move(out_dir)), scene_name_(std::move(scene_name)) {}
 
   void write(const VectorX& x, Real time);
 
  private:
   const NavierStokesModel& model_;
-  std::string out_dir_, scene_name_;
+  std::string fluid_name_, out_dir_, scene_name_;
   std::vector<PvdEntry> entries_;
   int frame_ = 0;
 };

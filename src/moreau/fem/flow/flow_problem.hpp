@@ -21,6 +21,7 @@ struct FlowProbe {
 };
 
 struct FlowProblem {
+  std::string name = "fluid";  // the fluid object's name (frames/<name>_<frame>.vtu)
   NavierStokesModel model;
   FlowIntegrator integrator = FlowIntegrator::midpoint;
   FlowSolveSettings solve;

@@ -62,7 +62,7 @@ void evaluate_fem_probe(const FemProbe& p, const FemProblem& problem, const FemR
         potential -= problem.rigid_bodies[b].body.mass * problem.gravity.dot(run.bodies[b].phi);
       }
       values.push_back(p.quantity == "kinetic"     ? kinetic
-                       : p.quantity == "strain"    ? state.energy
+                       : p.quantity == "elastic"   ? state.energy
                        : p.quantity == "potential" ? potential
                                                    : kinetic + state.energy + potential);
       break;

@@ -22,7 +22,7 @@ struct FemProbe {
   FemProbeType type = FemProbeType::energy;
   Index node = -1;           // global node (displacement, position, velocity)
   Index body = -1;           // rigid body (body)
-  std::string quantity;      // energy: kinetic | strain | total; momentum: linear | angular;
+  std::string quantity;      // energy: kinetic | elastic | potential | total; momentum: linear | angular;
                              // body: position | velocity | angular_velocity
 };
 
