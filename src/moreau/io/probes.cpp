@@ -71,10 +71,12 @@ void evaluate_probe(const ProbeSpec& probe, const Model& model, const State& sta
     case ProbeType::extent: {
       const bool want_max = probe.quantity == "max";
       Real e = want_max ? -std::numeric_limits<Real>::infinity() : std::numeric_limits<Real>::infinity();
+      bool any = false;
       for_each_position(model, state, probe.object, [&](const Vec3& x) {
         e = want_max ? std::max(e, x[probe.axis]) : std::min(e, x[probe.axis]);
+        any = true;
       });
-      values.push_back(e);
+      values.push_back(any ? e : std::numeric_limits<Real>::quiet_NaN());  // no particle yet (an emitter): no extent
       break;
     }
     case ProbeType::fluid_height: {
