@@ -135,7 +135,7 @@ struct CoupledIterate {
 
 // The coupled step's residual (coupled_step.hpp) and Jacobian for the Newton driver. Unknowns:
 // the layout's; the merit is |R_momentum| / force scale + |R_constraints|.
-class CoupledStepSystem final : public NewtonSystem {
+class CoupledStepSystem final : public NewtonIterates<CoupledIterate> {
  public:
   CoupledStepSystem(const FemProblem& problem, const SparseMatrix& mass, StepRule rule, Real h, const FemRunState& run,
                     SparseLuSolver& solver, const NewtonSettings& settings, NewtonResult& result)
@@ -171,10 +171,6 @@ class CoupledStepSystem final : public NewtonSystem {
     assemble(trial_);
     return measure(trial_);
   }
-
-  void accept() override { std::swap(now_, trial_); }
-  void save() override { saved_ = now_; }
-  void restore() override { now_ = saved_; }
 
   bool solve(VectorX& dz, std::string& failure) override;
 
@@ -232,7 +228,6 @@ class CoupledStepSystem final : public NewtonSystem {
   Layout layout_;
   VectorX f_ext_;
   std::vector<DirectorVector> q0_, v0_;
-  CoupledIterate now_, trial_, saved_;
   Triplets triplets_;
 };
 

@@ -182,84 +182,79 @@ using Vec6 = Eigen::Matrix<Real, 6, 1>;
 using Vec18 = Eigen::Matrix<Real, 18, 1>;
 
 // The multiplier form of a body's step: unknowns q1 (12) and the internal multipliers (6).
-class DirectorStepSystem final : public NewtonSystem {
+struct DirectorStepIterate {
+  Vec12 q1;                         // the configuration at the step's end
+  Vec6 lambda;                      // the internal multipliers
+  DirectorStepRows rows;            // residual and Jacobian there
+  Real constraint_norm = 0;         // |g(q1)|
+};
+
+class DirectorStepSystem final : public NewtonIterates<DirectorStepIterate> {
  public:
   DirectorStepSystem(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque, const DirectorState& state,
                      const NewtonSettings& settings)
       : body_(body), h_(h), force_(force), torque_(torque), settings_(settings), q0_(pack(state.phi, state.d)),
-        v0_(director_velocities(state)), q1_(q0_ + h * v0_), lambda_(Vec6::Zero()) {}
+        v0_(director_velocities(state)) {
+    now_.q1 = q0_ + h * v0_;
+    now_.lambda = Vec6::Zero();
+  }
 
   NewtonEvaluation evaluate(const VectorX* dx, Real alpha) override {
-    trial_q_ = q1_;
-    trial_lambda_ = lambda_;
+    trial_.q1 = now_.q1;
+    trial_.lambda = now_.lambda;
     if (dx) {
-      trial_q_ += alpha * dx->head<12>();
-      trial_lambda_ += alpha * dx->tail<6>();
+      trial_.q1 += alpha * dx->head<12>();
+      trial_.lambda += alpha * dx->tail<6>();
     }
-    trial_rows_ = director_step_rows(body_, q0_, v0_, h_, force_, torque_, trial_q_, trial_lambda_, true);
-    const Real momentum_norm = trial_rows_.residual.head<12>().norm(), constraint_norm = trial_rows_.residual.tail<6>().norm();
+    trial_.rows = director_step_rows(body_, q0_, v0_, h_, force_, torque_, trial_.q1, trial_.lambda, true);
+    const DirectorStepRows& rows = trial_.rows;
+    const Real momentum_norm = rows.residual.head<12>().norm(), constraint_norm = rows.residual.tail<6>().norm();
     NewtonEvaluation e;
-    e.norm = momentum_norm / trial_rows_.force_scale + constraint_norm;
-    e.converged = momentum_norm <= settings_.tolerance * trial_rows_.force_scale && constraint_norm <= settings_.tolerance;
-    e.relative = std::max(momentum_norm / trial_rows_.force_scale, constraint_norm);
+    e.norm = momentum_norm / rows.force_scale + constraint_norm;
+    e.converged = momentum_norm <= settings_.tolerance * rows.force_scale && constraint_norm <= settings_.tolerance;
+    e.relative = std::max(momentum_norm / rows.force_scale, constraint_norm);
     e.describe = fmt::format("force residual {:.3e} of {:.3e}, constraint residual {:.3e}", momentum_norm,
-                             trial_rows_.force_scale, constraint_norm);
-    trial_constraint_norm_ = constraint_norm;
+                             rows.force_scale, constraint_norm);
+    trial_.constraint_norm = constraint_norm;
     if (!dx) accept();
     return e;
   }
-  void accept() override {
-    q1_ = trial_q_;
-    lambda_ = trial_lambda_;
-    rows_ = trial_rows_;
-    constraint_norm_ = trial_constraint_norm_;
-  }
-  void save() override {
-    saved_q_ = q1_;
-    saved_lambda_ = lambda_;
-    saved_rows_ = rows_;
-    saved_constraint_norm_ = constraint_norm_;
-  }
-  void restore() override {
-    q1_ = saved_q_;
-    lambda_ = saved_lambda_;
-    rows_ = saved_rows_;
-    constraint_norm_ = saved_constraint_norm_;
-  }
   bool solve(VectorX& dx, std::string&) override {
-    dx = rows_.jacobian.partialPivLu().solve(-rows_.residual);
+    dx = now_.rows.jacobian.partialPivLu().solve(-now_.rows.residual);
     return true;
   }
   // The correction of q1 against the step's motion; none counts while the constraints are violated.
   Real relative_correction(const VectorX& dx, Real alpha) const override {
-    if (constraint_norm_ > settings_.tolerance) return std::numeric_limits<Real>::infinity();
-    return alpha * dx.head<12>().norm() / std::max((q1_ - q0_).norm(), Real(1e-300));
+    if (now_.constraint_norm > settings_.tolerance) return std::numeric_limits<Real>::infinity();
+    return alpha * dx.head<12>().norm() / std::max((now_.q1 - q0_).norm(), Real(1e-300));
   }
 
-  void finish(DirectorState& state) const { set_director_step(q0_, v0_, q1_, h_, state); }
+  void finish(DirectorState& state) const { set_director_step(q0_, v0_, now_.q1, h_, state); }
 
  private:
   const DirectorBody& body_;
   Real h_;
   Vec3 force_, torque_;
   const NewtonSettings& settings_;
-  Vec12 q0_, v0_, q1_, trial_q_, saved_q_;
-  Vec6 lambda_, trial_lambda_, saved_lambda_;
-  DirectorStepRows rows_, trial_rows_, saved_rows_;
-  Real constraint_norm_ = 0, trial_constraint_norm_ = 0, saved_constraint_norm_ = 0;
+  Vec12 q0_, v0_;
 };
 
 // The null-space form: six unknowns u (translation, rotation vector) with q1(u) = (phi + u_phi,
 // exp(theta^) d_i), exact on the constraint manifold, and the residual P(q_m)^T times the momentum
 // balance: the force balance and sum_i d_i,m x r_i.
-class ReducedDirectorStepSystem final : public NewtonSystem {
+struct ReducedDirectorIterate {
+  Vec6 u;  // translation and rotation vector of the step
+  Vec6 r;  // the reduced residual there
+};
+
+class ReducedDirectorStepSystem final : public NewtonIterates<ReducedDirectorIterate> {
  public:
   ReducedDirectorStepSystem(const DirectorBody& body, Real h, const Vec3& force, const Vec3& torque,
                             const DirectorState& state, const NewtonSettings& settings)
       : h_(h), force_(force), torque_(torque), settings_(settings), state_(state), M_(director_mass(body)),
         q0_(pack(state.phi, state.d)), v0_(director_velocities(state)) {
     // Predictor: the explicit step's translation and the rotation of w h.
-    u_ << h * state.v_phi, h * angular_velocity(state);
+    now_.u << h * state.v_phi, h * angular_velocity(state);
     scale_ = std::max({(M_.asDiagonal() * (2 * v0_)).norm(), h * force.norm(), h * torque.norm(), Real(1e-300)});
   }
 
@@ -269,49 +264,37 @@ class ReducedDirectorStepSystem final : public NewtonSystem {
   }
 
   NewtonEvaluation evaluate(const VectorX* du, Real alpha) override {
-    trial_u_ = u_;
-    if (du) trial_u_ += alpha * du->head<6>();
-    const Vec6 r = residual(trial_u_);
+    trial_.u = now_.u;
+    if (du) trial_.u += alpha * du->head<6>();
+    const Vec6 r = residual(trial_.u);
     NewtonEvaluation e;
     e.norm = r.norm() / scale_;
     e.converged = r.norm() <= settings_.tolerance * scale_;
     e.relative = e.norm;
     e.describe = fmt::format("|r| = {:.3e}, scale {:.3e}", r.norm(), scale_);
-    trial_r_ = r;
+    trial_.r = r;
     if (!du) accept();
     return e;
-  }
-  void accept() override {
-    u_ = trial_u_;
-    r_ = trial_r_;
-  }
-  void save() override {
-    saved_u_ = u_;
-    saved_r_ = r_;
-  }
-  void restore() override {
-    u_ = saved_u_;
-    r_ = saved_r_;
   }
   // Jacobian by central differences (6 x 6, step 1e-7 of the increment's scale): accurate to
   // ~1e-9 relative, so Newton reaches the tolerance at the quadratic rate.
   bool solve(VectorX& du, std::string&) override {
     Eigen::Matrix<Real, 6, 6> J;
-    const Real step = 1e-7 * std::max(u_.norm(), Real(1e-3));
+    const Real step = 1e-7 * std::max(now_.u.norm(), Real(1e-3));
     for (int c = 0; c < 6; ++c) {
-      Vec6 up = u_, um = u_;
+      Vec6 up = now_.u, um = now_.u;
       up[c] += step;
       um[c] -= step;
       J.col(c) = (residual(up) - residual(um)) / (2 * step);
     }
-    du = J.partialPivLu().solve(-r_);
+    du = J.partialPivLu().solve(-now_.r);
     return true;
   }
   Real relative_correction(const VectorX& du, Real alpha) const override {
-    return alpha * du.norm() / std::max(u_.norm(), Real(1e-300));
+    return alpha * du.norm() / std::max(now_.u.norm(), Real(1e-300));
   }
 
-  void finish(DirectorState& state) const { set_director_step(q0_, v0_, configuration(u_), h_, state); }
+  void finish(DirectorState& state) const { set_director_step(q0_, v0_, configuration(now_.u), h_, state); }
 
  private:
   Vec6 residual(const Vec6& u) const {
@@ -329,7 +312,6 @@ class ReducedDirectorStepSystem final : public NewtonSystem {
   const NewtonSettings& settings_;
   const DirectorState& state_;
   Vec12 M_, q0_, v0_;
-  Vec6 u_, trial_u_, r_, trial_r_, saved_u_, saved_r_;
   Real scale_ = 1;
 };
 

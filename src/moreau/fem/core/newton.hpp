@@ -26,6 +26,7 @@
 #include <chrono>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "moreau/math/types.hpp"
@@ -96,6 +97,20 @@ class NewtonSystem {
   virtual Real relative_correction(const VectorX& dz, Real alpha) const = 0;
   /// dPi/dz . dz at the current iterate, for systems with a potential.
   virtual Real potential_slope(const VectorX& /*dz*/) const { return 0; }
+};
+
+/// A NewtonSystem whose iterate, with what was evaluated there (residual, tangent, ...), is one
+/// value of type Iterate: now_ (current), trial_ (the trial evaluated last; evaluate() writes it
+/// whole) and saved_. accept() swaps the trial in; save() and restore() copy.
+template <class Iterate>
+class NewtonIterates : public NewtonSystem {
+ public:
+  void accept() override { std::swap(now_, trial_); }
+  void save() override { saved_ = now_; }
+  void restore() override { now_ = saved_; }
+
+ protected:
+  Iterate now_{}, trial_{}, saved_{};
 };
 
 /// Newton's method on `system` from its current iterate (see above). Adds to result.iterations and

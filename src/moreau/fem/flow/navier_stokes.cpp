@@ -203,49 +203,43 @@ namespace {
 
 // Newton's (or Picard's) iteration for one solve: unknowns the free dofs of x; converged when
 // |R| <= stop * |R_0| (R_0 the residual at the start of this iteration).
-class FlowSystem final : public NewtonSystem {
+struct FlowIterate {
+  VectorX x, R;    // the solution and the residual on its free dofs
+  SparseMatrix J;  // the Jacobian there
+};
+
+class FlowSystem final : public NewtonIterates<FlowIterate> {
  public:
-  FlowSystem(const NavierStokesModel& m, const FlowTimeStep& step, VectorX& x, FlowLinearSolver& solver,
+  FlowSystem(const NavierStokesModel& m, const FlowTimeStep& step, const VectorX& x, FlowLinearSolver& solver,
              const FlowAssembly& how, Real stop, NewtonResult& result)
-      : m_(m), step_(step), x_(x), solver_(solver), how_(how), stop_(stop), result_(result) {}
+      : m_(m), step_(step), solver_(solver), how_(how), stop_(stop), result_(result) {
+    now_.x = x;
+  }
 
   NewtonEvaluation evaluate(const VectorX* dx, Real alpha) override {
     if (!dx) {
-      assemble(x_, R_, J_);
-      first_ = std::max(R_.norm(), Real(1e-300));
-      return measure(R_);
+      assemble(now_.x, now_.R, now_.J);
+      first_ = std::max(now_.R.norm(), Real(1e-300));
+      return measure(now_.R);
     }
-    trial_x_ = x_;
-    add_free(m_.free_index, alpha * *dx, trial_x_);
-    assemble(trial_x_, trial_R_, trial_J_);
-    return measure(trial_R_);
-  }
-  void accept() override {
-    std::swap(x_, trial_x_);
-    std::swap(R_, trial_R_);
-    std::swap(J_, trial_J_);
-  }
-  void save() override {
-    saved_x_ = x_;
-    saved_R_ = R_;
-    saved_J_ = J_;
-  }
-  void restore() override {
-    x_ = saved_x_;
-    R_ = saved_R_;
-    J_ = saved_J_;
+    trial_.x = now_.x;
+    add_free(m_.free_index, alpha * *dx, trial_.x);
+    assemble(trial_.x, trial_.R, trial_.J);
+    return measure(trial_.R);
   }
   bool solve(VectorX& dx, std::string& failure) override {
-    const VectorX rhs = -R_;
-    if (!timed(result_.solve_s, [&] { return solver_.factorize(J_) && solver_.solve(rhs, dx); })) {
+    const VectorX rhs = -now_.R;
+    if (!timed(result_.solve_s, [&] { return solver_.factorize(now_.J) && solver_.solve(rhs, dx); })) {
       failure = solver_.failure();
       return false;
     }
     return true;
   }
   Real relative_correction(const VectorX& dx, Real alpha) const override {
-    return alpha * dx.norm() / std::max(gather_free(m_.free_index, m_.free_count, x_).norm(), Real(1e-300));
+    return alpha * dx.norm() / std::max(gather_free(m_.free_index, m_.free_count, now_.x).norm(), Real(1e-300));
   }
+
+  const VectorX& solution() const { return now_.x; }
 
  private:
   // The residual on the free dofs and the Jacobian at x.
@@ -268,14 +262,11 @@ class FlowSystem final : public NewtonSystem {
 
   const NavierStokesModel& m_;
   const FlowTimeStep& step_;
-  VectorX& x_;
   FlowLinearSolver& solver_;
   FlowAssembly how_;
   Real stop_;
   NewtonResult& result_;
   Real first_ = 1;
-  VectorX R_, trial_R_, trial_x_, saved_x_, saved_R_;
-  SparseMatrix J_, trial_J_, saved_J_;
 };
 
 }  // namespace
@@ -292,7 +283,9 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
   const FlowAssembly how{false, settings.viscosity, settings.threads};
   {
     FlowSystem system(m, step, x, solver, how, settings.tolerance, result);
-    if (newton_solve(system, newton, "Newton's method", result)) {
+    const bool converged = newton_solve(system, newton, "Newton's method", result);
+    x = system.solution();
+    if (converged) {
       result.converged = true;
       return result;
     }
@@ -307,6 +300,7 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
   picard_settings.line_search = false;  // Picard's direction need not decrease |R|
   FlowSystem picard_system(m, step, x, solver, {true, settings.viscosity, settings.threads}, settings.picard_reduction, picard);
   const bool picard_converged = newton_solve(picard_system, picard_settings, "Picard's iteration", picard);
+  x = picard_system.solution();
   result.picard_iterations += picard.iterations;
   result.assembly_s += picard.assembly_s;
   result.solve_s += picard.solve_s;
@@ -316,7 +310,9 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
     // Newton again, to the tolerance relative to the first residual of the solve.
     const Real stop = settings.tolerance * picard.residual_norms.front() / std::max(picard.residual_norms.back(), Real(1e-300));
     FlowSystem system(m, step, x, solver, how, stop, result);
-    if (newton_solve(system, newton, "Newton's method after Picard's", result)) {
+    const bool converged = newton_solve(system, newton, "Newton's method after Picard's", result);
+    x = system.solution();
+    if (converged) {
       result.converged = true;
       return result;
     }

@@ -71,7 +71,13 @@ namespace {
 
 // The step's residual on the free dofs of u_n+1,
 //   R = M (2/h^2 (u_n+1 - u_n) - 2/h v_n) + f_algo(u_n, u_n+1) - f_ext,   dR/du_n+1 = 2/h^2 M + K_algo.
-class DynamicStepSystem final : public NewtonSystem {
+struct DynamicStepIterate {
+  VectorX u1, f, R;           // u_n+1, the algorithmic internal force there, the residual
+  SparseMatrix K;             // the algorithmic tangent
+  InternalForceResult cells;  // energy and validity of the cells
+};
+
+class DynamicStepSystem final : public NewtonIterates<DynamicStepIterate> {
  public:
   DynamicStepSystem(const FemModel& model, const SparseMatrix& mass, StepRule rule, Real h, const FemDynamicState& start,
                     const VectorX& f_ext, SparseSymmetricSolver& solver, const NewtonSettings& settings,
@@ -81,60 +87,49 @@ class DynamicStepSystem final : public NewtonSystem {
 
   // The iterate u_n+1 with its assembled forces and tangent.
   void take(VectorX u1, VectorX f, SparseMatrix K, const InternalForceResult& cells) {
-    u1_ = std::move(u1);
-    f_ = std::move(f);
-    K_ = std::move(K);
-    cells_ = cells;
+    now_.u1 = std::move(u1);
+    now_.f = std::move(f);
+    now_.K = std::move(K);
+    now_.cells = cells;
   }
 
   NewtonEvaluation evaluate(const VectorX* du, Real alpha) override {
-    if (!du) return measure(u1_, f_, cells_, R_);
-    trial_u_ = u1_;
-    add_free_part(model_, alpha * *du, trial_u_);
-    trial_cells_ = timed(result_.assembly_s, [&] {
-      return assemble_step_forces(model_, start_.u, trial_u_, rule_, trial_f_, &trial_K_, settings_.threads);
+    if (!du) return measure(now_);
+    trial_.u1 = now_.u1;
+    add_free_part(model_, alpha * *du, trial_.u1);
+    trial_.cells = timed(result_.assembly_s, [&] {
+      return assemble_step_forces(model_, start_.u, trial_.u1, rule_, trial_.f, &trial_.K, settings_.threads);
     });
-    return measure(trial_u_, trial_f_, trial_cells_, trial_R_);
-  }
-
-  void accept() override {
-    std::swap(u1_, trial_u_);
-    std::swap(f_, trial_f_);
-    std::swap(K_, trial_K_);
-    std::swap(R_, trial_R_);
-    cells_ = trial_cells_;
-  }
-
-  void save() override { saved_ = {u1_, f_, R_, K_, cells_}; }
-  void restore() override {
-    u1_ = saved_.u1;
-    f_ = saved_.f;
-    R_ = saved_.R;
-    K_ = saved_.K;
-    cells_ = saved_.cells;
+    return measure(trial_);
   }
 
   bool solve(VectorX& du, std::string& failure) override {
     // dR/du = 2/h^2 M + K_algo: the two matrices share the structure of model.pattern.
     const Real c = 2 / (h_ * h_);
-    for (Index i = 0; i < K_.nonZeros(); ++i) K_.valuePtr()[i] += c * mass_.valuePtr()[i];
-    if (!timed(result_.solve_s, [&] { return solver_.factorize(K_, rule_ == StepRule::midpoint); })) {
+    SparseMatrix& K = now_.K;
+    for (Index i = 0; i < K.nonZeros(); ++i) K.valuePtr()[i] += c * mass_.valuePtr()[i];
+    if (!timed(result_.solve_s, [&] { return solver_.factorize(K, rule_ == StepRule::midpoint); })) {
       failure = "the step's tangent is singular";
       return false;
     }
-    du = timed(result_.solve_s, [&] { return solver_.solve(-R_); });
+    du = timed(result_.solve_s, [&] { return solver_.solve(-now_.R); });
     return true;
   }
 
   Real relative_correction(const VectorX& du, Real alpha) const override {
-    return alpha * du.norm() / std::max(free_part(model_, u1_ - start_.u).norm(), Real(1e-300));
+    return alpha * du.norm() / std::max(free_part(model_, now_.u1 - start_.u).norm(), Real(1e-300));
   }
 
-  const VectorX& displacement() const { return u1_; }
-  const InternalForceResult& cells() const { return cells_; }
+  const VectorX& displacement() const { return now_.u1; }
+  const InternalForceResult& cells() const { return now_.cells; }
 
  private:
-  NewtonEvaluation measure(const VectorX& u1, const VectorX& f, const InternalForceResult& cells, VectorX& R) const {
+  // Validity and the residual R of an iterate whose forces are assembled (writes it.R).
+  NewtonEvaluation measure(DynamicStepIterate& it) const {
+    const VectorX& u1 = it.u1;
+    const VectorX& f = it.f;
+    const InternalForceResult& cells = it.cells;
+    VectorX& R = it.R;
     NewtonEvaluation e;
     e.valid = cells.valid;
     if (!e.valid) {
@@ -160,14 +155,6 @@ class DynamicStepSystem final : public NewtonSystem {
   SparseSymmetricSolver& solver_;
   const NewtonSettings& settings_;
   NewtonResult& result_;
-  VectorX u1_, f_, R_, trial_u_, trial_f_, trial_R_;
-  SparseMatrix K_, trial_K_;
-  InternalForceResult cells_, trial_cells_;
-  struct {
-    VectorX u1, f, R;
-    SparseMatrix K;
-    InternalForceResult cells;
-  } saved_;
 };
 
 }  // namespace

@@ -14,46 +14,38 @@ namespace moreau {
 namespace {
 
 // Equilibrium r(u) = f_int(u) - f_ext on the free dofs, with the potential Pi = W(u) - f_ext . u.
-class StaticSystem final : public NewtonSystem {
+struct StaticIterate {
+  VectorX u, f_int;            // the displacement and the internal force there
+  SparseMatrix K;              // the tangent
+  InternalForceResult state;   // energy and validity of the cells
+};
+
+class StaticSystem final : public NewtonIterates<StaticIterate> {
  public:
-  StaticSystem(const FemModel& model, const VectorX& f_ext, VectorX& u, SparseSymmetricSolver& solver,
+  StaticSystem(const FemModel& model, const VectorX& f_ext, SparseSymmetricSolver& solver,
                const NewtonSettings& settings, NewtonResult& result)
-      : model_(model), f_ext_(f_ext), u_(u), solver_(solver), settings_(settings), result_(result) {}
+      : model_(model), f_ext_(f_ext), solver_(solver), settings_(settings), result_(result) {}
 
   // The state at u, already assembled by the caller.
-  void take(InternalForceResult state, VectorX f_int, SparseMatrix K) {
-    state_ = std::move(state);
-    f_int_ = std::move(f_int);
-    K_ = std::move(K);
+  void take(VectorX u, InternalForceResult state, VectorX f_int, SparseMatrix K) {
+    now_.u = std::move(u);
+    now_.state = std::move(state);
+    now_.f_int = std::move(f_int);
+    now_.K = std::move(K);
   }
 
   NewtonEvaluation evaluate(const VectorX* du, Real alpha) override {
-    if (!du) return measure(u_, f_int_, state_);
-    trial_u_ = u_;
-    add_free_part(model_, alpha * *du, trial_u_);
-    trial_state_ = timed(result_.assembly_s, [&] {
-      return assemble_internal_forces(model_, trial_u_, trial_f_, &trial_K_, settings_.threads);
+    if (!du) return measure(now_);
+    trial_.u = now_.u;
+    add_free_part(model_, alpha * *du, trial_.u);
+    trial_.state = timed(result_.assembly_s, [&] {
+      return assemble_internal_forces(model_, trial_.u, trial_.f_int, &trial_.K, settings_.threads);
     });
-    return measure(trial_u_, trial_f_, trial_state_);
-  }
-
-  void accept() override {
-    u_ = trial_u_;
-    state_ = trial_state_;
-    std::swap(f_int_, trial_f_);
-    std::swap(K_, trial_K_);
-  }
-
-  void save() override { saved_ = {u_, state_, f_int_, K_}; }
-  void restore() override {
-    u_ = saved_.u;
-    state_ = saved_.state;
-    f_int_ = saved_.f_int;
-    K_ = saved_.K;
+    return measure(trial_);
   }
 
   bool solve(VectorX& du, std::string& failure) override {
-    if (!timed(result_.solve_s, [&] { return solver_.factorize(K_); })) {
+    if (!timed(result_.solve_s, [&] { return solver_.factorize(now_.K); })) {
       failure = "the tangent is singular (is the body held against rigid motion?)";
       return false;
     }
@@ -62,15 +54,19 @@ class StaticSystem final : public NewtonSystem {
   }
 
   Real relative_correction(const VectorX& du, Real alpha) const override {
-    return alpha * du.norm() / std::max(free_part(model_, u_).norm(), Real(1e-300));
+    return alpha * du.norm() / std::max(free_part(model_, now_.u).norm(), Real(1e-300));
   }
   // dPi/du . du = r . du
   Real potential_slope(const VectorX& du) const override { return residual().dot(du); }
 
-  Real energy() const { return state_.energy; }
+  Real energy() const { return now_.state.energy; }
+  const VectorX& displacement() const { return now_.u; }
 
  private:
-  NewtonEvaluation measure(const VectorX& u, const VectorX& f_int, const InternalForceResult& state) const {
+  NewtonEvaluation measure(const StaticIterate& it) const {
+    const VectorX& u = it.u;
+    const VectorX& f_int = it.f_int;
+    const InternalForceResult& state = it.state;
     NewtonEvaluation e;
     e.valid = state.valid;
     if (!e.valid) {
@@ -86,23 +82,13 @@ class StaticSystem final : public NewtonSystem {
     return e;
   }
 
-  VectorX residual() const { return free_part(model_, f_int_ - f_ext_); }
+  VectorX residual() const { return free_part(model_, now_.f_int - f_ext_); }
 
   const FemModel& model_;
   const VectorX& f_ext_;
-  VectorX& u_;
   SparseSymmetricSolver& solver_;
   const NewtonSettings& settings_;
   NewtonResult& result_;
-  InternalForceResult state_, trial_state_;
-  VectorX f_int_, trial_f_, trial_u_;
-  SparseMatrix K_, trial_K_;
-  struct {
-    VectorX u;
-    InternalForceResult state;
-    VectorX f_int;
-    SparseMatrix K;
-  } saved_;
 };
 
 }  // namespace
@@ -144,9 +130,10 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
       return result;
     }
   }
-  StaticSystem system(model, f_ext, u, solver, settings, result);
-  system.take(std::move(state), std::move(f_int), std::move(K));
+  StaticSystem system(model, f_ext, solver, settings, result);
+  system.take(u, std::move(state), std::move(f_int), std::move(K));
   result.converged = newton_solve(system, settings, "the solve", result);
+  u = system.displacement();
   result.energy = system.energy();
   return result;
 }
