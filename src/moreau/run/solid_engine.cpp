@@ -179,7 +179,7 @@ void SolidEngine::add_run_fields(nlohmann::json& j, bool completed) const {
   if (completed) {
     Real kinetic = kinetic_energy(model, run_.solids.v);
     for (size_t b = 0; b < run_.bodies.size(); ++b) kinetic += kinetic_energy(problem_.rigid_bodies[b].body, run_.bodies[b]);
-    j["final_energy_j"] = {{"kinetic", kinetic}, {"strain", run_.solids.energy}};
+    j["final_energy_j"] = {{"kinetic", kinetic}, {"elastic", run_.solids.energy}};
   }
 }
 
