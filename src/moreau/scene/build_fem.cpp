@@ -190,12 +190,18 @@ FemJoint read_fem_joint(const JsonObject& j, const FemProblem& problem) {
 FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
   FemProbe p;
   p.name = j.string("name");
-  const std::string type =
-      j.choice("type", {"point", "energy", "momentum", "newton_iterations", "body", "constraint_error"});
-  j.expect_keys(type == "point"    ? std::vector<std::string>{"name", "type", "object", "nearest", "quantity"}
-                : type == "body" ? std::vector<std::string>{"name", "type", "object", "quantity"}
-                : type == "energy" || type == "momentum" ? std::vector<std::string>{"name", "type", "quantity"}
+  // The probe types and keys of constraint-engine scenes, where the FEM engine has the quantity.
+  const std::string type = j.choice("type", {"point", "energy", "momentum", "center_of_mass", "velocity",
+                                             "angular_velocity", "newton_iterations", "constraint_error"});
+  const bool of_body = type == "center_of_mass" || type == "velocity" || type == "angular_velocity";
+  j.expect_keys(type == "point"               ? std::vector<std::string>{"name", "type", "object", "vertex", "nearest", "quantity"}
+                : type == "angular_velocity" ? std::vector<std::string>{"name", "type", "object", "frame"}
+                : of_body                    ? std::vector<std::string>{"name", "type", "object"}
+                : type == "energy" || type == "momentum" ? std::vector<std::string>{"name", "type", "object", "quantity"}
                                                          : std::vector<std::string>{"name", "type"});
+  // Energy and momentum are of the whole model; "*" says so as in constraint-engine scenes.
+  if ((type == "energy" || type == "momentum") && j.has("object") && j.string("object") != "*")
+    j.fail("object", "energy and momentum are of the whole model in a FEM scene: leave \"object\" out or give \"*\"");
   const FemModel& model = problem.model;
   if (type == "point") {
     const std::string object = j.string("object");
@@ -203,13 +209,19 @@ FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
     for (const FemSolid& s : model.solids)
       if (s.name == object) solid = &s;
     if (!solid) j.fail("object", fmt::format("no solid named '{}'", object));
-    const Vec3 at = read_point(j, "nearest", model.dim);
-    Real best = std::numeric_limits<Real>::infinity();
-    for (Index n = 0; n < solid->mesh.node_count(); ++n)
-      if ((solid->mesh.nodes[n] - at).norm() < best) {
-        best = (solid->mesh.nodes[n] - at).norm();
-        p.node = solid->node_begin + n;
-      }
+    if (j.has("vertex") == j.has("nearest"))
+      j.fail("nearest", "give either \"vertex\" (a node index of the solid) or \"nearest\" (a point, m)");
+    if (j.has("vertex")) {
+      p.node = solid->node_begin + j.required_integer("vertex", 0, static_cast<int>(solid->mesh.node_count()) - 1);
+    } else {
+      const Vec3 at = read_point(j, "nearest", model.dim);
+      Real best = std::numeric_limits<Real>::infinity();
+      for (Index n = 0; n < solid->mesh.node_count(); ++n)
+        if ((solid->mesh.nodes[n] - at).norm() < best) {
+          best = (solid->mesh.nodes[n] - at).norm();
+          p.node = solid->node_begin + n;
+        }
+    }
     const std::string q = j.choice("quantity", "displacement", {"displacement", "position", "velocity"});
     p.type = q == "displacement" ? FemProbeType::displacement : q == "position" ? FemProbeType::position : FemProbeType::velocity;
   } else if (type == "energy") {
@@ -218,13 +230,16 @@ FemProbe read_fem_probe(const JsonObject& j, const FemProblem& problem) {
   } else if (type == "momentum") {
     p.type = FemProbeType::momentum;
     p.quantity = j.choice("quantity", "linear", {"linear", "angular"});
-  } else if (type == "body") {
+  } else if (of_body) {
     p.type = FemProbeType::body;
     const std::string object = j.string("object");
     for (size_t b = 0; b < problem.rigid_bodies.size(); ++b)
       if (problem.rigid_bodies[b].name == object) p.body = static_cast<Index>(b);
     if (p.body < 0) j.fail("object", fmt::format("no rigid body named '{}'", object));
-    p.quantity = j.choice("quantity", "position", {"position", "velocity", "angular_velocity", "body_angular_velocity"});
+    if (type == "center_of_mass") p.quantity = "position";
+    else if (type == "velocity") p.quantity = "velocity";
+    else
+      p.quantity = j.choice("frame", "world", {"world", "body"}) == "world" ? "angular_velocity" : "body_angular_velocity";
   } else if (type == "constraint_error") {
     p.type = FemProbeType::constraint_error;
   } else {

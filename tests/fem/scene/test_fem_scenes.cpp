@@ -200,6 +200,50 @@ TEST(FemScenes, DynamicRunKeepsEnergyAfterAPulse) {
   EXPECT_LT(drift, 1e-9 * reference);
 }
 
+TEST(FemScenes, ProbesSpeakTheConstraintEnginesVocabulary) {
+  // A 1 x 0.5 x 0.2 m box body thrown at v = (1, 2, 0) m/s spinning at 3 rad/s about z (a
+  // principal axis) without gravity, and a free solid beside it, for 10 steps of 0.01 s:
+  //   center_of_mass = x0 + v t    the midpoint rule moves a free centre exactly: 1e-12 m
+  //   velocity = v                 1e-12 m/s
+  //   angular_velocity = (0, 0, 3) steady rotation about a principal axis; the scheme keeps it to
+  //                                its Newton tolerance (1e-12 relative here): 1e-9 rad/s
+  //   frame "body": along d1, the axis of the smallest Euler-tensor value, which is z
+  //   a point probe by "vertex" reads the node a "nearest" probe finds at that node's position.
+  const std::string scene = write_scene("fem_probe_vocabulary", R"J({"name": "probes",
+    "settings": {"solver": "fem", "dt": 0.01, "duration": 0.1, "integrator": "energy_momentum", "gravity": [0, 0, 0],
+                 "newton": {"tolerance": 1e-12}},
+    "objects": [{"name": "box", "kind": "rigid_body", "mesh": {"type": "box", "min": [-0.5, -0.25, -0.1], "max": [0.5, 0.25, 0.1],
+                 "cells": [4, 2, 1]}, "density": 1000, "velocity": [1, 2, 0], "angular_velocity": [0, 0, 3]},
+                {"name": "cube", "kind": "solid", "mesh": {"type": "box", "min": [2, 0, 0], "max": [2.2, 0.2, 0.2], "cells": [1, 1, 1]},
+                 "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000}}],
+    "probes": [{"name": "c", "type": "center_of_mass", "object": "box"},
+               {"name": "v", "type": "velocity", "object": "box"},
+               {"name": "w", "type": "angular_velocity", "object": "box"},
+               {"name": "wb", "type": "angular_velocity", "object": "box", "frame": "body"},
+               {"name": "by_index", "type": "point", "object": "cube", "vertex": 0, "quantity": "position"},
+               {"name": "by_place", "type": "point", "object": "cube", "nearest": [2, 0, 0], "quantity": "position"},
+               {"name": "E", "type": "energy", "object": "*"}]})J");
+  const std::string out = fs::path(scene).parent_path() / "out";
+  const auto rows = run_scene(scene, out);
+  ASSERT_EQ(rows.size(), 11u);
+  for (const auto& r : rows) {
+    const Real t = r[0];
+    EXPECT_NEAR(r[1], 1 * t, 1e-12);
+    EXPECT_NEAR(r[2], 2 * t, 1e-12);
+    EXPECT_NEAR(r[3], 0, 1e-12);
+    EXPECT_NEAR(r[4], 1, 1e-12);
+    EXPECT_NEAR(r[5], 2, 1e-12);
+    EXPECT_NEAR(r[7], 0, 1e-9);
+    EXPECT_NEAR(r[8], 0, 1e-9);
+    EXPECT_NEAR(r[9], 3, 1e-9);
+    EXPECT_NEAR(std::abs(r[10]), 3, 1e-9);
+    EXPECT_NEAR(r[11], 0, 1e-9);
+    EXPECT_NEAR(r[12], 0, 1e-9);
+    for (int k = 0; k < 3; ++k) EXPECT_EQ(r[13 + k], r[16 + k]) << "t = " << t;
+  }
+  EXPECT_NEAR(rows.front()[13], 2, 1e-15);
+}
+
 TEST(FemScenes, StrongPulseAsksForASmallerStepAndRunsWithIt) {
   // A free plane-strain bar (1 x 0.1 m, 40 x 4 cells, 100 kg/m^3: 10 kg per metre of thickness,
   // Neo-Hookean E = 50 kPa, nu = 0.3) pushed at its right end by nodal forces of 180 N along x and
@@ -343,6 +387,8 @@ TEST(FemScenes, BadInputNamesItsKey) {
   expect_bad("fem_old_solids", R"({"name": "f", "settings": {"solver": "fem"}, "solids": []})", {"solids", "\"objects\""});
   expect_bad("fem_revolute", std::string(joint).replace(joint.find("\"spherical\""), 11, "\"revolute\""),
              {"joints[0].type", "'revolute'", "hinge"});
+  expect_bad("fem_old_body_probe", scene("").replace(scene("").rfind("}"), 0, R"(, "probes": [{"name": "p", "type": "body", "object": "s"}])"),
+             {"probes[0].type", "'body'", "angular_velocity"});
   expect_bad("fem_same_name", scene(R"(}, {"name": "s", "kind": "rigid_body", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}, "density": 1)"),
              {"objects[1].name", "'s'"});
 }
