@@ -100,15 +100,16 @@ TEST(CliBadInput, AMisspeltKeyIsNamedBeforeTheKeyItWasMeantToBe) {
   expect_bad_input(fmt::format("check {} --set settings.substep=4", kShowcase), "settings.substep: unknown key (did you mean 'substeps'?)");
 }
 
-TEST(CliBadInput, FemEnergyAndMomentumProbesTakeNoObject) {
-  // They measure the whole model; an "object" key was accepted with any value.
+TEST(CliBadInput, FemEnergyAndMomentumProbesAreOfTheWholeModel) {
+  // They measure the whole model; an "object" key was accepted with any value. As in constraint-
+  // engine scenes, "*" names the whole model; any other object is refused.
   const std::string dir = test::temp_dir("femprobe");
   std::ofstream(dir + "/beam.json") << R"({"name": "beam",
     "settings": {"solver": "fem", "dt": 0.01, "duration": 0.02, "integrator": "midpoint", "gravity": [0, 0, 0]},
     "objects": [{"name": "beam", "kind": "solid", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 0.1, 0.1], "cells": [4, 1, 1], "element": "hex8"},
                 "material": {"youngs_modulus": 1e6, "poisson_ratio": 0.3, "density": 1000}}],
     "probes": [{"name": "E", "type": "energy", "object": "nothing"}]})";
-  expect_bad_input(fmt::format("check {}/beam.json", dir), "probes[0].object: unknown key; allowed here: name, type, quantity");
+  expect_bad_input(fmt::format("check {}/beam.json", dir), "probes[0].object: energy and momentum are of the whole model");
 }
 
 TEST(CliBadInput, FemAndFlowSettingsOfferOnlyTheirOwnKeys) {
