@@ -77,7 +77,7 @@ class World {
 
   /// Advances one step of dt on settings.threads threads (or `threads`; results do not depend on
   /// the count). Throws NumericalError naming the step, the time and the object; the state is
-  /// then the last good one.
+  /// then what the failed step left (to inspect, not to continue from).
   void step();
   void step(int threads);
 

@@ -171,6 +171,10 @@ TEST(CommandLine, RigidAndJointInputErrorsNameTheirKey) {
   expect_bad_input("shape_type", R"({"name": "r", "objects": [{"name": "a", "kind": "rigid_body", "shape": {"type": "cone"}, "position": [0, 0, 0]}]})",
                    {"objects[0].shape.type", "sphere"});
   expect_bad_input("friction", scene(R"(, "friction": {"static": -0.5})", ok_joint), {"objects[0].friction.static", "out of range"});
+  // extent, particle_count and escaped count particles: a rigid body has none to count.
+  expect_bad_input("extent_of_body", R"({"name": "r", "objects": [{"name": "a", "kind": "rigid_body", "shape": {"type": "sphere", "radius": 0.1},
+      "position": [0, 0, 0]}], "probes": [{"name": "low", "type": "extent", "object": "a", "axis": "y", "quantity": "min"}]})",
+                   {"probes[0].object", "no cloth, soft-body or fluid object named 'a'"});
 }
 
 TEST(CommandLine, FluidRunWritesParticlesAndWarnsAboutCfl) {

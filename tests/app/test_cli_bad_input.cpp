@@ -66,8 +66,8 @@ TEST(CliBadInput, WhatIsNotASceneFileIsNamed) {
 TEST(CliBadInput, AMisspeltKeyIsNamedBeforeTheKeyItWasMeantToBe) {
   // Each was reported as the required key being missing ("shape.center: missing required key").
   const std::string dir = test::temp_dir("misspelt");
-  const std::string body = R"({"name": "b", "kind": "rigid_body", "density": 1000, "position": [0, 1, 0],
-                               "shape": {"type": "box", "size": [0.2, 0.2, 0.2]}})";
+  const std::string body = R"({"name": "b", "kind": "cloth", "mesh": {"type": "grid", "size": [1, 1], "resolution": [2, 2]},
+                               "material": {"area_density": 0.1}})";
   auto scene = [&](const std::string& tag, const std::string& objects, const std::string& probes) {
     const std::string path = fmt::format("{}/{}.json", dir, tag);
     std::ofstream(path) << fmt::format(R"({{"name": "{}", "objects": [{}], "probes": [{}]}})", tag, objects, probes);

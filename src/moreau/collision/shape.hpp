@@ -1,7 +1,9 @@
 #pragma once
-// Collision and mass shapes of rigid bodies. Every shape is stored in its body frame: the origin at
-// the centre of mass and the axes along the principal axes of inertia, so a body's inertia tensor
-// is diagonal there (Mueller et al. 2020, sec. 3.3: corrections are evaluated in the rest frame).
+// The one shape type of rigid bodies and colliders, with its mass properties. A rigid body's shape
+// is stored in its body frame: the origin at the centre of mass and the axes along the principal
+// axes of inertia, so its inertia tensor is diagonal there (Mueller et al. 2020, sec. 3.3:
+// corrections are evaluated in the rest frame). A collider's shape is in the collider's frame
+// (Collider::position and rotation; a plane collider keeps its world normal in Collider::normal).
 #include <memory>
 #include <string>
 #include <vector>

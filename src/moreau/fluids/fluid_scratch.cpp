@@ -6,7 +6,8 @@ namespace moreau {
 
 void FluidScratch::fit(const FluidModel& fm) {
   const std::size_t capacity = fm.capacity, samples = fm.solid.size();
-  if (lambda.size() == capacity && solid_reaction.size() == samples) return;
+  const std::size_t coupled = fm.solid.coupled_particle.empty() ? 0 : fm.solid.coupled_particle.back() + 1;
+  if (lambda.size() == capacity && solid_reaction.size() == samples && solid_share.size() == coupled) return;
   substep_start.assign(capacity, Vec3::Zero());
   lambda.assign(capacity, 0);
   correction.assign(capacity, Vec3::Zero());
@@ -16,7 +17,7 @@ void FluidScratch::fit(const FluidModel& fm) {
   reorder_real.assign(capacity, 0);
   solid_reaction.assign(samples, Vec3::Zero());
   solid_inv_mass.assign(samples, 0);
-  solid_share.assign(fm.solid.coupled_particle.empty() ? 0 : fm.solid.coupled_particle.back() + 1, 1.0);
+  solid_share.assign(coupled, 1.0);
   solid_contacts.assign(capacity, 0);
 }
 

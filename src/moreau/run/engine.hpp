@@ -32,7 +32,8 @@ class Engine {
 
   /// Advances the current state by one step on `threads` threads (results do not depend on the
   /// count). Throws NumericalError naming the step, the time and the object when the step fails;
-  /// the state is then the last good one.
+  /// the state is then what the failed step left (the constraint engine's diverged values, the
+  /// solver's last iterate), not a state to continue from.
   virtual void step(int threads) = 0;
 
   /// probes.csv's columns (after "time"), and the probes' values at the current state in that order.

@@ -75,7 +75,7 @@ void read_settings(const JsonObject& settings, Scene& scene) {
   settings.finish();
 }
 
-enum class Accepts { any, fluids, solids, bodies };
+enum class Accepts { any, fluids, solids, bodies, particles };
 
 Index object_index(const JsonObject& probe, const Model& model, bool allow_all, Accepts accepts = Accepts::any) {
   const std::string name = probe.string("object");
@@ -84,6 +84,7 @@ Index object_index(const JsonObject& probe, const Model& model, bool allow_all, 
     if (accepts == Accepts::fluids) return o.kind == ObjectKind::fluid;
     if (accepts == Accepts::solids) return o.has_particles();
     if (accepts == Accepts::bodies) return o.kind == ObjectKind::rigid_body;
+    if (accepts == Accepts::particles) return o.has_particles() || o.kind == ObjectKind::fluid;
     return o.is_simulated();
   };
   const Index i = model.find_object(name);
@@ -91,12 +92,15 @@ Index object_index(const JsonObject& probe, const Model& model, bool allow_all, 
     std::string names;
     for (const auto& o : model.objects)
       if (acceptable(o)) names += (names.empty() ? "" : ", ") + o.name;
-    probe.fail("object", fmt::format("no {}object named '{}'; allowed: {}{}",
+    if (names.empty()) names = allow_all ? "\"*\" (the scene has no such object)" : "none (the scene has no such object)";
+    else if (allow_all) names += ", *";
+    probe.fail("object", fmt::format("no {}object named '{}'; allowed: {}",
                                      accepts == Accepts::fluids   ? "fluid "
                                      : accepts == Accepts::solids ? "cloth or soft-body "
                                      : accepts == Accepts::bodies ? "rigid-body "
-                                                                  : "simulated ",
-                                     name, names, allow_all ? ", *" : ""));
+                                     : accepts == Accepts::particles ? "cloth, soft-body or fluid "
+                                                                     : "simulated ",
+                                     name, names));
   }
   return i;
 }
@@ -150,7 +154,7 @@ ProbeSpec read_probe(const JsonObject& j, const Model& model) {
     p.object = object_index(j, model, true);
   } else if (type == "extent") {
     p.type = ProbeType::extent;
-    p.object = object_index(j, model, true);
+    p.object = object_index(j, model, true, Accepts::particles);  // particles only
     const std::string axis = j.choice("axis", {"x", "y", "z"});
     p.axis = axis[0] - 'x';
     p.quantity = j.choice("quantity", {"min", "max"});
@@ -169,7 +173,7 @@ ProbeSpec read_probe(const JsonObject& j, const Model& model) {
     p.quantity = j.choice("quantity", "mean", {"mean", "max"});
   } else if (type == "particle_count") {
     p.type = ProbeType::particle_count;
-    p.object = object_index(j, model, true);
+    p.object = object_index(j, model, true, Accepts::particles);  // particles only
   } else if (type == "position" || type == "orientation" || type == "velocity" || type == "angular_velocity") {
     p.type = type == "position"      ? ProbeType::body_position
              : type == "orientation" ? ProbeType::body_orientation
@@ -192,7 +196,7 @@ ProbeSpec read_probe(const JsonObject& j, const Model& model) {
     p.object = object_index(j, model, true);
   } else if (type == "escaped") {
     p.type = ProbeType::escaped;
-    p.object = object_index(j, model, true);
+    p.object = object_index(j, model, true, Accepts::particles);  // particles only
     const JsonObject box = j.object("box");
     p.box_min = box.vec3("min");
     p.box_max = box.vec3("max");

@@ -106,8 +106,8 @@ TEST(FemJoints, CompoundPendulumOnASphericalJoint) {
   EXPECT_LT(violation, 1e-10);
 }
 
-TEST(FemJoints, TwoBodiesOnARevoluteJointKeepEnergyMomentaAndTheAxis) {
-  // Two boxes joined by a revolute joint (axis z through their common face centre), thrown
+TEST(FemJoints, TwoBodiesOnAHingeKeepEnergyMomentaAndTheAxis) {
+  // Two boxes joined by a hinge (axis z through their common face centre), thrown
   // tumbling with different spins, no gravity. The axis rows n_a . e_b = 0 are quadratic in the
   // directors, so their forces at the midpoint do no work either: energy and both momenta stay
   // constant to the tolerance, the anchor and the axis hold to 1e-10, and the relative rotation
@@ -151,7 +151,7 @@ TEST(FemJoints, TwoBodiesOnARevoluteJointKeepEnergyMomentaAndTheAxis) {
     L_drift = std::max(L_drift, (momentum() - L0).norm() / L0.norm());
     violation = std::max(violation, joint_violation(p, run, p.joints[0]));
   }
-  std::printf("revolute pair: energy drift %.2e, |L| drift %.2e, joint %.2e, %.2f Newton iterations per step\n", drift, L_drift,
+  std::printf("hinged pair: energy drift %.2e, |L| drift %.2e, joint %.2e, %.2f Newton iterations per step\n", drift, L_drift,
               violation, iterations / 300.0);
   EXPECT_LT(drift, 1e-10);
   EXPECT_LT(L_drift, 1e-10);

@@ -7,9 +7,9 @@
 //   spherical  p_a - p_b = 0 (3 rows), a point of each end: a body's material point
 //              phi + sum_i c_i d_i (c_i its coordinates along the reference directors), a solid
 //              node X + u, or a fixed world point
-//   revolute   spherical, plus n_a . e_b1 = 0 and n_a . e_b2 = 0 for the hinge axis n_a fixed in
+//   hinge      spherical, plus n_a . e_b1 = 0 and n_a . e_b2 = 0 for the hinge axis n_a fixed in
 //              end a and two directions e_b1, e_b2 normal to it fixed in end b (bodies or the
-//              world); a revolute joint to a solid holds every solid node on the hinge axis
+//              world); a hinge to a solid holds every solid node on the hinge axis
 //              (spherical rows each), which leaves the rotation about the axis free
 // (Betsch & Steinmann 2001, sec. 5: joints as external constraints on q.)
 #include <string>
