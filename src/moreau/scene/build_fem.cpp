@@ -1,6 +1,6 @@
 // Scenes of the FEM engine ("solver": "fem"): "objects" of kind "solid" (a mesh, a hyperelastic
 // material, loads and Dirichlet conditions), "rigid_body" (director bodies) and "fluid"
-// (build_flow.cpp), "joints" and FEM probes (docs/scene-format.md, "FEM scenes").
+// (build_flow.cpp), "joints" and FEM probes (docs/fem-scenes.md).
 #include <fmt/format.h>
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // What the solids and the fluid of a FEM scene read alike: meshes (generated, graded, Gmsh .msh
-// or .geo), per-component expressions and node selections (docs/scene-format.md, "FEM scenes").
+// or .geo), per-component expressions and node selections (docs/fem-scenes.md).
 #include <fmt/format.h>
 
 #include <algorithm>

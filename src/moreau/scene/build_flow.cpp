@@ -1,6 +1,6 @@
 // The "fluid" of a "solver": "fem" scene: an incompressible Navier-Stokes flow on a quad4/hex8
 // mesh with velocity boundaries, outflows, a pressure reference and flow probes
-// (docs/scene-format.md, "Fluids of the FEM engine").
+// (docs/fem-scenes.md, "`fluid` (FEM)").
 #include <fmt/format.h>
 
 #include <limits>

@@ -1,6 +1,6 @@
 #pragma once
 // A fluid of the FEM engine (a "fluid" in a "solver": "fem" scene): the Navier-Stokes model, how
-// to advance it, and what to measure (docs/scene-format.md, "Fluids of the FEM engine").
+// to advance it, and what to measure (docs/fem-scenes.md, "`fluid` (FEM)").
 #include <optional>
 #include <string>
 #include <vector>
