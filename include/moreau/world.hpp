@@ -58,7 +58,8 @@ class World {
   /// Throws InputError (file, JSON path, what is allowed) on bad input. Nothing is written.
   static World load(const std::string& scene_path, const std::vector<std::string>& overrides = {});
   /// The same for scene JSON text (e.g. a Python dict dumped to JSON); relative mesh paths are
-  /// resolved against the working directory.
+  /// resolved against the working directory. A constraint-engine scene can also be built object
+  /// by object with SceneBuilder (scene_builder.hpp).
   static World from_json(const std::string& scene_json, const std::vector<std::string>& overrides = {});
   ~World();
   World(World&&) noexcept;
@@ -113,6 +114,7 @@ class World {
   std::map<std::string, double> stage_times() const;
 
  private:
+  friend class SceneBuilder;  // scene_builder.hpp: a scene built in code
   explicit World(std::unique_ptr<Scene> scene);
   std::unique_ptr<Scene> scene_;
   std::unique_ptr<Engine> engine_;  // steps scene_'s state

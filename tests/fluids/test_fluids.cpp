@@ -331,20 +331,20 @@ TEST(FluidDamBreak, DepthProfileApproachesRittersShallowWaterSolution) {
        "block": {"min": [-0.8, 0, -0.02], "max": [0, 0.2, 0.02]}}]})");
   const Real H = 0.2, r = 0.005, c0 = std::sqrt(9.81 * H);
   // The scene's own probes: fluid_height on the vertical through x, and the front (max x).
-  auto probe = [&](ProbeSpec spec) {
+  auto probe = [&](Probe spec) {
     spec.object = scene.model.find_object("water");
     std::vector<Real> values;
     evaluate_probe(spec, scene.model, scene.state, values);
     return values.at(0);
   };
   auto depth_at = [&](Real x) {
-    ProbeSpec spec;
+    Probe spec;
     spec.type = ProbeType::fluid_height;
     spec.at = Vec3(x, 0, 0);
     return probe(spec);
   };
   auto front = [&] {
-    ProbeSpec spec;
+    Probe spec;
     spec.type = ProbeType::extent;
     spec.axis = 0;
     spec.quantity = "max";

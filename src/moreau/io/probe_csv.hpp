@@ -9,10 +9,10 @@
 namespace moreau {
 
 /// Every probe's column names in order, columns_of(probe) giving one probe's.
-template <class Probe, class ColumnsOf>
-std::vector<std::string> probe_table_columns(const std::vector<Probe>& probes, ColumnsOf columns_of) {
+template <class Item, class ColumnsOf>
+std::vector<std::string> probe_table_columns(const std::vector<Item>& probes, ColumnsOf columns_of) {
   std::vector<std::string> columns;
-  for (const Probe& p : probes)
+  for (const Item& p : probes)
     for (std::string& c : columns_of(p)) columns.push_back(std::move(c));
   return columns;
 }

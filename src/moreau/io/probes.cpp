@@ -6,7 +6,7 @@
 
 namespace moreau {
 
-bool ProbeSpec::is_vector() const {
+bool Probe::is_vector() const {
   switch (type) {
     case ProbeType::point:
     case ProbeType::center_of_mass:
@@ -20,13 +20,13 @@ bool ProbeSpec::is_vector() const {
   }
 }
 
-int ProbeSpec::width() const {
+int Probe::width() const {
   if (type == ProbeType::body_orientation) return 4;
   if (type == ProbeType::joint_error) return 2;
   return is_vector() ? 3 : 1;
 }
 
-std::vector<std::string> probe_columns(const ProbeSpec& probe) {
+std::vector<std::string> probe_columns(const Probe& probe) {
   if (probe.type == ProbeType::body_orientation)
     return {probe.name + ".w", probe.name + ".x", probe.name + ".y", probe.name + ".z"};
   if (probe.type == ProbeType::joint_error) return {probe.name + ".position", probe.name + ".angle"};
@@ -47,7 +47,7 @@ void for_each_position(const Model& model, const State& state, Index object, F&&
 
 }  // namespace
 
-void evaluate_probe(const ProbeSpec& probe, const Model& model, const State& state, std::vector<Real>& values) {
+void evaluate_probe(const Probe& probe, const Model& model, const State& state, std::vector<Real>& values) {
   auto push3 = [&](const Vec3& v) { values.insert(values.end(), {v.x(), v.y(), v.z()}); };
   switch (probe.type) {
     case ProbeType::point: {

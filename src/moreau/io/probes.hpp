@@ -15,7 +15,7 @@ enum class ProbeType {
   joint_error, contact_count, max_displacement
 };
 
-struct ProbeSpec {
+struct Probe {
   std::string name;
   ProbeType type = ProbeType::point;
   Index object = -1;                 // -1: every object ("*")
@@ -35,9 +35,9 @@ struct ProbeSpec {
 };
 
 /// Column headers of one probe.
-std::vector<std::string> probe_columns(const ProbeSpec& probe);
+std::vector<std::string> probe_columns(const Probe& probe);
 
 /// Appends the probe's current value(s) to `values`.
-void evaluate_probe(const ProbeSpec& probe, const Model& model, const State& state, std::vector<Real>& values);
+void evaluate_probe(const Probe& probe, const Model& model, const State& state, std::vector<Real>& values);
 
 }  // namespace moreau

@@ -31,10 +31,10 @@ class ConstraintEngine final : public Engine {
   void step(int threads) override { scene_.formulation->step(model_, state_, timer_, threads); }
 
   std::vector<std::string> probe_columns() const override {
-    return probe_table_columns(scene_.probes, [](const ProbeSpec& p) { return moreau::probe_columns(p); });
+    return probe_table_columns(scene_.probes, [](const Probe& p) { return moreau::probe_columns(p); });
   }
   void sample_probes(std::vector<Real>& values) const override {
-    for (const ProbeSpec& p : scene_.probes) evaluate_probe(p, model_, state_, values);
+    for (const Probe& p : scene_.probes) evaluate_probe(p, model_, state_, values);
   }
 
   void open_frames(const std::string& out_dir, const std::string& scene_name) override {

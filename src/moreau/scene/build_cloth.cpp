@@ -1,3 +1,5 @@
+// "kind": "cloth": a triangle mesh with a membrane or edge springs, and dihedral or isometric
+// bending.
 #include <fmt/format.h>
 
 #include <cmath>
@@ -9,71 +11,121 @@
 
 namespace moreau {
 
-namespace {
-
-TriangleMesh read_cloth_mesh(const JsonObject& mesh, SceneBuildContext& ctx) {
-  const std::string type = mesh.choice("type", {"grid", "obj"});
-  TriangleMesh out;
-  if (type == "grid") {
-    const Vec2 size = mesh.vec2("size", Range::positive());
+ClothSpec read_cloth(const JsonObject& object) {
+  ClothSpec spec;
+  const JsonObject mesh = object.object("mesh");
+  if (mesh.choice("type", {"grid", "obj"}) == "grid") {
+    GridSheet grid;
+    const Vec2 size = mesh.vec2("size", Range::any());
+    grid.size = {size.x(), size.y()};
     const auto res = mesh.integers("resolution", 2, 2);
-    const Vec3 center = mesh.vec3("center", Vec3::Zero());
-    check_memory(mesh, "resolution", double(res[0]) * res[1], memory_cost::cloth_cell, "grid cells");
-    out = make_grid_sheet(size, {res[0], res[1]}, center);
-    // Optional rotation about the sheet's centre (world x, then y, then z): a curtain is
-    // "rotation_deg": [90, 0, 0].
-    const Mat3 rotation = rotation_from_degrees(mesh.vec3("rotation_deg", Vec3::Zero()));
-    for (auto& v : out.vertices) v = center + rotation * (v - center);
+    grid.resolution = {res[0], res[1]};
+    grid.center = read_vector(mesh, "center", grid.center);
+    grid.rotation_deg = read_vector(mesh, "rotation_deg", grid.rotation_deg);
+    spec.mesh = grid;
   } else {
-    out = read_obj_triangles(resolve_path(ctx, mesh.string("file")));
-    const Real scale = mesh.number("scale", 1.0, Range::positive());
-    const Vec3 translate = mesh.vec3("translate", Vec3::Zero());
-    for (auto& v : out.vertices) v = scale * v + translate;
+    spec.mesh = read_mesh_file(mesh);
   }
   mesh.finish();
+
+  const JsonObject material = object.object("material");
+  ClothMaterial& m = spec.material;
+  m.area_density = read_optional_number(material, "area_density");
+  m.vertex_mass = read_optional_number(material, "vertex_mass");
+  m.damping = material.number("damping", m.damping);
+  m.youngs_modulus = read_optional_number(material, "youngs_modulus");
+  m.poisson_ratio = read_optional_number(material, "poisson_ratio");
+  m.thickness = read_optional_number(material, "thickness");
+  m.stretch_compliance = read_optional_number(material, "stretch_compliance");
+  m.bending_stiffness = read_optional_number(material, "bending_stiffness");
+  m.bend_compliance = read_optional_number(material, "bend_compliance");
+  if (material.has("bending_model")) m.bending_model = material.string("bending_model");
+  material.finish();
+
+  spec.collision_radius = read_optional_number(object, "collision_radius");
+  spec.collider_gap = read_optional_number(object, "collider_gap");
+  spec.velocity = read_vector(object, "velocity", spec.velocity);
+  spec.self_collision = object.boolean("self_collision", spec.self_collision);
+  spec.fluid_coupling = object.boolean("fluid_coupling", spec.fluid_coupling);
+  spec.contact = read_contact_material(object);
+  spec.pin = read_pins(object);
+  return spec;
+}
+
+namespace {
+
+TriangleMesh make_cloth_mesh(const ClothMesh& spec, const SpecPlace& place, SceneBuildContext& ctx) {
+  TriangleMesh out;
+  if (const auto* grid = std::get_if<GridSheet>(&spec)) {
+    const Vec2 size = place.pair("size", grid->size, Range::positive());
+    const int nx = place.integer("resolution", grid->resolution[0], 2), nz = place.integer("resolution", grid->resolution[1], 2);
+    const Vec3 center = place.vector("center", grid->center);
+    check_memory(place, "resolution", double(nx) * nz, memory_cost::cloth_cell, "grid cells");
+    out = make_grid_sheet(size, {nx, nz}, center);
+    // Optional rotation about the sheet's centre (world x, then y, then z): a curtain is
+    // "rotation_deg": [90, 0, 0].
+    const Mat3 rotation = rotation_from_degrees(place.vector("rotation_deg", grid->rotation_deg));
+    for (auto& v : out.vertices) v = center + rotation * (v - center);
+  } else if (const auto* file = std::get_if<MeshFile>(&spec)) {
+    out = read_obj_triangles(resolve_path(ctx, file->file));
+    place_vertices(*file, place, out.vertices);
+  } else {
+    const auto& list = std::get<TriangleList>(spec);
+    for (const Vector3& v : list.vertices) out.vertices.push_back(place.vector("vertices", v));
+    for (const auto& t : list.triangles) {
+      for (int v : t)
+        if (v < 0 || v >= static_cast<int>(list.vertices.size()))
+          place.fail("triangles", fmt::format("vertex {} does not exist; the mesh has {} vertices", v, list.vertices.size()));
+      out.triangles.push_back({t[0], t[1], t[2]});
+    }
+    if (out.triangles.empty()) place.fail("triangles", "a cloth needs at least one triangle");
+  }
   for (size_t t = 0; t < out.triangles.size(); ++t) {
     const auto& k = out.triangles[t];
     const Real area2 = (out.vertices[k[1]] - out.vertices[k[0]]).cross(out.vertices[k[2]] - out.vertices[k[0]]).norm();
-    if (!(area2 > 0)) mesh.fail("type", fmt::format("triangle {} of the cloth mesh is degenerate (zero area)", t));
+    if (!(area2 > 0)) place.fail("type", fmt::format("triangle {} of the cloth mesh is degenerate (zero area)", t));
   }
   return out;
 }
 
 }  // namespace
 
-void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx) {
+void add_cloth(const ClothSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx) {
   Model& m = ctx.model;
   const Index object_index = static_cast<Index>(m.objects.size());
-  const TriangleMesh mesh = read_cloth_mesh(object.object("mesh"), ctx);
+  const TriangleMesh mesh = make_cloth_mesh(spec.mesh, place.at("mesh"), ctx);
 
-  const JsonObject material = object.object("material");
+  const ClothMaterial& mat = spec.material;
+  const SpecPlace material = place.at("material");
   // Mass: an area density (kg/m^2) lumped to the vertices, or one mass per vertex (kg), as
   // position-based libraries often give every particle.
-  if (material.has("area_density") == material.has("vertex_mass"))
+  if (mat.area_density.has_value() == mat.vertex_mass.has_value())
     material.fail("area_density", "give the cloth's mass as either area_density (kg/m^2) or vertex_mass (kg per vertex)");
-  const bool per_vertex = material.has("vertex_mass");
-  const Real area_density = per_vertex ? 0 : material.number("area_density", Range::positive());
-  const Real vertex_mass = per_vertex ? material.number("vertex_mass", Range::positive()) : 0;
-  const Real damping = material.number("damping", 0.0, Range::non_negative());
-  const bool membrane = material.has("youngs_modulus");
+  const bool per_vertex = mat.vertex_mass.has_value();
+  const Real area_density = per_vertex ? 0 : material.required("area_density", mat.area_density, Range::positive());
+  const Real vertex_mass = per_vertex ? material.required("vertex_mass", mat.vertex_mass, Range::positive()) : 0;
+  const Real damping = material.number("damping", mat.damping, Range::non_negative());
+  const bool membrane = mat.youngs_modulus.has_value();
   Real youngs = 0, poisson = 0, thickness = 0;
   if (membrane) {
-    youngs = material.number("youngs_modulus", Range::positive());
-    poisson = material.number("poisson_ratio", 0.3, Range::open(-1, 0.5));
-    thickness = material.number("thickness", Range::positive());
-    if (material.has("stretch_compliance"))
+    youngs = material.required("youngs_modulus", mat.youngs_modulus, Range::positive());
+    poisson = material.number("poisson_ratio", mat.poisson_ratio.value_or(0.3), Range::open(-1, 0.5));
+    thickness = material.required("thickness", mat.thickness, Range::positive());
+    if (mat.stretch_compliance)
       material.fail("stretch_compliance", "give either a membrane (youngs_modulus, poisson_ratio, thickness) or "
                                           "stretch_compliance, not both");
+  } else if (mat.poisson_ratio || mat.thickness) {
+    material.fail(mat.poisson_ratio ? "poisson_ratio" : "thickness",
+                  "belongs to a membrane: give youngs_modulus too, or leave it out for edge springs");
   }
-  const Real stretch_compliance = material.number("stretch_compliance", 0.0, Range::non_negative());
-  if (material.has("bending_stiffness") && material.has("bend_compliance"))
+  const Real stretch_compliance = material.number("stretch_compliance", mat.stretch_compliance.value_or(0), Range::non_negative());
+  if (mat.bending_stiffness && mat.bend_compliance)
     material.fail("bend_compliance", "give either bending_stiffness (N m) or bend_compliance (1/(N m)), not both");
   Real bending_stiffness = membrane ? youngs * thickness * thickness * thickness / (12 * (1 - poisson * poisson)) : 0;
-  bending_stiffness = material.number("bending_stiffness", bending_stiffness, Range::non_negative());
-  const bool has_bend_compliance = material.has("bend_compliance");
-  const Real bend_compliance = material.number("bend_compliance", 0.0, Range::non_negative());
-  const bool isometric = material.choice("bending_model", "dihedral", {"dihedral", "isometric"}) == "isometric";
-  material.finish();
+  bending_stiffness = material.number("bending_stiffness", mat.bending_stiffness.value_or(bending_stiffness), Range::non_negative());
+  const bool has_bend_compliance = mat.bend_compliance.has_value();
+  const Real bend_compliance = material.number("bend_compliance", mat.bend_compliance.value_or(0), Range::non_negative());
+  const bool isometric = material.choice("bending_model", mat.bending_model, {"dihedral", "isometric"}) == "isometric";
 
   // Lumped masses: a third of each triangle's mass to each of its vertices.
   std::vector<Real> masses(mesh.vertices.size(), vertex_mass);
@@ -86,16 +138,19 @@ void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
   }
   for (const auto& e : edges) edge_sum += (mesh.vertices[e[0]] - mesh.vertices[e[1]]).norm();
   const Real mean_edge = edge_sum / edges.size();
-  const Real radius = object.number("collision_radius", 0.5 * mean_edge, Range::positive());
+  const Real radius = place.number("collision_radius", spec.collision_radius.value_or(0.5 * mean_edge), Range::positive());
 
   // A sheet has no volume: it keeps `collider_gap` (default: its collision radius) from colliders.
-  const Real gap = object.number("collider_gap", radius, Range::non_negative());
-  add_particles(ctx, info, mesh.vertices, masses, radius, gap, object.vec3("velocity", Vec3::Zero()));
+  const Real gap = place.number("collider_gap", spec.collider_gap.value_or(radius), Range::non_negative());
+  add_particles(ctx, info, mesh.vertices, masses, radius, gap, place.vector("velocity", spec.velocity));
   info.kind = ObjectKind::cloth;
-  info.self_collision = object.boolean("self_collision", true);
-  info.fluid_coupling = object.boolean("fluid_coupling", true);
-  read_contact_material(object, info.static_friction, info.dynamic_friction, info.restitution);
-  read_pins(object, info, ctx);
+  info.self_collision = spec.self_collision;
+  info.fluid_coupling = spec.fluid_coupling;
+  check_contact_material(spec.contact, place);
+  info.static_friction = spec.contact.static_friction;
+  info.dynamic_friction = spec.contact.dynamic_friction;
+  info.restitution = spec.contact.restitution;
+  add_pins(spec.pin, place, info, ctx);
 
   const Index base = info.particle_begin;
   auto X = [&](Index v) { return m.particle_rest_position[base + v]; };

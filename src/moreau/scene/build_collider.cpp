@@ -1,9 +1,12 @@
+// "kind": "collider": a fixed or kinematic plane, box, sphere or capsule.
+#include <fmt/format.h>
+
 #include "moreau/scene/object_builders.hpp"
 
 namespace moreau {
 
-void build_collider(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx) {
-  Collider c;
+ColliderSpec read_collider(const JsonObject& object) {
+  ColliderSpec spec;
   const JsonObject shape = object.object("shape");
   const std::string type = shape.choice("type", {"plane", "box", "sphere", "capsule"});
   shape.expect_keys(type == "plane"    ? std::vector<std::string>{"type", "normal", "point", "offset"}
@@ -11,36 +14,73 @@ void build_collider(const JsonObject& object, ObjectInfo& info, SceneBuildContex
                     : type == "sphere" ? std::vector<std::string>{"type", "center", "radius"}
                                        : std::vector<std::string>{"type", "center", "radius", "half_height", "rotation_deg"});
   if (type == "plane") {
-    c.shape = make_plane();
-    const Vec3 n = shape.vec3("normal", Vec3::UnitY());
-    if (n.norm() <= 0) shape.fail("normal", "the plane normal must not be zero");
-    c.normal = n.normalized();
+    PlaneShape plane;
+    plane.normal = read_vector(shape, "normal", plane.normal);
+    const Vec3 n = to_vec3(plane.normal);  // checked by add_collider
     if (shape.has("point") && shape.has("offset")) shape.fail("point", "give either \"point\" or \"offset\", not both");
-    c.position = shape.has("point") ? shape.vec3("point") : Vec3(c.normal * shape.number("offset", 0.0));
+    plane.point = shape.has("point") ? to_vector3(shape.vec3("point"))
+                                     : to_vector3(n.normalized() * shape.number("offset", 0.0));
+    spec.shape = plane;
   } else if (type == "box") {
-    c.position = shape.vec3("center");
+    spec.center = to_vector3(shape.vec3("center"));
     if (shape.has("size") == shape.has("half_extents"))
       shape.fail("half_extents", "give exactly one of \"half_extents\" or \"size\" (m)");
-    const Vec3 half_extents = shape.has("size") ? Vec3(0.5 * shape.vec3("size")) : shape.vec3("half_extents");
-    if (half_extents.minCoeff() <= 0) shape.fail("half_extents", "every extent must be > 0");
-    c.shape = make_box(half_extents);
-    c.rotation = rotation_from_degrees(shape.vec3("rotation_deg", Vec3::Zero()));
+    spec.shape = BoxShape{to_vector3(shape.has("size") ? Vec3(0.5 * shape.vec3("size")) : shape.vec3("half_extents"))};
+    spec.rotation_deg = read_vector(shape, "rotation_deg", spec.rotation_deg);
   } else if (type == "sphere") {
-    c.position = shape.vec3("center");
-    c.shape = make_sphere(shape.number("radius", Range::positive()));
+    spec.center = to_vector3(shape.vec3("center"));
+    spec.shape = SphereShape{shape.number("radius")};
   } else {
-    c.position = shape.vec3("center");
-    const Real radius = shape.number("radius", Range::positive());
-    c.shape = make_capsule(radius, shape.number("half_height", Range::non_negative()));
-    c.rotation = rotation_from_degrees(shape.vec3("rotation_deg", Vec3::Zero()));
+    spec.center = to_vector3(shape.vec3("center"));
+    CapsuleShape capsule;
+    capsule.radius = shape.number("radius");
+    capsule.half_height = shape.number("half_height");
+    spec.shape = capsule;
+    spec.rotation_deg = read_vector(shape, "rotation_deg", spec.rotation_deg);
   }
   shape.finish();
-  c.velocity = object.vec3("velocity", Vec3::Zero());
-  c.inside = object.boolean("inside", false);
+  spec.velocity = read_vector(object, "velocity", spec.velocity);
+  spec.inside = object.boolean("inside", spec.inside);
+  spec.fluid_walls = object.boolean("fluid_walls", spec.fluid_walls);
+  spec.contact = read_contact_material(object);
+  return spec;
+}
+
+void add_collider(const ColliderSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx) {
+  Collider c;
+  const SpecPlace shape = place.at("shape");
+  if (const auto* plane = std::get_if<PlaneShape>(&spec.shape)) {
+    c.shape = make_plane();
+    const Vec3 n = shape.vector("normal", plane->normal);
+    if (n.norm() <= 0) shape.fail("normal", "the plane normal must not be zero");
+    c.normal = n.normalized();
+    c.position = shape.vector("point", plane->point);
+  } else if (const auto* box = std::get_if<BoxShape>(&spec.shape)) {
+    const Vec3 half_extents = shape.vector("half_extents", box->half_extents);
+    if (half_extents.minCoeff() <= 0) shape.fail("half_extents", "every extent must be > 0");
+    c.shape = make_box(half_extents);
+  } else if (const auto* sphere = std::get_if<SphereShape>(&spec.shape)) {
+    c.shape = make_sphere(shape.number("radius", sphere->radius, Range::positive()));
+  } else if (const auto* capsule = std::get_if<CapsuleShape>(&spec.shape)) {
+    const Real radius = shape.number("radius", capsule->radius, Range::positive());
+    c.shape = make_capsule(radius, shape.number("half_height", capsule->half_height, Range::non_negative()));
+  } else {
+    shape.fail("type", "a collider is a plane, box, sphere or capsule; cylinders, convex hulls and triangle meshes "
+                       "are rigid bodies with \"fixed\": true");
+  }
+  if (c.shape.type != ShapeType::plane) {
+    c.position = shape.vector("center", spec.center);
+    if (c.shape.type != ShapeType::sphere) c.rotation = rotation_from_degrees(shape.vector("rotation_deg", spec.rotation_deg));
+  }
+  c.velocity = place.vector("velocity", spec.velocity);
+  c.inside = spec.inside;
   if (c.inside && c.shape.type == ShapeType::plane)
-    object.fail("inside", "a plane has no inside; use a box, sphere or capsule as a container");
-  c.fluid_walls = object.boolean("fluid_walls", true);
-  read_contact_material(object, c.static_friction, c.dynamic_friction, c.restitution);
+    place.fail("inside", "a plane has no inside; use a box, sphere or capsule as a container");
+  c.fluid_walls = spec.fluid_walls;
+  check_contact_material(spec.contact, place);
+  c.static_friction = spec.contact.static_friction;
+  c.dynamic_friction = spec.contact.dynamic_friction;
+  c.restitution = spec.contact.restitution;
   info.kind = ObjectKind::collider;
   info.collider = static_cast<Index>(ctx.model.colliders.size());
   info.static_friction = c.static_friction;

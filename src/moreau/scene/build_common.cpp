@@ -1,3 +1,4 @@
+// What the object kinds share: contact materials, pins, particles, mesh files and rotations.
 #include <fmt/format.h>
 
 #include <Eigen/Geometry>
@@ -8,26 +9,83 @@
 
 namespace moreau {
 
+Vector3 read_vector(const JsonObject& object, const std::string& key, const Vector3& fallback) {
+  return object.has(key) ? to_vector3(object.vec3(key)) : fallback;
+}
+
+std::optional<Vector3> read_optional_vector(const JsonObject& object, const std::string& key) {
+  if (!object.has(key)) return std::nullopt;
+  return to_vector3(object.vec3(key));
+}
+
+std::optional<double> read_optional_number(const JsonObject& object, const std::string& key) {
+  if (!object.has(key)) return std::nullopt;
+  return object.number(key);
+}
+
+ContactMaterial read_contact_material(const JsonObject& object) {
+  ContactMaterial m;
+  if (object.has("friction")) {
+    if (object.raw("friction").is_number()) {
+      m.static_friction = m.dynamic_friction = object.number("friction");
+    } else {
+      const JsonObject friction = object.object("friction");
+      m.static_friction = friction.number("static");
+      m.dynamic_friction = friction.number("dynamic", m.static_friction);
+      friction.finish();
+    }
+  }
+  m.restitution = object.number("restitution", m.restitution);
+  return m;
+}
+
+void check_contact_material(const ContactMaterial& contact, const SpecPlace& place) {
+  place.number("friction.static", contact.static_friction, Range::non_negative());
+  place.number("friction.dynamic", contact.dynamic_friction, Range::non_negative());
+  place.number("restitution", contact.restitution, Range::closed(0, 1));
+}
+
+std::vector<PinSpec> read_pins(const JsonObject& object) {
+  std::vector<PinSpec> pins;
+  for (const JsonObject& pin : object.object_list("pin")) {
+    PinSpec spec;
+    spec.compliance = pin.number("compliance", 0.0);
+    spec.damping = pin.number("damping", 0.0);
+    if (pin.has("box")) {
+      const JsonObject box = pin.object("box");
+      spec.region = PinBox{to_vector3(box.vec3("min")), to_vector3(box.vec3("max"))};
+      box.finish();
+    } else if (pin.has("sphere")) {
+      const JsonObject sphere = pin.object("sphere");
+      PinSphere s;
+      s.center = to_vector3(sphere.vec3("center"));
+      s.radius = sphere.number("radius");
+      spec.region = s;
+      sphere.finish();
+    } else if (pin.has("vertices")) {
+      spec.region = pin.integer_list("vertices", 0);
+    } else {
+      pin.fail("box", "a pin needs a region: \"box\", \"sphere\" or \"vertices\"");
+    }
+    pin.finish();
+    pins.push_back(std::move(spec));
+  }
+  return pins;
+}
+
+MeshFile read_mesh_file(const JsonObject& mesh) {
+  MeshFile file;
+  file.file = mesh.string("file");
+  file.scale = mesh.number("scale", file.scale);
+  file.translate = read_vector(mesh, "translate", file.translate);
+  return file;
+}
+
 Mat3 rotation_from_degrees(const Vec3& degrees) {
   const Vec3 r = degrees * kPi / 180.0;
   return (Eigen::AngleAxisd(r.z(), Vec3::UnitZ()) * Eigen::AngleAxisd(r.y(), Vec3::UnitY()) *
           Eigen::AngleAxisd(r.x(), Vec3::UnitX()))
       .toRotationMatrix();
-}
-
-void read_contact_material(const JsonObject& object, Real& mu_static, Real& mu_dynamic, Real& restitution) {
-  if (object.has("friction")) {
-    const auto& f = object.raw("friction");
-    if (f.is_number()) {
-      mu_static = mu_dynamic = object.number("friction", Range::non_negative());
-    } else {
-      const JsonObject friction = object.object("friction");
-      mu_static = friction.number("static", Range::non_negative());
-      mu_dynamic = friction.number("dynamic", mu_static, Range::non_negative());
-      friction.finish();
-    }
-  }
-  restitution = object.number("restitution", restitution, Range::closed(0, 1));
 }
 
 void add_particles(SceneBuildContext& ctx, ObjectInfo& info, const std::vector<Vec3>& positions,
@@ -47,43 +105,49 @@ void add_particles(SceneBuildContext& ctx, ObjectInfo& info, const std::vector<V
   info.particle_end = m.particle_count();
 }
 
-void read_pins(const JsonObject& object, const ObjectInfo& info, SceneBuildContext& ctx) {
+namespace {
+
+// The object's particles inside one pin region.
+std::vector<Index> pinned_particles(const PinSpec& pin, const SpecPlace& place, const ObjectInfo& info, const Model& m) {
+  std::vector<Index> selected;
+  std::string field;
+  if (const auto* box = std::get_if<PinBox>(&pin.region)) {
+    field = "box";
+    const Vec3 lo = place.vector("box.min", box->min), hi = place.vector("box.max", box->max);
+    for (Index p = info.particle_begin; p < info.particle_end; ++p) {
+      const Vec3& x = m.particle_rest_position[p];
+      if ((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all()) selected.push_back(p);
+    }
+  } else if (const auto* sphere = std::get_if<PinSphere>(&pin.region)) {
+    field = "sphere";
+    const Vec3 c = place.vector("sphere.center", sphere->center);
+    const Real r = place.number("sphere.radius", sphere->radius, Range::positive());
+    for (Index p = info.particle_begin; p < info.particle_end; ++p)
+      if ((m.particle_rest_position[p] - c).norm() <= r) selected.push_back(p);
+  } else {
+    field = "vertices";
+    for (int v : std::get<PinVertices>(pin.region)) {
+      if (v < 0 || v >= info.particle_count())
+        place.fail("vertices", fmt::format("vertex {} does not exist; the object has {} vertices", v, info.particle_count()));
+      selected.push_back(info.particle_begin + v);
+    }
+  }
+  if (selected.empty()) place.fail(field, "this pin region contains no vertex of the object; check its coordinates (m)");
+  return selected;
+}
+
+}  // namespace
+
+void add_pins(const std::vector<PinSpec>& pins, const SpecPlace& place, const ObjectInfo& info, SceneBuildContext& ctx) {
   Model& m = ctx.model;
   AttachmentConstraints& attachments = m.family<AttachmentConstraints>();
   const Index object_index = static_cast<Index>(m.objects.size());
-  for (const JsonObject& pin : object.object_list("pin")) {
-    const Real compliance = pin.number("compliance", 0.0, Range::non_negative());
-    const Real damping = pin.number("damping", 0.0, Range::non_negative());
-    std::vector<Index> selected;
-    if (pin.has("box")) {
-      const JsonObject box = pin.object("box");
-      const Vec3 lo = box.vec3("min"), hi = box.vec3("max");
-      box.finish();
-      for (Index p = info.particle_begin; p < info.particle_end; ++p) {
-        const Vec3& x = m.particle_rest_position[p];
-        if ((x.array() >= lo.array()).all() && (x.array() <= hi.array()).all()) selected.push_back(p);
-      }
-    } else if (pin.has("sphere")) {
-      const JsonObject sphere = pin.object("sphere");
-      const Vec3 c = sphere.vec3("center");
-      const Real r = sphere.number("radius", Range::positive());
-      sphere.finish();
-      for (Index p = info.particle_begin; p < info.particle_end; ++p)
-        if ((m.particle_rest_position[p] - c).norm() <= r) selected.push_back(p);
-    } else if (pin.has("vertices")) {
-      for (int v : pin.integer_list("vertices", 0)) {
-        if (v >= info.particle_count())
-          pin.fail("vertices", fmt::format("vertex {} does not exist; the object has {} vertices", v, info.particle_count()));
-        selected.push_back(info.particle_begin + v);
-      }
-    } else {
-      pin.fail("box", "a pin needs a region: \"box\", \"sphere\" or \"vertices\"");
-    }
-    pin.finish();
-    if (selected.empty())
-      pin.fail(pin.has("box") ? "box" : pin.has("sphere") ? "sphere" : "vertices",
-               "this pin region contains no vertex of the object; check its coordinates (m)");
-    for (Index p : selected) {
+  for (size_t k = 0; k < pins.size(); ++k) {
+    const PinSpec& pin = pins[k];
+    const SpecPlace at = place.at(fmt::format("pin[{}]", k));
+    const Real compliance = at.number("compliance", pin.compliance, Range::non_negative());
+    const Real damping = at.number("damping", pin.damping, Range::non_negative());
+    for (Index p : pinned_particles(pin, at, info, m)) {
       // A particle already pinned rigidly, or attached by an earlier region, keeps that pin: two
       // attachments on one particle would also race in the attachments' parallel loop.
       if (m.particle_inv_mass[p] == 0 ||
@@ -106,6 +170,12 @@ std::string resolve_path(const SceneBuildContext& ctx, const std::string& path) 
   if (std::filesystem::is_directory(resolved, ec))
     throw InputError(fmt::format("{}: is a directory; give the path of a mesh file", resolved));
   return resolved;
+}
+
+void place_vertices(const MeshFile& file, const SpecPlace& place, std::vector<Vec3>& vertices) {
+  const Real scale = place.number("scale", file.scale, Range::positive());
+  const Vec3 translate = place.vector("translate", file.translate);
+  for (auto& v : vertices) v = scale * v + translate;
 }
 
 }  // namespace moreau

@@ -142,7 +142,7 @@ FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where, MeshUse 
     if (!((hi - lo).array() > 0).all()) mesh.fail("max", "every component of max must exceed min");
     const auto cells = mesh.integers("cells", 3, 1);
     const ElementType element = mesh.choice("element", "hex8", {"hex8", "tet4"}) == "hex8" ? ElementType::hex8 : ElementType::tet4;
-    check_memory(mesh, "cells", double(cells[0]) * cells[1] * cells[2],
+    check_memory(SpecPlace(mesh), "cells", double(cells[0]) * cells[1] * cells[2],
                  use == MeshUse::flow ? memory_cost::flow_cell_3d : memory_cost::solid_cell_3d, "cells");
     result = make_box_mesh(lo, hi, {cells[0], cells[1], cells[2]}, element);
     grade_mesh(mesh, result, lo, hi, cells);
@@ -152,7 +152,7 @@ FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where, MeshUse 
     if (!((hi - lo).array() > 0).all()) mesh.fail("max", "every component of max must exceed min");
     const auto cells = mesh.integers("cells", 2, 1);
     const ElementType element = mesh.choice("element", "quad4", {"quad4", "tri3"}) == "quad4" ? ElementType::quad4 : ElementType::tri3;
-    check_memory(mesh, "cells", double(cells[0]) * cells[1],
+    check_memory(SpecPlace(mesh), "cells", double(cells[0]) * cells[1],
                  use == MeshUse::flow ? memory_cost::flow_cell_2d : memory_cost::solid_cell_2d, "cells");
     result = make_rectangle_mesh(lo, hi, {cells[0], cells[1]}, element);
     const Vec3 lo3(lo.x(), lo.y(), 0), hi3(hi.x(), hi.y(), 0);

@@ -32,43 +32,69 @@ void fill_block(const Vec3& lo, const Vec3& hi, Real d, std::vector<Vec3>& out) 
       for (int i = 0; i < n[0]; ++i) out.push_back(first + d * Vec3(i, j, k));
 }
 
-void read_block(const JsonObject& block, Real d, std::vector<Vec3>& out) {
-  const Vec3 lo = block.vec3("min"), hi = block.vec3("max");
+// Checks a block and appends its lattice points.
+void add_block(const FluidBlock& block, const SpecPlace& place, Real d, std::vector<Vec3>& out) {
+  const Vec3 lo = place.vector("min", block.min), hi = place.vector("max", block.max);
   if ((hi - lo).minCoeff() < d)
-    block.fail("max", fmt::format("the block must be at least one particle spacing 2r = {} m wide along every axis", d));
+    place.fail("max", fmt::format("the block must be at least one particle spacing 2r = {} m wide along every axis", d));
   double count = 1;
   for (int a = 0; a < 3; ++a) count *= std::floor((hi[a] - lo[a]) / d + 1e-9);
-  check_memory(block, "max", count, memory_cost::fluid_particle, "particles");
-  block.finish();
+  check_memory(place, "max", count, memory_cost::fluid_particle, "particles");
   fill_block(lo, hi, d, out);
 }
 
-// "emitter": {"shape": "disc" | "rectangle", "center", "direction", "radius" | "size" (+ "tangent"),
-//             "speed" | "flow_rate", "start", "stop"}.
-FluidEmitter read_emitter(const JsonObject& e, Real d, Index phase, Real scene_duration) {
+FluidBlock read_block(const JsonObject& block) {
+  FluidBlock b{to_vector3(block.vec3("min")), to_vector3(block.vec3("max"))};
+  block.finish();
+  return b;
+}
+
+FluidEmitterSpec read_emitter(const JsonObject& e) {
+  FluidEmitterSpec spec;
+  spec.center = to_vector3(e.vec3("center"));
+  spec.direction = to_vector3(e.vec3("direction"));
+  spec.shape = e.choice("shape", {"disc", "rectangle"});
+  if (spec.shape == "disc") {
+    spec.radius = e.number("radius");
+  } else {
+    const Vec2 size = e.vec2("size", Range::any());
+    spec.size = {size.x(), size.y()};
+    spec.tangent = read_vector(e, "tangent", spec.tangent);
+  }
+  spec.speed = read_optional_number(e, "speed");
+  spec.flow_rate = read_optional_number(e, "flow_rate");
+  spec.start = e.number("start", spec.start);
+  spec.stop = read_optional_number(e, "stop");
+  e.finish();
+  return spec;
+}
+
+// "emitter": a disc or rectangle of lattice points releasing a layer of particles each time the
+// flow has advanced one spacing d, from start to stop.
+FluidEmitter make_emitter(const FluidEmitterSpec& spec, const SpecPlace& e, Real d, Index phase, Real scene_duration) {
   FluidEmitter emitter;
   emitter.phase = phase;
-  emitter.center = e.vec3("center");
-  const Vec3 direction = e.vec3("direction");
+  emitter.center = e.vector("center", spec.center);
+  const Vec3 direction = e.vector("direction", spec.direction);
   if (!(direction.norm() > 0)) e.fail("direction", "the flow direction must be a non-zero vector");
   emitter.normal = direction.normalized();
-  if (e.choice("shape", {"disc", "rectangle"}) == "disc") {
-    const Real radius = e.number("radius", Range::positive());
+  if (e.choice("shape", spec.shape, {"disc", "rectangle"}) == "disc") {
+    const Real radius = e.number("radius", spec.radius, Range::positive());
     if (radius < 0.5 * d) e.fail("radius", fmt::format("the disc must be at least r = {} m wide to hold a particle", 0.5 * d));
     emitter.opening = disc_opening(emitter.normal, radius, d);
   } else {
-    const Vec2 size = e.vec2("size", Range::positive());
+    const Vec2 size = e.pair("size", spec.size, Range::positive());
     if (size.minCoeff() < d) e.fail("size", fmt::format("each side must be at least one particle spacing 2r = {} m", d));
-    emitter.opening = rectangle_opening(emitter.normal, e.vec3("tangent", Vec3::Zero()), size.x(), size.y(), d);
+    emitter.opening = rectangle_opening(emitter.normal, e.vector("tangent", spec.tangent), size.x(), size.y(), d);
   }
   const Real area = emitter.opening.size() * d * d;  // what the lattice opening carries
-  const bool by_speed = e.has("speed"), by_rate = e.has("flow_rate");
-  if (by_speed == by_rate) e.fail("speed", "give exactly one of \"speed\" (m/s) or \"flow_rate\" (m^3/s)");
-  emitter.speed = by_speed ? e.number("speed", Range::positive()) : e.number("flow_rate", Range::positive()) / area;
-  emitter.start = e.number("start", 0.0, Range::non_negative());
-  emitter.stop = e.number("stop", scene_duration, Range::non_negative());
+  if (spec.speed.has_value() == spec.flow_rate.has_value())
+    e.fail("speed", "give exactly one of \"speed\" (m/s) or \"flow_rate\" (m^3/s)");
+  emitter.speed = spec.speed ? e.number("speed", *spec.speed, Range::positive())
+                             : e.number("flow_rate", *spec.flow_rate, Range::positive()) / area;
+  emitter.start = e.number("start", spec.start, Range::non_negative());
+  emitter.stop = e.number("stop", spec.stop.value_or(scene_duration), Range::non_negative());
   if (emitter.stop < emitter.start) e.fail("stop", fmt::format("stop must not precede start ({} s)", emitter.start));
-  e.finish();
   // Checked as a real number before the cast to Index (32 bits).
   const Real layers = std::floor((emitter.stop - emitter.start) * emitter.speed / d + 1e-9) + 1;
   constexpr Real kMaxEmitted = 5e7;
@@ -82,60 +108,77 @@ FluidEmitter read_emitter(const JsonObject& e, Real d, Index phase, Real scene_d
 
 }  // namespace
 
-void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx) {
+FluidSpec read_fluid(const JsonObject& object) {
+  FluidSpec spec;
+  spec.particle_radius = object.number("particle_radius");
+  spec.density = object.number("density", spec.density);
+  spec.viscosity = object.number("viscosity", spec.viscosity);
+  spec.xsph = object.number("xsph", spec.xsph);
+  spec.vorticity = object.number("vorticity", spec.vorticity);
+  spec.surface_tension = object.number("surface_tension", spec.surface_tension);
+  spec.relaxation = object.number("relaxation", spec.relaxation);
+  if (object.has("block")) spec.block = read_block(object.object("block"));
+  for (const JsonObject& block : object.object_list("blocks")) spec.blocks.push_back(read_block(block));
+  if (object.has("mesh")) spec.mesh = object.string("mesh");
+  spec.velocity = read_vector(object, "velocity", spec.velocity);
+  if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"));
+  return spec;
+}
+
+void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx) {
   Model& model = ctx.model;
   FluidModel& fm = model.fluid;
   info.kind = ObjectKind::fluid;
 
-  const Real r = object.number("particle_radius", Range::positive());
+  const Real r = place.required("particle_radius", spec.particle_radius, Range::positive());
   if (fm.empty()) {
     fm.particle_radius = r;
     fm.particle_volume = 8 * r * r * r;
     fm.kernel = CubicSplineKernel(4 * r);
   } else if (std::abs(r - fm.particle_radius) > 1e-12 * fm.particle_radius) {
-    object.fail("particle_radius", fmt::format("all fluids share one particle radius; an earlier fluid uses {} m",
-                                               fm.particle_radius));
+    place.fail("particle_radius", fmt::format("all fluids share one particle radius; an earlier fluid uses {} m",
+                                              fm.particle_radius));
   }
   const Real d = 2 * r;
 
   FluidPhase phase;
   phase.object = static_cast<Index>(model.objects.size());
-  phase.rest_density = object.number("density", 1000.0, Range::positive());
+  phase.rest_density = place.number("density", spec.density, Range::positive());
   phase.particle_mass = phase.rest_density * fm.particle_volume;
   // The scene gives the dynamic viscosity mu (Pa s), as for the FEM engine's fluid; the SPH
   // Laplacian uses the kinematic nu = mu / rho0.
-  const Real dynamic_viscosity = object.number("viscosity", 1.0e-3, Range::non_negative());
+  const Real dynamic_viscosity = place.number("viscosity", spec.viscosity, Range::non_negative());
   phase.viscosity = dynamic_viscosity / phase.rest_density;
-  phase.xsph = object.number("xsph", 0.01, Range::closed(0, 1));
-  phase.vorticity = object.number("vorticity", 0.0, Range::non_negative());
-  phase.surface_tension = object.number("surface_tension", 0.0, Range::non_negative());
-  const Real relaxation = object.number("relaxation", 0.01, Range::closed(0, 1e6));
+  phase.xsph = place.number("xsph", spec.xsph, Range::closed(0, 1));
+  phase.vorticity = place.number("vorticity", spec.vorticity, Range::non_negative());
+  phase.surface_tension = place.number("surface_tension", spec.surface_tension, Range::non_negative());
+  const Real relaxation = place.number("relaxation", spec.relaxation, Range::closed(0, 1e6));
   const Real rest_denominator = fluid_rest_denominator(fm.kernel, d, phase.particle_mass);
   phase.relaxation = relaxation * rest_denominator;
 
   // Explicit viscosity is stable for dt <= 0.125 h^2 / nu (Monaghan 2005, sec. 6.4).
   const Real viscous_limit = 0.125 * fm.kernel.h2 / std::max(phase.viscosity, 1e-300);
   if (model.settings.dt > viscous_limit)
-    object.fail("viscosity", fmt::format("explicit viscosity needs dt <= 0.125 h^2 / nu = {:.3g} s with h = 4 r = {} m and "
-                                         "nu = mu / rho0 = {:.3g} m^2/s; settings.dt is {} s: lower the viscosity or dt",
-                                         viscous_limit, fm.kernel.h, phase.viscosity, model.settings.dt));
+    place.fail("viscosity", fmt::format("explicit viscosity needs dt <= 0.125 h^2 / nu = {:.3g} s with h = 4 r = {} m and "
+                                        "nu = mu / rho0 = {:.3g} m^2/s; settings.dt is {} s: lower the viscosity or dt",
+                                        viscous_limit, fm.kernel.h, phase.viscosity, model.settings.dt));
 
   std::vector<Vec3> points;
-  const int sources = object.has("block") + object.has("blocks") + object.has("mesh");
-  const bool emits = object.has("emitter");
+  const int sources = spec.block.has_value() + !spec.blocks.empty() + !spec.mesh.empty();
+  const bool emits = spec.emitter.has_value();
   if (sources > 1 || (sources == 0 && !emits))
-    object.fail("block", "give exactly one of \"block\", \"blocks\" or \"mesh\" for the fluid's initial volume, "
-                         "or an \"emitter\" (or both)");
-  if (object.has("block")) read_block(object.object("block"), d, points);
-  for (const JsonObject& block : object.object_list("blocks")) read_block(block, d, points);
-  if (object.has("mesh")) {
+    place.fail("block", "give exactly one of \"block\", \"blocks\" or \"mesh\" for the fluid's initial volume, "
+                        "or an \"emitter\" (or both)");
+  if (spec.block) add_block(*spec.block, place.at("block"), d, points);
+  for (size_t k = 0; k < spec.blocks.size(); ++k) add_block(spec.blocks[k], place.at(fmt::format("blocks[{}]", k)), d, points);
+  if (!spec.mesh.empty()) {
     // Lattice points inside a closed OBJ surface.
-    const std::string path = resolve_path(ctx, object.string("mesh"));
+    const std::string path = resolve_path(ctx, spec.mesh);
     TriangleMesh mesh;
     try {
       mesh = read_obj_triangles(path);
     } catch (const std::exception& e) {
-      object.fail("mesh", e.what());
+      place.fail("mesh", e.what());
     }
     Vec3 lo = mesh.vertices.front(), hi = lo;
     for (const Vec3& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
@@ -144,19 +187,19 @@ void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& 
     for (const Vec3& p : lattice)
       if (point_in_closed_mesh(mesh, p)) points.push_back(p);
   }
-  if (points.empty() && sources > 0) object.fail(object.has("mesh") ? "mesh" : "block", "the fluid volume holds no particle of spacing 2r");
+  if (points.empty() && sources > 0) place.fail(spec.mesh.empty() ? "block" : "mesh", "the fluid volume holds no particle of spacing 2r");
 
-  const Vec3 velocity = object.vec3("velocity", Vec3::Zero());
+  const Vec3 velocity = place.vector("velocity", spec.velocity);
   info.fluid_phase = static_cast<Index>(fm.phases.size());
-  if (emits) fm.emitters.push_back(read_emitter(object.object("emitter"), d, info.fluid_phase, ctx.duration));
+  if (emits) fm.emitters.push_back(make_emitter(*spec.emitter, place.at("emitter"), d, info.fluid_phase, ctx.duration));
   // Particle indices are 32-bit: the scene's initial plus emitted particles, summed in 64 bits.
   std::int64_t total = static_cast<std::int64_t>(fm.initial_position.size()) + static_cast<std::int64_t>(points.size());
   for (const FluidEmitter& e : fm.emitters) total += e.capacity();
   constexpr std::int64_t kMaxFluidParticles = 1'000'000'000;
   if (total > kMaxFluidParticles)
-    object.fail(emits ? "emitter" : "particle_radius",
-                fmt::format("the scene's fluids would hold {} particles (initial plus emitted); the limit is {}", total,
-                            kMaxFluidParticles));
+    place.fail(emits ? "emitter" : "particle_radius",
+               fmt::format("the scene's fluids would hold {} particles (initial plus emitted); the limit is {}", total,
+                           kMaxFluidParticles));
   for (const Vec3& p : points) {
     fm.initial_position.push_back(p);
     fm.initial_velocity.push_back(velocity);

@@ -13,43 +13,56 @@ namespace {
 
 constexpr Real kDegree = kPi / 180;
 
-// One end: "world", a rigid body's name, or {"object": cloth/soft body, "vertex": i | "nearest": p}.
-JointEnd read_end(const JsonObject& joint, const nlohmann::json& value, int slot, const Model& model) {
+// One end: "world", a rigid body's name, or a particle of a cloth or soft body.
+JointEndSpec read_end(const JsonObject& joint, const nlohmann::json& value, int slot) {
+  JointEndSpec end;
+  if (value.is_string()) {
+    end.object = value.get<std::string>();
+    return end;
+  }
+  if (!value.is_object()) joint.fail("bodies", fmt::format("bodies[{}] must be a name or an object", slot));
+  const JsonObject ref(value, joint.path_of("bodies") + fmt::format("[{}]", slot), joint.file());
+  end.object = ref.string("object");
+  if (ref.has("vertex") == ref.has("nearest")) ref.fail("vertex", "give exactly one of \"vertex\" or \"nearest\"");
+  if (ref.has("vertex")) end.vertex = ref.integer("vertex", 0, 0);
+  else end.nearest = to_vector3(ref.vec3("nearest"));
+  ref.finish();
+  return end;
+}
+
+// The model's end: the world, a body, or one particle (by vertex or the one nearest a point).
+JointEnd resolve_end(const JointEndSpec& spec, const SpecPlace& joint, int slot, const Model& model) {
   JointEnd end;
   const std::string where = fmt::format("bodies[{}]", slot);
-  if (value.is_string()) {
-    const std::string name = value.get<std::string>();
-    if (name == "world") return end;
-    const Index o = model.find_object(name);
+  const bool particle_end = spec.vertex || spec.nearest;
+  if (!particle_end) {
+    if (spec.object == "world") return end;
+    const Index o = model.find_object(spec.object);
     if (o < 0 || model.objects[o].kind != ObjectKind::rigid_body)
       joint.fail("bodies", fmt::format("{} is '{}', which is not a rigid body of this scene; give \"world\", a rigid "
                                        "body's name or {{\"object\": <cloth or soft body>, \"vertex\": i}}",
-                                       where, name));
+                                       where, spec.object));
     end.kind = BodyEndKind::body;
     end.index = model.objects[o].body;
     return end;
   }
-  if (!value.is_object()) joint.fail("bodies", fmt::format("{} must be a name or an object", where));
-  const JsonObject ref(value, joint.path_of("bodies") + fmt::format("[{}]", slot), joint.file());
-  const std::string name = ref.string("object");
-  const Index o = model.find_object(name);
+  const SpecPlace ref = joint.at(where);
+  const Index o = model.find_object(spec.object);
   if (o < 0 || !model.objects[o].has_particles())
-    ref.fail("object", fmt::format("'{}' is not a cloth or soft body of this scene", name));
+    ref.fail("object", fmt::format("'{}' is not a cloth or soft body of this scene", spec.object));
   const ObjectInfo& info = model.objects[o];
   end.kind = BodyEndKind::particle;
-  if (ref.has("vertex") == ref.has("nearest")) ref.fail("vertex", "give exactly one of \"vertex\" or \"nearest\"");
-  if (ref.has("vertex")) {
-    const int v = ref.integer("vertex", 0, 0, info.particle_count() - 1);
-    end.index = info.particle_begin + v;
+  if (spec.vertex && spec.nearest) ref.fail("vertex", "give exactly one of \"vertex\" or \"nearest\"");
+  if (spec.vertex) {
+    end.index = info.particle_begin + ref.integer("vertex", *spec.vertex, 0, info.particle_count() - 1);
   } else {
-    const Vec3 p = ref.vec3("nearest");
+    const Vec3 p = ref.vector("nearest", *spec.nearest);
     Index best = info.particle_begin;
     for (Index i = info.particle_begin; i < info.particle_end; ++i)
       if ((model.particle_rest_position[i] - p).squaredNorm() < (model.particle_rest_position[best] - p).squaredNorm())
         best = i;
     end.index = best;
   }
-  ref.finish();
   return end;
 }
 
@@ -89,139 +102,207 @@ Vec3 end_world_point(const JointEnd& end, const Model& model) {
   return end.anchor;
 }
 
-Vec2 read_degrees_range(const JsonObject& j, const std::string& key) {
-  const Vec2 r = j.vec2(key, Range::closed(-180, 180));
-  if (r.x() > r.y()) j.fail(key, "the lower limit must not exceed the upper one");
+// A limit pair [lower, upper] in degrees, checked and in radians.
+Vec2 degrees_range(const SpecPlace& j, const std::string& field, const Vector2& value) {
+  const Vec2 r = j.pair(field, value, Range::closed(-180, 180));
+  if (r.x() > r.y()) j.fail(field, "the lower limit must not exceed the upper one");
   return r * kDegree;
 }
 
-void read_drive(const JsonObject& j, Joint& joint) {
-  const auto drive = j.optional_object("drive");
-  if (!drive) return;
-  const bool angular = joint.type == JointType::hinge;
-  if (!angular && joint.type != JointType::prismatic)
-    j.fail("drive", "only hinge and prismatic joints have drives");
+std::optional<Vector2> read_optional_pair(const JsonObject& j, const std::string& key) {
+  if (!j.has(key)) return std::nullopt;
+  const Vec2 v = j.vec2(key, Range::any());
+  return Vector2{v.x(), v.y()};
+}
+
+JointDrive read_drive(const JsonObject& drive, bool angular) {
+  JointDrive d;
   const std::string position_key = angular ? "target_angle_deg" : "target_position";
-  if (drive->has(position_key) == drive->has("target_velocity"))
-    drive->fail(position_key, fmt::format("give exactly one of \"{}\" or \"target_velocity\" ({})", position_key,
-                                          angular ? "rad/s" : "m/s"));
-  if (drive->has(position_key)) {
+  if (drive.has(position_key) == drive.has("target_velocity"))
+    drive.fail(position_key, fmt::format("give exactly one of \"{}\" or \"target_velocity\" ({})", position_key,
+                                         angular ? "rad/s" : "m/s"));
+  (angular ? d.target_angle_deg : d.target_position) = read_optional_number(drive, position_key);
+  d.target_velocity = read_optional_number(drive, "target_velocity");
+  d.max_force = drive.number(angular ? "max_torque" : "max_force", d.max_force);
+  d.compliance = drive.number("compliance", d.compliance);
+  drive.finish();
+  return d;
+}
+
+void add_drive(const JointDrive& spec, const SpecPlace& place, Joint& joint) {
+  const bool angular = joint.type == JointType::hinge;
+  if (!angular && joint.type != JointType::prismatic) place.fail("drive", "only hinge and prismatic joints have drives");
+  const SpecPlace drive = place.at("drive");
+  const std::string position_key = angular ? "target_angle_deg" : "target_position";
+  const std::optional<double>& target = angular ? spec.target_angle_deg : spec.target_position;
+  if ((angular ? spec.target_position : spec.target_angle_deg).has_value())
+    drive.fail(angular ? "target_position" : "target_angle_deg", fmt::format("a {} drive takes \"{}\"", angular ? "hinge" : "prismatic", position_key));
+  if (target.has_value() == spec.target_velocity.has_value())
+    drive.fail(position_key, fmt::format("give exactly one of \"{}\" or \"target_velocity\" ({})", position_key,
+                                         angular ? "rad/s" : "m/s"));
+  if (target) {
     joint.drive = DriveMode::position;
-    joint.drive_target = drive->number(position_key) * (angular ? kDegree : 1);
+    joint.drive_target = drive.number(position_key, *target) * (angular ? kDegree : 1);
   } else {
     joint.drive = DriveMode::velocity;
-    joint.drive_target = drive->number("target_velocity");
+    joint.drive_target = drive.number("target_velocity", *spec.target_velocity);
   }
-  joint.drive_max = drive->number(angular ? "max_torque" : "max_force", 0.0, Range::non_negative());
-  joint.drive_compliance = drive->number("compliance", 0.0, Range::non_negative());
-  drive->finish();
+  joint.drive_max = drive.number(angular ? "max_torque" : "max_force", spec.max_force, Range::non_negative());
+  joint.drive_compliance = drive.number("compliance", spec.compliance, Range::non_negative());
 }
+
+const std::vector<std::string> kJointTypes{"fixed", "spherical", "hinge", "prismatic", "distance"};
 
 }  // namespace
 
-void build_joints(const std::vector<JsonObject>& list, Model& model) {
-  for (const JsonObject& j : list) {
-    Joint joint;
-    joint.name = j.string("name");
-    for (const Joint& other : model.joints)
-      if (other.name == joint.name) j.fail("name", fmt::format("another joint is already named '{}'", joint.name));
-    const std::string type = j.choice("type", {"fixed", "spherical", "hinge", "prismatic", "distance"});
-    joint.type = type == "fixed"       ? JointType::fixed
-                 : type == "spherical" ? JointType::spherical
-                 : type == "hinge"     ? JointType::hinge
-                 : type == "prismatic" ? JointType::prismatic
-                                       : JointType::distance;
-    const auto& bodies = j.raw("bodies");
-    if (!bodies.is_array() || bodies.size() != 2) j.fail("bodies", "expected two ends: [\"a\", \"b\"]");
-    joint.ends = {read_end(j, bodies[0], 0, model), read_end(j, bodies[1], 1, model)};
-    if (joint.ends[0].kind == BodyEndKind::world && joint.ends[1].kind == BodyEndKind::world)
-      j.fail("bodies", "a joint needs at least one end that is not the world");
-    if (joint.ends[0].kind == joint.ends[1].kind && joint.ends[0].index == joint.ends[1].index)
-      j.fail("bodies", "a joint cannot connect a body to itself");
-    const bool oriented_ends = joint.ends[0].kind != BodyEndKind::particle && joint.ends[1].kind != BodyEndKind::particle;
-
-    // Anchors: one shared world point, or one per end.
-    if (j.has("anchor") == j.has("anchors")) j.fail("anchor", "give exactly one of \"anchor\" (one world point) or \"anchors\" (one per end)");
-    std::array<Vec3, 2> anchors;
-    if (j.has("anchor")) {
-      anchors[0] = anchors[1] = j.vec3("anchor");
-    } else {
-      const auto& raw = j.raw("anchors");
-      if (!raw.is_array() || raw.size() != 2) j.fail("anchors", "expected two world points [[x, y, z], [x, y, z]]");
-      for (int k = 0; k < 2; ++k) {
-        const auto& point = raw[k];
-        const bool numeric = point.is_array() && point.size() == 3 &&
-                             std::all_of(point.begin(), point.end(), [](const auto& v) { return v.is_number(); });
-        if (!numeric) j.fail("anchors", "expected two world points of three numbers each [[x, y, z], [x, y, z]]");
-        anchors[k] = Vec3(point[0].get<Real>(), point[1].get<Real>(), point[2].get<Real>());
-      }
+JointSpec read_joint(const JsonObject& j) {
+  JointSpec spec;
+  spec.name = j.string("name");
+  spec.type = j.choice("type", kJointTypes);
+  const auto& bodies = j.raw("bodies");
+  if (!bodies.is_array() || bodies.size() != 2) j.fail("bodies", "expected two ends: [\"a\", \"b\"]");
+  spec.bodies = {read_end(j, bodies[0], 0), read_end(j, bodies[1], 1)};
+  // Anchors: one shared world point, or one per end.
+  if (j.has("anchor") == j.has("anchors")) j.fail("anchor", "give exactly one of \"anchor\" (one world point) or \"anchors\" (one per end)");
+  if (j.has("anchor")) {
+    spec.anchor = to_vector3(j.vec3("anchor"));
+  } else {
+    const auto& raw = j.raw("anchors");
+    if (!raw.is_array() || raw.size() != 2) j.fail("anchors", "expected two world points [[x, y, z], [x, y, z]]");
+    std::array<Vector3, 2> anchors;
+    for (int k = 0; k < 2; ++k) {
+      const auto& point = raw[k];
+      const bool numeric = point.is_array() && point.size() == 3 &&
+                           std::all_of(point.begin(), point.end(), [](const auto& v) { return v.is_number(); });
+      if (!numeric) j.fail("anchors", "expected two world points of three numbers each [[x, y, z], [x, y, z]]");
+      anchors[k] = {point[0].get<Real>(), point[1].get<Real>(), point[2].get<Real>()};
     }
-    const Vec3 axis_in = j.vec3("axis", Vec3::UnitX());
-    if (axis_in.norm() <= 0) j.fail("axis", "the axis must not be zero");
-    const Quat frame = frame_from_axis(axis_in.normalized());
-    for (int k = 0; k < 2; ++k) attach(joint.ends[k], anchors[k], frame, model);
-
-    const bool needs_frames = joint.type != JointType::distance &&
-                              !(joint.type == JointType::spherical && !j.has("swing_deg") && !j.has("twist_deg"));
-    if (needs_frames && !oriented_ends)
-      j.fail("bodies", fmt::format("a {} joint needs orientations at both ends; a particle end allows spherical "
-                                   "(without limits) and distance joints", type));
-
-    joint.compliance = j.number("compliance", 0.0, Range::non_negative());
-    joint.angular_compliance = j.number("angular_compliance", 0.0, Range::non_negative());
-    joint.damping = j.number("damping", 0.0, Range::non_negative());
-    joint.angular_damping = j.number("angular_damping", 0.0, Range::non_negative());
-
-    switch (joint.type) {
-      case JointType::hinge:
-        if (j.has("limits_deg")) {
-          const Vec2 r = read_degrees_range(j, "limits_deg");
-          joint.limited = true;
-          joint.lower = r.x();
-          joint.upper = r.y();
-        }
-        break;
-      case JointType::prismatic:
-        if (j.has("limits")) {
-          const Vec2 r = j.vec2("limits", Range::any());
-          if (r.x() > r.y()) j.fail("limits", "the lower limit must not exceed the upper one");
-          joint.limited = true;
-          joint.lower = r.x();
-          joint.upper = r.y();
-        }
-        break;
-      case JointType::spherical:
-        if (j.has("swing_deg")) {
-          joint.swing_limited = true;
-          joint.swing = j.number("swing_deg", Range::closed(0, 180)) * kDegree;
-        }
-        if (j.has("twist_deg")) {
-          const Vec2 r = read_degrees_range(j, "twist_deg");
-          joint.twist_limited = true;
-          joint.twist_lower = r.x();
-          joint.twist_upper = r.y();
-        }
-        break;
-      case JointType::distance: {
-        const Real rest = (end_world_point(joint.ends[0], model) - end_world_point(joint.ends[1], model)).norm();
-        joint.limited = true;
-        joint.lower = j.number("min", rest, Range::non_negative());
-        joint.upper = j.number("max", std::max(rest, joint.lower), Range::non_negative());
-        if (joint.lower > joint.upper) j.fail("min", "\"min\" must not exceed \"max\"");
-        break;
-      }
-      case JointType::fixed: break;
-    }
-    read_drive(j, joint);
-    // Joined bodies do not collide with each other unless asked to.
-    if (!j.boolean("collide", false) && joint.ends[0].kind == BodyEndKind::body &&
-        joint.ends[1].kind == BodyEndKind::body) {
-      const Index a = joint.ends[0].index, b = joint.ends[1].index;
-      model.rigid.pairs_without_contact.push_back({std::min(a, b), std::max(a, b)});
-    }
-    j.finish();
-    model.joints.push_back(std::move(joint));
+    spec.anchors = anchors;
   }
+  spec.axis = read_vector(j, "axis", spec.axis);
+  spec.compliance = j.number("compliance", spec.compliance);
+  spec.angular_compliance = j.number("angular_compliance", spec.angular_compliance);
+  spec.damping = j.number("damping", spec.damping);
+  spec.angular_damping = j.number("angular_damping", spec.angular_damping);
+  if (spec.type == "hinge") spec.limits_deg = read_optional_pair(j, "limits_deg");
+  if (spec.type == "prismatic") spec.limits = read_optional_pair(j, "limits");
+  if (spec.type == "spherical") {
+    spec.swing_deg = read_optional_number(j, "swing_deg");
+    spec.twist_deg = read_optional_pair(j, "twist_deg");
+  }
+  if (spec.type == "distance") {
+    spec.min = read_optional_number(j, "min");
+    spec.max = read_optional_number(j, "max");
+  }
+  if (j.has("drive")) {
+    if (spec.type != "hinge" && spec.type != "prismatic") j.fail("drive", "only hinge and prismatic joints have drives");
+    spec.drive = read_drive(j.object("drive"), spec.type == "hinge");
+  }
+  spec.collide = j.boolean("collide", spec.collide);
+  j.finish();
+  return spec;
+}
+
+void add_joint(const JointSpec& spec, const SpecPlace& j, Model& model) {
+  Joint joint;
+  joint.name = spec.name;
+  if (joint.name.empty()) j.fail("name", "a joint needs a name");
+  for (const Joint& other : model.joints)
+    if (other.name == joint.name) j.fail("name", fmt::format("another joint is already named '{}'", joint.name));
+  const std::string& type = j.choice("type", spec.type, kJointTypes);
+  joint.type = type == "fixed"       ? JointType::fixed
+               : type == "spherical" ? JointType::spherical
+               : type == "hinge"     ? JointType::hinge
+               : type == "prismatic" ? JointType::prismatic
+                                     : JointType::distance;
+  joint.ends = {resolve_end(spec.bodies[0], j, 0, model), resolve_end(spec.bodies[1], j, 1, model)};
+  if (joint.ends[0].kind == BodyEndKind::world && joint.ends[1].kind == BodyEndKind::world)
+    j.fail("bodies", "a joint needs at least one end that is not the world");
+  if (joint.ends[0].kind == joint.ends[1].kind && joint.ends[0].index == joint.ends[1].index)
+    j.fail("bodies", "a joint cannot connect a body to itself");
+  const bool oriented_ends = joint.ends[0].kind != BodyEndKind::particle && joint.ends[1].kind != BodyEndKind::particle;
+
+  if (spec.anchor.has_value() == spec.anchors.has_value())
+    j.fail("anchor", "give exactly one of \"anchor\" (one world point) or \"anchors\" (one per end)");
+  std::array<Vec3, 2> anchors;
+  if (spec.anchor) anchors[0] = anchors[1] = j.vector("anchor", *spec.anchor);
+  else anchors = {j.vector("anchors", (*spec.anchors)[0]), j.vector("anchors", (*spec.anchors)[1])};
+  const Vec3 axis_in = j.vector("axis", spec.axis);
+  if (axis_in.norm() <= 0) j.fail("axis", "the axis must not be zero");
+  const Quat frame = frame_from_axis(axis_in.normalized());
+  for (int k = 0; k < 2; ++k) attach(joint.ends[k], anchors[k], frame, model);
+
+  const bool needs_frames = joint.type != JointType::distance &&
+                            !(joint.type == JointType::spherical && !spec.swing_deg && !spec.twist_deg);
+  if (needs_frames && !oriented_ends)
+    j.fail("bodies", fmt::format("a {} joint needs orientations at both ends; a particle end allows spherical "
+                                 "(without limits) and distance joints", type));
+
+  joint.compliance = j.number("compliance", spec.compliance, Range::non_negative());
+  joint.angular_compliance = j.number("angular_compliance", spec.angular_compliance, Range::non_negative());
+  joint.damping = j.number("damping", spec.damping, Range::non_negative());
+  joint.angular_damping = j.number("angular_damping", spec.angular_damping, Range::non_negative());
+
+  // Each limit belongs to one joint type.
+  auto only_for = [&](bool given, const char* field, JointType owner, const char* owner_name) {
+    if (given && joint.type != owner) j.fail(field, fmt::format("only a {} joint takes \"{}\"", owner_name, field));
+  };
+  only_for(spec.limits_deg.has_value(), "limits_deg", JointType::hinge, "hinge");
+  only_for(spec.limits.has_value(), "limits", JointType::prismatic, "prismatic");
+  only_for(spec.swing_deg.has_value(), "swing_deg", JointType::spherical, "spherical");
+  only_for(spec.twist_deg.has_value(), "twist_deg", JointType::spherical, "spherical");
+  only_for(spec.min.has_value(), "min", JointType::distance, "distance");
+  only_for(spec.max.has_value(), "max", JointType::distance, "distance");
+  switch (joint.type) {
+    case JointType::hinge:
+      if (spec.limits_deg) {
+        const Vec2 r = degrees_range(j, "limits_deg", *spec.limits_deg);
+        joint.limited = true;
+        joint.lower = r.x();
+        joint.upper = r.y();
+      }
+      break;
+    case JointType::prismatic:
+      if (spec.limits) {
+        const Vec2 r = j.pair("limits", *spec.limits);
+        if (r.x() > r.y()) j.fail("limits", "the lower limit must not exceed the upper one");
+        joint.limited = true;
+        joint.lower = r.x();
+        joint.upper = r.y();
+      }
+      break;
+    case JointType::spherical:
+      if (spec.swing_deg) {
+        joint.swing_limited = true;
+        joint.swing = j.number("swing_deg", *spec.swing_deg, Range::closed(0, 180)) * kDegree;
+      }
+      if (spec.twist_deg) {
+        const Vec2 r = degrees_range(j, "twist_deg", *spec.twist_deg);
+        joint.twist_limited = true;
+        joint.twist_lower = r.x();
+        joint.twist_upper = r.y();
+      }
+      break;
+    case JointType::distance: {
+      const Real rest = (end_world_point(joint.ends[0], model) - end_world_point(joint.ends[1], model)).norm();
+      joint.limited = true;
+      joint.lower = j.number("min", spec.min.value_or(rest), Range::non_negative());
+      joint.upper = j.number("max", spec.max.value_or(std::max(rest, joint.lower)), Range::non_negative());
+      if (joint.lower > joint.upper) j.fail("min", "\"min\" must not exceed \"max\"");
+      break;
+    }
+    case JointType::fixed: break;
+  }
+  if (spec.drive) add_drive(*spec.drive, j, joint);
+  // Joined bodies do not collide with each other unless asked to.
+  if (!spec.collide && joint.ends[0].kind == BodyEndKind::body && joint.ends[1].kind == BodyEndKind::body) {
+    const Index a = joint.ends[0].index, b = joint.ends[1].index;
+    model.rigid.pairs_without_contact.push_back({std::min(a, b), std::max(a, b)});
+  }
+  model.joints.push_back(std::move(joint));
+}
+
+void finish_joints(Model& model) {
   auto& pairs = model.rigid.pairs_without_contact;
   std::sort(pairs.begin(), pairs.end());
   pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());

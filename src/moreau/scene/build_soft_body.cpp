@@ -1,3 +1,4 @@
+// "kind": "soft_body": a tetrahedral mesh of Neo-Hookean material.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -9,56 +10,103 @@
 
 namespace moreau {
 
-namespace {
-
-TetMesh read_soft_body_mesh(const JsonObject& mesh, SceneBuildContext& ctx) {
+SoftBodySpec read_soft_body(const JsonObject& object) {
+  SoftBodySpec spec;
+  const JsonObject mesh = object.object("mesh");
   const std::string type = mesh.choice("type", {"box", "msh", "tetgen", "obj"});
-  TetMesh out;
-  std::string source = mesh.path();
   if (type == "box") {
-    const Vec3 lo = mesh.vec3("min"), hi = mesh.vec3("max");
-    if (!((hi - lo).minCoeff() > 0)) mesh.fail("max", "max must exceed min along every axis");
+    TetBox box;
+    box.min = to_vector3(mesh.vec3("min"));
+    box.max = to_vector3(mesh.vec3("max"));
     const auto cells = mesh.integers("cells", 3, 1);
-    const int per_cell = mesh.integer("tets_per_cell", 6, 5, 6);
-    check_memory(mesh, "cells", double(cells[0]) * cells[1] * cells[2] * per_cell, memory_cost::tetrahedron, "tetrahedra");
-    out = make_box_tets(lo, hi, {cells[0], cells[1], cells[2]}, per_cell == 5 ? CellSplit::five : CellSplit::six);
-  } else if (type == "msh") {
-    source = resolve_path(ctx, mesh.string("file"));
-    out = read_gmsh_msh4(source);
-  } else if (type == "tetgen") {
-    source = resolve_path(ctx, mesh.string("file"));  // base name: <file>.node and <file>.ele
-    out = read_tetgen(source + ".node", source + ".ele");
+    box.cells = {cells[0], cells[1], cells[2]};
+    box.tets_per_cell = mesh.integer("tets_per_cell", box.tets_per_cell, 5, 6);
+    spec.mesh = box;
+  } else if (type == "obj") {
+    TetrahedralizedObj obj;
+    obj.file = read_mesh_file(mesh);
+    obj.quality = mesh.number("quality", obj.quality);
+    obj.max_volume = mesh.number("max_volume", obj.max_volume);
+    spec.mesh = obj;
   } else {
-    source = resolve_path(ctx, mesh.string("file"));
-    out = tetrahedralize_obj(source, mesh.number("quality", 1.5, Range::closed(1.1, 10)),
-                             mesh.number("max_volume", 0.0, Range::non_negative()));
-  }
-  if (type != "box") {
-    const Real scale = mesh.number("scale", 1.0, Range::positive());
-    const Vec3 translate = mesh.vec3("translate", Vec3::Zero());
-    for (auto& v : out.vertices) v = scale * v + translate;
+    spec.mesh = TetMeshFile{type, read_mesh_file(mesh)};
   }
   mesh.finish();
+
+  const JsonObject material = object.object("material");
+  material.choice("model", "neo_hookean", {"neo_hookean"});
+  SoftBodyMaterial& m = spec.material;
+  m.youngs_modulus = material.number("youngs_modulus");
+  m.poisson_ratio = material.number("poisson_ratio");
+  m.density = material.number("density");
+  m.damping = material.number("damping", m.damping);
+  m.volume_compliance = read_optional_number(material, "volume_compliance");
+  material.finish();
+
+  spec.collision_radius = read_optional_number(object, "collision_radius");
+  spec.collider_gap = object.number("collider_gap", spec.collider_gap);
+  spec.velocity = read_vector(object, "velocity", spec.velocity);
+  spec.angular_velocity = read_vector(object, "angular_velocity", spec.angular_velocity);
+  spec.self_collision = object.boolean("self_collision", spec.self_collision);
+  spec.fluid_coupling = object.boolean("fluid_coupling", spec.fluid_coupling);
+  spec.contact = read_contact_material(object);
+  spec.pin = read_pins(object);
+  return spec;
+}
+
+namespace {
+
+TetMesh make_soft_body_mesh(const SoftBodyMesh& spec, const SpecPlace& place, SceneBuildContext& ctx) {
+  TetMesh out;
+  std::string source = place.path();
+  if (const auto* box = std::get_if<TetBox>(&spec)) {
+    const Vec3 lo = place.vector("min", box->min), hi = place.vector("max", box->max);
+    if (!((hi - lo).minCoeff() > 0)) place.fail("max", "max must exceed min along every axis");
+    std::array<int, 3> cells;
+    for (int a = 0; a < 3; ++a) cells[a] = place.integer("cells", box->cells[a], 1);
+    const int per_cell = place.integer("tets_per_cell", box->tets_per_cell, 5, 6);
+    check_memory(place, "cells", double(cells[0]) * cells[1] * cells[2] * per_cell, memory_cost::tetrahedron, "tetrahedra");
+    out = make_box_tets(lo, hi, cells, per_cell == 5 ? CellSplit::five : CellSplit::six);
+  } else if (const auto* file = std::get_if<TetMeshFile>(&spec)) {
+    source = resolve_path(ctx, file->file.file);
+    if (place.choice("type", file->format, {"msh", "tetgen"}) == "msh") out = read_gmsh_msh4(source);
+    else out = read_tetgen(source + ".node", source + ".ele");  // base name: <file>.node and <file>.ele
+    place_vertices(file->file, place, out.vertices);
+  } else if (const auto* obj = std::get_if<TetrahedralizedObj>(&spec)) {
+    source = resolve_path(ctx, obj->file.file);
+    out = tetrahedralize_obj(source, place.number("quality", obj->quality, Range::closed(1.1, 10)),
+                             place.number("max_volume", obj->max_volume, Range::non_negative()));
+    place_vertices(obj->file, place, out.vertices);
+  } else {
+    const auto& list = std::get<TetList>(spec);
+    for (const Vector3& v : list.vertices) out.vertices.push_back(place.vector("vertices", v));
+    for (const auto& t : list.tets) {
+      for (int v : t)
+        if (v < 0 || v >= static_cast<int>(list.vertices.size()))
+          place.fail("tets", fmt::format("vertex {} does not exist; the mesh has {} vertices", v, list.vertices.size()));
+      out.tets.push_back({t[0], t[1], t[2], t[3]});
+    }
+    if (out.tets.empty()) place.fail("tets", "a soft body needs at least one tetrahedron");
+  }
   orient_and_validate_tets(out, source);
   return out;
 }
 
 }  // namespace
 
-void build_soft_body(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx) {
+void add_soft_body(const SoftBodySpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx) {
   Model& m = ctx.model;
   const Index object_index = static_cast<Index>(m.objects.size());
-  const TetMesh mesh = read_soft_body_mesh(object.object("mesh"), ctx);
+  const TetMesh mesh = make_soft_body_mesh(spec.mesh, place.at("mesh"), ctx);
 
-  const JsonObject material = object.object("material");
-  material.choice("model", "neo_hookean", {"neo_hookean"});
-  const Real youngs = material.number("youngs_modulus", Range::positive());
-  const Real poisson = material.number("poisson_ratio", Range::open(-1, 0.5));
-  const Real density = material.number("density", Range::positive());
-  const Real damping = material.number("damping", 0.0, Range::non_negative());
-  const bool has_volume = material.has("volume_compliance");
-  const Real volume_compliance = material.number("volume_compliance", 0.0, Range::non_negative());
-  material.finish();
+  const SoftBodyMaterial& mat = spec.material;
+  const SpecPlace material = place.at("material");
+  const Real youngs = material.required("youngs_modulus", mat.youngs_modulus, Range::positive());
+  const Real poisson = material.required("poisson_ratio", mat.poisson_ratio, Range::open(-1, 0.5));
+  const Real density = material.required("density", mat.density, Range::positive());
+  const Real damping = material.number("damping", mat.damping, Range::non_negative());
+  const bool has_volume = mat.volume_compliance.has_value();
+  const Real volume_compliance = material.number("volume_compliance", mat.volume_compliance.value_or(0), Range::non_negative());
 
   // Lumped masses: a quarter of each tetrahedron's mass to each vertex.
   std::vector<Real> masses(mesh.vertices.size(), 0.0);
@@ -70,11 +118,12 @@ void build_soft_body(const JsonObject& object, ObjectInfo& info, SceneBuildConte
   const auto boundary_edges = triangle_edges(boundary);
   Real edge_sum = 0;
   for (const auto& e : boundary_edges) edge_sum += (mesh.vertices[e[0]] - mesh.vertices[e[1]]).norm();
-  const Real radius = object.number("collision_radius", 0.5 * edge_sum / boundary_edges.size(), Range::positive());
+  const Real radius =
+      place.number("collision_radius", spec.collision_radius.value_or(0.5 * edge_sum / boundary_edges.size()), Range::positive());
 
   // Initial velocity: v + omega x (x - center of mass).
-  const Vec3 velocity = object.vec3("velocity", Vec3::Zero());
-  const Vec3 omega = object.vec3("angular_velocity", Vec3::Zero());
+  const Vec3 velocity = place.vector("velocity", spec.velocity);
+  const Vec3 omega = place.vector("angular_velocity", spec.angular_velocity);
   Vec3 com = Vec3::Zero();
   Real total = 0;
   for (size_t i = 0; i < masses.size(); ++i) {
@@ -83,16 +132,19 @@ void build_soft_body(const JsonObject& object, ObjectInfo& info, SceneBuildConte
   }
   com /= total;
   // A solid's surface vertices lie on its surface: by default they touch colliders directly.
-  const Real gap = object.number("collider_gap", 0.0, Range::non_negative());
+  const Real gap = place.number("collider_gap", spec.collider_gap, Range::non_negative());
   add_particles(ctx, info, mesh.vertices, masses, radius, gap, velocity);
   for (Index p = info.particle_begin; p < info.particle_end; ++p)
     ctx.initial_velocity[p] += omega.cross(m.particle_rest_position[p] - com);
 
   info.kind = ObjectKind::soft_body;
-  info.self_collision = object.boolean("self_collision", false);
-  info.fluid_coupling = object.boolean("fluid_coupling", true);
-  read_contact_material(object, info.static_friction, info.dynamic_friction, info.restitution);
-  read_pins(object, info, ctx);
+  info.self_collision = spec.self_collision;
+  info.fluid_coupling = spec.fluid_coupling;
+  check_contact_material(spec.contact, place);
+  info.static_friction = spec.contact.static_friction;
+  info.dynamic_friction = spec.contact.dynamic_friction;
+  info.restitution = spec.contact.restitution;
+  add_pins(spec.pin, place, info, ctx);
 
   const Index base = info.particle_begin;
   for (const auto& f : boundary) info.surface.push_back({base + f[0], base + f[1], base + f[2]});

@@ -14,14 +14,6 @@ namespace moreau {
 
 using nlohmann::json;
 
-std::string Range::describe() const {
-  const bool has_lo = lo > -1e299, has_hi = hi < 1e299;
-  if (has_lo && has_hi) return fmt::format("{}{}, {}{}", lo_open ? "(" : "[", lo, hi, hi_open ? ")" : "]");
-  if (has_lo) return fmt::format("{} {}", lo_open ? ">" : ">=", lo);
-  if (has_hi) return fmt::format("{} {}", hi_open ? "<" : "<=", hi);
-  return "any number";
-}
-
 namespace {
 std::string type_name(const json& v) {
   if (v.is_number()) return "a number";

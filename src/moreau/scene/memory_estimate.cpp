@@ -27,7 +27,7 @@ double memory_limit_bytes() {
 
 void set_memory_limit_bytes(double bytes) { configured_limit() = bytes; }
 
-void check_memory(const JsonObject& at, const std::string& key, double count, double bytes_each, const std::string& items) {
+void check_memory(const SpecPlace& at, const std::string& key, double count, double bytes_each, const std::string& items) {
   const double estimate = count * bytes_each, limit = memory_limit_bytes();
   if (estimate <= limit) return;
   const std::string origin = configured_limit() > 0 ? "set by --memory-limit"

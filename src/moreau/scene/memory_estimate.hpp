@@ -7,7 +7,7 @@
 #include <string>
 
 #include "moreau/math/types.hpp"
-#include "moreau/scene/json_reader.hpp"
+#include "moreau/scene/spec_place.hpp"
 
 namespace moreau {
 
@@ -28,6 +28,6 @@ void set_memory_limit_bytes(double bytes);
 
 /// Fails (exit 2) at `key` of `at` if `count` items of `bytes_each` exceed the limit, naming the
 /// count, the estimate and the limit.
-void check_memory(const JsonObject& at, const std::string& key, double count, double bytes_each, const std::string& items);
+void check_memory(const SpecPlace& at, const std::string& key, double count, double bytes_each, const std::string& items);
 
 }  // namespace moreau

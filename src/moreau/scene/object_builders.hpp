@@ -1,51 +1,85 @@
 #pragma once
-// Builders that turn one scene object into particles, constraints and colliders of the model.
-// Shared between scene_loader.cpp and the per-kind build_*.cpp files; not part of the public API.
+// The scene builder's two halves, one pair per object kind (build_<kind>.cpp):
+//   read_<kind>  scene JSON -> spec (scene_builder.hpp): types, required keys, and the file
+//                format's alternatives (a box's "size" for "half_extents", "offset" for a plane
+//                point); no physics is checked here;
+//   add_<kind>   spec -> model: every range and consistency check, reported at the spec's place,
+//                then the particles, constraints, bodies and colliders.
+// A scene file and a SceneBuilder in code both end in the add_ functions (scene_assembly.cpp).
+// Not part of the public API.
 #include <filesystem>
 #include <vector>
 
 #include "moreau/model/model.hpp"
 #include "moreau/scene/json_reader.hpp"
+#include "moreau/scene/spec_place.hpp"
+#include "moreau/scene_builder.hpp"
 
 namespace moreau {
 
-/// What the builders add to besides the model: per-particle initial velocities, and the directory
+struct Probe;
+
+/// What the adders add to besides the model: per-particle initial velocities, and the directory
 /// that relative mesh paths are resolved against.
 struct SceneBuildContext {
   Model& model;
   std::vector<Vec3>& initial_velocity;
   std::filesystem::path scene_directory;
-  Real duration = 0;  // s, settings.duration of the scene file (emitters stop there by default)
+  Real duration = 0;  // s, settings.duration (emitters stop there by default)
 };
 
-void build_collider(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
-void build_cloth(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
-void build_soft_body(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
-void build_fluid(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
-void build_rigid_body(const JsonObject& object, ObjectInfo& info, SceneBuildContext& ctx);
-/// After all objects: colliders become kinematic bodies for the rigid bodies to collide with.
+ColliderSpec read_collider(const JsonObject& object);
+ClothSpec read_cloth(const JsonObject& object);
+SoftBodySpec read_soft_body(const JsonObject& object);
+FluidSpec read_fluid(const JsonObject& object);
+RigidBodySpec read_rigid_body(const JsonObject& object);
+JointSpec read_joint(const JsonObject& joint);
+ProbeSpec read_probe(const JsonObject& probe);
+/// "settings" of a constraint-engine scene.
+SceneSettings read_settings(const JsonObject& settings);
+/// "settings.output": every N steps, and the formats.
+void read_output_settings(const JsonObject& settings, int& every, bool& write_vtk);
+
+void add_collider(const ColliderSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
+void add_cloth(const ClothSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
+void add_soft_body(const SoftBodySpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
+void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
+void add_rigid_body(const RigidBodySpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
+/// After all objects and joints: colliders become kinematic bodies for the rigid bodies.
 void add_colliders_as_bodies(Model& model);
-/// The scene's "joints" list.
-void build_joints(const std::vector<JsonObject>& joints, Model& model);
+/// After all objects: one joint (pairs_without_contact is sorted by finish_joints).
+void add_joint(const JointSpec& spec, const SpecPlace& place, Model& model);
+void finish_joints(Model& model);
 /// After all objects: samples collider walls for the fluids and sets the derived fluid constants.
 void finish_fluids(Model& model);
+/// A probe bound to the model's objects, particles and joints.
+Probe bind_probe(const ProbeSpec& spec, const SpecPlace& place, const Model& model);
 
+// ---- Shared by the readers ----
+Vector3 read_vector(const JsonObject& object, const std::string& key, const Vector3& fallback);
+std::optional<Vector3> read_optional_vector(const JsonObject& object, const std::string& key);
+std::optional<double> read_optional_number(const JsonObject& object, const std::string& key);
+/// "friction": a number (static = dynamic) or {"static": mu_s, "dynamic": mu_k}; and "restitution".
+ContactMaterial read_contact_material(const JsonObject& object);
+/// "pin": a list of regions ({"box": {min, max}}, {"sphere": {center, radius}} or
+/// {"vertices": [...]}, each with an optional "compliance" in m/N and "damping").
+std::vector<PinSpec> read_pins(const JsonObject& object);
+/// A cloth or soft-body "mesh" read from a file: "file", "scale", "translate".
+MeshFile read_mesh_file(const JsonObject& mesh);
+
+// ---- Shared by the adders ----
 /// Rotation from "rotation_deg": [rx, ry, rz], applied about the world x, then y, then z axes.
 Mat3 rotation_from_degrees(const Vec3& degrees);
-
-/// "friction": a number (static = dynamic) or {"static": mu_s, "dynamic": mu_k}; and "restitution".
-void read_contact_material(const JsonObject& object, Real& mu_static, Real& mu_dynamic, Real& restitution);
-
+/// The contact material, checked.
+void check_contact_material(const ContactMaterial& contact, const SpecPlace& place);
 /// Appends the object's particles: rest positions and masses (kg) per vertex.
 void add_particles(SceneBuildContext& ctx, ObjectInfo& info, const std::vector<Vec3>& positions,
                    const std::vector<Real>& masses, Real radius, Real collider_gap, const Vec3& velocity);
-
-/// "pin": a list of regions ({"box": {min, max}}, {"sphere": {center, radius}} or
-/// {"vertices": [...]}, each with an optional "compliance" in m/N). Rigid pins zero the inverse
-/// mass; compliant pins add attachment constraints.
-void read_pins(const JsonObject& object, const ObjectInfo& info, SceneBuildContext& ctx);
-
+/// Rigid pins zero the inverse mass; compliant pins add attachment constraints.
+void add_pins(const std::vector<PinSpec>& pins, const SpecPlace& place, const ObjectInfo& info, SceneBuildContext& ctx);
 /// Resolves a mesh path relative to the scene file.
 std::string resolve_path(const SceneBuildContext& ctx, const std::string& path);
+/// A mesh file's vertices, scaled then translated.
+void place_vertices(const MeshFile& file, const SpecPlace& place, std::vector<Vec3>& vertices);
 
 }  // namespace moreau

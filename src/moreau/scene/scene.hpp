@@ -25,7 +25,7 @@ struct Scene {
   Model model;
   State state;
   OutputSettings output;
-  std::vector<ProbeSpec> probes;
+  std::vector<Probe> probes;
   std::unique_ptr<FemProblem> fem;  // "solver": "fem" scenes: the FEM engine's problem (model is then empty)
   std::unique_ptr<Solver> formulation;  // the registered solver named by settings.solver (constraint-engine scenes)
 };

@@ -1,0 +1,346 @@
+#pragma once
+// moreau::SceneBuilder: a constraint-engine scene built in code, object by object. Every spec
+// below is one entry of the scene format (docs/scene-format.md) with the same field names,
+// defaults, units (SI) and checks: the scene loader reads a file into these specs and hands them
+// to the same builder, so a scene built here and the same scene read from JSON are the same
+// model, bit for bit. Plain types only (arrays of doubles, strings, optionals, variants), so a
+// binding maps them field by field.
+//
+//   moreau::SceneBuilder scene("drop");
+//   scene.settings().duration = 2.0;
+//   scene.add(moreau::ColliderSpec{.name = "floor", .shape = moreau::PlaneShape{}});
+//   scene.add(moreau::RigidBodySpec{.name = "box", .shape = moreau::BoxShape{{0.1, 0.1, 0.1}},
+//                                   .position = moreau::Vector3{0, 1, 0}});
+//   moreau::World world = scene.build();
+//
+// build() checks every spec and throws InputError naming the scene, the entry and the field
+// ("scene 'drop': objects[1].mass: -1 is out of range; allowed: > 0").
+#include <array>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "moreau/world.hpp"
+
+namespace moreau {
+
+using Vector2 = std::array<double, 2>;
+using Vector3 = std::array<double, 3>;
+using Quaternion = std::array<double, 4>;  // w, x, y, z
+
+// ---- Settings -------------------------------------------------------------------------------
+
+/// settings.fluid: the particle fluid's solver constants. Unset fields keep the engine defaults.
+struct FluidSolverSettings {
+  std::optional<double> neighbor_skin;  // fraction of the kernel radius the neighbour lists reach beyond it, [0, 1]
+  std::optional<double> tensile_k;      // artificial pressure strength, [0, 10]
+  std::optional<double> cfl_limit;      // largest particle travel per step, in particle radii
+};
+
+/// "settings". Unset fields keep the engine defaults listed in docs/scene-format.md.
+struct SceneSettings {
+  std::string solver = "xpbd";          // a registered constraint-engine formulation
+  std::optional<double> dt;             // s
+  std::optional<double> duration;       // s
+  std::optional<Vector3> gravity;       // m/s^2
+  std::optional<int> threads;           // 0 = all cores
+  std::optional<int> substeps;
+  std::optional<int> iterations;
+  std::optional<bool> particle_contacts;
+  std::optional<double> max_speed;      // m/s
+  std::string joint_solver = "direct";  // "direct" or "gauss_seidel"
+  FluidSolverSettings fluid;
+  int output_every = 1;                 // output.every: frames and probe rows every N steps
+  bool write_vtk = true;                // output.formats contains "vtk"
+};
+
+// ---- Shared pieces --------------------------------------------------------------------------
+
+/// "friction" and "restitution".
+struct ContactMaterial {
+  double static_friction = 0.5;   // mu_s
+  double dynamic_friction = 0.5;  // mu_k
+  double restitution = 0;         // e, in [0, 1]
+};
+
+/// One entry of "pin": particles of the object inside a region are held in place, rigidly
+/// (compliance 0) or by a spring of the given compliance (m/N) and damping.
+struct PinBox {
+  Vector3 min{}, max{};
+};
+struct PinSphere {
+  Vector3 center{};
+  double radius = 0;
+};
+using PinVertices = std::vector<int>;
+struct PinSpec {
+  std::variant<PinBox, PinSphere, PinVertices> region;
+  double compliance = 0;  // m/N
+  double damping = 0;     // s
+};
+
+// Shapes of colliders ("shape" of a collider: plane, box, sphere, capsule) and of rigid bodies
+// ("shape" of a rigid body: box, sphere, capsule, cylinder, convex_hull, triangle_mesh).
+struct PlaneShape {
+  Vector3 normal{0, 1, 0};
+  Vector3 point{0, 0, 0};  // m, a point on the plane ("offset" d in a scene file is the point d n)
+};
+struct BoxShape {
+  Vector3 half_extents{};  // m
+};
+struct SphereShape {
+  double radius = 0;  // m
+};
+struct CapsuleShape {  // along the local y axis
+  double radius = 0, half_height = 0;  // m
+};
+struct CylinderShape {  // along the local y axis
+  double radius = 0, half_height = 0;  // m
+};
+struct ConvexHullShape {  // the convex hull of an OBJ file's vertices
+  std::string mesh;
+  double scale = 1;
+};
+struct TriangleMeshShape {  // an OBJ surface, one-sided, with a slab of solid behind each triangle
+  std::string mesh;
+  double scale = 1;
+  double thickness = 0.05;  // m
+};
+using ShapeSpec =
+    std::variant<PlaneShape, BoxShape, SphereShape, CapsuleShape, CylinderShape, ConvexHullShape, TriangleMeshShape>;
+
+// ---- Objects --------------------------------------------------------------------------------
+
+/// "kind": "collider": a fixed or kinematic shape that everything else collides with.
+struct ColliderSpec {
+  std::string name;
+  ShapeSpec shape = PlaneShape{};    // plane, box, sphere or capsule
+  Vector3 center{};                  // m (box, sphere, capsule)
+  Vector3 rotation_deg{};            // about world x, then y, then z (box, capsule)
+  Vector3 velocity{};                // m/s, a constant translation
+  bool inside = false;               // a container: things stay inside the shape
+  bool fluid_walls = true;           // sampled as a wall of the particle fluids
+  ContactMaterial contact;
+};
+
+/// A cloth or soft-body mesh read from a file, scaled then translated.
+struct MeshFile {
+  std::string file;  // relative paths: against the scene file's folder (the working directory in code)
+  double scale = 1;
+  Vector3 translate{};
+};
+
+/// Cloth meshes: a grid sheet in the xz plane, an OBJ file, or triangles given in code.
+struct GridSheet {
+  Vector2 size{};                    // m, along x and z
+  std::array<int, 2> resolution{};   // vertices along x and z, each >= 2
+  Vector3 center{};
+  Vector3 rotation_deg{};            // about the sheet's centre
+};
+struct TriangleList {
+  std::vector<Vector3> vertices;     // m
+  std::vector<std::array<int, 3>> triangles;
+};
+using ClothMesh = std::variant<GridSheet, MeshFile, TriangleList>;
+
+struct ClothMaterial {
+  std::optional<double> area_density;       // kg/m^2; or
+  std::optional<double> vertex_mass;        // kg per vertex
+  double damping = 0;                       // s, Rayleigh-like damping of every constraint
+  std::optional<double> youngs_modulus;     // Pa: a membrane (triangle strain) with
+  std::optional<double> poisson_ratio;      //   (-1, 0.5), default 0.3
+  std::optional<double> thickness;          //   m
+  std::optional<double> stretch_compliance; // m/N: edge springs instead of a membrane
+  std::optional<double> bending_stiffness;  // N m; or
+  std::optional<double> bend_compliance;    // 1/(N m)
+  std::string bending_model = "dihedral";   // "dihedral" or "isometric"
+};
+
+struct ClothSpec {
+  std::string name;
+  ClothMesh mesh;
+  ClothMaterial material;
+  std::optional<double> collision_radius;   // m; default half the mean edge length
+  std::optional<double> collider_gap;       // m; default the collision radius
+  Vector3 velocity{};
+  bool self_collision = true;
+  bool fluid_coupling = true;
+  ContactMaterial contact;
+  std::vector<PinSpec> pin;
+};
+
+/// Soft-body meshes: a box of cells, a tetrahedral mesh file, an OBJ surface filled with
+/// tetrahedra, or tetrahedra given in code.
+struct TetBox {
+  Vector3 min{}, max{};              // m
+  std::array<int, 3> cells{};        // along x, y, z, each >= 1
+  int tets_per_cell = 6;             // 5 or 6
+};
+struct TetMeshFile {
+  std::string format;                // "msh" (Gmsh 4) or "tetgen" (file is the base name of .node and .ele)
+  MeshFile file;
+};
+struct TetrahedralizedObj {
+  MeshFile file;
+  double quality = 1.5;              // radius-edge ratio bound, [1.1, 10]
+  double max_volume = 0;             // m^3, 0: no bound
+};
+struct TetList {
+  std::vector<Vector3> vertices;     // m
+  std::vector<std::array<int, 4>> tets;
+};
+using SoftBodyMesh = std::variant<TetBox, TetMeshFile, TetrahedralizedObj, TetList>;
+
+struct SoftBodyMaterial {  // Neo-Hookean
+  std::optional<double> youngs_modulus;     // Pa
+  std::optional<double> poisson_ratio;      // (-1, 0.5)
+  std::optional<double> density;            // kg/m^3
+  double damping = 0;                       // s
+  std::optional<double> volume_compliance;  // m^3/N: an extra volume constraint per tetrahedron
+};
+
+struct SoftBodySpec {
+  std::string name;
+  SoftBodyMesh mesh;
+  SoftBodyMaterial material;
+  std::optional<double> collision_radius;   // m; default half the mean boundary edge length
+  double collider_gap = 0;                  // m
+  Vector3 velocity{};                       // m/s
+  Vector3 angular_velocity{};               // rad/s, about the centre of mass
+  bool self_collision = false;
+  bool fluid_coupling = true;
+  ContactMaterial contact;
+  std::vector<PinSpec> pin;
+};
+
+struct FluidBlock {
+  Vector3 min{}, max{};  // m
+};
+
+struct FluidEmitterSpec {
+  std::string shape = "disc";        // "disc" (radius) or "rectangle" (size, tangent)
+  Vector3 center{};                  // m
+  Vector3 direction{};               // the flow direction
+  double radius = 0;                 // m (disc)
+  Vector2 size{};                    // m (rectangle)
+  Vector3 tangent{};                 // the rectangle's first side; zero: any
+  std::optional<double> speed;       // m/s; or
+  std::optional<double> flow_rate;   // m^3/s
+  double start = 0;                  // s
+  std::optional<double> stop;        // s; default the scene's duration
+};
+
+/// "kind": "fluid": particles on a lattice of spacing 2 r filling a block, blocks or a closed OBJ
+/// surface, and/or released by an emitter.
+struct FluidSpec {
+  std::string name;
+  std::optional<double> particle_radius;  // m, the same for every fluid of the scene
+  double density = 1000;             // kg/m^3
+  double viscosity = 1.0e-3;         // Pa s
+  double xsph = 0.01;                // [0, 1]
+  double vorticity = 0;
+  double surface_tension = 0;
+  double relaxation = 0.01;          // [0, 1e6]
+  std::optional<FluidBlock> block;
+  std::vector<FluidBlock> blocks;
+  std::string mesh;                  // a closed OBJ surface to fill
+  Vector3 velocity{};                // m/s
+  std::optional<FluidEmitterSpec> emitter;
+};
+
+/// "kind": "rigid_body".
+struct RigidBodySpec {
+  std::string name;
+  ShapeSpec shape = SphereShape{};        // box, sphere, capsule, cylinder, convex_hull, triangle_mesh
+  std::optional<double> mass;             // kg; or
+  std::optional<double> density;          // kg/m^3 (default 1000)
+  bool fixed = false;
+  bool kinematic = false;
+  std::optional<Vector3> position;        // m, of the shape's own origin
+  std::optional<Quaternion> orientation;  // w, x, y, z (normalised); or
+  Vector3 rotation_deg{};                 // about world x, then y, then z
+  Vector3 velocity{};                     // m/s, of the shape's origin
+  Vector3 angular_velocity{};             // rad/s
+  ContactMaterial contact;
+  bool fluid_coupling = true;
+};
+
+using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec>;
+
+// ---- Joints ---------------------------------------------------------------------------------
+
+/// One end of a joint: "world", a rigid body's name, or one particle of a cloth or soft body
+/// (by vertex index or the vertex nearest a point).
+struct JointEndSpec {
+  std::string object = "world";
+  std::optional<int> vertex;
+  std::optional<Vector3> nearest;
+};
+
+struct JointDrive {
+  std::optional<double> target_angle_deg;  // hinge; or
+  std::optional<double> target_position;   // m, prismatic; or
+  std::optional<double> target_velocity;   // rad/s or m/s
+  double max_force = 0;                    // N (prismatic) or N m (hinge); 0: unbounded
+  double compliance = 0;
+};
+
+struct JointSpec {
+  std::string name;
+  std::string type;                          // fixed, spherical, hinge, prismatic, distance
+  std::array<JointEndSpec, 2> bodies;
+  std::optional<Vector3> anchor;             // m, one world point; or
+  std::optional<std::array<Vector3, 2>> anchors;  // one per end
+  Vector3 axis{1, 0, 0};
+  double compliance = 0, angular_compliance = 0, damping = 0, angular_damping = 0;
+  std::optional<Vector2> limits_deg;         // hinge
+  std::optional<Vector2> limits;             // m, prismatic
+  std::optional<double> swing_deg;           // spherical, [0, 180]
+  std::optional<Vector2> twist_deg;          // spherical
+  std::optional<double> min, max;            // m, distance; default the rest distance
+  std::optional<JointDrive> drive;           // hinge, prismatic
+  bool collide = false;                      // the joined bodies still collide
+};
+
+// ---- Probes ---------------------------------------------------------------------------------
+
+/// One column group of probes.csv (docs/scene-format.md, "Probes"). Fields a type does not use
+/// are ignored.
+struct ProbeSpec {
+  std::string name;
+  std::string type;                  // point, energy, center_of_mass, extent, momentum, ...
+  std::string object;                // an object's name, or "*" for every object where allowed
+  std::string joint;                 // joint_error: a joint's name or "*"
+  std::string quantity;              // empty: the type's default
+  std::optional<int> vertex;         // point: a vertex of the object; or
+  std::optional<Vector3> nearest;    // point: the vertex nearest this rest position, m
+  std::string axis;                  // extent: x, y or z
+  Vector3 about{};                   // momentum: the reference point of angular momentum, m
+  std::optional<Vector3> at;         // fluid_height: a point on the vertical line measured, m
+  std::optional<FluidBlock> box;     // escaped: particles outside this box are counted
+  std::string family = "all";        // constraint_error: one family or all
+};
+
+// ---- The builder ----------------------------------------------------------------------------
+
+class SceneBuilder {
+ public:
+  explicit SceneBuilder(std::string name);
+  SceneSettings& settings() { return settings_; }
+  SceneBuilder& add(ObjectSpec object);
+  SceneBuilder& add(JointSpec joint);
+  SceneBuilder& add(ProbeSpec probe);
+  /// Checks every spec and builds the world; relative mesh paths are resolved against the
+  /// working directory. Throws InputError on the first problem.
+  World build() const;
+
+ private:
+  std::string name_;
+  SceneSettings settings_;
+  std::vector<ObjectSpec> objects_;
+  std::vector<JointSpec> joints_;
+  std::vector<ProbeSpec> probes_;
+};
+
+}  // namespace moreau

@@ -1,0 +1,189 @@
+// "probes": what a run writes to probes.csv, bound to the model's objects, particles and joints.
+#include <fmt/format.h>
+
+#include "moreau/io/probes.hpp"
+#include "moreau/scene/object_builders.hpp"
+
+namespace moreau {
+
+namespace {
+
+const std::vector<std::string> kProbeTypes{
+    "point",    "energy",      "center_of_mass", "extent",           "momentum",    "constraint_error",
+    "fluid_height", "density_error", "particle_count", "escaped",     "position",    "orientation",
+    "velocity", "angular_velocity", "joint_error", "contact_count", "max_displacement"};
+
+// Every key a probe of this type may have (for the message on a misspelt key).
+std::vector<std::string> probe_keys(const std::string& type) {
+  std::vector<std::string> keys{"name", "type"};
+  auto add = [&](std::initializer_list<const char*> more) { keys.insert(keys.end(), more.begin(), more.end()); };
+  if (type == "joint_error") add({"joint"});
+  else add({"object"});
+  if (type == "point") add({"vertex", "nearest", "quantity"});
+  if (type == "energy" || type == "density_error") add({"quantity"});
+  if (type == "extent") add({"axis", "quantity"});
+  if (type == "momentum") add({"quantity", "about"});
+  if (type == "fluid_height") add({"at"});
+  if (type == "escaped") add({"box"});
+  if (type == "constraint_error") add({"family"});
+  return keys;
+}
+
+enum class Accepts { any, fluids, solids, bodies, particles };
+
+Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& model, bool allow_all,
+                   Accepts accepts = Accepts::any) {
+  const std::string& name = spec.object;
+  if (name.empty()) probe.fail("object", "missing required key");
+  if (allow_all && name == "*") return -1;
+  auto acceptable = [&](const ObjectInfo& o) {
+    if (accepts == Accepts::fluids) return o.kind == ObjectKind::fluid;
+    if (accepts == Accepts::solids) return o.has_particles();
+    if (accepts == Accepts::bodies) return o.kind == ObjectKind::rigid_body;
+    if (accepts == Accepts::particles) return o.has_particles() || o.kind == ObjectKind::fluid;
+    return o.is_simulated();
+  };
+  const Index i = model.find_object(name);
+  if (i < 0 || !acceptable(model.objects[i])) {
+    std::string names;
+    for (const auto& o : model.objects)
+      if (acceptable(o)) names += (names.empty() ? "" : ", ") + o.name;
+    if (names.empty()) names = allow_all ? "\"*\" (the scene has no such object)" : "none (the scene has no such object)";
+    else if (allow_all) names += ", *";
+    probe.fail("object", fmt::format("no {}object named '{}'; allowed: {}",
+                                     accepts == Accepts::fluids   ? "fluid "
+                                     : accepts == Accepts::solids ? "cloth or soft-body "
+                                     : accepts == Accepts::bodies ? "rigid-body "
+                                     : accepts == Accepts::particles ? "cloth, soft-body or fluid "
+                                                                     : "simulated ",
+                                     name, names));
+  }
+  return i;
+}
+
+// The probe's quantity, or `fallback` when not given.
+std::string quantity(const ProbeSpec& spec, const SpecPlace& probe, const std::string& fallback,
+                     const std::vector<std::string>& allowed) {
+  return spec.quantity.empty() ? fallback : probe.choice("quantity", spec.quantity, allowed);
+}
+
+}  // namespace
+
+ProbeSpec read_probe(const JsonObject& j) {
+  ProbeSpec p;
+  p.name = j.string("name");
+  p.type = j.choice("type", kProbeTypes);
+  j.expect_keys(probe_keys(p.type));
+  if (p.type == "joint_error") p.joint = j.string("joint");
+  else p.object = j.string("object");
+  if (p.type == "point") {
+    if (j.has("vertex") == j.has("nearest")) j.fail("vertex", "give exactly one of \"vertex\" (index) or \"nearest\" (position, m)");
+    if (j.has("vertex")) p.vertex = j.required_integer("vertex", -(1 << 30));
+    else p.nearest = to_vector3(j.vec3("nearest"));
+  }
+  if (p.type == "extent") {
+    p.axis = j.string("axis");
+    p.quantity = j.string("quantity");
+  } else if (p.type == "point" || p.type == "energy" || p.type == "density_error" || p.type == "momentum") {
+    if (j.has("quantity")) p.quantity = j.string("quantity");
+  }
+  if (p.type == "momentum") p.about = read_vector(j, "about", p.about);
+  if (p.type == "fluid_height") p.at = to_vector3(j.vec3("at"));
+  if (p.type == "escaped") {
+    const JsonObject box = j.object("box");
+    p.box = FluidBlock{to_vector3(box.vec3("min")), to_vector3(box.vec3("max"))};
+    box.finish();
+  }
+  if (p.type == "constraint_error" && j.has("family")) p.family = j.string("family");
+  j.finish();
+  return p;
+}
+
+Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) {
+  Probe p;
+  p.name = spec.name;
+  if (p.name.empty()) j.fail("name", "a probe needs a name");
+  const std::string& type = j.choice("type", spec.type, kProbeTypes);
+  if (type == "point") {
+    p.type = ProbeType::point;
+    p.object = object_index(spec, j, model, false, Accepts::solids);
+    const ObjectInfo& o = model.objects[p.object];
+    if (spec.vertex.has_value() == spec.nearest.has_value())
+      j.fail("vertex", "give exactly one of \"vertex\" (index) or \"nearest\" (position, m)");
+    if (spec.vertex) {
+      p.particle = o.particle_begin + j.integer("vertex", *spec.vertex, 0, o.particle_count() - 1);
+    } else {
+      const Vec3 target = j.vector("nearest", *spec.nearest);
+      Real best = 1e300;
+      for (Index q = o.particle_begin; q < o.particle_end; ++q) {
+        const Real d = (model.particle_rest_position[q] - target).squaredNorm();
+        if (d < best) best = d, p.particle = q;
+      }
+    }
+    p.quantity = quantity(spec, j, "position", {"position", "displacement", "velocity"});
+  } else if (type == "energy") {
+    p.type = ProbeType::energy;
+    p.object = object_index(spec, j, model, true);
+    p.quantity = quantity(spec, j, "total", {"kinetic", "potential", "elastic", "total"});
+  } else if (type == "center_of_mass") {
+    p.type = ProbeType::center_of_mass;
+    p.object = object_index(spec, j, model, true);
+  } else if (type == "extent") {
+    p.type = ProbeType::extent;
+    p.object = object_index(spec, j, model, true, Accepts::particles);  // particles only
+    if (spec.axis.empty()) j.fail("axis", "missing required key");
+    p.axis = j.choice("axis", spec.axis, {"x", "y", "z"})[0] - 'x';
+    if (spec.quantity.empty()) j.fail("quantity", "missing required key");
+    p.quantity = quantity(spec, j, "", {"min", "max"});
+  } else if (type == "momentum") {
+    p.type = ProbeType::momentum;
+    p.object = object_index(spec, j, model, true);
+    p.quantity = quantity(spec, j, "linear", {"linear", "angular"});
+    p.about = j.vector("about", spec.about);
+  } else if (type == "fluid_height") {
+    p.type = ProbeType::fluid_height;
+    p.object = object_index(spec, j, model, true, Accepts::fluids);
+    p.at = j.required_vector("at", spec.at);
+  } else if (type == "density_error") {
+    p.type = ProbeType::density_error;
+    p.object = object_index(spec, j, model, true, Accepts::fluids);
+    p.quantity = quantity(spec, j, "mean", {"mean", "max"});
+  } else if (type == "particle_count") {
+    p.type = ProbeType::particle_count;
+    p.object = object_index(spec, j, model, true, Accepts::particles);  // particles only
+  } else if (type == "position" || type == "orientation" || type == "velocity" || type == "angular_velocity") {
+    p.type = type == "position"      ? ProbeType::body_position
+             : type == "orientation" ? ProbeType::body_orientation
+             : type == "velocity"    ? ProbeType::body_velocity
+                                     : ProbeType::body_angular_velocity;
+    p.object = object_index(spec, j, model, false, Accepts::bodies);
+  } else if (type == "joint_error") {
+    p.type = ProbeType::joint_error;
+    if (spec.joint.empty()) j.fail("joint", "missing required key");
+    if (spec.joint != "*") {
+      for (Index k = 0; k < static_cast<Index>(model.joints.size()); ++k)
+        if (model.joints[k].name == spec.joint) p.joint = k;
+      if (p.joint < 0) j.fail("joint", fmt::format("no joint is named '{}'; give a joint's name or \"*\"", spec.joint));
+    }
+  } else if (type == "contact_count") {
+    p.type = ProbeType::contact_count;
+    p.object = object_index(spec, j, model, true);
+  } else if (type == "max_displacement") {
+    p.type = ProbeType::max_displacement;
+    p.object = object_index(spec, j, model, true);
+  } else if (type == "escaped") {
+    p.type = ProbeType::escaped;
+    p.object = object_index(spec, j, model, true, Accepts::particles);  // particles only
+    if (!spec.box) j.fail("box", "missing required key");
+    p.box_min = j.vector("box.min", spec.box->min);
+    p.box_max = j.vector("box.max", spec.box->max);
+  } else {
+    p.type = ProbeType::constraint_error;
+    p.object = object_index(spec, j, model, true, Accepts::solids);
+    const auto names = constraint_error_names();
+    p.family = j.choice("family", spec.family, std::vector<std::string>(names.begin(), names.end()));
+  }
+  return p;
+}
+
+}  // namespace moreau

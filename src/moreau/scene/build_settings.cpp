@@ -1,0 +1,83 @@
+// "settings" of a constraint-engine scene: read from JSON, then checked and applied to the scene.
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "moreau/scene/object_builders.hpp"
+#include "moreau/scene/scene_assembly.hpp"
+#include "moreau/solvers/solver_registry.hpp"
+
+namespace moreau {
+
+void read_output_settings(const JsonObject& settings, int& every, bool& write_vtk) {
+  if (auto output = settings.optional_object("output")) {
+    every = output->integer("every", every, 1);
+    if (output->has("formats")) {
+      const auto& formats = output->raw("formats");
+      if (!formats.is_array()) output->fail("formats", "expected an array of format names; allowed: vtk");
+      write_vtk = false;
+      for (const auto& f : formats) {
+        if (!f.is_string() || f.get<std::string>() != "vtk")
+          output->fail("formats", fmt::format("{} is not a known format; allowed: vtk", f.dump()));
+        write_vtk = true;
+      }
+    }
+    output->finish();
+  }
+}
+
+SceneSettings read_settings(const JsonObject& settings) {
+  SceneSettings s;
+  if (settings.has("solver")) s.solver = settings.string("solver");
+  s.dt = read_optional_number(settings, "dt");
+  s.duration = read_optional_number(settings, "duration");
+  s.gravity = read_optional_vector(settings, "gravity");
+  if (settings.has("threads")) s.threads = settings.required_integer("threads", -(1 << 30));
+  if (settings.has("substeps")) s.substeps = settings.required_integer("substeps", -(1 << 30));
+  if (settings.has("iterations")) s.iterations = settings.required_integer("iterations", -(1 << 30));
+  if (settings.has("particle_contacts")) s.particle_contacts = settings.boolean("particle_contacts", true);
+  s.max_speed = read_optional_number(settings, "max_speed");
+  if (settings.has("joint_solver")) s.joint_solver = settings.string("joint_solver");
+  if (auto fluid = settings.optional_object("fluid")) {
+    s.fluid.neighbor_skin = read_optional_number(*fluid, "neighbor_skin");
+    s.fluid.tensile_k = read_optional_number(*fluid, "tensile_k");
+    s.fluid.cfl_limit = read_optional_number(*fluid, "cfl_limit");
+    fluid->finish();
+  }
+  read_output_settings(settings, s.output_every, s.write_vtk);
+  settings.finish();
+  return s;
+}
+
+void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& scene) {
+  // The scene format names every formulation; those not registered (solver_registry.hpp) are
+  // refused with the list of the ones that are.
+  std::vector<std::string> available = registered_solver_names();
+  available.push_back("fem");
+  place.choice("solver", spec.solver, {"xpbd", "nmd", "xpbi", "fem"});
+  if (std::find(available.begin(), available.end(), spec.solver) == available.end())
+    place.fail("solver", fmt::format("the '{}' formulation is not available in this version of moreau; allowed: {}",
+                                     spec.solver, fmt::join(available, ", ")));
+  if (spec.solver == "fem") place.fail("solver", "FEM scenes are read from scene JSON (World::load or World::from_json)");
+  scene.solver = spec.solver;
+  SolverSettings& s = scene.model.settings;
+  s.dt = place.number("dt", spec.dt.value_or(s.dt), Range::positive());
+  scene.duration = place.number("duration", spec.duration.value_or(scene.duration), Range::positive());
+  if (spec.gravity) s.gravity = place.vector("gravity", *spec.gravity);
+  s.threads = place.integer("threads", spec.threads.value_or(s.threads), 0, 1024);
+  s.substeps = place.integer("substeps", spec.substeps.value_or(s.substeps), 1, 100000);
+  s.iterations = place.integer("iterations", spec.iterations.value_or(s.iterations), 1, 100000);
+  s.particle_contacts = spec.particle_contacts.value_or(s.particle_contacts);
+  s.max_speed = place.number("max_speed", spec.max_speed.value_or(s.max_speed), Range::positive());
+  s.joint_solver = place.choice("joint_solver", spec.joint_solver, {"direct", "gauss_seidel"}) == "direct"
+                       ? JointSolver::direct
+                       : JointSolver::gauss_seidel;
+  FluidModel& fm = scene.model.fluid;
+  const SpecPlace fluid = place.at("fluid");
+  fm.neighbor_skin_fraction = fluid.number("neighbor_skin", spec.fluid.neighbor_skin.value_or(fm.neighbor_skin_fraction), Range::closed(0, 1));
+  fm.tensile_k = fluid.number("tensile_k", spec.fluid.tensile_k.value_or(fm.tensile_k), Range::closed(0, 10));
+  fm.cfl_limit = fluid.number("cfl_limit", spec.fluid.cfl_limit.value_or(fm.cfl_limit), Range::positive());
+  scene.output.every = place.integer("output.every", spec.output_every, 1);
+  scene.output.write_vtk = spec.write_vtk;
+}
+
+}  // namespace moreau

@@ -1,0 +1,69 @@
+#include "moreau/scene/scene_assembly.hpp"
+
+#include <fmt/format.h>
+
+#include "moreau/scene/object_builders.hpp"
+#include "moreau/solvers/solver_registry.hpp"
+
+namespace moreau {
+
+namespace {
+
+const std::string& object_name(const ObjectSpec& object) {
+  return std::visit([](const auto& spec) -> const std::string& { return spec.name; }, object);
+}
+
+void add_object(const ObjectSpec& object, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx) {
+  std::visit(
+      [&](const auto& spec) {
+        using T = std::decay_t<decltype(spec)>;
+        if constexpr (std::is_same_v<T, ColliderSpec>) add_collider(spec, place, info, ctx);
+        else if constexpr (std::is_same_v<T, ClothSpec>) add_cloth(spec, place, info, ctx);
+        else if constexpr (std::is_same_v<T, SoftBodySpec>) add_soft_body(spec, place, info, ctx);
+        else if constexpr (std::is_same_v<T, FluidSpec>) add_fluid(spec, place, info, ctx);
+        else add_rigid_body(spec, place, info, ctx);
+      },
+      object);
+}
+
+}  // namespace
+
+Scene assemble_scene(const SceneSpec& spec, const SceneSpecPlaces& places, const std::string& file,
+                     const std::filesystem::path& scene_directory) {
+  Scene scene;
+  scene.file = file;
+  scene.name = spec.name;
+  if (scene.name.empty()) places.top.fail("name", "the scene name must not be empty");
+  apply_settings(spec.settings, places.settings, scene);
+
+  std::vector<Vec3> initial_velocity;
+  SceneBuildContext ctx{scene.model, initial_velocity, scene_directory, scene.duration};
+  if (spec.objects.empty()) places.top.fail("objects", "a scene needs at least one object");
+  for (size_t k = 0; k < spec.objects.size(); ++k) {
+    const SpecPlace& place = places.objects[k];
+    ObjectInfo info;
+    info.name = object_name(spec.objects[k]);
+    if (info.name.empty()) place.fail("name", "an object needs a name");
+    if (scene.model.find_object(info.name) >= 0)
+      place.fail("name", fmt::format("another object is already named '{}'; names must be unique", info.name));
+    add_object(spec.objects[k], place, info, ctx);
+    scene.model.objects.push_back(std::move(info));
+  }
+  scene.model.color_constraints();
+  finish_fluids(scene.model);
+  for (size_t k = 0; k < spec.joints.size(); ++k) add_joint(spec.joints[k], places.joints[k], scene.model);
+  finish_joints(scene.model);
+  add_colliders_as_bodies(scene.model);
+  if (scene.model.settings.joint_solver == JointSolver::direct)
+    scene.model.joint_forest = build_joint_forest(scene.model.rigid, scene.model.joints);
+
+  for (size_t k = 0; k < spec.probes.size(); ++k)
+    scene.probes.push_back(bind_probe(spec.probes[k], places.probes[k], scene.model));
+
+  scene.state = make_rest_state(scene.model);
+  scene.state.velocity = initial_velocity;
+  scene.formulation = make_solver(scene.solver, scene.model);
+  return scene;
+}
+
+}  // namespace moreau
