@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <ostream>
 
 #include <nlohmann/json.hpp>
 
@@ -29,6 +30,9 @@ struct ScenePair {
   std::string scene;   // path relative to the repository
   std::string solver;  // "xpbd", ..., or "fem"
 };
+
+// How ctest and gtest name a pair (not its bytes).
+void PrintTo(const ScenePair& pair, std::ostream* out) { *out << pair.scene << " under " << pair.solver; }
 
 // Scenes whose full size would take minutes for no extra coverage run smaller here (the same
 // keys, coarser meshes, fewer continuation stages).
@@ -89,8 +93,9 @@ TEST_P(EverySceneEverySolver, RunsFiniteAndIndependentOfTheThreadCount) {
   for (const auto& [name, values] : one) {
     const std::vector<double>& other = two.at(name);
     ASSERT_EQ(values.size(), other.size()) << name;
-    if (!name.starts_with("probe "))
+    if (!name.starts_with("probe ")) {
       for (size_t k = 0; k < values.size(); ++k) ASSERT_TRUE(std::isfinite(values[k])) << name << " value " << k;
+    }
     // Bits, not a tolerance: the same operations in the same order on any thread count.
     EXPECT_EQ(std::memcmp(values.data(), other.data(), values.size() * sizeof(double)), 0)
         << name << " of " << pair.scene << " under " << pair.solver << " differs between one and two threads";
