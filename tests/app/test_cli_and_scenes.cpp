@@ -132,6 +132,9 @@ TEST(CommandLine, FluidInputErrorsNameTheirKey) {
                    {"objects[2].particle_radius", "share one particle radius"});
   expect_bad_input("no_volume", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05})"),
                    {"objects[1].block", "exactly one of", "emitter"});
+  expect_bad_input("no_blocks", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "blocks": [],
+      "emitter": {"shape": "disc", "center": [0, 0.5, 0], "direction": [0, -1, 0], "radius": 0.1, "speed": 1}})"),
+                   {"objects[1].blocks", "holds no block"});
   expect_bad_input("viscous", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "viscosity": 1e4,
       "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})"),
                    {"objects[1].viscosity", "0.125 h^2 / nu"});
@@ -170,7 +173,8 @@ TEST(CommandLine, RigidAndJointInputErrorsNameTheirKey) {
                    {"joints[0].limits_deg", "lower limit"});
   expect_bad_input("shape_type", R"({"name": "r", "objects": [{"name": "a", "kind": "rigid_body", "shape": {"type": "cone"}, "position": [0, 0, 0]}]})",
                    {"objects[0].shape.type", "sphere"});
-  expect_bad_input("friction", scene(R"(, "friction": {"static": -0.5})", ok_joint), {"objects[0].friction.static", "out of range"});
+  expect_bad_input("friction", scene(R"(, "friction": {"static": -0.5, "dynamic": 0.2})", ok_joint), {"objects[0].friction.static", "out of range"});
+  expect_bad_input("friction", scene(R"(, "friction": -0.5)", ok_joint), {"objects[0].friction: -0.5 is out of range"});
   // extent, particle_count and escaped count particles: a rigid body has none to count.
   expect_bad_input("extent_of_body", R"({"name": "r", "objects": [{"name": "a", "kind": "rigid_body", "shape": {"type": "sphere", "radius": 0.1},
       "position": [0, 0, 0]}], "probes": [{"name": "low", "type": "extent", "object": "a", "axis": "y", "quantity": "min"}]})",

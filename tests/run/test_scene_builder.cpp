@@ -230,6 +230,19 @@ TEST(SceneBuilder, BadSpecsNameTheSceneTheEntryAndTheField) {
               std::string::npos);
   }
   {
+    // Fields a shape does not take are refused, not ignored.
+    SceneBuilder scene("bad");
+    scene.add(ColliderSpec{.name = "floor", .shape = PlaneShape{}, .center = {0, 1, 0}});
+    EXPECT_EQ(build_error(scene), "scene 'bad': objects[0].shape.center: a plane is placed by its \"point\" and \"normal\"");
+  }
+  {
+    SceneBuilder scene("bad");
+    scene.add(FluidSpec{.name = "water", .particle_radius = 0.01,
+                        .emitter = FluidEmitterSpec{.shape = "disc", .direction = {0, -1, 0}, .radius = 0.05,
+                                                    .size = {0.1, 0.1}, .speed = 1.0}});
+    EXPECT_NE(build_error(scene).find("objects[0].emitter.size: a disc takes a \"radius\""), std::string::npos);
+  }
+  {
     SceneBuilder scene("bad");
     scene.settings().solver = "fem";
     scene.add(RigidBodySpec{.name = "a", .position = Vector3{0, 1, 0}});

@@ -7,7 +7,7 @@
 #include "moreau/geometry/mesh_generators.hpp"
 #include "moreau/geometry/mesh_readers.hpp"
 #include "moreau/scene/memory_estimate.hpp"
-#include "moreau/scene/object_builders.hpp"
+#include "moreau/scene/spec_builders.hpp"
 
 namespace moreau {
 
@@ -72,13 +72,7 @@ TriangleMesh make_cloth_mesh(const ClothMesh& spec, const SpecPlace& place, Scen
   } else {
     const auto& list = std::get<TriangleList>(spec);
     for (const Vector3& v : list.vertices) out.vertices.push_back(place.vector("vertices", v));
-    for (const auto& t : list.triangles) {
-      for (int v : t)
-        if (v < 0 || v >= static_cast<int>(list.vertices.size()))
-          place.fail("triangles", fmt::format("vertex {} does not exist; the mesh has {} vertices", v, list.vertices.size()));
-      out.triangles.push_back({t[0], t[1], t[2]});
-    }
-    if (out.triangles.empty()) place.fail("triangles", "a cloth needs at least one triangle");
+    out.triangles = checked_cells(list.triangles, list.vertices.size(), place, "triangles");
   }
   for (size_t t = 0; t < out.triangles.size(); ++t) {
     const auto& k = out.triangles[t];
@@ -146,10 +140,7 @@ void add_cloth(const ClothSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   info.kind = ObjectKind::cloth;
   info.self_collision = spec.self_collision;
   info.fluid_coupling = spec.fluid_coupling;
-  check_contact_material(spec.contact, place);
-  info.static_friction = spec.contact.static_friction;
-  info.dynamic_friction = spec.contact.dynamic_friction;
-  info.restitution = spec.contact.restitution;
+  set_contact_material(spec.contact, place, info);
   add_pins(spec.pin, place, info, ctx);
 
   const Index base = info.particle_begin;

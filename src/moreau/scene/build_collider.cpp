@@ -1,7 +1,7 @@
 // "kind": "collider": a fixed or kinematic plane, box, sphere or capsule.
 #include <fmt/format.h>
 
-#include "moreau/scene/object_builders.hpp"
+#include "moreau/scene/spec_builders.hpp"
 
 namespace moreau {
 
@@ -25,6 +25,7 @@ ColliderSpec read_collider(const JsonObject& object) {
     spec.center = to_vector3(shape.vec3("center"));
     if (shape.has("size") == shape.has("half_extents"))
       shape.fail("half_extents", "give exactly one of \"half_extents\" or \"size\" (m)");
+    if (shape.has("size") && !(shape.vec3("size").minCoeff() > 0)) shape.fail("size", "every extent must be > 0");
     spec.shape = BoxShape{to_vector3(shape.has("size") ? Vec3(0.5 * shape.vec3("size")) : shape.vec3("half_extents"))};
     spec.rotation_deg = read_vector(shape, "rotation_deg", spec.rotation_deg);
   } else if (type == "sphere") {
@@ -68,24 +69,27 @@ void add_collider(const ColliderSpec& spec, const SpecPlace& place, ObjectInfo& 
     shape.fail("type", "a collider is a plane, box, sphere or capsule; cylinders, convex hulls and triangle meshes "
                        "are rigid bodies with \"fixed\": true");
   }
-  if (c.shape.type != ShapeType::plane) {
+  // A plane is placed by its point and normal, a sphere has no orientation: neither takes the
+  // fields that would be silently ignored.
+  const bool rotated = c.shape.type == ShapeType::box || c.shape.type == ShapeType::capsule;
+  if (c.shape.type == ShapeType::plane) {
+    if (spec.center != Vector3{0, 0, 0}) shape.fail("center", "a plane is placed by its \"point\" and \"normal\"");
+  } else {
     c.position = shape.vector("center", spec.center);
-    if (c.shape.type != ShapeType::sphere) c.rotation = rotation_from_degrees(shape.vector("rotation_deg", spec.rotation_deg));
   }
+  if (rotated) c.rotation = rotation_from_degrees(shape.vector("rotation_deg", spec.rotation_deg));
+  else if (spec.rotation_deg != Vector3{0, 0, 0}) shape.fail("rotation_deg", "only a box or a capsule collider is rotated");
   c.velocity = place.vector("velocity", spec.velocity);
   c.inside = spec.inside;
   if (c.inside && c.shape.type == ShapeType::plane)
     place.fail("inside", "a plane has no inside; use a box, sphere or capsule as a container");
   c.fluid_walls = spec.fluid_walls;
-  check_contact_material(spec.contact, place);
-  c.static_friction = spec.contact.static_friction;
-  c.dynamic_friction = spec.contact.dynamic_friction;
-  c.restitution = spec.contact.restitution;
+  set_contact_material(spec.contact, place, info);
+  c.static_friction = info.static_friction;
+  c.dynamic_friction = info.dynamic_friction;
+  c.restitution = info.restitution;
   info.kind = ObjectKind::collider;
   info.collider = static_cast<Index>(ctx.model.colliders.size());
-  info.static_friction = c.static_friction;
-  info.dynamic_friction = c.dynamic_friction;
-  info.restitution = c.restitution;
   ctx.model.colliders.push_back(c);
 }
 

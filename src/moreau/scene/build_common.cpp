@@ -3,9 +3,10 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <limits>
 
 #include "moreau/errors.hpp"
-#include "moreau/scene/object_builders.hpp"
+#include "moreau/scene/spec_builders.hpp"
 
 namespace moreau {
 
@@ -21,6 +22,16 @@ std::optional<Vector3> read_optional_vector(const JsonObject& object, const std:
 std::optional<double> read_optional_number(const JsonObject& object, const std::string& key) {
   if (!object.has(key)) return std::nullopt;
   return object.number(key);
+}
+
+std::optional<Vector2> read_optional_pair(const JsonObject& object, const std::string& key) {
+  if (!object.has(key)) return std::nullopt;
+  const Vec2 v = object.vec2(key, Range::any());
+  return Vector2{v.x(), v.y()};
+}
+
+int read_integer(const JsonObject& object, const std::string& key) {
+  return object.required_integer(key, std::numeric_limits<int>::min(), std::numeric_limits<int>::max());
 }
 
 ContactMaterial read_contact_material(const JsonObject& object) {
@@ -39,10 +50,17 @@ ContactMaterial read_contact_material(const JsonObject& object) {
   return m;
 }
 
-void check_contact_material(const ContactMaterial& contact, const SpecPlace& place) {
-  place.number("friction.static", contact.static_friction, Range::non_negative());
-  place.number("friction.dynamic", contact.dynamic_friction, Range::non_negative());
-  place.number("restitution", contact.restitution, Range::closed(0, 1));
+void set_contact_material(const ContactMaterial& contact, const SpecPlace& place, ObjectInfo& info) {
+  // One coefficient (static = dynamic) is the scene file's "friction": mu.
+  if (contact.static_friction == contact.dynamic_friction) {
+    place.number("friction", contact.static_friction, Range::non_negative());
+  } else {
+    place.number("friction.static", contact.static_friction, Range::non_negative());
+    place.number("friction.dynamic", contact.dynamic_friction, Range::non_negative());
+  }
+  info.static_friction = contact.static_friction;
+  info.dynamic_friction = contact.dynamic_friction;
+  info.restitution = place.number("restitution", contact.restitution, Range::closed(0, 1));
 }
 
 std::vector<PinSpec> read_pins(const JsonObject& object) {

@@ -11,7 +11,7 @@
 #include "moreau/geometry/mesh_readers.hpp"
 #include "moreau/geometry/point_in_mesh.hpp"
 #include "moreau/scene/memory_estimate.hpp"
-#include "moreau/scene/object_builders.hpp"
+#include "moreau/scene/spec_builders.hpp"
 
 namespace moreau {
 
@@ -79,10 +79,13 @@ FluidEmitter make_emitter(const FluidEmitterSpec& spec, const SpecPlace& e, Real
   if (!(direction.norm() > 0)) e.fail("direction", "the flow direction must be a non-zero vector");
   emitter.normal = direction.normalized();
   if (e.choice("shape", spec.shape, {"disc", "rectangle"}) == "disc") {
+    if (spec.size != Vector2{0, 0} || spec.tangent != Vector3{0, 0, 0})
+      e.fail(spec.size != Vector2{0, 0} ? "size" : "tangent", "a disc takes a \"radius\"; size and tangent are a rectangle's");
     const Real radius = e.number("radius", spec.radius, Range::positive());
     if (radius < 0.5 * d) e.fail("radius", fmt::format("the disc must be at least r = {} m wide to hold a particle", 0.5 * d));
     emitter.opening = disc_opening(emitter.normal, radius, d);
   } else {
+    if (spec.radius != 0) e.fail("radius", "a rectangle takes a \"size\" (and a \"tangent\"); the radius is a disc's");
     const Vec2 size = e.pair("size", spec.size, Range::positive());
     if (size.minCoeff() < d) e.fail("size", fmt::format("each side must be at least one particle spacing 2r = {} m", d));
     emitter.opening = rectangle_opening(emitter.normal, e.vector("tangent", spec.tangent), size.x(), size.y(), d);
@@ -119,7 +122,10 @@ FluidSpec read_fluid(const JsonObject& object) {
   spec.relaxation = object.number("relaxation", spec.relaxation);
   if (object.has("block")) spec.block = read_block(object.object("block"));
   for (const JsonObject& block : object.object_list("blocks")) spec.blocks.push_back(read_block(block));
+  // An empty list or path is a source that holds nothing, not the absence of one.
+  if (object.has("blocks") && spec.blocks.empty()) object.fail("blocks", "the list holds no block; give at least one");
   if (object.has("mesh")) spec.mesh = object.string("mesh");
+  if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"));
   return spec;
@@ -180,6 +186,7 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
     } catch (const std::exception& e) {
       place.fail("mesh", e.what());
     }
+    if (mesh.vertices.empty()) place.fail("mesh", fmt::format("'{}' has no vertices", path));
     Vec3 lo = mesh.vertices.front(), hi = lo;
     for (const Vec3& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
     std::vector<Vec3> lattice;

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "moreau/scene/object_builders.hpp"
+#include "moreau/scene/spec_builders.hpp"
 
 namespace moreau {
 
@@ -23,9 +23,9 @@ JointEndSpec read_end(const JsonObject& joint, const nlohmann::json& value, int 
   if (!value.is_object()) joint.fail("bodies", fmt::format("bodies[{}] must be a name or an object", slot));
   const JsonObject ref(value, joint.path_of("bodies") + fmt::format("[{}]", slot), joint.file());
   end.object = ref.string("object");
-  if (ref.has("vertex") == ref.has("nearest")) ref.fail("vertex", "give exactly one of \"vertex\" or \"nearest\"");
-  if (ref.has("vertex")) end.vertex = ref.integer("vertex", 0, 0);
-  else end.nearest = to_vector3(ref.vec3("nearest"));
+  if (ref.has("vertex")) end.vertex = read_integer(ref, "vertex");
+  end.nearest = read_optional_vector(ref, "nearest");
+  if (!end.vertex && !end.nearest) ref.fail("vertex", "give exactly one of \"vertex\" or \"nearest\"");
   ref.finish();
   return end;
 }
@@ -109,18 +109,9 @@ Vec2 degrees_range(const SpecPlace& j, const std::string& field, const Vector2& 
   return r * kDegree;
 }
 
-std::optional<Vector2> read_optional_pair(const JsonObject& j, const std::string& key) {
-  if (!j.has(key)) return std::nullopt;
-  const Vec2 v = j.vec2(key, Range::any());
-  return Vector2{v.x(), v.y()};
-}
-
 JointDrive read_drive(const JsonObject& drive, bool angular) {
   JointDrive d;
   const std::string position_key = angular ? "target_angle_deg" : "target_position";
-  if (drive.has(position_key) == drive.has("target_velocity"))
-    drive.fail(position_key, fmt::format("give exactly one of \"{}\" or \"target_velocity\" ({})", position_key,
-                                         angular ? "rad/s" : "m/s"));
   (angular ? d.target_angle_deg : d.target_position) = read_optional_number(drive, position_key);
   d.target_velocity = read_optional_number(drive, "target_velocity");
   d.max_force = drive.number(angular ? "max_torque" : "max_force", d.max_force);
@@ -162,11 +153,9 @@ JointSpec read_joint(const JsonObject& j) {
   const auto& bodies = j.raw("bodies");
   if (!bodies.is_array() || bodies.size() != 2) j.fail("bodies", "expected two ends: [\"a\", \"b\"]");
   spec.bodies = {read_end(j, bodies[0], 0), read_end(j, bodies[1], 1)};
-  // Anchors: one shared world point, or one per end.
-  if (j.has("anchor") == j.has("anchors")) j.fail("anchor", "give exactly one of \"anchor\" (one world point) or \"anchors\" (one per end)");
-  if (j.has("anchor")) {
-    spec.anchor = to_vector3(j.vec3("anchor"));
-  } else {
+  // Anchors: one shared world point, or one per end (add_joint wants exactly one).
+  spec.anchor = read_optional_vector(j, "anchor");
+  if (j.has("anchors")) {
     const auto& raw = j.raw("anchors");
     if (!raw.is_array() || raw.size() != 2) j.fail("anchors", "expected two world points [[x, y, z], [x, y, z]]");
     std::array<Vector3, 2> anchors;

@@ -2,7 +2,7 @@
 #include <fmt/format.h>
 
 #include "moreau/io/probes.hpp"
-#include "moreau/scene/object_builders.hpp"
+#include "moreau/scene/spec_builders.hpp"
 
 namespace moreau {
 
@@ -34,7 +34,6 @@ enum class Accepts { any, fluids, solids, bodies, particles };
 Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& model, bool allow_all,
                    Accepts accepts = Accepts::any) {
   const std::string& name = spec.object;
-  if (name.empty()) probe.fail("object", "missing required key");
   if (allow_all && name == "*") return -1;
   auto acceptable = [&](const ObjectInfo& o) {
     if (accepts == Accepts::fluids) return o.kind == ObjectKind::fluid;
@@ -77,9 +76,8 @@ ProbeSpec read_probe(const JsonObject& j) {
   if (p.type == "joint_error") p.joint = j.string("joint");
   else p.object = j.string("object");
   if (p.type == "point") {
-    if (j.has("vertex") == j.has("nearest")) j.fail("vertex", "give exactly one of \"vertex\" (index) or \"nearest\" (position, m)");
-    if (j.has("vertex")) p.vertex = j.required_integer("vertex", -(1 << 30));
-    else p.nearest = to_vector3(j.vec3("nearest"));
+    if (j.has("vertex")) p.vertex = read_integer(j, "vertex");
+    p.nearest = read_optional_vector(j, "nearest");
   }
   if (p.type == "extent") {
     p.axis = j.string("axis");
@@ -159,7 +157,6 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
     p.object = object_index(spec, j, model, false, Accepts::bodies);
   } else if (type == "joint_error") {
     p.type = ProbeType::joint_error;
-    if (spec.joint.empty()) j.fail("joint", "missing required key");
     if (spec.joint != "*") {
       for (Index k = 0; k < static_cast<Index>(model.joints.size()); ++k)
         if (model.joints[k].name == spec.joint) p.joint = k;

@@ -8,7 +8,7 @@
 
 #include "moreau/geometry/mesh_readers.hpp"
 #include "moreau/collision/mesh_shape.hpp"
-#include "moreau/scene/object_builders.hpp"
+#include "moreau/scene/spec_builders.hpp"
 
 namespace moreau {
 
@@ -27,6 +27,7 @@ ShapeSpec read_shape(const JsonObject& shape) {
   } else if (type == "box") {
     if (shape.has("size") == shape.has("half_extents"))
       shape.fail("half_extents", "give exactly one of \"half_extents\" or \"size\" (m)");
+    if (shape.has("size") && !(shape.vec3("size").minCoeff() > 0)) shape.fail("size", "every extent must be > 0");
     s = BoxShape{to_vector3(shape.has("size") ? Vec3(0.5 * shape.vec3("size")) : shape.vec3("half_extents"))};
   } else if (type == "capsule" || type == "cylinder") {
     const Real r = shape.number("radius"), hh = shape.number("half_height");
@@ -166,14 +167,11 @@ void add_rigid_body(const RigidBodySpec& spec, const SpecPlace& place, ObjectInf
 
   const Vec3 position = place.required_vector("position", spec.position);
   const Quat orientation = body_orientation(spec, place);
-  check_contact_material(spec.contact, place);
-  const Real mu_s = spec.contact.static_friction, mu_k = spec.contact.dynamic_friction, e = spec.contact.restitution;
+  set_contact_material(spec.contact, place, info);
+  const Real mu_s = info.static_friction, mu_k = info.dynamic_friction, e = info.restitution;
 
   info.kind = ObjectKind::rigid_body;
   info.body = m.count();
-  info.static_friction = mu_s;
-  info.dynamic_friction = mu_k;
-  info.restitution = e;
   info.fluid_coupling = spec.fluid_coupling;
   const bool dynamic = !fixed && !kinematic;
   m.body_shape.push_back(std::move(shape));

@@ -2,8 +2,8 @@
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
-#include "moreau/scene/object_builders.hpp"
-#include "moreau/scene/scene_assembly.hpp"
+#include "moreau/scene/spec_builders.hpp"
+#include "moreau/scene/scene.hpp"
 #include "moreau/solvers/solver_registry.hpp"
 
 namespace moreau {
@@ -31,9 +31,9 @@ SceneSettings read_settings(const JsonObject& settings) {
   s.dt = read_optional_number(settings, "dt");
   s.duration = read_optional_number(settings, "duration");
   s.gravity = read_optional_vector(settings, "gravity");
-  if (settings.has("threads")) s.threads = settings.required_integer("threads", -(1 << 30));
-  if (settings.has("substeps")) s.substeps = settings.required_integer("substeps", -(1 << 30));
-  if (settings.has("iterations")) s.iterations = settings.required_integer("iterations", -(1 << 30));
+  if (settings.has("threads")) s.threads = read_integer(settings, "threads");
+  if (settings.has("substeps")) s.substeps = read_integer(settings, "substeps");
+  if (settings.has("iterations")) s.iterations = read_integer(settings, "iterations");
   if (settings.has("particle_contacts")) s.particle_contacts = settings.boolean("particle_contacts", true);
   s.max_speed = read_optional_number(settings, "max_speed");
   if (settings.has("joint_solver")) s.joint_solver = settings.string("joint_solver");

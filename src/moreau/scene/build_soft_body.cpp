@@ -6,7 +6,7 @@
 #include "moreau/geometry/mesh_generators.hpp"
 #include "moreau/geometry/mesh_readers.hpp"
 #include "moreau/scene/memory_estimate.hpp"
-#include "moreau/scene/object_builders.hpp"
+#include "moreau/scene/spec_builders.hpp"
 
 namespace moreau {
 
@@ -80,13 +80,7 @@ TetMesh make_soft_body_mesh(const SoftBodyMesh& spec, const SpecPlace& place, Sc
   } else {
     const auto& list = std::get<TetList>(spec);
     for (const Vector3& v : list.vertices) out.vertices.push_back(place.vector("vertices", v));
-    for (const auto& t : list.tets) {
-      for (int v : t)
-        if (v < 0 || v >= static_cast<int>(list.vertices.size()))
-          place.fail("tets", fmt::format("vertex {} does not exist; the mesh has {} vertices", v, list.vertices.size()));
-      out.tets.push_back({t[0], t[1], t[2], t[3]});
-    }
-    if (out.tets.empty()) place.fail("tets", "a soft body needs at least one tetrahedron");
+    out.tets = checked_cells(list.tets, list.vertices.size(), place, "tets");
   }
   orient_and_validate_tets(out, source);
   return out;
@@ -140,10 +134,7 @@ void add_soft_body(const SoftBodySpec& spec, const SpecPlace& place, ObjectInfo&
   info.kind = ObjectKind::soft_body;
   info.self_collision = spec.self_collision;
   info.fluid_coupling = spec.fluid_coupling;
-  check_contact_material(spec.contact, place);
-  info.static_friction = spec.contact.static_friction;
-  info.dynamic_friction = spec.contact.dynamic_friction;
-  info.restitution = spec.contact.restitution;
+  set_contact_material(spec.contact, place, info);
   add_pins(spec.pin, place, info, ctx);
 
   const Index base = info.particle_begin;

@@ -2,7 +2,7 @@
 
 #include <fmt/format.h>
 
-#include "moreau/scene/object_builders.hpp"
+#include "moreau/scene/spec_builders.hpp"
 #include "moreau/solvers/solver_registry.hpp"
 
 namespace moreau {

@@ -30,7 +30,4 @@ struct SceneSpecPlaces {
 Scene assemble_scene(const SceneSpec& spec, const SceneSpecPlaces& places, const std::string& file,
                      const std::filesystem::path& scene_directory);
 
-/// settings -> the scene's solver settings, duration and output (build_settings.cpp).
-void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& scene);
-
 }  // namespace moreau

@@ -1,3 +1,5 @@
+// Scene files: JSON text or a file, with the command line's overrides applied, read into specs
+// (spec_builders.hpp) and built by assemble_scene; "solver": "fem" scenes go to the FEM builders.
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 
@@ -5,7 +7,7 @@
 
 #include "moreau/errors.hpp"
 #include "moreau/scene/fem_scene.hpp"
-#include "moreau/scene/object_builders.hpp"
+#include "moreau/scene/spec_builders.hpp"
 #include "moreau/scene/scene.hpp"
 #include "moreau/scene/scene_assembly.hpp"
 

@@ -1,5 +1,6 @@
 #pragma once
-// The scene builder's two halves, one pair per object kind (build_<kind>.cpp):
+// The scene builder's two halves, one pair per spec (build_<kind>.cpp, build_joints.cpp,
+// build_probe.cpp, build_settings.cpp):
 //   read_<kind>  scene JSON -> spec (scene_builder.hpp): types, required keys, and the file
 //                format's alternatives (a box's "size" for "half_extents", "offset" for a plane
 //                point); no physics is checked here;
@@ -18,6 +19,7 @@
 namespace moreau {
 
 struct Probe;
+struct Scene;
 
 /// What the adders add to besides the model: per-particle initial velocities, and the directory
 /// that relative mesh paths are resolved against.
@@ -37,6 +39,8 @@ JointSpec read_joint(const JsonObject& joint);
 ProbeSpec read_probe(const JsonObject& probe);
 /// "settings" of a constraint-engine scene.
 SceneSettings read_settings(const JsonObject& settings);
+/// settings -> the scene's solver settings, duration and output.
+void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& scene);
 /// "settings.output": every N steps, and the formats.
 void read_output_settings(const JsonObject& settings, int& every, bool& write_vtk);
 
@@ -59,6 +63,9 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& place, const Model& mod
 Vector3 read_vector(const JsonObject& object, const std::string& key, const Vector3& fallback);
 std::optional<Vector3> read_optional_vector(const JsonObject& object, const std::string& key);
 std::optional<double> read_optional_number(const JsonObject& object, const std::string& key);
+std::optional<Vector2> read_optional_pair(const JsonObject& object, const std::string& key);
+/// An integer of any value an int holds (the adder checks its range).
+int read_integer(const JsonObject& object, const std::string& key);
 /// "friction": a number (static = dynamic) or {"static": mu_s, "dynamic": mu_k}; and "restitution".
 ContactMaterial read_contact_material(const JsonObject& object);
 /// "pin": a list of regions ({"box": {min, max}}, {"sphere": {center, radius}} or
@@ -70,8 +77,27 @@ MeshFile read_mesh_file(const JsonObject& mesh);
 // ---- Shared by the adders ----
 /// Rotation from "rotation_deg": [rx, ry, rz], applied about the world x, then y, then z axes.
 Mat3 rotation_from_degrees(const Vec3& degrees);
-/// The contact material, checked.
-void check_contact_material(const ContactMaterial& contact, const SpecPlace& place);
+/// The contact material, checked, as the object's (ObjectInfo::static_friction, ...).
+void set_contact_material(const ContactMaterial& contact, const SpecPlace& place, ObjectInfo& info);
+/// Mesh cells (triangles, tetrahedra) given in code: every index names one of `vertex_count`
+/// vertices, and there is at least one cell.
+template <size_t N>
+std::vector<std::array<Index, N>> checked_cells(const std::vector<std::array<int, N>>& cells, size_t vertex_count,
+                                                const SpecPlace& place, const std::string& field) {
+  std::vector<std::array<Index, N>> out;
+  for (const auto& cell : cells) {
+    std::array<Index, N> c;
+    for (size_t k = 0; k < N; ++k) {
+      if (cell[k] < 0 || static_cast<size_t>(cell[k]) >= vertex_count)
+        place.fail(field, "vertex " + std::to_string(cell[k]) + " does not exist; the mesh has " +
+                              std::to_string(vertex_count) + " vertices");
+      c[k] = cell[k];
+    }
+    out.push_back(c);
+  }
+  if (out.empty()) place.fail(field, "the mesh needs at least one cell");
+  return out;
+}
 /// Appends the object's particles: rest positions and masses (kg) per vertex.
 void add_particles(SceneBuildContext& ctx, ObjectInfo& info, const std::vector<Vec3>& positions,
                    const std::vector<Real>& masses, Real radius, Real collider_gap, const Vec3& velocity);
