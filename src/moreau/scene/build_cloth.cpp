@@ -42,13 +42,8 @@ ClothSpec read_cloth(const JsonObject& object) {
   if (material.has("bending_model")) m.bending_model = material.string("bending_model");
   material.finish();
 
-  spec.collision_radius = read_optional_number(object, "collision_radius");
   spec.collider_gap = read_optional_number(object, "collider_gap");
-  spec.velocity = read_vector(object, "velocity", spec.velocity);
-  spec.self_collision = object.boolean("self_collision", spec.self_collision);
-  spec.fluid_coupling = object.boolean("fluid_coupling", spec.fluid_coupling);
-  spec.contact = read_contact_material(object);
-  spec.pin = read_pins(object);
+  read_particle_object_keys(object, spec);
   return spec;
 }
 

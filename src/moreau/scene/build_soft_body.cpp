@@ -43,14 +43,9 @@ SoftBodySpec read_soft_body(const JsonObject& object) {
   m.volume_compliance = read_optional_number(material, "volume_compliance");
   material.finish();
 
-  spec.collision_radius = read_optional_number(object, "collision_radius");
   spec.collider_gap = object.number("collider_gap", spec.collider_gap);
-  spec.velocity = read_vector(object, "velocity", spec.velocity);
   spec.angular_velocity = read_vector(object, "angular_velocity", spec.angular_velocity);
-  spec.self_collision = object.boolean("self_collision", spec.self_collision);
-  spec.fluid_coupling = object.boolean("fluid_coupling", spec.fluid_coupling);
-  spec.contact = read_contact_material(object);
-  spec.pin = read_pins(object);
+  read_particle_object_keys(object, spec);
   return spec;
 }
 

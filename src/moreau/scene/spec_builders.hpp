@@ -71,6 +71,17 @@ ContactMaterial read_contact_material(const JsonObject& object);
 /// "pin": a list of regions ({"box": {min, max}}, {"sphere": {center, radius}} or
 /// {"vertices": [...]}, each with an optional "compliance" in m/N and "damping").
 std::vector<PinSpec> read_pins(const JsonObject& object);
+/// The keys cloth and soft bodies share: collision_radius, velocity, self_collision,
+/// fluid_coupling, the contact material and the pins.
+template <class ParticleObjectSpec>
+void read_particle_object_keys(const JsonObject& object, ParticleObjectSpec& spec) {
+  spec.collision_radius = read_optional_number(object, "collision_radius");
+  spec.velocity = read_vector(object, "velocity", spec.velocity);
+  spec.self_collision = object.boolean("self_collision", spec.self_collision);
+  spec.fluid_coupling = object.boolean("fluid_coupling", spec.fluid_coupling);
+  spec.contact = read_contact_material(object);
+  spec.pin = read_pins(object);
+}
 /// A cloth or soft-body "mesh" read from a file: "file", "scale", "translate".
 MeshFile read_mesh_file(const JsonObject& mesh);
 
