@@ -28,19 +28,21 @@ void add_object(const ObjectSpec& object, const SpecPlace& place, ObjectInfo& in
 
 }  // namespace
 
-Scene assemble_scene(const SceneSpec& spec, const SceneSpecPlaces& places, const std::string& file,
+Scene assemble_scene(const SceneSpec& spec, const std::string& source, const std::string& file,
                      const std::filesystem::path& scene_directory) {
+  auto entry = [&](const char* list, size_t k) { return SpecPlace(source, fmt::format("{}[{}]", list, k)); };
+  const SpecPlace top(source, "");
   Scene scene;
   scene.file = file;
   scene.name = spec.name;
-  if (scene.name.empty()) places.top.fail("name", "the scene name must not be empty");
-  apply_settings(spec.settings, places.settings, scene);
+  if (scene.name.empty()) top.fail("name", "the scene name must not be empty");
+  apply_settings(spec.settings, SpecPlace(source, "settings"), scene);
 
   std::vector<Vec3> initial_velocity;
   SceneBuildContext ctx{scene.model, initial_velocity, scene_directory, scene.duration};
-  if (spec.objects.empty()) places.top.fail("objects", "a scene needs at least one object");
+  if (spec.objects.empty()) top.fail("objects", "a scene needs at least one object");
   for (size_t k = 0; k < spec.objects.size(); ++k) {
-    const SpecPlace& place = places.objects[k];
+    const SpecPlace place = entry("objects", k);
     ObjectInfo info;
     info.name = object_name(spec.objects[k]);
     if (info.name.empty()) place.fail("name", "an object needs a name");
@@ -51,14 +53,14 @@ Scene assemble_scene(const SceneSpec& spec, const SceneSpecPlaces& places, const
   }
   scene.model.color_constraints();
   finish_fluids(scene.model);
-  for (size_t k = 0; k < spec.joints.size(); ++k) add_joint(spec.joints[k], places.joints[k], scene.model);
+  for (size_t k = 0; k < spec.joints.size(); ++k) add_joint(spec.joints[k], entry("joints", k), scene.model);
   finish_joints(scene.model);
   add_colliders_as_bodies(scene.model);
   if (scene.model.settings.joint_solver == JointSolver::direct)
     scene.model.joint_forest = build_joint_forest(scene.model.rigid, scene.model.joints);
 
   for (size_t k = 0; k < spec.probes.size(); ++k)
-    scene.probes.push_back(bind_probe(spec.probes[k], places.probes[k], scene.model));
+    scene.probes.push_back(bind_probe(spec.probes[k], entry("probes", k), scene.model));
 
   scene.state = make_rest_state(scene.model);
   scene.state.velocity = initial_velocity;

@@ -11,7 +11,7 @@
 
 namespace moreau {
 
-/// A whole constraint-engine scene as specs, each with the place it came from.
+/// A whole constraint-engine scene as specs.
 struct SceneSpec {
   std::string name;
   SceneSettings settings;
@@ -20,14 +20,11 @@ struct SceneSpec {
   std::vector<ProbeSpec> probes;
 };
 
-struct SceneSpecPlaces {
-  SpecPlace top, settings;
-  std::vector<SpecPlace> objects, joints, probes;  // one per spec
-};
-
-/// Checks and builds the scene; `file` names it in run.json, relative mesh paths are resolved
-/// against `scene_directory`. Throws InputError at the first problem.
-Scene assemble_scene(const SceneSpec& spec, const SceneSpecPlaces& places, const std::string& file,
+/// Checks and builds the scene. Problems are InputErrors "{source}: {path}: ...", the path
+/// that of the scene format (settings.dt, objects[2].mass, joints[0].axis, probes[1].object), so
+/// a file's errors name its JSON paths. `file` names the scene in run.json; relative mesh paths
+/// are resolved against `scene_directory`.
+Scene assemble_scene(const SceneSpec& spec, const std::string& source, const std::string& file,
                      const std::filesystem::path& scene_directory);
 
 }  // namespace moreau

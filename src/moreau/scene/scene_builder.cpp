@@ -29,13 +29,9 @@ SceneBuilder& SceneBuilder::add(ProbeSpec probe) {
 
 World SceneBuilder::build() const {
   // Messages name the scene and the entry as a scene file would: objects[2].material.density.
-  const std::string source = fmt::format("scene '{}'", name_);
-  SceneSpecPlaces places{SpecPlace(source, ""), SpecPlace(source, "settings"), {}, {}, {}};
-  for (size_t k = 0; k < objects_.size(); ++k) places.objects.emplace_back(source, fmt::format("objects[{}]", k));
-  for (size_t k = 0; k < joints_.size(); ++k) places.joints.emplace_back(source, fmt::format("joints[{}]", k));
-  for (size_t k = 0; k < probes_.size(); ++k) places.probes.emplace_back(source, fmt::format("probes[{}]", k));
   const SceneSpec spec{name_, settings_, objects_, joints_, probes_};
-  return World(std::make_unique<Scene>(assemble_scene(spec, places, "(built in code)", std::filesystem::current_path())));
+  const std::string source = fmt::format("scene '{}'", name_);
+  return World(std::make_unique<Scene>(assemble_scene(spec, source, "(built in code)", std::filesystem::current_path())));
 }
 
 }  // namespace moreau

@@ -67,22 +67,18 @@ Scene build_scene(nlohmann::json root, const std::string& path, const std::vecto
   if (settings && settings->has("solver") && settings->string("solver") == "fem")
     return build_fem_scene_file(top, *settings, path, spec.name);
 
-  SceneSpecPlaces places{SpecPlace(top), SpecPlace(path, "settings"), {}, {}, {}};
   if (settings) spec.settings = read_settings(*settings);
   for (const JsonObject& object : top.object_list("objects")) {
     spec.objects.push_back(read_object(object));
-    places.objects.emplace_back(object);
   }
   for (const JsonObject& joint : top.object_list("joints")) {
     spec.joints.push_back(read_joint(joint));
-    places.joints.emplace_back(joint);
   }
   for (const JsonObject& probe : top.object_list("probes")) {
     spec.probes.push_back(read_probe(probe));
-    places.probes.emplace_back(probe);
   }
   top.finish();
-  return assemble_scene(spec, places, path, std::filesystem::absolute(path).parent_path());
+  return assemble_scene(spec, path, path, std::filesystem::absolute(path).parent_path());
 }
 
 }  // namespace

@@ -20,7 +20,6 @@ class SpecPlace {
   /// The place of a JSON object: its file and path.
   explicit SpecPlace(const JsonObject& at) : SpecPlace(at.file(), at.path()) {}
 
-  const std::string& source() const { return source_; }
   const std::string& path() const { return path_; }
   /// A nested place: path.field.
   SpecPlace at(const std::string& field) const { return {source_, path_of(field)}; }
