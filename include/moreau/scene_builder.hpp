@@ -38,6 +38,19 @@ struct FluidSolverSettings {
   std::optional<double> cfl_limit;      // largest particle travel per step, in particle radii
 };
 
+/// settings.nmd: the velocity-level formulation's constants. Unset fields keep the engine defaults.
+struct NmdSolverSettings {
+  std::optional<int> substeps;                  // velocity solves per dt
+  std::optional<int> iterations;                // projected Gauss-Seidel sweeps per solve
+  std::optional<double> over_relaxation;        // omega, (0, 2)
+  std::optional<double> stabilization;          // d, relaxation of hard rows in steps, >= 0
+  std::string friction = "cone";                // "cone" or "box"
+  std::optional<double> restitution_threshold;  // m/s
+  std::optional<double> sliding_speed;          // m/s
+  std::optional<double> contact_compliance;     // m/N
+  std::optional<bool> warm_start;
+};
+
 /// "settings". Unset fields keep the engine defaults listed in docs/scene-format.md.
 struct SceneSettings {
   std::string solver = "xpbd";          // a registered constraint-engine formulation
@@ -51,6 +64,7 @@ struct SceneSettings {
   std::optional<double> max_speed;      // m/s
   std::string joint_solver = "direct";  // "direct" or "gauss_seidel"
   FluidSolverSettings fluid;
+  NmdSolverSettings nmd;
   int output_every = 1;                 // output.every: frames and probe rows every N steps
   bool write_vtk = true;                // output.formats contains "vtk"
 };

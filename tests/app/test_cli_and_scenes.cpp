@@ -104,7 +104,17 @@ TEST(CommandLine, MixedInvertedTetrahedraAreRejectedAndAllInvertedAreRenumbered)
 TEST(CommandLine, BadSetOverrideAndUnknownSolver) {
   expect_bad_input("set", kValidCloth, {"settings.substeps", "out of range"}, "--set settings.substeps=0");
   std::string text = kValidCloth;
-  expect_bad_input("solver", text.replace(text.find("\"dt\""), 0, "\"solver\": \"nmd\", "), {"settings.solver", "allowed: xpbd"});
+  expect_bad_input("solver", text.replace(text.find("\"dt\""), 0, "\"solver\": \"xpbi\", "),
+                   {"settings.solver", "allowed: xpbd, nmd"});
+}
+
+TEST(CommandLine, NmdRefusesAFluidSceneNamingWhatItDoesNotSimulate) {
+  const std::string scene = R"({"name": "f", "settings": {"solver": "nmd", "dt": 0.005},
+    "objects": [{"name": "tank", "kind": "collider", "inside": true,
+                 "shape": {"type": "box", "center": [0, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}},
+                {"name": "water", "kind": "fluid", "particle_radius": 0.05,
+                 "blocks": [{"min": [-0.2, 0.1, -0.2], "max": [0.2, 0.5, 0.2]}]}]})";
+  expect_bad_input("nmd_fluid", scene, {"settings.solver", "does not simulate particle fluids", "\"xpbd\""});
 }
 
 TEST(CommandLine, ExplosionExitsWithCodeThreeNamingStepTimeAndObject) {

@@ -13,13 +13,15 @@ const std::string kShowcase = std::string(MOREAU_SOURCE_DIR) + "/scenes/showcase
 }
 
 TEST(SolverRegistry, MakesExactlyTheRegisteredFormulations) {
-  EXPECT_EQ(registered_solver_names(), std::vector<std::string>{"xpbd"});
+  EXPECT_EQ(registered_solver_names(), (std::vector<std::string>{"xpbd", "nmd"}));
   const Model model;
-  const auto xpbd = make_solver("xpbd", model);
-  ASSERT_TRUE(xpbd);
-  EXPECT_EQ(xpbd->name(), "xpbd");
-  // The scene format names these, but until they are registered a scene selecting them is bad input.
-  EXPECT_FALSE(make_solver("nmd", model));
+  for (const std::string name : {"xpbd", "nmd"}) {
+    const auto solver = make_solver(name, model);
+    ASSERT_TRUE(solver) << name;
+    EXPECT_EQ(solver->name(), name);
+    EXPECT_EQ(solver_refusal(name, model), "") << name;
+  }
+  // The scene format names it, but until it is registered a scene selecting it is bad input.
   EXPECT_FALSE(make_solver("xpbi", model));
 }
 

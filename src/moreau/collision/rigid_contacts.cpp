@@ -27,10 +27,11 @@ void body_bounds(const RigidBodyModel& m, const RigidBodyState& s, Index b, Real
   hi = s.position[b] + e;
 }
 
-// Carries stuck slip over from last step's point of the same pair with the same body-frame cores
-// (within 5 % of the smaller body's size: the same corner or face point, not a neighbour). A pair
-// with a mesh has a manifold per triangle; all of the pair's previous manifolds are searched.
-void carry_stuck_slip(const RigidBodyModel& m, RigidContacts& contacts) {
+// Carries stuck slip (of a manifold that did not slide) and the row impulses over from last
+// step's point of the same pair with the same body-frame cores (within 5 % of the smaller body's
+// size: the same corner or face point, not a neighbour). A pair with a mesh has a manifold per
+// triangle; all of the pair's previous manifolds are searched.
+void carry_contact_memory(const RigidBodyModel& m, RigidContacts& contacts) {
   const RigidBroadPhaseScratch& bp = contacts.scratch;
   const auto& previous = bp.previous_manifolds;
   size_t begin = 0;
@@ -44,14 +45,14 @@ void carry_stuck_slip(const RigidBodyModel& m, RigidContacts& contacts) {
     for (size_t old = begin; old < previous.size() && previous[old].body_a == mf.body_a && previous[old].body_b == mf.body_b;
          ++old) {
       const RigidManifold& before = previous[old];
-      if (before.sliding) continue;
       for (Index i = mf.first; i < mf.first + mf.count; ++i) {
         RigidContactPoint& c = contacts.points[i];
         for (Index j = before.first; j < before.first + before.count; ++j) {
           const RigidContactPoint& p = bp.previous_points[j];
           if ((p.geometry.core_a - c.geometry.core_a).norm() + (p.geometry.core_b - c.geometry.core_b).norm() <
               tolerance) {
-            c.stuck_slip = p.stuck_slip;
+            if (!before.sliding) c.stuck_slip = p.stuck_slip;
+            c.row_impulse = p.row_impulse;
             break;
           }
         }
@@ -167,7 +168,7 @@ void detect_rigid_contacts(const Model& model, State& state, int threads) {
         contacts.points.push_back(point);
       }
     }
-  carry_stuck_slip(m, contacts);
+  carry_contact_memory(m, contacts);
 }
 
 Index touching_contact_count(const Model& model, const State& state, Index object) {

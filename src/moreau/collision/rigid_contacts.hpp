@@ -37,6 +37,8 @@ struct RigidContactPoint {
   Vec3 offset_a = Vec3::Zero(), offset_b = Vec3::Zero();  // world, contact points minus centres
   Vec3 material_a = Vec3::Zero(), material_b = Vec3::Zero();  // body frames, the points at the last projection
   Vec3 stuck_slip = Vec3::Zero();        // world, tangential slip since the point began to stick
+  Vec3 row_impulse = Vec3::Zero();       // kg m: a velocity-level solver's impulses times h on the
+                                         // normal and the two tangent rows, its warm start
   bool touching = false;
 };
 

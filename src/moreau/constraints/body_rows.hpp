@@ -11,7 +11,11 @@
 //   lower/upper bounds on each row's generalised force (N or N m): (-inf, inf) for an equality,
 //               one side 0 for a limit that may only push, +-max for a drive of bounded force.
 //               A solver converts them to its multiplier: XPBD's lambda is the force times h^2.
-//   slot        where the block's multipliers live in the joint's multipliers (JointMultipliers).
+//   slot        where the block's multipliers live in the joint's multipliers (JointMultipliers),
+//   velocity_drive, target_velocity
+//               a velocity drive's single row: dC/dt should be target_velocity. A position-level
+//               solver takes its C (the drive's coordinate minus the start plus h times the
+//               target); a velocity-level solver takes the rate.
 // Two row shapes cover every joint (Mueller 2020, sec. 3.3):
 //   point rows     C grows when a's point at world offset r_a moves along unit n (b's at r_b
 //                  against it): J_a = [n^T, (r_a x n)^T], J_b = -[n^T, (r_b x n)^T];
@@ -40,6 +44,8 @@ struct BodyRows {
   Vector C, compliance, lower, upper;
   std::array<Jacobian, 2> jacobian;
   int slot = 0;
+  bool velocity_drive = false;
+  Real target_velocity = 0;
 
   int size() const { return static_cast<int>(C.size()); }
 

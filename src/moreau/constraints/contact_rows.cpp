@@ -6,7 +6,7 @@
 namespace moreau {
 
 ContactRows manifold_rows(const RigidManifold& mf, RigidContactPoint* points, const RigidBodyState& s,
-                          const SubstepStart& start) {
+                          const SubstepStart& start, ContactPoints which) {
   const Index a = mf.body_a, b = mf.body_b;
   const Pose pa{s.position[a], s.orientation[a]}, pb{s.position[b], s.orientation[b]};
   const Pose sa = start.body_pose(a), sb = start.body_pose(b);
@@ -22,7 +22,7 @@ ContactRows manifold_rows(const RigidManifold& mf, RigidContactPoint* points, co
     c.offset_a = p_a - pa.position;
     c.offset_b = p_b - pb.position;
     const Real depth = (p_a - p_b).dot(n);
-    if (depth >= 0) continue;
+    if (depth >= 0 && which == ContactPoints::penetrating) continue;
     c.material_a = pa.orientation.conjugate() * c.offset_a;
     c.material_b = pb.orientation.conjugate() * c.offset_b;
     const Vec3 slip = (p_a - sa.to_world(c.material_a)) - (p_b - sb.to_world(c.material_b)) + c.stuck_slip;

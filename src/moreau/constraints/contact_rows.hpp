@@ -9,8 +9,9 @@
 //   rows 3j+1,2 static   C = s . t_k = 0 for two tangents t_k, s the slip of the two material
 //               friction points over the substep plus the slip left over since the point began to
 //                        stick (rigid_contacts.hpp); bounded by the friction cone |f_t| <= mu_s f_n
-// Points not in penetration have no rows (Mueller et al. 2020, sec. 3.5, handles a contact when
-// its depth is negative).
+// Points not in penetration have no rows for a position-level solver (Mueller et al. 2020, sec.
+// 3.5, handles a contact when its depth is negative); a velocity-level solver also takes the
+// separated points of the manifold (speculative contacts: a gap C > 0 that may close in a step).
 #include <array>
 #include <cmath>
 
@@ -41,10 +42,13 @@ inline Vec3 contact_tangent(const Vec3& n) {
   return (std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
 }
 
+/// Which points of a manifold get rows: those in penetration, or every point (speculative).
+enum class ContactPoints { penetrating, all };
+
 /// The manifold's rows at the bodies' current poses, the slip measured from `start`. Records on
-/// each point its normal and world offsets now, and on penetrating points their material
+/// each point its normal and world offsets now, and on points with rows their material
 /// (body-frame) points, which the velocity pass and the stuck slip read.
 ContactRows manifold_rows(const RigidManifold& manifold, RigidContactPoint* points, const RigidBodyState& bodies,
-                          const SubstepStart& start);
+                          const SubstepStart& start, ContactPoints which = ContactPoints::penetrating);
 
 }  // namespace moreau

@@ -20,13 +20,13 @@ Vec3 particle_body_slip(const State& state, const SubstepStart& start, Index b, 
 }
 
 ParticleBodyContactRows particle_body_rows(const Model& model, const State& state, const SubstepStart& start, Index b,
-                                          Index p, Real static_friction) {
+                                          Index p, Real static_friction, ContactPoints which) {
   const std::array<BodyEnd, 2> ends{BodyEnd{BodyEndKind::particle, p}, BodyEnd{BodyEndKind::body, b}};
   ParticleBodyContactRows result{BodyRows::zero(ends, 3, 0), static_friction};
   BodyRows& rows = result.rows;
   const ParticleBodyNormal near = nearest_on_body(model, state, b, state.position[p]);
   const Real C = near.surface.distance - model.particle_collider_gap[p];
-  if (C >= 0) return result;
+  if (C >= 0 && which == ContactPoints::penetrating) return result;
   const Vec3& n = near.normal;
   const Vec3 slip = particle_body_slip(state, start, b, p, near.surface.point);
   const Vec3 t1 = contact_tangent(n), t2 = n.cross(t1);

@@ -15,6 +15,7 @@
 // A Gauss-Seidel solver evaluates the friction rows after projecting the normal row (at the poses
 // it left), which particle_body_slip does on its own.
 #include "moreau/constraints/body_rows.hpp"
+#include "moreau/constraints/contact_rows.hpp"
 #include "moreau/constraints/substep_start.hpp"
 #include "moreau/collision/point_query.hpp"
 
@@ -41,8 +42,10 @@ struct ParticleBodyContactRows {
 };
 
 /// The rows at the current poses (friction along t1 = contact_tangent(n) and t2 = n x t1). A
-/// contact not in penetration has zero rows.
+/// contact not in penetration has zero rows unless `which` asks for every contact (speculative
+/// rows of a velocity-level solver, C > 0).
 ParticleBodyContactRows particle_body_rows(const Model& model, const State& state, const SubstepStart& start, Index body,
-                                          Index particle, Real static_friction);
+                                          Index particle, Real static_friction,
+                                          ContactPoints which = ContactPoints::penetrating);
 
 }  // namespace moreau

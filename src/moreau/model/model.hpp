@@ -11,6 +11,7 @@
 #include "moreau/rigid/joint_tree.hpp"
 #include "moreau/constraints/joints/joint.hpp"
 #include "moreau/rigid/rigid_bodies.hpp"
+#include "moreau/solvers/nmd/nmd_settings.hpp"
 
 namespace moreau {
 
@@ -51,6 +52,7 @@ struct SolverSettings {
   Real contact_margin_factor = 2.0;         // contact candidates within r_i + r_j + k dt |v_rel| (Mueller 2020: k = 2)
   Real max_speed = 1e3;                     // m/s; faster particles are reported as a numerical failure
   JointSolver joint_solver = JointSolver::direct;
+  NmdSettings nmd;                          // the velocity-level formulation (settings.nmd)
 };
 
 struct Model {

@@ -43,6 +43,18 @@ SceneSettings read_settings(const JsonObject& settings) {
     s.fluid.cfl_limit = read_optional_number(*fluid, "cfl_limit");
     fluid->finish();
   }
+  if (auto nmd = settings.optional_object("nmd")) {
+    if (nmd->has("substeps")) s.nmd.substeps = read_integer(*nmd, "substeps");
+    if (nmd->has("iterations")) s.nmd.iterations = read_integer(*nmd, "iterations");
+    s.nmd.over_relaxation = read_optional_number(*nmd, "over_relaxation");
+    s.nmd.stabilization = read_optional_number(*nmd, "stabilization");
+    if (nmd->has("friction")) s.nmd.friction = nmd->string("friction");
+    s.nmd.restitution_threshold = read_optional_number(*nmd, "restitution_threshold");
+    s.nmd.sliding_speed = read_optional_number(*nmd, "sliding_speed");
+    s.nmd.contact_compliance = read_optional_number(*nmd, "contact_compliance");
+    if (nmd->has("warm_start")) s.nmd.warm_start = nmd->boolean("warm_start", true);
+    nmd->finish();
+  }
   read_output_settings(settings, s.output_every, s.write_vtk);
   settings.finish();
   return s;
@@ -76,6 +88,22 @@ void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& sc
   fm.neighbor_skin_fraction = fluid.number("neighbor_skin", spec.fluid.neighbor_skin.value_or(fm.neighbor_skin_fraction), Range::closed(0, 1));
   fm.tensile_k = fluid.number("tensile_k", spec.fluid.tensile_k.value_or(fm.tensile_k), Range::closed(0, 10));
   fm.cfl_limit = fluid.number("cfl_limit", spec.fluid.cfl_limit.value_or(fm.cfl_limit), Range::positive());
+  NmdSettings& nmd = s.nmd;
+  const NmdSolverSettings& ns = spec.nmd;
+  const SpecPlace nmd_place = place.at("nmd");
+  nmd.substeps = nmd_place.integer("substeps", ns.substeps.value_or(nmd.substeps), 1, 100000);
+  nmd.iterations = nmd_place.integer("iterations", ns.iterations.value_or(nmd.iterations), 1, 100000);
+  nmd.over_relaxation =
+      nmd_place.number("over_relaxation", ns.over_relaxation.value_or(nmd.over_relaxation), Range::open(0, 2));
+  nmd.stabilization = nmd_place.number("stabilization", ns.stabilization.value_or(nmd.stabilization), Range::non_negative());
+  nmd.friction = nmd_place.choice("friction", ns.friction, {"cone", "box"}) == "cone" ? FrictionBound::cone
+                                                                                       : FrictionBound::box;
+  nmd.restitution_threshold = nmd_place.number(
+      "restitution_threshold", ns.restitution_threshold.value_or(nmd.restitution_threshold), Range::non_negative());
+  nmd.sliding_speed = nmd_place.number("sliding_speed", ns.sliding_speed.value_or(nmd.sliding_speed), Range::non_negative());
+  nmd.contact_compliance =
+      nmd_place.number("contact_compliance", ns.contact_compliance.value_or(nmd.contact_compliance), Range::non_negative());
+  nmd.warm_start = ns.warm_start.value_or(nmd.warm_start);
   scene.output.every = place.integer("output.every", spec.output_every, 1);
   scene.output.write_vtk = spec.write_vtk;
 }

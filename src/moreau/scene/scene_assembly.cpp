@@ -64,6 +64,8 @@ Scene assemble_scene(const SceneSpec& spec, const std::string& source, const std
 
   scene.state = make_rest_state(scene.model);
   scene.state.velocity = initial_velocity;
+  if (const std::string why = solver_refusal(scene.solver, scene.model); !why.empty())
+    SpecPlace(source, "settings").fail("solver", why);
   scene.formulation = make_solver(scene.solver, scene.model);
   return scene;
 }

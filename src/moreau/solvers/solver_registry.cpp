@@ -2,6 +2,7 @@
 
 #include <functional>
 
+#include "moreau/solvers/nmd/nmd_solver.hpp"
 #include "moreau/solvers/xpbd/xpbd_solver.hpp"
 
 namespace moreau {
@@ -11,11 +12,13 @@ namespace {
 struct SolverEntry {
   std::string_view name;
   std::function<std::unique_ptr<Solver>(const Model&)> make;
+  std::function<std::string(const Model&)> refusal;  // empty: every constraint scene
 };
 
 const std::vector<SolverEntry>& registry() {
   static const std::vector<SolverEntry> entries{
-      {"xpbd", [](const Model&) { return std::make_unique<XpbdSolver>(); }},
+      {"xpbd", [](const Model&) { return std::make_unique<XpbdSolver>(); }, nullptr},
+      {"nmd", [](const Model&) { return std::make_unique<NmdSolver>(); }, NmdSolver::refusal},
   };
   return entries;
 }
@@ -26,6 +29,12 @@ std::vector<std::string> registered_solver_names() {
   std::vector<std::string> names;
   for (const SolverEntry& e : registry()) names.emplace_back(e.name);
   return names;
+}
+
+std::string solver_refusal(std::string_view name, const Model& model) {
+  for (const SolverEntry& e : registry())
+    if (e.name == name) return e.refusal ? e.refusal(model) : std::string();
+  return {};
 }
 
 std::unique_ptr<Solver> make_solver(std::string_view name, const Model& model) {

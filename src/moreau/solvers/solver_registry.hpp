@@ -14,6 +14,10 @@ namespace moreau {
 /// The registered formulations' names, in registry order.
 std::vector<std::string> registered_solver_names();
 
+/// Why the registered formulation `name` cannot step `model` (what the scene holds that it does
+/// not simulate), or an empty string when it can.
+std::string solver_refusal(std::string_view name, const Model& model);
+
 /// A new solver for `model`, or nullptr when `name` is not registered.
 std::unique_ptr<Solver> make_solver(std::string_view name, const Model& model);
 

@@ -50,6 +50,10 @@ BodyRows drive_row(const Joint& j, const JointEndPose& a, const JointEndPose& b,
     rows.set_rotation_row(0, n);
   else
     rows.set_point_row(0, n, a.offset(), b.offset());
+  if (j.drive == DriveMode::velocity) {
+    rows.velocity_drive = true;
+    rows.target_velocity = j.drive_target;
+  }
   if (j.drive_max > 0) {
     rows.lower(0) = -j.drive_max;
     rows.upper(0) = j.drive_max;

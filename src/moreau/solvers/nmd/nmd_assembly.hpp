@@ -1,0 +1,18 @@
+#pragma once
+// Gathers every row of the constraint engine into an NMD system (nmd_system.hpp): the particle
+// families' rows (constraints/particle_families.hpp), the joints' row blocks
+// (constraints/joints/joint.hpp), and one contact block per contact point: particle-collider,
+// particle-particle, rigid body-rigid body (every point of each manifold, separated ones as
+// speculative contacts) and particle-rigid body (constraints/*contact_rows.hpp). The rows are
+// the ones the position-level solver projects; here their Jacobians act on velocities.
+#include "moreau/model/state.hpp"
+#include "moreau/solvers/nmd/nmd_system.hpp"
+
+namespace moreau {
+
+/// Adds every block at the state's positions and velocities (`space` gathered from the state)
+/// for a solve of step h ending at time `end_time`.
+void assemble_nmd_system(const Model& model, State& state, const VelocitySpace& space, Real h, Real end_time,
+                         NmdSystem& system);
+
+}  // namespace moreau

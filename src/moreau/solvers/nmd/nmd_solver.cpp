@@ -1,0 +1,88 @@
+#include "moreau/solvers/nmd/nmd_solver.hpp"
+
+#include <algorithm>
+
+#include "moreau/collision/particle_body_contacts.hpp"
+#include "moreau/model/state.hpp"
+#include "moreau/rigid/rigid_motion.hpp"
+#include "moreau/solvers/nmd/nmd_assembly.hpp"
+#include "moreau/solvers/nmd/nmd_stages.hpp"
+#include "moreau/solvers/nmd/projected_gauss_seidel.hpp"
+#include "moreau/solvers/state_check.hpp"
+
+namespace moreau {
+
+namespace {
+
+// x+ = x + h v+ for free particles and every moving body; q+ = exp(h w+) q.
+void integrate_positions(const Model& model, State& state, Real h) {
+  for (Index p = 0; p < model.particle_count(); ++p)
+    if (model.particle_inv_mass[p] > 0) state.position[p] += h * state.velocity[p];
+  RigidBodyState& s = state.rigid;
+  for (Index b = 0; b < model.rigid.count(); ++b) {
+    if (model.rigid.body_motion[b] == BodyMotion::fixed) continue;
+    s.position[b] += h * s.velocity[b];
+    s.orientation[b] = rotate_by_angular_velocity(s.orientation[b], s.angular_velocity[b], h);
+  }
+}
+
+// The contact sets' touching flags from the impulses the solve left (probes and counts read them).
+void mark_touching(State& state) {
+  RigidContacts& contacts = state.rigid_contacts;
+  for (RigidManifold& mf : contacts.manifolds) {
+    mf.touching = false;
+    mf.sliding = false;
+    for (Index i = mf.first; i < mf.first + mf.count; ++i) {
+      RigidContactPoint& c = contacts.points[i];
+      c.lambda_normal = c.row_impulse[0];
+      c.touching = c.lambda_normal > 0;
+      mf.touching |= c.touching;
+    }
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> NmdSolver::stage_names() const { return nmd_stage_names(); }
+
+std::string NmdSolver::refusal(const Model& model) {
+  if (!model.fluid.empty())
+    return "the 'nmd' formulation does not simulate particle fluids; run fluid scenes with \"solver\": \"xpbd\"";
+  return {};
+}
+
+void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int threads) {
+  threads = std::max(1, threads);
+  timer.start();
+  detect_collider_contacts(model, state);
+  detect_particle_contacts(model, state, contact_scratch_, threads);
+  if (!model.rigid.empty()) {
+    detect_rigid_contacts(model, state, threads);
+    detect_particle_body_contacts(model, state);
+  }
+  timer.lap(NmdStage::detect_contacts);
+
+  const NmdSettings& settings = model.settings.nmd;
+  const Real h = model.settings.dt / settings.substeps;
+  const Real start_time = state.time;
+  for (int sub = 0; sub < settings.substeps; ++sub) {
+    space_.gather(model, state);
+    assemble_nmd_system(model, state, space_, h, start_time + (sub + 1) * h, system_);
+    timer.lap(NmdStage::assemble);
+    space_.apply_forces(model, state, h);
+    warm_start(system_, space_, settings, h);
+    projected_gauss_seidel(system_, space_, settings);
+    store_impulses(system_, h);
+    timer.lap(NmdStage::solve);
+    space_.scatter(model, state);
+    integrate_positions(model, state, h);
+    mark_touching(state);
+    timer.lap(NmdStage::integrate);
+  }
+  state.time = start_time + model.settings.dt;
+  state.step += 1;
+  check_state(model, state);
+  timer.lap(NmdStage::check_state);
+}
+
+}  // namespace moreau

@@ -1,0 +1,29 @@
+#pragma once
+// The velocity-level nonsmooth multidomain dynamics formulation (`"solver": "nmd"`): per step,
+// v+ from the regularised, stabilised MLCP over every row of the constraint engine
+// (nmd_system.hpp), then x+ = x + h v+ (symplectic Euler; orientations turned exactly by w+ h).
+#include <string>
+
+#include "moreau/collision/particle_contacts.hpp"
+#include "moreau/solvers/nmd/nmd_system.hpp"
+#include "moreau/solvers/solver.hpp"
+
+namespace moreau {
+
+class NmdSolver final : public Solver {
+ public:
+  std::string_view name() const override { return "nmd"; }
+  std::vector<std::string> stage_names() const override;
+  void step(const Model& model, State& state, StageTimer& timer, int threads) override;
+
+  /// Why this formulation cannot step `model` (what the scene holds that it does not simulate),
+  /// or an empty string.
+  static std::string refusal(const Model& model);
+
+ private:
+  VelocitySpace space_;
+  NmdSystem system_;
+  ContactScratch contact_scratch_;
+};
+
+}  // namespace moreau

@@ -1,0 +1,94 @@
+#pragma once
+// The regularised, stabilised velocity-level system of one NMD solve (SPOOK: Lacoursiere 2007,
+// "Ghosts and Machines", ch. 4; Servin, Lacoursiere, Melin 2006):
+//
+//   [ M  -G^T ] [ v+ ]   [ M v + h f        ]      a = 4 / (h (1 + 4d)),  b = 1 / (1 + 4d),
+//   [ G   S   ] [ l  ] = [ -a g + b G v     ]      S = 4 eps / (h^2 (1 + 4d)),
+//
+// l = h lambda the impulse of the rows (the force is l / h), eps their compliance, d = tau / h
+// their relaxation time in steps and g their value C. Eliminating v+ gives the Schur form
+//   (G M^-1 G^T + S) l = q - G v*,   v* = v + h M^-1 f,   v+ = v* + M^-1 G^T l,
+// which every method here solves with the complementarity of bounded rows: l_i = lo_i implies
+// w_i >= 0, l_i = hi_i implies w_i <= 0, and w_i = 0 in between (w = G v+ + S l - q).
+//
+// Rows come in blocks: one constraint of a family, one joint block, one contact point. Rows of a
+// block share up to four ends (velocity_space.hpp) and a compliance block. A row is one of
+//   position  a holonomic row: q = -a C + b dC/dt (the SPOOK stabilisation above),
+//   velocity  a motor: dC/dt + (eps / h) l = target (Lacoursiere's velocity constraint),
+//   friction  a dissipative row: dC/dt = 0, bounded by the contact's normal impulse.
+// Contact normal rows take the gap C >= 0 of speculative contacts exactly (q = -C / h: the gap
+// may close within the step, no further) and add restitution, q >= -e dC/dt before the step for
+// impacts faster than the threshold. A contact's friction rows are bounded by mu_s times the
+// normal impulse while the contact slips slower than settings.sliding_speed at the step's start,
+// by mu_k once it slides (static and kinetic Coulomb friction). `known` is the part of dC/dt from ends outside the velocity
+// vector (a moving collider).
+#include <array>
+#include <limits>
+#include <vector>
+
+#include "moreau/solvers/nmd/nmd_settings.hpp"
+#include "moreau/solvers/nmd/velocity_space.hpp"
+
+namespace moreau {
+
+enum class RowLevel : std::uint8_t { position, velocity, friction };
+
+/// How a block's rows are projected: an equality block is solved whole (its R x R matrix
+/// inverted once); a bounded block row by row with fixed bounds; a contact block is a normal row
+/// (rows 0) and two friction rows bounded by mu times its impulse.
+enum class NmdBlockKind : std::uint8_t { equality, bounded, contact };
+
+/// One block as an assembler hands it over.
+struct NmdBlockInput {
+  static constexpr int kMaxRows = 6, kMaxEnds = 4;
+  using Vector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, kMaxRows, 1>;
+  using Matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows>;
+  using Jacobian = Eigen::Matrix<Real, Eigen::Dynamic, 6 * kMaxEnds, Eigen::RowMajor, kMaxRows, 6 * kMaxEnds>;
+
+  NmdBlockKind kind = NmdBlockKind::equality;
+  int ends = 0;
+  std::array<VelocityEnd, kMaxEnds> end{};
+  Jacobian jacobian;                  // R x 6 ends: row r, end e at columns [6e, 6e + 6)
+  Vector C, known, target, lower, upper;  // lower/upper in force units (N, N m); target for velocity rows
+  Matrix compliance;                  // eps, R x R
+  std::array<RowLevel, kMaxRows> level{};
+  Real damping_time = 0;              // s
+  Real static_friction = 0, dynamic_friction = 0, restitution = 0;  // contact blocks
+  Real* memory = nullptr;             // l h of the rows (kg m for positional rows): warm start in, result out
+  int memory_rows = 0;
+
+  /// Sizes an input of `rows` rows over `ends` ends: zero Jacobian, C, known and target; no
+  /// compliance; unbounded position rows.
+  void resize(int rows, int end_count);
+  int rows() const { return static_cast<int>(C.size()); }
+};
+
+struct NmdBlock {
+  NmdBlockKind kind = NmdBlockKind::equality;
+  int rows = 0, ends = 0;
+  Index first_row = 0;
+  std::array<VelocityEnd, NmdBlockInput::kMaxEnds> end{};
+  Index matrix = -1;                  // equality blocks: offset of the R x R inverse of G W G^T + S
+  Real friction = 0;                  // contact blocks: mu of this solve (static or kinetic)
+  Real* memory = nullptr;
+  int memory_rows = 0;
+};
+
+struct NmdSystem {
+  std::vector<NmdBlock> blocks;
+  // Per row: its ends' Jacobian entries and W J^T (6 per end, from jacobian_offset), the
+  // right-hand side q, the bounds in impulse units, S_ii, the diagonal G_i W G_i^T + S_ii and l.
+  std::vector<Index> jacobian_offset;
+  std::vector<Real> jacobian, weighted;
+  std::vector<Real> rhs, lower, upper, sigma, diagonal, impulse;
+  std::vector<Real> sigma_block;      // equality blocks: S, R x R (row-major), at NmdBlock::matrix
+  std::vector<Real> inverse;          // equality blocks: (G W G^T + S)^-1, R x R
+
+  void clear();
+  Index row_count() const { return static_cast<Index>(rhs.size()); }
+  /// Adds a block for a solve of step h with velocities `space.v` at the step's start (before
+  /// forces): its right-hand side, regularisation, bounds and local matrix.
+  void add(const NmdBlockInput& input, const VelocitySpace& space, Real h, const NmdSettings& settings);
+};
+
+}  // namespace moreau

@@ -1,0 +1,139 @@
+#include "moreau/solvers/nmd/projected_gauss_seidel.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace moreau {
+
+namespace {
+
+// Row i's Jacobian and W J^T and the velocities they act on.
+struct RowAccess {
+  NmdSystem& s;
+  std::vector<Real>& v;
+
+  Real rate(const NmdBlock& b, Index row) const {
+    const Real* J = s.jacobian.data() + s.jacobian_offset[row];
+    Real value = 0;
+    for (int e = 0; e < b.ends; ++e) {
+      const VelocityEnd& end = b.end[e];
+      if (end.is_world()) continue;
+      const Real* Je = J + 6 * e;
+      const Real* ve = v.data() + end.dof;
+      for (int c = 0; c < end.size; ++c) value += Je[c] * ve[c];
+    }
+    return value;
+  }
+  void apply(const NmdBlock& b, Index row, Real dl) const {
+    if (dl == 0) return;
+    const Real* W = s.weighted.data() + s.jacobian_offset[row];
+    for (int e = 0; e < b.ends; ++e) {
+      const VelocityEnd& end = b.end[e];
+      if (end.is_world()) continue;
+      const Real* We = W + 6 * e;
+      Real* ve = v.data() + end.dof;
+      for (int c = 0; c < end.size; ++c) ve[c] += We[c] * dl;
+    }
+  }
+  // r_i = G_i v + S_ii l_i - q_i (rows of bounded and contact blocks have a diagonal S).
+  Real residual(const NmdBlock& b, Index row) const { return rate(b, row) + s.sigma[row] * s.impulse[row] - s.rhs[row]; }
+};
+
+// The friction impulse (l1, l2) of a contact projected onto its bound mu l_n.
+void project_friction(Real& l1, Real& l2, Real normal, const NmdBlock& b, FrictionBound bound) {
+  const Real limit = b.friction * std::max(normal, Real(0));
+  if (bound == FrictionBound::box) {
+    l1 = std::clamp(l1, -limit, limit);
+    l2 = std::clamp(l2, -limit, limit);
+    return;
+  }
+  const Real length = std::hypot(l1, l2);
+  if (length <= limit) return;
+  const Real factor = limit / length;
+  l1 *= factor;
+  l2 *= factor;
+}
+
+void solve_equality(const RowAccess& a, const NmdBlock& b, Real omega) {
+  const int R = b.rows;
+  Real r[NmdBlockInput::kMaxRows], dl[NmdBlockInput::kMaxRows];
+  const Real* S = a.s.sigma_block.data() + b.matrix;
+  for (int i = 0; i < R; ++i) {
+    Real value = a.rate(b, b.first_row + i) - a.s.rhs[b.first_row + i];
+    for (int j = 0; j < R; ++j) value += S[i * R + j] * a.s.impulse[b.first_row + j];
+    r[i] = value;
+  }
+  const Real* inv = a.s.inverse.data() + b.matrix;
+  for (int i = 0; i < R; ++i) {
+    Real value = 0;
+    for (int j = 0; j < R; ++j) value -= inv[i * R + j] * r[j];
+    dl[i] = omega * value;
+  }
+  for (int i = 0; i < R; ++i) {
+    a.s.impulse[b.first_row + i] += dl[i];
+    a.apply(b, b.first_row + i, dl[i]);
+  }
+}
+
+void solve_bounded_row(const RowAccess& a, const NmdBlock& b, Index row, Real omega) {
+  const Real D = a.s.diagonal[row];
+  if (D <= 0) return;
+  Real& l = a.s.impulse[row];
+  const Real next = std::clamp(l - omega * a.residual(b, row) / D, a.s.lower[row], a.s.upper[row]);
+  a.apply(b, row, next - l);
+  l = next;
+}
+
+void solve_contact(const RowAccess& a, const NmdBlock& b, Real omega, FrictionBound bound) {
+  const Index n = b.first_row, t1 = n + 1, t2 = n + 2;
+  solve_bounded_row(a, b, n, omega);
+  const Real D = std::max(a.s.diagonal[t1], a.s.diagonal[t2]);
+  if (D <= 0) return;
+  Real l1 = a.s.impulse[t1] - omega * a.residual(b, t1) / D;
+  Real l2 = a.s.impulse[t2] - omega * a.residual(b, t2) / D;
+  project_friction(l1, l2, a.s.impulse[n], b, bound);
+  a.apply(b, t1, l1 - a.s.impulse[t1]);
+  a.apply(b, t2, l2 - a.s.impulse[t2]);
+  a.s.impulse[t1] = l1;
+  a.s.impulse[t2] = l2;
+}
+
+}  // namespace
+
+void warm_start(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, Real h) {
+  const RowAccess a{system, space.v};
+  for (const NmdBlock& b : system.blocks) {
+    if (!settings.warm_start || b.memory == nullptr) continue;
+    for (int i = 0; i < b.memory_rows; ++i) {
+      const Index row = b.first_row + i;
+      system.impulse[row] = std::clamp(b.memory[i] / h, system.lower[row], system.upper[row]);
+    }
+    if (b.kind == NmdBlockKind::contact && b.memory_rows == 3)
+      project_friction(system.impulse[b.first_row + 1], system.impulse[b.first_row + 2], system.impulse[b.first_row], b,
+                       settings.friction);
+    for (int i = 0; i < b.memory_rows; ++i) a.apply(b, b.first_row + i, system.impulse[b.first_row + i]);
+  }
+}
+
+void projected_gauss_seidel(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings) {
+  const RowAccess a{system, space.v};
+  const Real omega = settings.over_relaxation;
+  for (int sweep = 0; sweep < settings.iterations; ++sweep) {
+    for (const NmdBlock& b : system.blocks) {
+      switch (b.kind) {
+        case NmdBlockKind::equality: solve_equality(a, b, omega); break;
+        case NmdBlockKind::bounded:
+          for (int i = 0; i < b.rows; ++i) solve_bounded_row(a, b, b.first_row + i, omega);
+          break;
+        case NmdBlockKind::contact: solve_contact(a, b, omega, settings.friction); break;
+      }
+    }
+  }
+}
+
+void store_impulses(const NmdSystem& system, Real h) {
+  for (const NmdBlock& b : system.blocks)
+    for (int i = 0; i < b.memory_rows; ++i) b.memory[i] = system.impulse[b.first_row + i] * h;
+}
+
+}  // namespace moreau

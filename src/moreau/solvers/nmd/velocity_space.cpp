@@ -1,0 +1,77 @@
+#include "moreau/solvers/nmd/velocity_space.hpp"
+
+#include "moreau/model/state.hpp"
+#include "moreau/rigid/body_handle.hpp"
+
+namespace moreau {
+
+void VelocitySpace::apply_inverse_mass(const VelocityEnd& e, const Real* jacobian, Real* out) const {
+  if (e.size == 3) {
+    const Real w = particle_inv_mass[e.dof / 3];
+    for (int c = 0; c < 3; ++c) out[c] = w * jacobian[c];
+    for (int c = 3; c < 6; ++c) out[c] = 0;
+    return;
+  }
+  const Index b = (e.dof - 3 * particles) / 6;
+  const Real w = body_inv_mass[b];
+  for (int c = 0; c < 3; ++c) out[c] = w * jacobian[c];
+  const Vec3 angular = body_inv_inertia[b] * Vec3(jacobian[3], jacobian[4], jacobian[5]);
+  for (int c = 0; c < 3; ++c) out[3 + c] = angular[c];
+}
+
+void VelocitySpace::gather(const Model& model, const State& state) {
+  particles = model.particle_count();
+  bodies = model.rigid.count();
+  v.resize(3 * particles + 6 * bodies);
+  particle_inv_mass.assign(model.particle_inv_mass.begin(), model.particle_inv_mass.end());
+  body_inv_mass.resize(bodies);
+  body_inv_inertia.resize(bodies);
+  for (Index p = 0; p < particles; ++p)
+    for (int c = 0; c < 3; ++c) v[3 * p + c] = state.velocity[p][c];
+  const RigidBodyModel& m = model.rigid;
+  const RigidBodyState& s = state.rigid;
+  for (Index b = 0; b < bodies; ++b) {
+    const Index d = body_dof(b);
+    for (int c = 0; c < 3; ++c) {
+      v[d + c] = s.velocity[b][c];
+      v[d + 3 + c] = s.angular_velocity[b][c];
+    }
+    const bool dynamic = m.is_dynamic(b);
+    body_inv_mass[b] = dynamic ? m.body_inv_mass[b] : 0;
+    body_inv_inertia[b] = dynamic ? world_inverse_inertia(s.orientation[b], m.body_inv_inertia[b]) : Mat3::Zero();
+  }
+}
+
+void VelocitySpace::apply_forces(const Model& model, const State& state, Real h) {
+  const Vec3 dv = h * model.settings.gravity;
+  for (Index p = 0; p < particles; ++p) {
+    if (particle_inv_mass[p] <= 0) continue;
+    for (int c = 0; c < 3; ++c) v[3 * p + c] += dv[c];
+  }
+  const RigidBodyModel& m = model.rigid;
+  for (Index b = 0; b < bodies; ++b) {
+    if (!m.is_dynamic(b)) continue;
+    const Index d = body_dof(b);
+    // Gyroscopic term in the principal frame: I dw/dt = -w x (I w).
+    const Quat& q = state.rigid.orientation[b];
+    const Vec3 w = q.conjugate() * Vec3(v[d + 3], v[d + 4], v[d + 5]);
+    const Vec3 dw = q * Vec3(h * m.body_inv_inertia[b].cwiseProduct(-w.cross(m.body_inertia[b].cwiseProduct(w))));
+    for (int c = 0; c < 3; ++c) {
+      v[d + c] += dv[c];
+      v[d + 3 + c] += dw[c];
+    }
+  }
+}
+
+void VelocitySpace::scatter(const Model& model, State& state) const {
+  for (Index p = 0; p < particles; ++p)
+    if (particle_inv_mass[p] > 0) state.velocity[p] = Vec3(v[3 * p], v[3 * p + 1], v[3 * p + 2]);
+  for (Index b = 0; b < bodies; ++b) {
+    if (!model.rigid.is_dynamic(b)) continue;
+    const Index d = body_dof(b);
+    state.rigid.velocity[b] = Vec3(v[d], v[d + 1], v[d + 2]);
+    state.rigid.angular_velocity[b] = Vec3(v[d + 3], v[d + 4], v[d + 5]);
+  }
+}
+
+}  // namespace moreau

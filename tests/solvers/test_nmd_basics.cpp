@@ -1,0 +1,170 @@
+// The velocity-level formulation (solvers/nmd/) against the closed forms of its own equations
+// and of the mechanics it simulates: SPOOK's relaxation of a hard constraint, the elongation of
+// compliant links, Coulomb friction on an incline, restitution and a torque-bounded motor.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "moreau/constraints/joints/joint.hpp"
+#include "test_helpers.hpp"
+
+namespace moreau {
+namespace {
+
+using test::run_steps;
+using test::scene_from_json;
+
+Index body_of(const Scene& s, const std::string& name) { return s.model.objects[s.model.find_object(name)].body; }
+
+// SPOOK (Lacoursiere 2007): a hard row (eps = 0) with d = tau/h satisfies
+//   w_{n+1} = -a g_n + b w_n,  g_{n+1} = g_n + h w_{n+1},  a = 4/(h(1+4d)), b = 1/(1+4d),
+// w = dC/dt. A ball on a spherical joint at its centre, started at 1 m/s with no gravity, follows
+// this recurrence exactly (one block, solved whole): compare step by step to round-off.
+TEST(NmdBasics, HardConstraintRelaxesAsTheSpookRecurrence) {
+  for (const Real d : {0.5, 2.0, 5.0}) {
+    const Real h = 0.01;
+    Scene s = scene_from_json(fmt::format(R"({{"name": "relax",
+      "settings": {{"solver": "nmd", "dt": {}, "gravity": [0, 0, 0], "nmd": {{"stabilization": {}}}}},
+      "objects": [{{"name": "ball", "kind": "rigid_body", "shape": {{"type": "sphere", "radius": 0.1}},
+                   "position": [0, 0, 0], "velocity": [1, 0, 0]}}],
+      "joints": [{{"name": "pin", "type": "spherical", "bodies": ["world", "ball"], "anchor": [0, 0, 0]}}]}})",
+                                          h, d));
+    const Index b = body_of(s, "ball");
+    const Real a = 4 / (h * (1 + 4 * d)), bb = 1 / (1 + 4 * d);
+    Real g = 0, w = 1;
+    for (int n = 0; n < 20; ++n) {
+      run_steps(s, 1);
+      w = -a * g + bb * w;
+      g += h * w;
+      EXPECT_NEAR(s.state.rigid.position[b].x(), g, 1e-12) << "d = " << d << ", step " << n + 1;
+    }
+  }
+}
+
+TEST(NmdBasics, SpookWithTwoStepsIsCriticallyDamped) {
+  // d = 2: the recurrence's eigenvalues are both 1/3, so the offset never changes sign.
+  Scene s = scene_from_json(R"({"name": "relax", "settings": {"solver": "nmd", "gravity": [0, 0, 0]},
+    "objects": [{"name": "ball", "kind": "rigid_body", "shape": {"type": "sphere", "radius": 0.1},
+                 "position": [0, 0, 0], "velocity": [1, 0, 0]}],
+    "joints": [{"name": "pin", "type": "spherical", "bodies": ["world", "ball"], "anchor": [0, 0, 0]}]})");
+  const Index b = body_of(s, "ball");
+  for (int n = 0; n < 40; ++n) {
+    run_steps(s, 1);
+    EXPECT_GE(s.state.rigid.position[b].x(), 0) << "step " << n + 1;
+  }
+}
+
+// A chain of five 1 kg balls hanging from the world on spherical joints of compliance eps: joint k
+// carries the weight of the balls below it, (5 - k) m g, and stretches by eps times that.
+// At rest SPOOK's row reads S l = -a g, i.e. eps f = -g exactly; what is left is the solver's
+// convergence, which warm starting over 2 s brings below 1e-6 relative.
+TEST(NmdBasics, CompliantLinksStretchByComplianceTimesTension) {
+  const Real eps = 1e-4, m = 1, g = 9.81, r = 0.05;
+  std::string objects, joints;
+  for (int k = 0; k < 5; ++k) {
+    objects += fmt::format(R"({}{{"name": "ball{}", "kind": "rigid_body", "shape": {{"type": "sphere", "radius": {}}},
+      "mass": {}, "position": [0, {}, 0]}})",
+                           k ? "," : "", k, r, m, -(2 * k + 1) * r);
+    joints += fmt::format(R"({}{{"name": "link{}", "type": "spherical", "bodies": ["{}", "ball{}"],
+      "anchor": [0, {}, 0], "compliance": {}}})",
+                          k ? "," : "", k, k ? fmt::format("ball{}", k - 1) : "world", k, -2 * k * r, eps);
+  }
+  Scene s = scene_from_json(fmt::format(R"({{"name": "chain", "settings": {{"solver": "nmd", "nmd": {{"iterations": 100}}}},
+    "objects": [{}], "joints": [{}]}})",
+                                        objects, joints));
+  run_steps(s, 120);
+  for (int k = 0; k < 5; ++k) {
+    const Real expected = eps * (5 - k) * m * g;
+    const Real stretch = joint_error(s.model.joints[k], s.state).position;
+    EXPECT_NEAR(stretch, expected, 1e-6 * expected) << "link " << k;
+  }
+}
+
+}  // namespace
+}  // namespace moreau
+
+namespace moreau {
+namespace {
+
+// A 0.5 m box on a slope tilted by theta = 30 degrees about world x and turned by psi about the
+// vertical, the box turned by beta about the slope's normal: as a collider slope or as a fixed
+// rigid-body slope. Returns the box's acceleration along the downhill direction over the second
+// second (symplectic Euler integrates a constant acceleration's velocity exactly) and its largest
+// distance from the downhill line through its start.
+struct InclineRun {
+  Real downhill_acceleration = 0, sideways = 0, distance = 0;
+};
+
+InclineRun run_incline(Real mu_s, Real mu_k, Real psi_deg, Real beta_deg, bool rigid_slope, const std::string& friction) {
+  const Real theta = kPi / 6, psi = psi_deg * kPi / 180, beta = beta_deg * kPi / 180;
+  const Quat slope = Quat(Eigen::AngleAxisd(psi, Vec3::UnitY())) * Quat(Eigen::AngleAxisd(theta, Vec3::UnitX()));
+  const Vec3 n = slope * Vec3::UnitY();
+  const Quat box = slope * Quat(Eigen::AngleAxisd(beta, Vec3::UnitY()));
+  const Vec3 center = 0.75 * n;
+  const std::string material = fmt::format(R"({{"static": {}, "dynamic": {}}})", mu_s, mu_k);
+  const std::string slope_object =
+      rigid_slope
+          ? fmt::format(R"({{"name": "slope", "kind": "rigid_body", "fixed": true, "friction": {},
+              "shape": {{"type": "box", "half_extents": [10, 0.5, 10]}}, "position": [0, 0, 0],
+              "orientation": [{}, {}, {}, {}]}})",
+                        material, slope.w(), slope.x(), slope.y(), slope.z())
+          : fmt::format(R"({{"name": "slope", "kind": "collider", "friction": {},
+              "shape": {{"type": "box", "center": [0, 0, 0], "half_extents": [10, 0.5, 10], "rotation_deg": [30, {}, 0]}}}})",
+                        material, psi_deg);
+  Scene s = scene_from_json(fmt::format(R"({{"name": "incline", "settings": {{"solver": "nmd", "nmd": {{"friction": "{}"}}}},
+    "objects": [{}, {{"name": "box", "kind": "rigid_body", "shape": {{"type": "box", "half_extents": [0.25, 0.25, 0.25]}},
+      "position": [{}, {}, {}], "orientation": [{}, {}, {}, {}], "density": 1000, "friction": {}}}]}})",
+                                        friction, slope_object, center.x(), center.y(), center.z(), box.w(), box.x(),
+                                        box.y(), box.z(), material));
+  const Index b = body_of(s, "box");
+  const Vec3 start = s.state.rigid.position[b];
+  const Vec3 downhill = (-Vec3::UnitY() - (-Vec3::UnitY()).dot(n) * n).normalized();
+  InclineRun result;
+  run_steps(s, 60);
+  const Real v1 = s.state.rigid.velocity[b].dot(downhill);
+  run_steps(s, 60);
+  const Real v2 = s.state.rigid.velocity[b].dot(downhill);
+  result.downhill_acceleration = v2 - v1;
+  const Vec3 moved = s.state.rigid.position[b] - start;
+  result.distance = moved.norm();
+  result.sideways = (moved - moved.dot(downhill) * downhill).norm();
+  return result;
+}
+
+TEST(NmdFriction, BoxSlidesAtTheKineticCoulombAccelerationForEveryOrientation) {
+  // mu_s = 0.5 < tan 30 = 0.577 and mu_k = 0.3: a = g (sin 30 - 0.3 cos 30) = 2.3562 m/s^2.
+  // mu_s = 0.57 sits just below tan 30: the box slides too, at the same kinetic acceleration.
+  const Real expected = 9.81 * (0.5 - 0.3 * std::cos(kPi / 6));
+  Real worst = 0, worst_sideways = 0;
+  for (const Real mu_s : {0.5, 0.57})
+    for (const bool rigid_slope : {false, true})
+      for (const Real psi : {0.0, 37.0, 90.0})
+        for (const Real beta : {0.0, 30.0, 45.0}) {
+          const InclineRun r = run_incline(mu_s, 0.3, psi, beta, rigid_slope, "cone");
+          EXPECT_NEAR(r.downhill_acceleration, expected, 0.01 * expected)
+              << (rigid_slope ? "rigid" : "collider") << " slope, mu_s " << mu_s << ", psi " << psi << ", beta " << beta;
+          EXPECT_LT(r.sideways, 1e-3 * r.distance) << "mu_s " << mu_s << ", psi " << psi << ", beta " << beta;
+          worst = std::max(worst, std::abs(r.downhill_acceleration / expected - 1));
+          worst_sideways = std::max(worst_sideways, r.sideways / r.distance);
+        }
+  std::printf("nmd incline, 36 orientations: acceleration within %.2e of g (sin - mu_k cos), sideways %.1e of the path\n",
+              worst, worst_sideways);
+}
+
+TEST(NmdFriction, BoxSticksWhenTheSlopeIsWithinTheStaticCone) {
+  // tan 30 = 0.577 <= mu_s: the box stays, whatever mu_k.
+  Real farthest = 0;
+  for (const Real mu_s : {0.58, 0.6, 0.7})
+    for (const bool rigid_slope : {false, true})
+      for (const Real beta : {0.0, 45.0}) {
+        const InclineRun r = run_incline(mu_s, 0.3, 37.0, beta, rigid_slope, "cone");
+        EXPECT_LT(r.distance, 1e-4) << "mu_s " << mu_s << (rigid_slope ? " rigid" : " collider") << " beta " << beta;
+        farthest = std::max(farthest, r.distance);
+      }
+  std::printf("nmd incline, mu_s >= 0.58 > tan 30: the box moved at most %.2e m in 2 s\n", farthest);
+}
+
+}  // namespace
+}  // namespace moreau
