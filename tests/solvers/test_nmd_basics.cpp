@@ -168,3 +168,89 @@ TEST(NmdFriction, BoxSticksWhenTheSlopeIsWithinTheStaticCone) {
 
 }  // namespace
 }  // namespace moreau
+
+namespace moreau {
+namespace {
+
+// Apex heights of a 0.1 m ball dropped from 1 m onto a plane, both with restitution e = 0.5.
+std::vector<Real> bounce_apexes(Real dt, int substeps) {
+  Scene s = scene_from_json(fmt::format(R"({{"name": "bounce", "settings": {{"solver": "nmd", "dt": {}, "nmd": {{"substeps": {}}}}},
+    "objects": [{{"name": "ground", "kind": "collider", "shape": {{"type": "plane"}}, "restitution": 0.5}},
+                {{"name": "ball", "kind": "rigid_body", "shape": {{"type": "sphere", "radius": 0.1}},
+                 "position": [0, 1.1, 0], "restitution": 0.5}}]}})",
+                                        dt, substeps));
+  const Index b = body_of(s, "ball");
+  std::vector<Real> apex;
+  Real previous_vy = 0;
+  for (int step = 0; step < static_cast<int>(1.6 / dt); ++step) {
+    run_steps(s, 1);
+    const Real vy = s.state.rigid.velocity[b].y();
+    if (previous_vy > 0 && vy <= 0) apex.push_back(s.state.rigid.position[b].y() - 0.1);
+    previous_vy = vy;
+  }
+  return apex;
+}
+
+TEST(NmdContacts, BallBouncesToRestitutionSquaredTimesTheDropHeight) {
+  // Rebound apexes e^2 h = 0.25 m and e^4 h = 0.0625 m. The impact falls inside a solve: the ball
+  // turns at its gap g above the plane (g < h |v|), which lowers the apex by (1 - e^2) g; and the
+  // apex is sampled at step ends, g dt^2 / 2 low at most. With dt = 1/600 s and h = dt/10 both
+  // stay below 0.5 % of the second apex.
+  const std::vector<Real> apex = bounce_apexes(1.0 / 600, 10);
+  ASSERT_GE(apex.size(), 2u);
+  EXPECT_NEAR(apex[0], 0.25, 0.01 * 0.25);
+  EXPECT_NEAR(apex[1], 0.0625, 0.01 * 0.0625);
+  std::printf("nmd bounce, e = 0.5 from 1 m, h = 1/6000 s: apexes %.5f m and %.5f m (exact 0.25 and 0.0625)\n", apex[0],
+              apex[1]);
+}
+
+// A 1 kg, 1 m arm on a hinge about z through its end, driven at 2 rad/s with a bounded torque
+// against gravity (at most m g L/2 = 4.905 N m).
+struct MotorRun {
+  Real slowest = 1e9, fastest = -1e9;   // rad/s after the first second
+  Real largest_torque = 0;              // N m, over the run
+  Real final_torque = 0;
+};
+
+MotorRun run_motor(Real max_torque) {
+  Scene s = scene_from_json(fmt::format(R"({{"name": "motor", "settings": {{"solver": "nmd"}},
+    "objects": [{{"name": "arm", "kind": "rigid_body", "shape": {{"type": "box", "half_extents": [0.5, 0.02, 0.02]}},
+                 "position": [0.5, 0, 0], "mass": 1}}],
+    "joints": [{{"name": "shoulder", "type": "hinge", "bodies": ["world", "arm"], "anchor": [0, 0, 0], "axis": [0, 0, 1],
+                "drive": {{"target_velocity": 2, "max_torque": {}}}}}]}})",
+                                        max_torque));
+  const Index b = body_of(s, "arm");
+  const Real h = s.model.settings.dt;
+  MotorRun run;
+  for (int step = 0; step < 240; ++step) {
+    run_steps(s, 1);
+    const Real torque = std::abs(s.state.joint_lambda[0][JointSlot::drive]) / (h * h);
+    run.largest_torque = std::max(run.largest_torque, torque);
+    run.final_torque = torque;
+    if (step >= 60) {
+      const Real w = s.state.rigid.angular_velocity[b].z();
+      run.slowest = std::min(run.slowest, w);
+      run.fastest = std::max(run.fastest, w);
+    }
+  }
+  return run;
+}
+
+TEST(NmdJoints, MotorisedHingeHoldsItsTargetVelocityUnderLoadWithinItsTorque) {
+  // 10 N m beats gravity everywhere: the arm turns at 2 rad/s within 1 %, the torque within 10 N m.
+  const MotorRun strong = run_motor(10);
+  EXPECT_NEAR(strong.slowest, 2, 0.02);
+  EXPECT_NEAR(strong.fastest, 2, 0.02);
+  EXPECT_LE(strong.largest_torque, 10 * (1 + 1e-12));
+  // 3 N m cannot lift it past m g L/2 cos(phi) = 3: it swings below, the motor pushing with
+  // exactly its bound while slower than 2 rad/s and braking at it while gravity would speed it up.
+  const MotorRun weak = run_motor(3);
+  EXPECT_LE(weak.largest_torque, 3 * (1 + 1e-12));
+  EXPECT_NEAR(weak.final_torque, 3, 1e-9);
+  EXPECT_LT(weak.fastest, 2 * 1.01);
+  std::printf("nmd motor at 2 rad/s: %.5f..%.5f rad/s with 10 N m (peak %.4f N m); stalled at %.6f N m with 3 N m\n",
+              strong.slowest, strong.fastest, strong.largest_torque, weak.final_torque);
+}
+
+}  // namespace
+}  // namespace moreau
