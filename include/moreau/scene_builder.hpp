@@ -40,9 +40,11 @@ struct FluidSolverSettings {
 
 /// settings.nmd: the velocity-level formulation's constants. Unset fields keep the engine defaults.
 struct NmdSolverSettings {
+  std::string method = "pgs";                   // "pgs", "direct" or "hybrid"
   std::optional<int> substeps;                  // velocity solves per dt
   std::optional<int> iterations;                // projected Gauss-Seidel sweeps per solve
   std::optional<double> over_relaxation;        // omega, (0, 2)
+  std::optional<double> tolerance;              // N s, hybrid: largest impulse change to stop at
   std::optional<double> stabilization;          // d, relaxation of hard rows in steps, >= 0
   std::string friction = "cone";                // "cone" or "box"
   std::optional<double> restitution_threshold;  // m/s

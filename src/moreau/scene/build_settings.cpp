@@ -44,6 +44,8 @@ SceneSettings read_settings(const JsonObject& settings) {
     fluid->finish();
   }
   if (auto nmd = settings.optional_object("nmd")) {
+    if (nmd->has("method")) s.nmd.method = nmd->string("method");
+    s.nmd.tolerance = read_optional_number(*nmd, "tolerance");
     if (nmd->has("substeps")) s.nmd.substeps = read_integer(*nmd, "substeps");
     if (nmd->has("iterations")) s.nmd.iterations = read_integer(*nmd, "iterations");
     s.nmd.over_relaxation = read_optional_number(*nmd, "over_relaxation");
@@ -91,6 +93,9 @@ void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& sc
   NmdSettings& nmd = s.nmd;
   const NmdSolverSettings& ns = spec.nmd;
   const SpecPlace nmd_place = place.at("nmd");
+  const std::string method = nmd_place.choice("method", ns.method, {"pgs", "direct", "hybrid"});
+  nmd.method = method == "pgs" ? NmdMethod::pgs : method == "direct" ? NmdMethod::direct : NmdMethod::hybrid;
+  nmd.tolerance = nmd_place.number("tolerance", ns.tolerance.value_or(nmd.tolerance), Range::non_negative());
   nmd.substeps = nmd_place.integer("substeps", ns.substeps.value_or(nmd.substeps), 1, 100000);
   nmd.iterations = nmd_place.integer("iterations", ns.iterations.value_or(nmd.iterations), 1, 100000);
   nmd.over_relaxation =

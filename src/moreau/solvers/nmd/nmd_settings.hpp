@@ -10,9 +10,19 @@ namespace moreau {
 /// |lambda_t| <= mu lambda_n (isotropic), or the box |lambda_t,k| <= mu lambda_n per tangent.
 enum class FrictionBound { cone, box };
 
+/// How the system of a solve is solved (docs/scene-format.md, settings.nmd.method):
+///   pgs     projected Gauss-Seidel over the blocks (projected_gauss_seidel.hpp),
+///   direct  the joints' and materials' rows, limits and drives included, in one sparse LDL^T with
+///           an active-set loop for the bounds; contacts by projected Gauss-Seidel, alternated
+///           (solve_methods.hpp),
+///   hybrid  the equality rows in one sparse LDL^T, the rest by projected Gauss-Seidel, alternated.
+enum class NmdMethod { pgs, direct, hybrid };
+
 struct NmdSettings {
+  NmdMethod method = NmdMethod::pgs;
   int substeps = 1;                 // velocity solves per dt
-  int iterations = 50;              // projected Gauss-Seidel sweeps per solve
+  int iterations = 50;              // sweeps (pgs), rounds of the alternation and active-set passes
+  Real tolerance = 1e-10;           // direct, hybrid: stop when no impulse changes by more (N s)
   Real over_relaxation = 1.0;       // omega in (0, 2)
   Real stabilization = 2.0;         // d: relaxation of hard rows in steps (tau = d h); 2 is critical
   FrictionBound friction = FrictionBound::cone;

@@ -8,6 +8,9 @@
 #include "moreau/solvers/nmd/nmd_assembly.hpp"
 #include "moreau/solvers/nmd/nmd_stages.hpp"
 #include "moreau/solvers/nmd/projected_gauss_seidel.hpp"
+#include "moreau/solvers/nmd/solve_methods.hpp"
+#include "moreau/errors.hpp"
+#include <fmt/format.h>
 #include "moreau/solvers/state_check.hpp"
 
 namespace moreau {
@@ -45,6 +48,21 @@ void mark_touching(State& state) {
 
 std::vector<std::string> NmdSolver::stage_names() const { return nmd_stage_names(); }
 
+void NmdSolver::solve(const Model& model, const State& state) {
+  const NmdSettings& settings = model.settings.nmd;
+  bool solved = true;
+  switch (settings.method) {
+    case NmdMethod::pgs: projected_gauss_seidel(system_, space_, settings); break;
+    case NmdMethod::direct:
+    case NmdMethod::hybrid: solved = solve_factored(system_, space_, settings, schur_); break;
+  }
+  if (!solved)
+    throw NumericalError(fmt::format(
+        "the velocity-level system at step {} (t = {:.6g} s) is not positive definite after regularisation; "
+        "give the joints or contacts a compliance (settings.nmd.contact_compliance) or use settings.nmd.method \"pgs\"",
+        state.step, state.time));
+}
+
 std::string NmdSolver::refusal(const Model& model) {
   if (!model.fluid.empty())
     return "the 'nmd' formulation does not simulate particle fluids; run fluid scenes with \"solver\": \"xpbd\"";
@@ -71,7 +89,7 @@ void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int th
     timer.lap(NmdStage::assemble);
     space_.apply_forces(model, state, h);
     warm_start(system_, space_, settings, h);
-    projected_gauss_seidel(system_, space_, settings);
+    solve(model, state);
     store_impulses(system_, h);
     timer.lap(NmdStage::solve);
     space_.scatter(model, state);

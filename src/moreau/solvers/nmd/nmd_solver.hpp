@@ -6,6 +6,7 @@
 
 #include "moreau/collision/particle_contacts.hpp"
 #include "moreau/solvers/nmd/nmd_system.hpp"
+#include "moreau/solvers/nmd/schur_complement.hpp"
 #include "moreau/solvers/solver.hpp"
 
 namespace moreau {
@@ -21,8 +22,11 @@ class NmdSolver final : public Solver {
   static std::string refusal(const Model& model);
 
  private:
+  void solve(const Model& model, const State& state);
+
   VelocitySpace space_;
   NmdSystem system_;
+  SchurComplement schur_;
   ContactScratch contact_scratch_;
 };
 

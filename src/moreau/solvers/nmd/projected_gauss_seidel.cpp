@@ -115,20 +115,30 @@ void warm_start(NmdSystem& system, VelocitySpace& space, const NmdSettings& sett
   }
 }
 
-void projected_gauss_seidel(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings) {
+Real gauss_seidel_sweep(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, bool equality_blocks,
+                        bool bounded_blocks) {
   const RowAccess a{system, space.v};
   const Real omega = settings.over_relaxation;
-  for (int sweep = 0; sweep < settings.iterations; ++sweep) {
-    for (const NmdBlock& b : system.blocks) {
-      switch (b.kind) {
-        case NmdBlockKind::equality: solve_equality(a, b, omega); break;
-        case NmdBlockKind::bounded:
-          for (int i = 0; i < b.rows; ++i) solve_bounded_row(a, b, b.first_row + i, omega);
-          break;
-        case NmdBlockKind::contact: solve_contact(a, b, omega, settings.friction); break;
-      }
+  Real largest = 0;
+  for (const NmdBlock& b : system.blocks) {
+    if ((b.kind == NmdBlockKind::equality && !equality_blocks) || (b.kind == NmdBlockKind::bounded && !bounded_blocks))
+      continue;
+    Real before[NmdBlockInput::kMaxRows];
+    for (int i = 0; i < b.rows; ++i) before[i] = system.impulse[b.first_row + i];
+    switch (b.kind) {
+      case NmdBlockKind::equality: solve_equality(a, b, omega); break;
+      case NmdBlockKind::bounded:
+        for (int i = 0; i < b.rows; ++i) solve_bounded_row(a, b, b.first_row + i, omega);
+        break;
+      case NmdBlockKind::contact: solve_contact(a, b, omega, settings.friction); break;
     }
+    for (int i = 0; i < b.rows; ++i) largest = std::max(largest, std::abs(system.impulse[b.first_row + i] - before[i]));
   }
+  return largest;
+}
+
+void projected_gauss_seidel(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings) {
+  for (int sweep = 0; sweep < settings.iterations; ++sweep) gauss_seidel_sweep(system, space, settings, true, true);
 }
 
 void store_impulses(const NmdSystem& system, Real h) {

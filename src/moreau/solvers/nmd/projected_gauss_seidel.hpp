@@ -19,8 +19,14 @@
 
 namespace moreau {
 
-/// Starts every block from its memory (or zero without warm start) and applies the impulses.
+/// Starts every block from its memory (or zero without warm start) and adds their effect
+/// W G^T l to the velocities.
 void warm_start(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, Real h);
+
+/// One sweep over the blocks in order, the equality and bounded blocks included or skipped (the
+/// direct and hybrid methods factor those, solve_methods.hpp). Returns the largest impulse change.
+Real gauss_seidel_sweep(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, bool equality_blocks,
+                        bool bounded_blocks);
 
 /// settings.iterations sweeps; afterwards system.impulse holds l and space.v holds v+.
 void projected_gauss_seidel(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings);

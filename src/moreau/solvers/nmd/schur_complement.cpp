@@ -1,0 +1,90 @@
+#include "moreau/solvers/nmd/schur_complement.hpp"
+
+#include <algorithm>
+
+namespace moreau {
+
+void SchurComplement::build(const NmdSystem& system, const std::vector<Index>& rows, Index dofs) {
+  const Index m = static_cast<Index>(rows.size());
+  // Each system row's position in this set (-1: not in it), to couple rows of one block.
+  std::vector<Index> local(system.row_count(), -1);
+  for (Index i = 0; i < m; ++i) local[rows[i]] = i;
+  std::vector<Eigen::Triplet<Real>> g, wg, s;
+  std::vector<Index> block_of(system.row_count(), -1);
+  for (Index k = 0; k < static_cast<Index>(system.blocks.size()); ++k) {
+    const NmdBlock& b = system.blocks[k];
+    for (int r = 0; r < b.rows; ++r) block_of[b.first_row + r] = k;
+  }
+  for (Index i = 0; i < m; ++i) {
+    const Index row = rows[i];
+    const NmdBlock& b = system.blocks[block_of[row]];
+    const Real* J = system.jacobian.data() + system.jacobian_offset[row];
+    const Real* W = system.weighted.data() + system.jacobian_offset[row];
+    for (int e = 0; e < b.ends; ++e) {
+      const VelocityEnd& end = b.end[e];
+      if (end.is_world()) continue;
+      for (int c = 0; c < end.size; ++c) {
+        if (J[6 * e + c] != 0) g.emplace_back(i, end.dof + c, J[6 * e + c]);
+        if (W[6 * e + c] != 0) wg.emplace_back(end.dof + c, i, W[6 * e + c]);
+      }
+    }
+    // S: the block's full compliance for equality blocks, the diagonal otherwise.
+    const int r = row - b.first_row;
+    if (b.kind == NmdBlockKind::equality) {
+      for (int t = 0; t < b.rows; ++t) {
+        const Index other = local[b.first_row + t];
+        const Real value = system.sigma_block[b.matrix + r * b.rows + t];
+        if (other >= 0 && value != 0) s.emplace_back(i, other, value);
+      }
+    } else if (system.sigma[row] != 0) {
+      s.emplace_back(i, i, system.sigma[row]);
+    }
+    s.emplace_back(i, i, 0.0);  // every diagonal in the pattern, so clamping keeps it
+  }
+  G_.resize(m, dofs);
+  G_.setFromTriplets(g.begin(), g.end());
+  WGt_.resize(dofs, m);
+  WGt_.setFromTriplets(wg.begin(), wg.end());
+  S_.resize(m, m);
+  S_.setFromTriplets(s.begin(), s.end());
+  A_ = (G_ * WGt_).pruned(0.0) + S_;
+  A_.makeCompressed();
+  // Hard rows (S = 0) that repeat others (a box's four corners on a plane, a closed loop of
+  // joints) make A singular; 1e-12 of each diagonal regularises them without changing what a
+  // regular system solves to beyond round-off. A row no end of which can move gets a unit
+  // diagonal and no impulse effect.
+  for (Index j = 0; j < A_.outerSize(); ++j)
+    for (Sparse::InnerIterator it(A_, j); it; ++it)
+      if (it.row() == it.col()) it.valueRef() = it.value() > 0 ? it.value() * (1 + kRegularisation) : Real(1);
+}
+
+bool SchurComplement::factorize(const std::vector<char>& clamped) {
+  clamped_A_ = A_;
+  for (Index j = 0; j < clamped_A_.outerSize(); ++j)
+    for (Sparse::InnerIterator it(clamped_A_, j); it; ++it)
+      if (clamped[it.row()] || clamped[it.col()]) it.valueRef() = it.row() == it.col() ? 1 : 0;
+  const Index* outer = clamped_A_.outerIndexPtr();
+  const Index* inner = clamped_A_.innerIndexPtr();
+  const bool same = analysed_ && pattern_outer_.size() == static_cast<size_t>(clamped_A_.outerSize() + 1) &&
+                    pattern_inner_.size() == static_cast<size_t>(clamped_A_.nonZeros()) &&
+                    std::equal(pattern_outer_.begin(), pattern_outer_.end(), outer) &&
+                    std::equal(pattern_inner_.begin(), pattern_inner_.end(), inner);
+  if (!same) {
+    ldlt_.analyzePattern(clamped_A_);
+    pattern_outer_.assign(outer, outer + clamped_A_.outerSize() + 1);
+    pattern_inner_.assign(inner, inner + clamped_A_.nonZeros());
+    analysed_ = true;
+  }
+  ldlt_.factorize(clamped_A_);
+  return ldlt_.info() == Eigen::Success && (ldlt_.vectorD().array() > 0).all();
+}
+
+VectorX SchurComplement::rate(const std::vector<Real>& v) const {
+  return G_ * Eigen::Map<const VectorX>(v.data(), static_cast<Index>(v.size()));
+}
+
+void SchurComplement::apply(const VectorX& l, std::vector<Real>& v) const {
+  Eigen::Map<VectorX>(v.data(), static_cast<Index>(v.size())) += WGt_ * l;
+}
+
+}  // namespace moreau

@@ -1,0 +1,47 @@
+#pragma once
+// The Schur complement A = G W G^T + S of a set of an NMD system's rows (nmd_system.hpp), sparse,
+// factored by LDL^T (Eigen's SimplicialLDLT, AMD ordering). A is symmetric positive definite when
+// S > 0 or G has full row rank; rows of a block are coupled through their block's S, rows of
+// different blocks through the ends they share. The symbolic analysis is kept while the pattern
+// of A does not change (the same rows between the same ends from one solve to the next).
+//
+// A row may be clamped: its row and column of A are replaced by the identity's, so its value is
+// fixed by the right-hand side while the pattern stays (the active-set loop of the direct method).
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "moreau/solvers/nmd/nmd_system.hpp"
+
+namespace moreau {
+
+class SchurComplement {
+ public:
+  static constexpr Real kRegularisation = 1e-12;  // relative, on every diagonal
+  using Sparse = Eigen::SparseMatrix<Real>;
+
+  /// Builds G (rows x dofs), W G^T and A over `rows` (system row indices, in order).
+  void build(const NmdSystem& system, const std::vector<Index>& rows, Index dofs);
+  /// Factors A with the rows marked in `clamped` (indexed like `rows`) replaced by identity rows;
+  /// false when A is not positive definite.
+  bool factorize(const std::vector<char>& clamped);
+  /// A^-1 b for the factored matrix.
+  VectorX solve(const VectorX& b) const { return ldlt_.solve(b); }
+
+  /// G x for a velocity vector x (one value per row).
+  VectorX rate(const std::vector<Real>& v) const;
+  /// v += W G^T l.
+  void apply(const VectorX& l, std::vector<Real>& v) const;
+  /// A l (the unclamped A) and S l.
+  VectorX product(const VectorX& l) const { return A_ * l; }
+  VectorX sigma_product(const VectorX& l) const { return S_ * l; }
+  Index size() const { return static_cast<Index>(A_.rows()); }
+
+ private:
+  Sparse G_, WGt_, S_, A_, clamped_A_;
+  Eigen::SimplicialLDLT<Sparse> ldlt_;
+  std::vector<Index> pattern_outer_, pattern_inner_;  // of the analysed pattern
+  bool analysed_ = false;
+};
+
+}  // namespace moreau
