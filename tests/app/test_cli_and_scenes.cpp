@@ -108,6 +108,15 @@ TEST(CommandLine, BadSetOverrideAndUnknownSolver) {
                    {"settings.solver", "allowed: xpbd, nmd"});
 }
 
+TEST(CommandLine, NmdSettingsNameTheirPathAndRange) {
+  std::string text = kValidCloth;
+  text.replace(text.find("\"dt\""), 0, "\"solver\": \"nmd\", ");
+  expect_bad_input("nmd_omega", text, {"settings.nmd.over_relaxation", "out of range"},
+                   "--set settings.nmd.over_relaxation=2");
+  expect_bad_input("nmd_method", text, {"settings.nmd.method", "pgs, direct, hybrid"}, "--set settings.nmd.method='\"lcp\"'");
+  expect_bad_input("nmd_key", text, {"settings.nmd", "iteration"}, "--set settings.nmd.iteration=3");
+}
+
 TEST(CommandLine, NmdRefusesAFluidSceneNamingWhatItDoesNotSimulate) {
   const std::string scene = R"({"name": "f", "settings": {"solver": "nmd", "dt": 0.005},
     "objects": [{"name": "tank", "kind": "collider", "inside": true,
