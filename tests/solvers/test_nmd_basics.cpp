@@ -123,6 +123,7 @@ namespace {
 // distance from the downhill line through its start.
 struct InclineRun {
   Real downhill_acceleration = 0, sideways = 0, distance = 0;
+  Real second_second = 0;  // distance moved over the second second
 };
 
 InclineRun run_incline(Real mu_s, Real mu_k, Real psi_deg, Real beta_deg, bool rigid_slope, const std::string& method) {
@@ -152,7 +153,9 @@ InclineRun run_incline(Real mu_s, Real mu_k, Real psi_deg, Real beta_deg, bool r
   InclineRun result;
   run_steps(s, 60);
   const Real v1 = s.state.rigid.velocity[b].dot(downhill);
+  const Vec3 after_one_second = s.state.rigid.position[b];
   run_steps(s, 60);
+  result.second_second = (s.state.rigid.position[b] - after_one_second).norm();
   const Real v2 = s.state.rigid.velocity[b].dot(downhill);
   result.downhill_acceleration = v2 - v1;
   const Vec3 moved = s.state.rigid.position[b] - start;
@@ -186,17 +189,23 @@ TEST(NmdFriction, BoxSlidesAtTheKineticCoulombAccelerationForEveryOrientation) {
 }
 
 TEST(NmdFriction, BoxSticksWhenTheSlopeIsWithinTheStaticCone) {
-  // tan 30 = 0.577 <= mu_s: the box stays, whatever mu_k.
+  // tan 30 = 0.577 <= mu_s: the box stays, whatever mu_k. It settles into the slope over the first
+  // steps (SPOOK lets a hard row relax over d = 2 steps; measured up to 27 micrometres), then does not
+  // move: over the second second by round-off only.
   for (const char* method : kMethods) {
-  Real farthest = 0;
-  for (const Real mu_s : {0.58, 0.6, 0.7})
-    for (const bool rigid_slope : {false, true})
-      for (const Real beta : {0.0, 45.0}) {
-        const InclineRun r = run_incline(mu_s, 0.3, 37.0, beta, rigid_slope, method);
-        EXPECT_LT(r.distance, 1e-4) << method << ", mu_s " << mu_s << (rigid_slope ? " rigid" : " collider") << " beta " << beta;
-        farthest = std::max(farthest, r.distance);
-      }
-  std::printf("nmd %s, incline, mu_s >= 0.58 > tan 30: the box moved at most %.2e m in 2 s\n", method, farthest);
+    Real farthest = 0, latest = 0;
+    for (const Real mu_s : {0.58, 0.6, 0.7})
+      for (const bool rigid_slope : {false, true})
+        for (const Real beta : {0.0, 45.0}) {
+          const InclineRun r = run_incline(mu_s, 0.3, 37.0, beta, rigid_slope, method);
+          EXPECT_LT(r.distance, 1e-4) << method << ", mu_s " << mu_s << (rigid_slope ? " rigid" : " collider") << " beta " << beta;
+          EXPECT_LT(r.second_second, 1e-9) << method << ", mu_s " << mu_s << (rigid_slope ? " rigid" : " collider")
+                                           << " beta " << beta;
+          farthest = std::max(farthest, r.distance);
+          latest = std::max(latest, r.second_second);
+        }
+    std::printf("nmd %s, incline, mu_s >= 0.58 > tan 30: the box moved at most %.2e m in 2 s, %.1e m in the second\n",
+                method, farthest, latest);
   }
 }
 

@@ -13,6 +13,13 @@ Quat rotate_by_angular_velocity(const Quat& q, const Vec3& w, Real h) {
   return (Quat(Eigen::AngleAxisd(angle, w.normalized())) * q).normalized();
 }
 
+Vec3 gyroscopic_velocity_change(const Quat& q, const Vec3& w_world, const Vec3& inertia, const Vec3& inv_inertia,
+                                Real h) {
+  const Vec3 w = q.conjugate() * w_world;
+  const Vec3 Iw = inertia.cwiseProduct(w);
+  return q * Vec3(h * inv_inertia.cwiseProduct(-w.cross(Iw)));
+}
+
 void RigidSubstepStart::fit(Index n) {
   const size_t size = static_cast<size_t>(n);
   if (position.size() == size) return;
@@ -37,11 +44,8 @@ void predict_rigid_bodies(const Model& model, RigidBodyState& s, RigidSubstepSta
         break;
       case BodyMotion::dynamic: {
         s.velocity[b] += dv;
-        // Gyroscopic term in the principal frame: I dw/dt = -w x (I w).
-        const Quat& q = s.orientation[b];
-        const Vec3 w = q.conjugate() * s.angular_velocity[b];
-        const Vec3 Iw = m.body_inertia[b].cwiseProduct(w);
-        s.angular_velocity[b] += q * Vec3(h * m.body_inv_inertia[b].cwiseProduct(-w.cross(Iw)));
+        s.angular_velocity[b] += gyroscopic_velocity_change(s.orientation[b], s.angular_velocity[b], m.body_inertia[b],
+                                                            m.body_inv_inertia[b], h);
         s.position[b] += h * s.velocity[b];
         const Vec3& wn = s.angular_velocity[b];
         Quat& qn = s.orientation[b];

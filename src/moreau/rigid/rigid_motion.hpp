@@ -30,6 +30,10 @@ struct RigidSubstepStart {
 void predict_rigid_bodies(const Model& model, RigidBodyState& bodies, RigidSubstepStart& start, Real h);
 void update_rigid_body_velocities(const Model& model, RigidBodyState& bodies, const RigidSubstepStart& start, Real h);
 
+/// The change of a body's world angular velocity w over time h from the gyroscopic term,
+/// I dw/dt = -w x (I w), evaluated explicitly in the principal frame q maps to the world.
+Vec3 gyroscopic_velocity_change(const Quat& q, const Vec3& w, const Vec3& inertia, const Vec3& inv_inertia, Real h);
+
 /// Exact rotation of q by the world angular velocity w over time h (kinematic bodies).
 Quat rotate_by_angular_velocity(const Quat& q, const Vec3& w, Real h);
 

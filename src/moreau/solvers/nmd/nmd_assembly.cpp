@@ -19,6 +19,42 @@ struct Assembly {
   void add() { system.add(input, space, h, model.settings.nmd); }
 };
 
+// Sizes the input for a row block over particles (a family's RowBlock or a particle contact):
+// one end per particle, its R x 3 gradient as the end's linear columns, and C.
+template <class Rows>
+void set_particle_rows(NmdBlockInput& in, const Rows& rows, const VelocitySpace& space) {
+  in.resize(Rows::kRows, Rows::kParticles);
+  for (int i = 0; i < Rows::kParticles; ++i) {
+    in.end[i] = space.particle_end(rows.particle[i]);
+    for (int r = 0; r < Rows::kRows; ++r)
+      for (int c = 0; c < 3; ++c) in.jacobian(r, 6 * i + c) = rows.gradient[i](r, c);
+  }
+  in.C = rows.C;
+}
+
+// Sizes the input for a block of body rows (a joint's or a particle-body contact's): two ends,
+// their R x 6 Jacobians, C, the diagonal compliance and the force bounds.
+void set_body_rows(NmdBlockInput& in, const BodyRows& rows, const VelocitySpace& space) {
+  const int R = rows.size();
+  in.resize(R, 2);
+  for (int e = 0; e < 2; ++e) {
+    in.end[e] = space.end(rows.end[e]);
+    for (int r = 0; r < R; ++r)
+      for (int c = 0; c < 6; ++c) in.jacobian(r, 6 * e + c) = rows.jacobian[e](r, c);
+  }
+  for (int r = 0; r < R; ++r) {
+    in.C[r] = rows.C[r];
+    in.compliance(r, r) = rows.compliance[r];
+    in.lower[r] = rows.lower[r];
+    in.upper[r] = rows.upper[r];
+  }
+}
+
+bool has_bounds(const NmdBlockInput& in) {
+  return (in.lower.array() > -std::numeric_limits<Real>::infinity()).any() ||
+         (in.upper.array() < std::numeric_limits<Real>::infinity()).any();
+}
+
 // A family's constraint k: its rows over its particles, bilateral unless bounded.
 template <class Family>
 void add_family(Assembly& a, const Family& family, std::vector<typename Family::Multiplier>& lambda) {
@@ -26,20 +62,12 @@ void add_family(Assembly& a, const Family& family, std::vector<typename Family::
   for (Index k = 0; k < static_cast<Index>(family.size()); ++k) {
     const Rows rows = family.rows(k, a.state.position.data());
     NmdBlockInput& in = a.input;
-    in.resize(Rows::kRows, Rows::kParticles);
-    const bool bounded = (rows.lower.array() > -std::numeric_limits<Real>::infinity()).any() ||
-                         (rows.upper.array() < std::numeric_limits<Real>::infinity()).any();
-    in.kind = bounded ? NmdBlockKind::bounded : NmdBlockKind::equality;
-    for (int i = 0; i < Rows::kParticles; ++i) {
-      in.end[i] = a.space.particle_end(rows.particle[i]);
-      for (int r = 0; r < Rows::kRows; ++r)
-        for (int c = 0; c < 3; ++c) in.jacobian(r, 6 * i + c) = rows.gradient[i](r, c);
-    }
-    in.C = rows.C;
+    set_particle_rows(in, rows, a.space);
     in.compliance = rows.compliance;
     in.damping_time = rows.damping_time;
     in.lower = rows.lower;
     in.upper = rows.upper;
+    in.kind = has_bounds(in) ? NmdBlockKind::bounded : NmdBlockKind::equality;
     in.memory = multiplier_rows<Family>(lambda[k]).data();
     in.memory_rows = Rows::kRows;
     a.add();
@@ -53,28 +81,14 @@ class JointBlocks final : public BodyRowSink {
   void set_memory(JointMultipliers& lambda) { memory_ = &lambda; }
   void take(const BodyRows& rows) override {
     NmdBlockInput& in = a_.input;
-    const int R = rows.size();
-    in.resize(R, 2);
-    bool bounded = false;
-    for (int e = 0; e < 2; ++e) {
-      in.end[e] = a_.space.end(rows.end[e]);
-      for (int r = 0; r < R; ++r)
-        for (int c = 0; c < 6; ++c) in.jacobian(r, 6 * e + c) = rows.jacobian[e](r, c);
-    }
-    for (int r = 0; r < R; ++r) {
-      in.C[r] = rows.C[r];
-      in.compliance(r, r) = rows.compliance[r];
-      in.lower[r] = rows.lower[r];
-      in.upper[r] = rows.upper[r];
-      bounded |= std::isfinite(rows.lower[r]) || std::isfinite(rows.upper[r]);
-    }
+    set_body_rows(in, rows, a_.space);
     if (rows.velocity_drive) {
       in.level[0] = RowLevel::velocity;
       in.target[0] = rows.target_velocity;
     }
-    in.kind = bounded ? NmdBlockKind::bounded : NmdBlockKind::equality;
+    in.kind = has_bounds(in) ? NmdBlockKind::bounded : NmdBlockKind::equality;
     in.memory = memory_->data() + rows.slot;
-    in.memory_rows = R;
+    in.memory_rows = rows.size();
     a_.add();
   }
 
@@ -83,72 +97,57 @@ class JointBlocks final : public BodyRowSink {
   JointMultipliers* memory_ = nullptr;
 };
 
-// Fills a contact block's rows: normal, then friction along t1 and t2.
-void set_contact_levels(NmdBlockInput& in, Real compliance, Real static_friction, Real dynamic_friction,
-                        Real restitution) {
+// Makes the sized input a contact block (row 0 normal, rows 1 and 2 friction) with the pair's
+// coefficients and adds it; `memory` holds the normal impulse, or all three rows' impulses.
+void add_contact(Assembly& a, Real static_friction, Real dynamic_friction, Real restitution, Real* memory,
+                 int memory_rows) {
+  NmdBlockInput& in = a.input;
   in.kind = NmdBlockKind::contact;
   in.level[1] = in.level[2] = RowLevel::friction;
+  in.C[1] = in.C[2] = 0;  // friction rows act on velocities only
+  in.lower.setConstant(-std::numeric_limits<Real>::infinity());
+  in.upper.setConstant(std::numeric_limits<Real>::infinity());
   in.lower[0] = 0;
-  in.compliance(0, 0) = compliance;
+  in.compliance.setZero();
+  in.compliance(0, 0) = a.model.settings.nmd.contact_compliance;
   in.static_friction = static_friction;
   in.dynamic_friction = dynamic_friction;
   in.restitution = restitution;
+  in.memory = memory;
+  in.memory_rows = memory_rows;
+  a.add();
 }
 
 void add_collider_contacts(Assembly& a, Real end_time) {
   ColliderContacts& c = a.state.collider_contacts;
-  const Real compliance = a.model.settings.nmd.contact_compliance;
+  const Vec3* x = a.state.position.data();
   for (size_t q = 0; q < c.size(); ++q) {
     const Index p = c.particle[q];
     const Collider& col = a.model.colliders[c.collider[q]];
-    const ColliderDistance d = collider_distance(col, col.position_at(end_time - a.h), a.state.position[p]);
-    c.normal[q] = d.normal;
-    const Vec3* x = a.state.position.data();
+    const ColliderDistance d = collider_distance(col, col.position_at(end_time - a.h), x[p]);
     const ParticleContactRows<1> rows = collider_contact_rows(p, d.distance, d.normal, a.model.particle_collider_gap[p],
                                                               c.static_friction[q], Vec3::Zero(), x, x);
-    NmdBlockInput& in = a.input;
-    in.resize(3, 1);
-    in.end[0] = a.space.particle_end(p);
-    for (int r = 0; r < 3; ++r) {
-      for (int k = 0; k < 3; ++k) in.jacobian(r, k) = rows.gradient[0](r, k);
-      in.known[r] = -rows.gradient[0].row(r).dot(col.velocity);  // dC/dt = grad . (v_p - v_collider)
-    }
-    in.C[0] = rows.C[0];
-    set_contact_levels(in, compliance, c.static_friction[q], c.dynamic_friction[q], c.restitution[q]);
-    in.memory = &c.lambda_normal[q];
-    in.memory_rows = 1;
-    a.add();
+    set_particle_rows(a.input, rows, a.space);
+    for (int r = 0; r < 3; ++r) a.input.known[r] = -rows.gradient[0].row(r).dot(col.velocity);  // dC/dt = grad . (v_p - v_c)
+    add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1);
   }
 }
 
 void add_particle_contacts(Assembly& a) {
   ParticleContacts& c = a.state.particle_contacts;
-  const Real compliance = a.model.settings.nmd.contact_compliance;
   const Vec3* x = a.state.position.data();
   for (size_t q = 0; q < c.size(); ++q) {
     const auto [i, j] = c.pair[q];
     const ParticleContactRows<2> rows = pair_contact_rows(
         i, j, a.model.particle_radius[i] + a.model.particle_radius[j], c.static_friction[q], x, x);
     if (rows.gradient[0].isZero()) continue;  // coincident centres: no direction
-    c.normal[q] = rows.gradient[0].row(0).transpose();
-    NmdBlockInput& in = a.input;
-    in.resize(3, 2);
-    for (int e = 0; e < 2; ++e) {
-      in.end[e] = a.space.particle_end(rows.particle[e]);
-      for (int r = 0; r < 3; ++r)
-        for (int k = 0; k < 3; ++k) in.jacobian(r, 6 * e + k) = rows.gradient[e](r, k);
-    }
-    in.C[0] = rows.C[0];
-    set_contact_levels(in, compliance, c.static_friction[q], c.dynamic_friction[q], c.restitution[q]);
-    in.memory = &c.lambda_normal[q];
-    in.memory_rows = 1;
-    a.add();
+    set_particle_rows(a.input, rows, a.space);
+    add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1);
   }
 }
 
 void add_rigid_contacts(Assembly& a) {
   RigidContacts& contacts = a.state.rigid_contacts;
-  const Real compliance = a.model.settings.nmd.contact_compliance;
   const SubstepStart now{a.state.position.data(), a.state.rigid.position.data(), a.state.rigid.orientation.data()};
   for (RigidManifold& mf : contacts.manifolds) {
     RigidContactPoint* points = contacts.points.data() + mf.first;
@@ -157,7 +156,7 @@ void add_rigid_contacts(Assembly& a) {
       NmdBlockInput& in = a.input;
       in.resize(3, 2);
       for (int e = 0; e < 2; ++e) in.end[e] = a.space.end(rows.end[e]);
-      for (int r = 0; r < 3; ++r) {
+      for (int r = 0; r < 3; ++r) {  // point rows (body_rows.hpp) along each direction
         const int row = 3 * j + r;
         const Vec3& d = rows.direction[row];
         in.jacobian.row(r).segment<3>(0) = d.transpose();
@@ -166,37 +165,20 @@ void add_rigid_contacts(Assembly& a) {
         in.jacobian.row(r).segment<3>(9) = -rows.offset_b[row].cross(d).transpose();
       }
       in.C[0] = rows.C[3 * j];
-      set_contact_levels(in, compliance, mf.static_friction, mf.dynamic_friction, mf.restitution);
-      in.memory = points[rows.point[j]].row_impulse.data();
-      in.memory_rows = 3;
-      a.add();
+      add_contact(a, mf.static_friction, mf.dynamic_friction, mf.restitution, points[rows.point[j]].row_impulse.data(), 3);
     }
   }
 }
 
 void add_particle_body_contacts(Assembly& a) {
   ParticleBodyContacts& c = a.state.particle_body_contacts;
-  const Real compliance = a.model.settings.nmd.contact_compliance;
   const SubstepStart now{a.state.position.data(), a.state.rigid.position.data(), a.state.rigid.orientation.data()};
   for (size_t q = 0; q < c.size(); ++q) {
     const auto [b, p] = c.pair[q];
     const ParticleBodyContactRows contact =
         particle_body_rows(a.model, a.state, now, b, p, c.static_friction[q], ContactPoints::all);
-    const BodyRows& rows = contact.rows;
-    c.normal[q] = rows.jacobian[0].row(0).head<3>().transpose();
-    c.offset[q] = nearest_on_body(a.model, a.state, b, a.state.position[p]).offset;
-    NmdBlockInput& in = a.input;
-    in.resize(3, 2);
-    for (int e = 0; e < 2; ++e) {
-      in.end[e] = a.space.end(rows.end[e]);
-      for (int r = 0; r < 3; ++r)
-        for (int k = 0; k < 6; ++k) in.jacobian(r, 6 * e + k) = rows.jacobian[e](r, k);
-    }
-    in.C[0] = rows.C[0];
-    set_contact_levels(in, compliance, c.static_friction[q], c.dynamic_friction[q], c.restitution[q]);
-    in.memory = &c.lambda_normal[q];
-    in.memory_rows = 1;
-    a.add();
+    set_body_rows(a.input, contact.rows, a.space);
+    add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1);
   }
 }
 

@@ -1,16 +1,17 @@
 #include "moreau/solvers/nmd/nmd_solver.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
 #include "moreau/collision/particle_body_contacts.hpp"
+#include "moreau/errors.hpp"
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
 #include "moreau/solvers/nmd/nmd_assembly.hpp"
 #include "moreau/solvers/nmd/nmd_stages.hpp"
 #include "moreau/solvers/nmd/projected_gauss_seidel.hpp"
 #include "moreau/solvers/nmd/solve_methods.hpp"
-#include "moreau/errors.hpp"
-#include <fmt/format.h>
 #include "moreau/solvers/state_check.hpp"
 
 namespace moreau {

@@ -9,17 +9,6 @@ namespace {
 
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
-// G_i v for row i over its ends.
-Real row_rate(const Real* J, const NmdBlock& block, const std::vector<Real>& v) {
-  Real rate = 0;
-  for (int e = 0; e < block.ends; ++e) {
-    const VelocityEnd& end = block.end[e];
-    if (end.is_world()) continue;
-    for (int c = 0; c < end.size; ++c) rate += J[6 * e + c] * v[end.dof + c];
-  }
-  return rate;
-}
-
 }  // namespace
 
 void NmdBlockInput::resize(int rows, int end_count) {
@@ -38,6 +27,7 @@ void NmdBlockInput::resize(int rows, int end_count) {
 void NmdSystem::clear() {
   blocks.clear();
   jacobian_offset.clear();
+  row_block.clear();
   jacobian.clear();
   weighted.clear();
   rhs.clear();
@@ -72,6 +62,7 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
   const Index first_entry = static_cast<Index>(jacobian.size());
   for (int r = 0; r < R; ++r) {
     jacobian_offset.push_back(static_cast<Index>(jacobian.size()));
+    row_block.push_back(static_cast<Index>(blocks.size()));
     for (int e = 0; e < in.ends; ++e) {
       const Real* J = in.jacobian.row(r).data() + 6 * e;
       Real W[6] = {0, 0, 0, 0, 0, 0};
@@ -94,7 +85,7 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
 
   for (int r = 0; r < R; ++r) {
     // dC/dt at the step's start, with the part from ends outside the velocity vector.
-    const Real rate = row_rate(jacobian.data() + first_entry + r * stride, block, space.v) + in.known[r];
+    const Real rate = this->rate(block, block.first_row + r, space.v) + in.known[r];
     Real target = 0;  // what dC/dt + (S l)_r should be after the solve
     switch (in.level[r]) {
       case RowLevel::position: target = -a * in.C[r] + b * rate; break;
@@ -119,7 +110,7 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
   if (in.kind == NmdBlockKind::contact) {
     Real slip2 = 0;
     for (int r = 1; r < 3; ++r) {
-      const Real rate = row_rate(jacobian.data() + first_entry + r * stride, block, space.v) + in.known[r];
+      const Real rate = this->rate(block, block.first_row + r, space.v) + in.known[r];
       slip2 += rate * rate;
     }
     block.friction = slip2 > settings.sliding_speed * settings.sliding_speed ? in.dynamic_friction : in.static_friction;

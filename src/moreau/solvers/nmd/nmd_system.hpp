@@ -78,7 +78,7 @@ struct NmdSystem {
   std::vector<NmdBlock> blocks;
   // Per row: its ends' Jacobian entries and W J^T (6 per end, from jacobian_offset), the
   // right-hand side q, the bounds in impulse units, S_ii, the diagonal G_i W G_i^T + S_ii and l.
-  std::vector<Index> jacobian_offset;
+  std::vector<Index> jacobian_offset, row_block;
   std::vector<Real> jacobian, weighted;
   std::vector<Real> rhs, lower, upper, sigma, diagonal, impulse;
   std::vector<Real> sigma_block;      // equality blocks: S, R x R (row-major), at NmdBlock::matrix
@@ -86,6 +86,17 @@ struct NmdSystem {
 
   void clear();
   Index row_count() const { return static_cast<Index>(rhs.size()); }
+  /// G_i v for row i of block b over its ends.
+  Real rate(const NmdBlock& b, Index row, const std::vector<Real>& v) const {
+    const Real* J = jacobian.data() + jacobian_offset[row];
+    Real value = 0;
+    for (int e = 0; e < b.ends; ++e) {
+      const VelocityEnd& end = b.end[e];
+      if (end.is_world()) continue;
+      for (int c = 0; c < end.size; ++c) value += J[6 * e + c] * v[end.dof + c];
+    }
+    return value;
+  }
   /// Adds a block for a solve of step h with velocities `space.v` at the step's start (before
   /// forces): its right-hand side, regularisation, bounds and local matrix.
   void add(const NmdBlockInput& input, const VelocitySpace& space, Real h, const NmdSettings& settings);

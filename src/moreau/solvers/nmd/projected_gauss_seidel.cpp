@@ -12,18 +12,7 @@ struct RowAccess {
   NmdSystem& s;
   std::vector<Real>& v;
 
-  Real rate(const NmdBlock& b, Index row) const {
-    const Real* J = s.jacobian.data() + s.jacobian_offset[row];
-    Real value = 0;
-    for (int e = 0; e < b.ends; ++e) {
-      const VelocityEnd& end = b.end[e];
-      if (end.is_world()) continue;
-      const Real* Je = J + 6 * e;
-      const Real* ve = v.data() + end.dof;
-      for (int c = 0; c < end.size; ++c) value += Je[c] * ve[c];
-    }
-    return value;
-  }
+  Real rate(const NmdBlock& b, Index row) const { return s.rate(b, row, v); }
   void apply(const NmdBlock& b, Index row, Real dl) const {
     if (dl == 0) return;
     const Real* W = s.weighted.data() + s.jacobian_offset[row];

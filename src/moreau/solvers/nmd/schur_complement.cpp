@@ -10,14 +10,9 @@ void SchurComplement::build(const NmdSystem& system, const std::vector<Index>& r
   std::vector<Index> local(system.row_count(), -1);
   for (Index i = 0; i < m; ++i) local[rows[i]] = i;
   std::vector<Eigen::Triplet<Real>> g, wg, s;
-  std::vector<Index> block_of(system.row_count(), -1);
-  for (Index k = 0; k < static_cast<Index>(system.blocks.size()); ++k) {
-    const NmdBlock& b = system.blocks[k];
-    for (int r = 0; r < b.rows; ++r) block_of[b.first_row + r] = k;
-  }
   for (Index i = 0; i < m; ++i) {
     const Index row = rows[i];
-    const NmdBlock& b = system.blocks[block_of[row]];
+    const NmdBlock& b = system.blocks[system.row_block[row]];
     const Real* J = system.jacobian.data() + system.jacobian_offset[row];
     const Real* W = system.weighted.data() + system.jacobian_offset[row];
     for (int e = 0; e < b.ends; ++e) {
@@ -49,6 +44,7 @@ void SchurComplement::build(const NmdSystem& system, const std::vector<Index>& r
   S_.setFromTriplets(s.begin(), s.end());
   A_ = (G_ * WGt_).pruned(0.0) + S_;
   A_.makeCompressed();
+  factored_ = false;
   // Hard rows (S = 0) that repeat others (a box's four corners on a plane, a closed loop of
   // joints) make A singular; 1e-12 of each diagonal regularises them without changing what a
   // regular system solves to beyond round-off. A row no end of which can move gets a unit
@@ -59,6 +55,9 @@ void SchurComplement::build(const NmdSystem& system, const std::vector<Index>& r
 }
 
 bool SchurComplement::factorize(const std::vector<char>& clamped) {
+  if (factored_ && clamped == factored_clamps_) return factored_ok_;
+  factored_ = true;
+  factored_clamps_ = clamped;
   clamped_A_ = A_;
   for (Index j = 0; j < clamped_A_.outerSize(); ++j)
     for (Sparse::InnerIterator it(clamped_A_, j); it; ++it)
@@ -76,7 +75,8 @@ bool SchurComplement::factorize(const std::vector<char>& clamped) {
     analysed_ = true;
   }
   ldlt_.factorize(clamped_A_);
-  return ldlt_.info() == Eigen::Success && (ldlt_.vectorD().array() > 0).all();
+  factored_ok_ = ldlt_.info() == Eigen::Success && (ldlt_.vectorD().array() > 0).all();
+  return factored_ok_;
 }
 
 VectorX SchurComplement::rate(const std::vector<Real>& v) const {

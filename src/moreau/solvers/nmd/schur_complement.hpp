@@ -22,8 +22,9 @@ class SchurComplement {
 
   /// Builds G (rows x dofs), W G^T and A over `rows` (system row indices, in order).
   void build(const NmdSystem& system, const std::vector<Index>& rows, Index dofs);
-  /// Factors A with the rows marked in `clamped` (indexed like `rows`) replaced by identity rows;
-  /// false when A is not positive definite.
+  /// Factors A with the rows marked in `clamped` (indexed like `rows`) replaced by identity rows
+  /// (nothing to do when A and the clamps are those of the last factorisation); false when A is
+  /// not positive definite.
   bool factorize(const std::vector<char>& clamped);
   /// A^-1 b for the factored matrix.
   VectorX solve(const VectorX& b) const { return ldlt_.solve(b); }
@@ -42,6 +43,8 @@ class SchurComplement {
   Eigen::SimplicialLDLT<Sparse> ldlt_;
   std::vector<Index> pattern_outer_, pattern_inner_;  // of the analysed pattern
   bool analysed_ = false;
+  std::vector<char> factored_clamps_;  // of the current factorisation of this A
+  bool factored_ = false, factored_ok_ = false;
 };
 
 }  // namespace moreau

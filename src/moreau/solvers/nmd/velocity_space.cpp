@@ -2,6 +2,7 @@
 
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/body_handle.hpp"
+#include "moreau/rigid/rigid_motion.hpp"
 
 namespace moreau {
 
@@ -52,10 +53,8 @@ void VelocitySpace::apply_forces(const Model& model, const State& state, Real h)
   for (Index b = 0; b < bodies; ++b) {
     if (!m.is_dynamic(b)) continue;
     const Index d = body_dof(b);
-    // Gyroscopic term in the principal frame: I dw/dt = -w x (I w).
-    const Quat& q = state.rigid.orientation[b];
-    const Vec3 w = q.conjugate() * Vec3(v[d + 3], v[d + 4], v[d + 5]);
-    const Vec3 dw = q * Vec3(h * m.body_inv_inertia[b].cwiseProduct(-w.cross(m.body_inertia[b].cwiseProduct(w))));
+    const Vec3 dw = gyroscopic_velocity_change(state.rigid.orientation[b], Vec3(v[d + 3], v[d + 4], v[d + 5]),
+                                               m.body_inertia[b], m.body_inv_inertia[b], h);
     for (int c = 0; c < 3; ++c) {
       v[d + c] += dv[c];
       v[d + 3 + c] += dw[c];

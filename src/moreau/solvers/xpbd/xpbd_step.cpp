@@ -1,6 +1,5 @@
 #include "moreau/solvers/xpbd/xpbd_step.hpp"
 
-#include <fmt/format.h>
 #include <omp.h>
 
 #include <algorithm>
