@@ -28,7 +28,7 @@ struct NmdSettings {
   FrictionBound friction = FrictionBound::cone;
   Real restitution_threshold = 0.1; // m/s: contacts approaching slower do not bounce
   Real sliding_speed = 1e-3;        // m/s: a contact slipping faster at the step's start takes mu_k
-  Real contact_compliance = 0;      // m/N, normal rows of every contact
+  Real contact_compliance = 1e-7;   // m/N, normal rows of every contact
   bool warm_start = true;           // start each solve from the last step's impulses
 };
 

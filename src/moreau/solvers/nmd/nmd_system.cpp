@@ -9,6 +9,14 @@ namespace {
 
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
+// Whether contact block b (rows already added) closes faster than the restitution threshold and
+// reaches its gap within the step h.
+bool is_impact(const NmdBlock& b, const NmdBlockInput& in, const VelocitySpace& space, Real h, const NmdSettings& settings,
+               const NmdSystem& system) {
+  const Real rate = system.rate(b, b.first_row, space.v) + in.known[0];
+  return rate < -settings.restitution_threshold && in.C[0] + h * rate <= 0;
+}
+
 }  // namespace
 
 void NmdBlockInput::resize(int rows, int end_count) {
@@ -80,8 +88,14 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
         value += jacobian[first_entry + r * stride + k] * weighted[first_entry + s * stride + k];
       A(r, s) = value;
     }
+  // An impact (a contact closing faster than the restitution threshold within this step) is a
+  // rigid collision with Newton's restitution law: its normal row drops the contact compliance,
+  // which would otherwise absorb the rebound within the damping time.
+  NmdBlockInput::Matrix compliance = in.compliance;
+  const bool impact = in.kind == NmdBlockKind::contact && in.restitution > 0 && is_impact(block, in, space, h, settings, *this);
+  if (impact) compliance(0, 0) = 0;
   for (int r = 0; r < R; ++r)
-    for (int s = 0; s < R; ++s) A(r, s) += 0.5 * (scale[r] + scale[s]) * in.compliance(r, s);
+    for (int s = 0; s < R; ++s) A(r, s) += 0.5 * (scale[r] + scale[s]) * compliance(r, s);
 
   for (int r = 0; r < R; ++r) {
     // dC/dt at the step's start, with the part from ends outside the velocity vector.
@@ -96,11 +110,10 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
       // A speculative contact may close its gap within the step, no further; an impact faster
       // than the threshold that closes the gap this step leaves at e times its speed.
       if (in.C[r] > 0) target = -in.C[r] / h;
-      if (in.restitution > 0 && rate < -settings.restitution_threshold && in.C[r] + h * rate <= 0)
-        target = std::max(target, -in.restitution * rate);
+      if (impact) target = std::max(target, -in.restitution * rate);
     }
     rhs.push_back(target - in.known[r]);
-    sigma.push_back(scale[r] * in.compliance(r, r));
+    sigma.push_back(scale[r] * compliance(r, r));
     diagonal.push_back(A(r, r));
     lower.push_back(in.lower[r] * h);
     upper.push_back(in.upper[r] * h);
@@ -128,7 +141,7 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
     for (int r = 0; r < R; ++r)
       for (int s = 0; s < R; ++s) {
         inverse.push_back(inv(r, s));
-        sigma_block.push_back(0.5 * (scale[r] + scale[s]) * in.compliance(r, s));
+        sigma_block.push_back(0.5 * (scale[r] + scale[s]) * compliance(r, s));
       }
   }
   blocks.push_back(block);
