@@ -208,7 +208,8 @@ struct TetList {
 };
 using SoftBodyMesh = std::variant<TetBox, TetMeshFile, TetrahedralizedObj, TetList>;
 
-struct SoftBodyMaterial {  // Neo-Hookean
+struct SoftBodyMaterial {
+  std::string model = "neo_hookean";        // or "st_venant_kirchhoff" (Green-strain rows)
   std::optional<double> youngs_modulus;     // Pa
   std::optional<double> poisson_ratio;      // (-1, 0.5)
   std::optional<double> density;            // kg/m^3

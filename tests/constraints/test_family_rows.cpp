@@ -71,6 +71,15 @@ struct Sample<NeoHookeanTetConstraints> {
   }
 };
 template <>
+struct Sample<GreenStrainTetConstraints> {
+  static std::vector<Vec3> build(GreenStrainTetConstraints& c) {
+    const auto X = solid_rest();
+    c.add({0, 1, 2, 3}, {X[0], X[1], X[2], X[3]}, 1e4, 0.3, 0.01, 0);
+    c.add({1, 4, 2, 3}, {X[1], X[4], X[2], X[3]}, 3e4, 0.0, 0.0, 0);
+    return X;
+  }
+};
+template <>
 struct Sample<TetVolumeConstraints> {
   static std::vector<Vec3> build(TetVolumeConstraints& c) {
     const auto X = solid_rest();

@@ -1,4 +1,4 @@
-// "kind": "soft_body": a tetrahedral mesh of Neo-Hookean material.
+// "kind": "soft_body": a tetrahedral mesh of Neo-Hookean or St. Venant-Kirchhoff material.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -34,8 +34,8 @@ SoftBodySpec read_soft_body(const JsonObject& object) {
   mesh.finish();
 
   const JsonObject material = object.object("material");
-  material.choice("model", "neo_hookean", {"neo_hookean"});
   SoftBodyMaterial& m = spec.material;
+  m.model = material.choice("model", m.model, {"neo_hookean", "st_venant_kirchhoff"});
   m.youngs_modulus = material.number("youngs_modulus");
   m.poisson_ratio = material.number("poisson_ratio");
   m.density = material.number("density");
@@ -93,6 +93,7 @@ void add_soft_body(const SoftBodySpec& spec, const SpecPlace& place, ObjectInfo&
   const Real youngs = material.required("youngs_modulus", mat.youngs_modulus, Range::positive());
   const Real poisson = material.required("poisson_ratio", mat.poisson_ratio, Range::open(-1, 0.5));
   const Real density = material.required("density", mat.density, Range::positive());
+  const std::string model = material.choice("model", mat.model, {"neo_hookean", "st_venant_kirchhoff"});
   const Real damping = material.number("damping", mat.damping, Range::non_negative());
   const bool has_volume = mat.volume_compliance.has_value();
   const Real volume_compliance = material.number("volume_compliance", mat.volume_compliance.value_or(0), Range::non_negative());
@@ -138,7 +139,8 @@ void add_soft_body(const SoftBodySpec& spec, const SpecPlace& place, ObjectInfo&
     const std::array<Index, 4> g{base + t[0], base + t[1], base + t[2], base + t[3]};
     const std::array<Vec3, 4> rest{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]};
     info.tets.push_back(g);
-    m.family<NeoHookeanTetConstraints>().add(g, rest, youngs, poisson, damping, object_index);
+    if (model == "neo_hookean") m.family<NeoHookeanTetConstraints>().add(g, rest, youngs, poisson, damping, object_index);
+    else m.family<GreenStrainTetConstraints>().add(g, rest, youngs, poisson, damping, object_index);
     if (has_volume) m.family<TetVolumeConstraints>().add(g, rest, volume_compliance, damping, object_index);
   }
   // Only surface vertices can touch anything.
