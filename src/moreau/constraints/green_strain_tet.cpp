@@ -27,10 +27,7 @@ GreenStrainTetConstraints::Rows::Vector voigt_strain(const Mat3& F) {
 
 void GreenStrainTetConstraints::add(const std::array<Index, 4>& tet, const std::array<Vec3, 4>& rest,
                                     Real youngs_modulus, Real poisson_ratio, Real tau, Index obj) {
-  Mat3 Dm;
-  Dm.col(0) = rest[1] - rest[0];
-  Dm.col(1) = rest[2] - rest[0];
-  Dm.col(2) = rest[3] - rest[0];
+  const Mat3 Dm = tet_edge_matrix(rest);
   const Real volume = Dm.determinant() / 6;
   const Real mu = youngs_modulus / (2 * (1 + poisson_ratio));
   const Real lambda = youngs_modulus * poisson_ratio / ((1 + poisson_ratio) * (1 - 2 * poisson_ratio));

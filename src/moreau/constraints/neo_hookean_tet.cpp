@@ -2,14 +2,13 @@
 
 #include <cmath>
 
+#include "moreau/constraints/tet_kinematics.hpp"
+
 namespace moreau {
 
 void NeoHookeanTetConstraints::add(const std::array<Index, 4>& tet, const std::array<Vec3, 4>& rest,
                                    Real youngs_modulus, Real poisson_ratio, Real tau, Index obj) {
-  Mat3 Dm;
-  Dm.col(0) = rest[1] - rest[0];
-  Dm.col(1) = rest[2] - rest[0];
-  Dm.col(2) = rest[3] - rest[0];
+  const Mat3 Dm = tet_edge_matrix(rest);
   const Mat3 B = Dm.inverse();
   const Real volume = Dm.determinant() / 6;
   const Real mu = youngs_modulus / (2 * (1 + poisson_ratio));

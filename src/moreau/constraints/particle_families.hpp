@@ -14,8 +14,8 @@
 #include "moreau/constraints/attachment.hpp"
 #include "moreau/constraints/constraint_family.hpp"
 #include "moreau/constraints/dihedral_bending.hpp"
-#include "moreau/constraints/green_strain_tet.hpp"
 #include "moreau/constraints/distance.hpp"
+#include "moreau/constraints/green_strain_tet.hpp"
 #include "moreau/constraints/isometric_bending.hpp"
 #include "moreau/constraints/neo_hookean_tet.hpp"
 #include "moreau/constraints/tet_volume.hpp"
@@ -25,8 +25,8 @@ namespace moreau {
 
 /// Every family, in the order an XPBD iteration projects them.
 using ParticleFamilies = std::tuple<DistanceConstraints, DihedralBendingConstraints, IsometricBendingConstraints,
-                                    TriangleStrainConstraints, NeoHookeanTetConstraints, GreenStrainTetConstraints, TetVolumeConstraints,
-                                    AttachmentConstraints>;
+                                    TriangleStrainConstraints, NeoHookeanTetConstraints, GreenStrainTetConstraints,
+                                    TetVolumeConstraints, AttachmentConstraints>;
 
 inline constexpr int kParticleFamilyCount = static_cast<int>(std::tuple_size_v<ParticleFamilies>);
 

@@ -8,13 +8,19 @@
 
 namespace moreau {
 
+/// The edge matrix [x1 - x0, x2 - x0, x3 - x0] (D_s of the current, D_m of the rest positions).
+inline Mat3 tet_edge_matrix(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3) {
+  Mat3 D;
+  D.col(0) = x1 - x0;
+  D.col(1) = x2 - x0;
+  D.col(2) = x3 - x0;
+  return D;
+}
+inline Mat3 tet_edge_matrix(const std::array<Vec3, 4>& x) { return tet_edge_matrix(x[0], x[1], x[2], x[3]); }
+
 inline Mat3 tet_deformation_gradient(const Vec3& x0, const Vec3& x1, const Vec3& x2, const Vec3& x3,
                                      const Mat3& rest_inverse) {
-  Mat3 Ds;
-  Ds.col(0) = x1 - x0;
-  Ds.col(1) = x2 - x0;
-  Ds.col(2) = x3 - x0;
-  return Ds * rest_inverse;
+  return tet_edge_matrix(x0, x1, x2, x3) * rest_inverse;
 }
 
 inline std::array<Vec3, 4> tet_vertex_gradients(const Mat3& dC_dF, const Mat3& rest_inverse) {

@@ -7,10 +7,7 @@ namespace moreau {
 
 void TetVolumeConstraints::add(const std::array<Index, 4>& tet, const std::array<Vec3, 4>& rest, Real volume_compliance,
                                Real tau, Index obj) {
-  Mat3 Dm;
-  Dm.col(0) = rest[1] - rest[0];
-  Dm.col(1) = rest[2] - rest[0];
-  Dm.col(2) = rest[3] - rest[0];
+  const Mat3 Dm = tet_edge_matrix(rest);
   particles.push_back(tet);
   rest_inverse.push_back(Dm.inverse());
   compliance.push_back(volume_compliance / (Dm.determinant() / 6.0));

@@ -93,7 +93,7 @@ void add_soft_body(const SoftBodySpec& spec, const SpecPlace& place, ObjectInfo&
   const Real youngs = material.required("youngs_modulus", mat.youngs_modulus, Range::positive());
   const Real poisson = material.required("poisson_ratio", mat.poisson_ratio, Range::open(-1, 0.5));
   const Real density = material.required("density", mat.density, Range::positive());
-  const std::string model = material.choice("model", mat.model, {"neo_hookean", "st_venant_kirchhoff"});
+  const bool neo_hookean = material.choice("model", mat.model, {"neo_hookean", "st_venant_kirchhoff"}) == "neo_hookean";
   const Real damping = material.number("damping", mat.damping, Range::non_negative());
   const bool has_volume = mat.volume_compliance.has_value();
   const Real volume_compliance = material.number("volume_compliance", mat.volume_compliance.value_or(0), Range::non_negative());
@@ -139,7 +139,7 @@ void add_soft_body(const SoftBodySpec& spec, const SpecPlace& place, ObjectInfo&
     const std::array<Index, 4> g{base + t[0], base + t[1], base + t[2], base + t[3]};
     const std::array<Vec3, 4> rest{mesh.vertices[t[0]], mesh.vertices[t[1]], mesh.vertices[t[2]], mesh.vertices[t[3]]};
     info.tets.push_back(g);
-    if (model == "neo_hookean") m.family<NeoHookeanTetConstraints>().add(g, rest, youngs, poisson, damping, object_index);
+    if (neo_hookean) m.family<NeoHookeanTetConstraints>().add(g, rest, youngs, poisson, damping, object_index);
     else m.family<GreenStrainTetConstraints>().add(g, rest, youngs, poisson, damping, object_index);
     if (has_volume) m.family<TetVolumeConstraints>().add(g, rest, volume_compliance, damping, object_index);
   }

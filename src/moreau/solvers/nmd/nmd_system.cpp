@@ -9,14 +9,6 @@ namespace {
 
 constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
-// Whether contact block b (rows already added) closes faster than the restitution threshold and
-// reaches its gap within the step h.
-bool is_impact(const NmdBlock& b, const NmdBlockInput& in, const VelocitySpace& space, Real h, const NmdSettings& settings,
-               const NmdSystem& system) {
-  const Real rate = system.rate(b, b.first_row, space.v) + in.known[0];
-  return rate < -settings.restitution_threshold && in.C[0] + h * rate <= 0;
-}
-
 }  // namespace
 
 void NmdBlockInput::resize(int rows, int end_count) {
@@ -92,7 +84,11 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
   // rigid collision with Newton's restitution law: its normal row drops the contact compliance,
   // which would otherwise absorb the rebound within the damping time.
   NmdBlockInput::Matrix compliance = in.compliance;
-  const bool impact = in.kind == NmdBlockKind::contact && in.restitution > 0 && is_impact(block, in, space, h, settings, *this);
+  bool impact = false;
+  if (in.kind == NmdBlockKind::contact && in.restitution > 0) {
+    const Real closing = rate(block, block.first_row, space.v) + in.known[0];
+    impact = closing < -settings.restitution_threshold && in.C[0] + h * closing <= 0;
+  }
   if (impact) compliance(0, 0) = 0;
   for (int r = 0; r < R; ++r)
     for (int s = 0; s < R; ++s) A(r, s) += 0.5 * (scale[r] + scale[s]) * compliance(r, s);
