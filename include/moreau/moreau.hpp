@@ -1,7 +1,9 @@
 #pragma once
 // The public C++ API of moreau: load a scene (a file or JSON text) into a World, inspect it, step
 // it, read and write its state, or run it to an output directory (world.hpp); or build a scene
-// in code, object by object (scene_builder.hpp).
+// in code, object by object (scene_builder.hpp); or run one scene under several solvers side by
+// side (compare.hpp).
+#include "moreau/compare.hpp"
 #include "moreau/errors.hpp"
 #include "moreau/scene_builder.hpp"
 #include "moreau/world.hpp"

@@ -1,6 +1,7 @@
 // The `moreau` command-line program.
 //   moreau run SCENE.json [--out DIR] [--duration T] [--threads N] [--quiet] [--set key=value ...]
 //   moreau check SCENE.json [--set key=value ...]
+//   moreau compare SCENE.json --solvers xpbd,nmd [--out DIR] [--duration T] [--threads N] [--quiet] [--set ...]
 // Both take --memory-limit GB (what a scene's meshes and particles may need).
 //   moreau --version | --help
 // Exit codes: 0 success, 1 anything else, 2 bad input, 3 numerical failure.
@@ -61,6 +62,18 @@ int main(int argc, char** argv) {
   check->add_option("--set", overrides, "override a scene value by its JSON path");
   check->add_option("--memory-limit", memory_limit_gb, memory_limit_help)->check(positive_gb);
 
+  std::vector<std::string> solvers;
+  CLI::App* compare = app.add_subcommand("compare", "run a scene under several solvers and write a report side by side");
+  compare->add_option("scene", scene_path, "scene file (JSON)")->required();
+  compare->add_option("--solvers", solvers, "the solvers to compare, e.g. xpbd,nmd (the first is the reference)")
+      ->delimiter(',')
+      ->required();
+  compare->add_option("--out", out_dir, "output directory (default out/<scene name>-compare)");
+  compare->add_option("--duration", duration, "simulated time in s (overrides settings.duration)")->check(finite_positive);
+  compare->add_option("--threads", threads, "most worker threads to use (0 = all cores)")->check(CLI::Range(0, 1024));
+  compare->add_flag("--quiet", quiet, "no progress bars");
+  compare->add_option("--set", overrides, "override a scene value by its JSON path, for every solver");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -72,6 +85,21 @@ int main(int argc, char** argv) {
 
   try {
     if (memory_limit_gb > 0) moreau::set_memory_limit(memory_limit_gb * 1e9);
+    if (compare->parsed()) {
+      moreau::CompareOptions options;
+      options.scene_path = scene_path;
+      options.solvers = solvers;
+      options.overrides = overrides;
+      options.out_dir = out_dir;
+      if (duration > 0) options.duration = duration;
+      if (threads >= 0) options.threads = threads;
+      options.progress = !quiet && isatty(STDERR_FILENO);
+      const moreau::CompareResult r = moreau::compare_solvers(options);
+      for (const std::string& s : r.failed_solvers)
+        fmt::print(stderr, "moreau: the '{}' run failed numerically; the report shows it up to the failure\n", s);
+      if (!quiet) fmt::print("moreau: comparison written to {} (and {})\n", r.report_html, r.report_markdown);
+      return r.failed_solvers.empty() ? 0 : kExitNumerical;
+    }
     moreau::World world = moreau::World::load(scene_path, overrides);
     if (check->parsed()) {
       fmt::print("{}", world.summary());

@@ -147,14 +147,13 @@ void prepare_output_directory(const std::string& out_dir) {
     if (entry.path().extension() == ".pvd") fs::remove(entry.path());
 }
 
-std::string run_output_directory(const std::string& requested, const std::string& scene_name) {
-  const std::string dir = requested.empty() ? "out/" + safe_file_name(scene_name) : requested;
+void writable_directory(const std::string& dir) {
   namespace fs = std::filesystem;
   std::error_code ec;
   if (fs::exists(dir, ec) && !fs::is_directory(dir, ec))
     throw InputError(fmt::format("--out {}: exists and is not a directory; give a directory (it is created if missing)", dir));
   try {
-    prepare_output_directory(dir);
+    fs::create_directories(dir);
   } catch (const fs::filesystem_error& e) {
     throw InputError(fmt::format("--out {}: cannot prepare the output directory ({}); choose a writable directory", dir,
                                  e.code().message()));
@@ -163,6 +162,17 @@ std::string run_output_directory(const std::string& requested, const std::string
   const fs::path probe = fs::path(dir) / ".moreau-write-test";
   if (!std::ofstream(probe) || !fs::remove(probe, ec))
     throw InputError(fmt::format("--out {}: the directory is not writable; choose a writable directory", dir));
+}
+
+std::string run_output_directory(const std::string& requested, const std::string& scene_name) {
+  const std::string dir = requested.empty() ? "out/" + safe_file_name(scene_name) : requested;
+  writable_directory(dir);
+  try {
+    prepare_output_directory(dir);
+  } catch (const std::filesystem::filesystem_error& e) {
+    throw InputError(fmt::format("--out {}: cannot prepare the output directory ({}); choose a writable directory", dir,
+                                 e.code().message()));
+  }
   return dir;
 }
 

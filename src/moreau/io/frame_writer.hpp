@@ -34,6 +34,9 @@ std::string safe_file_name(const std::string& name);
 /// Creates the output directory and clears the frames and .pvd files of an earlier run.
 void prepare_output_directory(const std::string& dir);
 
+/// Creates `dir` if missing; an InputError (naming --out) when it cannot be made or written.
+void writable_directory(const std::string& dir);
+
 /// A run's output directory, `requested` or out/<scene name>, prepared for the run.
 std::string run_output_directory(const std::string& requested, const std::string& scene_name);
 

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <limits>
 
+#include "moreau/collision/penetration.hpp"
+
 namespace moreau {
 
 bool Probe::is_vector() const {
@@ -155,6 +157,9 @@ void evaluate_probe(const Probe& probe, const Model& model, const State& state, 
                        touching_particle_body_count(model, state, probe.object));
       break;
     }
+    case ProbeType::penetration:
+      values.push_back(deepest_penetration(model, state, probe.object));
+      break;
     case ProbeType::max_displacement: {
       Real worst = 0;
       for_each_dynamic_body(model, probe.object, [&](Index b) {

@@ -12,7 +12,7 @@ enum class ProbeType {
   point, energy, center_of_mass, extent, momentum, constraint_error,
   fluid_height, density_error, particle_count, escaped,
   body_position, body_orientation, body_velocity, body_angular_velocity,  // one rigid body
-  joint_error, contact_count, max_displacement
+  joint_error, contact_count, max_displacement, penetration
 };
 
 struct Probe {

@@ -11,7 +11,8 @@ namespace {
 const std::vector<std::string> kProbeTypes{
     "point",    "energy",      "center_of_mass", "extent",           "momentum",    "constraint_error",
     "fluid_height", "density_error", "particle_count", "escaped",     "position",    "orientation",
-    "velocity", "angular_velocity", "joint_error", "contact_count", "max_displacement"};
+    "velocity", "angular_velocity", "joint_error", "contact_count", "max_displacement",
+    "penetration"};
 
 // Every key a probe of this type may have (for the message on a misspelt key).
 std::vector<std::string> probe_keys(const std::string& type) {
@@ -164,6 +165,9 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
     }
   } else if (type == "contact_count") {
     p.type = ProbeType::contact_count;
+    p.object = object_index(spec, j, model, true);
+  } else if (type == "penetration") {
+    p.type = ProbeType::penetration;
     p.object = object_index(spec, j, model, true);
   } else if (type == "max_displacement") {
     p.type = ProbeType::max_displacement;
