@@ -228,8 +228,8 @@ std::pair<std::string, std::string> write_comparison_report(const ComparisonSubj
       subject.scene_file);
   for (size_t i = 0; i < runs.size(); ++i) intro += fmt::format("{}`{}/`", i ? ", " : "", runs[i].solver);
   intro += ". `compare.csv` holds every column of every run side by side. Energies include every dynamic object "
-           "(kinetic, gravitational and elastic); dissipation by contacts, friction and damping lowers them, so a "
-           "gain over the start is what to look for. Penetration is the deepest overlap of the detected contacts at "
+           "(kinetic, gravitational and elastic); contacts, friction and damping only take energy out, so without "
+           "motors, kinematic bodies or moving colliders a gain over the start is a solver's artefact. Penetration is the deepest overlap of the detected contacts at "
            "each output step.";
   std::vector<std::string> failures;
   for (const SolverRun& run : runs)
