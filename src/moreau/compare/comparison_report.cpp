@@ -35,22 +35,11 @@ std::string markdown_table(const Table& t) {
   return s;
 }
 
-std::string escape_html(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '&') out += "&amp;";
-    else if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else out += c;
-  }
-  return out;
-}
-
 // Markdown's `code` spans become <code> in the HTML twin.
 std::string html_cell(const std::string& text) {
   std::string out;
   bool in_code = false;
-  for (char c : escape_html(text)) {
+  for (char c : escape_xml(text)) {
     if (c == '`') {
       out += in_code ? "</code>" : "<code>";
       in_code = !in_code;
@@ -242,7 +231,7 @@ std::pair<std::string, std::string> write_comparison_report(const ComparisonSubj
   std::string md = "# " + title + "\n\n" + intro + "\n\n";
   for (const std::string& f : failures) md += "**" + f + "**\n\n";
   md += "## Summary\n\n" + markdown_table(summary) + "\n";
-  std::string html = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + escape_html(subject.scene_name) +
+  std::string html = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>" + escape_xml(subject.scene_name) +
                      " compared</title>\n<style>body{font-family:sans-serif;max-width:1000px;margin:2em auto;}"
                      "table{border-collapse:collapse;margin:1em 0;}td,th{border:1px solid #bbb;padding:3px 8px;}"
                      "td.n{text-align:right;font-variant-numeric:tabular-nums;}</style></head><body>\n";

@@ -16,6 +16,9 @@ struct LineChart {
   std::vector<ChartLine> lines;
 };
 
+/// Text with &, <, > and " escaped, for XML (SVG) and HTML.
+std::string escape_xml(const std::string& text);
+
 /// The chart as an SVG document (width x height pixels).
 std::string svg_line_chart(const LineChart& chart, int width = 640, int height = 320);
 
