@@ -6,7 +6,7 @@
 // the scene's own probes the comparison adds its own columns, named "cmp_...": the total energy,
 // the largest stretch of the distance rows (when there is cloth), the largest joint error (when
 // there are joints) and the deepest contact penetration, in all and per object. DIR/report.md and
-// DIR/report.html set out, per solver, the wall time per step, the energy drift, the largest
+// DIR/report.html set out, per solver, the wall time per step, the energy at the start and end and its largest gain, the largest
 // constraint error and penetration, and every probe's final value and largest difference from the
 // first solver, with a plot of each probe column (DIR/plots/*.svg); DIR/compare.csv holds every
 // column of every solver on the shared output times.

@@ -2,13 +2,14 @@
 //   moreau run SCENE.json [--out DIR] [--duration T] [--threads N] [--quiet] [--set key=value ...]
 //   moreau check SCENE.json [--set key=value ...]
 //   moreau compare SCENE.json --solvers xpbd,nmd [--out DIR] [--duration T] [--threads N] [--quiet] [--set ...]
-// Both take --memory-limit GB (what a scene's meshes and particles may need).
+// run and check take --memory-limit GB (what a scene's meshes and particles may need).
 //   moreau --version | --help
 // Exit codes: 0 success, 1 anything else, 2 bad input, 3 numerical failure.
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -62,15 +63,14 @@ int main(int argc, char** argv) {
   check->add_option("--set", overrides, "override a scene value by its JSON path");
   check->add_option("--memory-limit", memory_limit_gb, memory_limit_help)->check(positive_gb);
 
-  std::vector<std::string> solvers;
+  std::string solver_list;
   CLI::App* compare = app.add_subcommand("compare", "run a scene under several solvers and write a report side by side");
   compare->add_option("scene", scene_path, "scene file (JSON)")->required();
-  compare->add_option("--solvers", solvers, "the solvers to compare, e.g. xpbd,nmd (the first is the reference)")
-      ->delimiter(',')
+  compare->add_option("--solvers", solver_list, "the solvers to compare, e.g. xpbd,nmd (the first is the reference)")
       ->required();
   compare->add_option("--out", out_dir, "output directory (default out/<scene name>-compare)");
   compare->add_option("--duration", duration, "simulated time in s (overrides settings.duration)")->check(finite_positive);
-  compare->add_option("--threads", threads, "most worker threads to use (0 = all cores)")->check(CLI::Range(0, 1024));
+  compare->add_option("--threads", threads, "most worker threads to use (0 = all cores; overrides settings.threads)")->check(CLI::Range(0, 1024));
   compare->add_flag("--quiet", quiet, "no progress bars");
   compare->add_option("--set", overrides, "override a scene value by its JSON path, for every solver");
 
@@ -88,7 +88,11 @@ int main(int argc, char** argv) {
     if (compare->parsed()) {
       moreau::CompareOptions options;
       options.scene_path = scene_path;
-      options.solvers = solvers;
+      for (size_t start = 0; start <= solver_list.size();) {
+        const size_t comma = std::min(solver_list.find(',', start), solver_list.size());
+        options.solvers.push_back(solver_list.substr(start, comma - start));
+        start = comma + 1;
+      }
       options.overrides = overrides;
       options.out_dir = out_dir;
       if (duration > 0) options.duration = duration;

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -25,7 +26,11 @@ struct Table {
 std::string markdown_table(const Table& t) {
   auto line = [](const Row& cells) {
     std::string s = "|";
-    for (const std::string& c : cells) s += " " + c + " |";
+    for (const std::string& c : cells) {
+      std::string cell;
+      for (char ch : c) cell += ch == '|' ? std::string("\\|") : std::string(1, ch);
+      s += " " + cell + " |";
+    }
     return s + "\n";
   };
   std::string s = line(t.header) + "|";
@@ -99,6 +104,7 @@ Row column_row(const std::string& label, const std::vector<SolverRun>& runs, con
 double first_value(const std::vector<double>& v) { return v.front(); }
 double last_value(const std::vector<double>& v) { return v.back(); }
 double largest_rise(const std::vector<double>& v) {
+  if (!std::isfinite(v.front())) return std::numeric_limits<double>::quiet_NaN();
   double m = 0;
   for (double x : v)
     if (std::isfinite(x)) m = std::max(m, x - v.front());
@@ -141,8 +147,9 @@ Table summary_table(const std::vector<SolverRun>& runs) {
   }
   t.rows.push_back(column_row("deepest penetration (m)", runs, p + "penetration", largest));
   for (const std::string& c : runs.front().columns)
-    if (c.rfind(p + "penetration_", 0) == 0)
-      t.rows.push_back(column_row(fmt::format("deepest penetration of `{}` (m)", c.substr(p.size() + 12)), runs, c, largest));
+    if (c.rfind(p + std::string(kPenetrationOf), 0) == 0)
+      t.rows.push_back(column_row(fmt::format("deepest penetration of `{}` (m)", c.substr(p.size() + kPenetrationOf.size())),
+                                  runs, c, largest));
   return t;
 }
 
@@ -151,7 +158,7 @@ Table probe_table(const std::vector<SolverRun>& runs, const std::vector<std::str
   t.header = {"column"};
   for (const SolverRun& run : runs) t.header.push_back("`" + run.solver + "` at the end");
   for (size_t i = 1; i < runs.size(); ++i)
-    t.header.push_back(fmt::format("largest \\|`{}` − `{}`\\|", runs[i].solver, runs[0].solver));
+    t.header.push_back(fmt::format("largest |`{}` − `{}`|", runs[i].solver, runs[0].solver));
   for (const std::string& c : columns) {
     Row r = column_row("`" + c + "`", runs, c, last_value);
     const int c0 = column_of(runs[0], c);
@@ -199,8 +206,13 @@ std::pair<std::string, std::string> write_comparison_report(const ComparisonSubj
                                                             const std::vector<SolverRun>& runs) {
   namespace fs = std::filesystem;
   const std::string dir = subject.out_dir;
-  fs::remove_all(dir + "/plots");  // an earlier comparison's
+  // An earlier comparison's plots (NN_<column>.svg) go; anything else in plots/ stays.
   fs::create_directories(dir + "/plots");
+  for (const auto& entry : fs::directory_iterator(dir + "/plots")) {
+    const std::string file = entry.path().filename().string();
+    if (entry.path().extension() == ".svg" && file.size() > 3 && std::isdigit(file[0]) && std::isdigit(file[1]) && file[2] == '_')
+      fs::remove(entry.path());
+  }
   write_csv(dir + "/compare.csv", runs);
 
   std::vector<std::string> scene_columns, comparison_columns;

@@ -22,8 +22,7 @@ namespace {
 constexpr size_t kMostPenetrationObjects = 12;
 
 void check_solvers(const CompareOptions& options) {
-  std::vector<std::string> available = registered_solver_names();
-  available.erase(std::remove(available.begin(), available.end(), "fem"), available.end());
+  const std::vector<std::string> available = registered_solver_names();
   if (options.solvers.size() < 2)
     throw InputError(fmt::format("--solvers: give at least two of {} separated by commas, e.g. --solvers xpbd,nmd",
                                  fmt::join(available, ", ")));
@@ -36,13 +35,22 @@ void check_solvers(const CompareOptions& options) {
   }
 }
 
+// A JSON value's string, or "" when it is missing or not a string (the scene's own validation
+// reports that when the scene loads).
+std::string string_at(const nlohmann::json& object, const char* key) {
+  return object.is_object() && object.contains(key) && object[key].is_string() ? object[key].get<std::string>() : "";
+}
+
+// A name that can head a CSV column of its own: no separator, quote, line break, or the '@'
+// compare.csv puts between a column and its solver.
+bool plain_column_name(const std::string& name) { return name.find_first_of(",\"\n\r@") == std::string::npos; }
+
 // The probes of every run: the scene's own (after the overrides) and the comparison's.
 nlohmann::json probes_with_comparison(const nlohmann::json& scene, const std::string& file) {
   nlohmann::json probes = scene.contains("probes") ? scene["probes"] : nlohmann::json::array();
   if (!probes.is_array()) throw InputError(fmt::format("{}: probes: expected an array of probes", file));
   std::set<std::string> names;
-  for (const auto& p : probes)
-    if (p.is_object() && p.contains("name") && p["name"].is_string()) names.insert(p["name"].get<std::string>());
+  for (const auto& p : probes) names.insert(string_at(p, "name"));
   auto add = [&](nlohmann::json probe) {
     const std::string name = probe["name"];
     if (names.count(name))
@@ -54,22 +62,21 @@ nlohmann::json probes_with_comparison(const nlohmann::json& scene, const std::st
   // Cloth's distance rows: a stretch in m, comparable between solvers (the other families'
   // errors are elastic strains, or angles).
   const bool cloth = scene.contains("objects") && scene["objects"].is_array() &&
-                     std::any_of(scene["objects"].begin(), scene["objects"].end(), [](const nlohmann::json& o) {
-                       return o.is_object() && o.value("kind", "") == "cloth";
-                     });
+                     std::any_of(scene["objects"].begin(), scene["objects"].end(),
+                                 [](const nlohmann::json& o) { return string_at(o, "kind") == "cloth"; });
   if (cloth) add({{"name", p + "stretch"}, {"type", "constraint_error"}, {"object", "*"}, {"family", "distance"}});
   if (scene.contains("joints") && scene["joints"].is_array() && !scene["joints"].empty())
     add({{"name", p + "joint_error"}, {"type", "joint_error"}, {"joint", "*"}});
   add({{"name", p + "penetration"}, {"type", "penetration"}, {"object", "*"}});
   std::vector<std::string> touching;  // objects with contacts: not colliders (they cannot be named) or fluids
   if (scene.contains("objects") && scene["objects"].is_array())
-    for (const auto& o : scene["objects"])
-      if (o.is_object() && o.value("kind", "") != "collider" && o.value("kind", "") != "fluid" && o.contains("name") &&
-          o["name"].is_string())
-        touching.push_back(o["name"]);
+    for (const auto& o : scene["objects"]) {
+      const std::string kind = string_at(o, "kind"), name = string_at(o, "name");
+      if (kind != "collider" && kind != "fluid" && !name.empty() && plain_column_name(name)) touching.push_back(name);
+    }
   if (touching.size() <= kMostPenetrationObjects)
     for (const std::string& name : touching)
-      add({{"name", p + "penetration_" + name}, {"type", "penetration"}, {"object", name}});
+      add({{"name", p + std::string(kPenetrationOf) + name}, {"type", "penetration"}, {"object", name}});
   return probes;
 }
 
@@ -111,8 +118,7 @@ SolverRuns run_each_solver(const CompareOptions& options) {
   check_solvers(options);
   nlohmann::json scene = parse_json_file(options.scene_path);
   for (const std::string& o : options.overrides) apply_override(scene, o, options.scene_path);
-  if (scene.is_object() && scene.contains("settings") && scene["settings"].is_object() &&
-      scene["settings"].value("solver", "") == "fem")
+  if (scene.is_object() && scene.contains("settings") && string_at(scene["settings"], "solver") == "fem")
     throw InputError(fmt::format("{}: settings.solver: moreau compare runs constraint-engine scenes (xpbd, nmd); "
                                  "this is a finite-element scene",
                                  options.scene_path));

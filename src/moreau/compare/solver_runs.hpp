@@ -3,6 +3,7 @@
 // comparison's probes added, and what each run measured read back.
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "moreau/compare.hpp"
@@ -23,6 +24,8 @@ struct SolverRun {
 
 /// The columns the comparison adds to every run (all of them start with kComparisonPrefix).
 inline constexpr const char* kComparisonPrefix = "cmp_";
+/// After the prefix, the per-object penetration columns' start: cmp_penetration_<object>.
+inline constexpr std::string_view kPenetrationOf = "penetration_";
 
 struct SolverRuns {
   std::string scene_name;
