@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "moreau/collision/collider.hpp"
+#include "moreau/constraints/contact_rows.hpp"
 #include "moreau/constraints/particle_body_contact_rows.hpp"
 #include "moreau/constraints/particle_contact_rows.hpp"
 #include "moreau/model/model.hpp"
@@ -21,13 +22,8 @@ Real rigid_depth(const Model& model, const State& state, Index object) {
     const Index a = mf.body_a, b = mf.body_b;
     if (object >= 0 && model.rigid.body_object[a] != object && model.rigid.body_object[b] != object) continue;
     const Pose pa{s.position[a], s.orientation[a]}, pb{s.position[b], s.orientation[b]};
-    for (Index i = mf.first; i < mf.first + mf.count; ++i) {
-      const ContactGeometry& g = contacts.points[i].geometry;
-      const Vec3 n = contact_normal(mf.frame, g, pa, pb);
-      const Vec3 p_a = pa.to_world(g.core_a) - g.radius_a * n;
-      const Vec3 p_b = pb.to_world(g.core_b) + g.radius_b * n;
-      deepest = std::max(deepest, -(p_a - p_b).dot(n));
-    }
+    for (Index i = mf.first; i < mf.first + mf.count; ++i)
+      deepest = std::max(deepest, -contact_point_at_poses(mf.frame, contacts.points[i].geometry, pa, pb).separation);
   }
   return deepest;
 }

@@ -32,6 +32,12 @@ void apply_permutation(std::vector<T>& values, const std::vector<Index>& permuta
   values.swap(sorted);
 }
 
+/// apply_permutation on each of a family's per-constraint arrays.
+template <class... Arrays>
+void apply_permutation_to_all(const std::vector<Index>& permutation, Arrays&... arrays) {
+  (apply_permutation(arrays, permutation), ...);
+}
+
 /// Runs body(k) for every constraint k, colour after colour. Must be called from inside an OpenMP
 /// parallel region (or serially): each colour is an orphaned `omp for` with its implicit barrier.
 template <class Body>

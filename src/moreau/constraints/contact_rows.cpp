@@ -5,6 +5,13 @@
 
 namespace moreau {
 
+ContactPointAtPoses contact_point_at_poses(NormalFrame frame, const ContactGeometry& c, const Pose& pa, const Pose& pb) {
+  const Vec3 n = contact_normal(frame, c, pa, pb);
+  const Vec3 p_a = pa.to_world(c.core_a) - c.radius_a * n;
+  const Vec3 p_b = pb.to_world(c.core_b) + c.radius_b * n;
+  return {n, p_a, p_b, (p_a - p_b).dot(n)};
+}
+
 ContactRows manifold_rows(const RigidManifold& mf, RigidContactPoint* points, const RigidBodyState& s,
                           const SubstepStart& start, ContactPoints which) {
   const Index a = mf.body_a, b = mf.body_b;
@@ -15,13 +22,13 @@ ContactRows manifold_rows(const RigidManifold& mf, RigidContactPoint* points, co
   rows.static_friction = mf.static_friction;
   for (int i = 0; i < mf.count; ++i) {
     RigidContactPoint& c = points[i];
-    const Vec3 n = contact_normal(mf.frame, c.geometry, pa, pb);
-    const Vec3 p_a = pa.to_world(c.geometry.core_a) - c.geometry.radius_a * n;
-    const Vec3 p_b = pb.to_world(c.geometry.core_b) + c.geometry.radius_b * n;
+    const ContactPointAtPoses now = contact_point_at_poses(mf.frame, c.geometry, pa, pb);
+    const Vec3& n = now.normal;
+    const Vec3 &p_a = now.point_a, &p_b = now.point_b;
     c.normal = n;
     c.offset_a = p_a - pa.position;
     c.offset_b = p_b - pb.position;
-    const Real depth = (p_a - p_b).dot(n);
+    const Real depth = now.separation;
     if (depth >= 0 && which == ContactPoints::penetrating) continue;
     c.material_a = pa.orientation.conjugate() * c.offset_a;
     c.material_b = pb.orientation.conjugate() * c.offset_b;

@@ -15,6 +15,7 @@
 #include <array>
 #include <cmath>
 
+#include "moreau/collision/narrow_phase.hpp"
 #include "moreau/constraints/body_rows.hpp"
 #include "moreau/constraints/substep_start.hpp"
 
@@ -41,6 +42,16 @@ struct ContactRows {
 inline Vec3 contact_tangent(const Vec3& n) {
   return (std::abs(n.x()) < 0.6 ? Vec3::UnitX() : Vec3::UnitY()).cross(n).normalized();
 }
+
+/// A manifold point at the bodies' poses: the unit normal n (b to a), the surface points
+/// p_a = x_a + q_a core_a - r_a n and p_b = x_b + q_b core_b + r_b n, and their separation
+/// C = (p_a - p_b) . n (negative in penetration).
+struct ContactPointAtPoses {
+  Vec3 normal, point_a, point_b;
+  Real separation;
+};
+ContactPointAtPoses contact_point_at_poses(NormalFrame frame, const ContactGeometry& c, const Pose& pose_a,
+                                          const Pose& pose_b);
 
 /// Which points of a manifold get rows: those in penetration, or every point (speculative).
 enum class ContactPoints { penetrating, all };

@@ -8,11 +8,7 @@ void DihedralBendingConstraints::color(const std::vector<Real>& particle_inv_mas
   std::vector<std::array<Index, 4>> stencils;
   for (const auto& h : hinges) stencils.push_back({h.e0, h.e1, h.o0, h.o1});
   const auto permutation = color_constraints(stencils, particle_inv_mass, batches);
-  apply_permutation(hinges, permutation);
-  apply_permutation(rest_angle, permutation);
-  apply_permutation(compliance, permutation);
-  apply_permutation(damping_time, permutation);
-  apply_permutation(object, permutation);
+  apply_permutation_to_all(permutation, hinges, rest_angle, compliance, damping_time, object);
 }
 
 Real hinge_compliance_from_bending_stiffness(const Vec3& e0, const Vec3& e1, const Vec3& o0, const Vec3& o1,

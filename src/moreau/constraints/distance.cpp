@@ -9,11 +9,7 @@ void DistanceConstraints::color(const std::vector<Real>& particle_inv_mass) {
   stencils.reserve(size());
   for (const auto& p : particles) stencils.push_back({p[0], p[1], -1, -1});
   const auto permutation = color_constraints(stencils, particle_inv_mass, batches);
-  apply_permutation(particles, permutation);
-  apply_permutation(rest_length, permutation);
-  apply_permutation(compliance, permutation);
-  apply_permutation(damping_time, permutation);
-  apply_permutation(object, permutation);
+  apply_permutation_to_all(permutation, particles, rest_length, compliance, damping_time, object);
 }
 
 DistanceConstraints::Rows DistanceConstraints::rows(Index k, const Vec3* x) const {

@@ -44,11 +44,7 @@ void GreenStrainTetConstraints::add(const std::array<Index, 4>& tet, const std::
 
 void GreenStrainTetConstraints::color(const std::vector<Real>& particle_inv_mass) {
   const auto permutation = color_constraints(particles, particle_inv_mass, batches);
-  apply_permutation(particles, permutation);
-  apply_permutation(rest_inverse, permutation);
-  apply_permutation(compliance, permutation);
-  apply_permutation(damping_time, permutation);
-  apply_permutation(object, permutation);
+  apply_permutation_to_all(permutation, particles, rest_inverse, compliance, damping_time, object);
 }
 
 GreenStrainTetConstraints::Rows GreenStrainTetConstraints::rows(Index k, const Vec3* x) const {

@@ -27,9 +27,7 @@ void IsometricBendingConstraints::color(const std::vector<Real>& particle_inv_ma
   std::vector<std::array<Index, 4>> stencils;
   for (const auto& h : hinges) stencils.push_back(h.particles);
   const auto permutation = color_constraints(stencils, particle_inv_mass, batches);
-  apply_permutation(hinges, permutation);
-  apply_permutation(edge_length, permutation);
-  apply_permutation(object, permutation);
+  apply_permutation_to_all(permutation, hinges, edge_length, object);
 }
 
 IsometricBendingConstraints::Rows IsometricBendingConstraints::rows(Index k, const Vec3* x) const {

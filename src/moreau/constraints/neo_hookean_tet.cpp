@@ -23,8 +23,7 @@ void NeoHookeanTetConstraints::color(const std::vector<Real>& particle_inv_mass)
   std::vector<std::array<Index, 4>> stencils;
   for (const auto& e : elements) stencils.push_back(e.particles);
   const auto permutation = color_constraints(stencils, particle_inv_mass, batches);
-  apply_permutation(elements, permutation);
-  apply_permutation(object, permutation);
+  apply_permutation_to_all(permutation, elements, object);
 }
 
 namespace {

@@ -28,11 +28,7 @@ void TriangleStrainConstraints::color(const std::vector<Real>& particle_inv_mass
   std::vector<std::array<Index, 4>> stencils;
   for (const auto& t : particles) stencils.push_back({t[0], t[1], t[2], -1});
   const auto permutation = color_constraints(stencils, particle_inv_mass, batches);
-  apply_permutation(particles, permutation);
-  apply_permutation(rest_inverse, permutation);
-  apply_permutation(compliance, permutation);
-  apply_permutation(damping_time, permutation);
-  apply_permutation(object, permutation);
+  apply_permutation_to_all(permutation, particles, rest_inverse, compliance, damping_time, object);
 }
 
 TriangleStrainConstraints::Rows TriangleStrainConstraints::rows(Index k, const Vec3* x) const {

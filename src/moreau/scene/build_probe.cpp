@@ -1,6 +1,8 @@
 // "probes": what a run writes to probes.csv, bound to the model's objects, particles and joints.
 #include <fmt/format.h>
 
+#include <map>
+
 #include "moreau/io/probes.hpp"
 #include "moreau/scene/spec_builders.hpp"
 
@@ -13,6 +15,12 @@ const std::vector<std::string> kProbeTypes{
     "fluid_height", "density_error", "particle_count", "escaped",     "position",    "orientation",
     "velocity", "angular_velocity", "joint_error", "contact_count", "max_displacement",
     "penetration"};
+
+// The types whose only key besides name and type is "object": one simulated object or "*".
+const std::map<std::string, ProbeType> kObjectOrEveryProbes{{"center_of_mass", ProbeType::center_of_mass},
+                                                            {"contact_count", ProbeType::contact_count},
+                                                            {"penetration", ProbeType::penetration},
+                                                            {"max_displacement", ProbeType::max_displacement}};
 
 // Every key a probe of this type may have (for the message on a misspelt key).
 std::vector<std::string> probe_keys(const std::string& type) {
@@ -124,8 +132,8 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
     p.type = ProbeType::energy;
     p.object = object_index(spec, j, model, true);
     p.quantity = quantity(spec, j, "total", {"kinetic", "potential", "elastic", "total"});
-  } else if (type == "center_of_mass") {
-    p.type = ProbeType::center_of_mass;
+  } else if (const auto plain = kObjectOrEveryProbes.find(type); plain != kObjectOrEveryProbes.end()) {
+    p.type = plain->second;
     p.object = object_index(spec, j, model, true);
   } else if (type == "extent") {
     p.type = ProbeType::extent;
@@ -163,15 +171,6 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
         if (model.joints[k].name == spec.joint) p.joint = k;
       if (p.joint < 0) j.fail("joint", fmt::format("no joint is named '{}'; give a joint's name or \"*\"", spec.joint));
     }
-  } else if (type == "contact_count") {
-    p.type = ProbeType::contact_count;
-    p.object = object_index(spec, j, model, true);
-  } else if (type == "penetration") {
-    p.type = ProbeType::penetration;
-    p.object = object_index(spec, j, model, true);
-  } else if (type == "max_displacement") {
-    p.type = ProbeType::max_displacement;
-    p.object = object_index(spec, j, model, true);
   } else if (type == "escaped") {
     p.type = ProbeType::escaped;
     p.object = object_index(spec, j, model, true, Accepts::particles);  // particles only
