@@ -27,7 +27,7 @@ void set_particle_rows(NmdBlockInput& in, const Rows& rows, const VelocitySpace&
   for (int i = 0; i < Rows::kParticles; ++i) {
     in.end[i] = space.particle_end(rows.particle[i]);
     for (int r = 0; r < Rows::kRows; ++r)
-      for (int c = 0; c < 3; ++c) in.jacobian(r, 6 * i + c) = rows.gradient[i](r, c);
+      for (int c = 0; c < 3; ++c) in.at(r, i)[c] = rows.gradient[i](r, c);
   }
   in.C = rows.C;
 }
@@ -40,7 +40,7 @@ void set_body_rows(NmdBlockInput& in, const BodyRows& rows, const VelocitySpace&
   for (int e = 0; e < 2; ++e) {
     in.end[e] = space.end(rows.end[e]);
     for (int r = 0; r < R; ++r)
-      for (int c = 0; c < 6; ++c) in.jacobian(r, 6 * e + c) = rows.jacobian[e](r, c);
+      for (int c = 0; c < 6; ++c) in.at(r, e)[c] = rows.jacobian[e](r, c);
   }
   for (int r = 0; r < R; ++r) {
     in.C[r] = rows.C[r];
@@ -159,10 +159,13 @@ void add_rigid_contacts(Assembly& a) {
       for (int r = 0; r < 3; ++r) {  // point rows (body_rows.hpp) along each direction
         const int row = 3 * j + r;
         const Vec3& d = rows.direction[row];
-        in.jacobian.row(r).segment<3>(0) = d.transpose();
-        in.jacobian.row(r).segment<3>(3) = rows.offset_a[row].cross(d).transpose();
-        in.jacobian.row(r).segment<3>(6) = -d.transpose();
-        in.jacobian.row(r).segment<3>(9) = -rows.offset_b[row].cross(d).transpose();
+        const Vec3 angular_a = rows.offset_a[row].cross(d), angular_b = rows.offset_b[row].cross(d);
+        for (int c = 0; c < 3; ++c) {
+          in.at(r, 0)[c] = d[c];
+          in.at(r, 0)[3 + c] = angular_a[c];
+          in.at(r, 1)[c] = -d[c];
+          in.at(r, 1)[3 + c] = -angular_b[c];
+        }
       }
       in.C[0] = rows.C[3 * j];
       add_contact(a, mf.static_friction, mf.dynamic_friction, mf.restitution, points[rows.point[j]].row_impulse.data(), 3);

@@ -12,9 +12,8 @@ constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 }  // namespace
 
 void NmdBlockInput::resize(int rows, int end_count) {
-  ends = end_count;
-  end.fill(VelocityEnd{});
-  jacobian.setZero(rows, 6 * kMaxEnds);
+  end.assign(end_count, VelocityEnd{});
+  jacobian.assign(6 * static_cast<std::size_t>(rows) * end_count, 0);
   C.setZero(rows);
   known.setZero(rows);
   target.setZero(rows);
@@ -26,6 +25,7 @@ void NmdBlockInput::resize(int rows, int end_count) {
 
 void NmdSystem::clear() {
   blocks.clear();
+  block_ends.clear();
   jacobian_offset.clear();
   row_block.clear();
   jacobian.clear();
@@ -45,9 +45,10 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
   NmdBlock block;
   block.kind = in.kind;
   block.rows = R;
-  block.ends = in.ends;
+  block.ends = in.ends();
   block.first_row = row_count();
-  block.end = in.end;
+  block.first_end = static_cast<Index>(block_ends.size());
+  block_ends.insert(block_ends.end(), in.end.begin(), in.end.end());
   block.memory = in.memory;
   block.memory_rows = in.memory_rows;
 
@@ -63,16 +64,18 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
   for (int r = 0; r < R; ++r) {
     jacobian_offset.push_back(static_cast<Index>(jacobian.size()));
     row_block.push_back(static_cast<Index>(blocks.size()));
-    for (int e = 0; e < in.ends; ++e) {
-      const Real* J = in.jacobian.row(r).data() + 6 * e;
-      Real W[6] = {0, 0, 0, 0, 0, 0};
-      if (!in.end[e].is_world()) space.apply_inverse_mass(in.end[e], J, W);
-      jacobian.insert(jacobian.end(), J, J + 6);
-      weighted.insert(weighted.end(), W, W + 6);
+    for (int e = 0; e < in.ends(); ++e) {
+      const int size = in.end[e].size;  // the world's end keeps no entries
+      if (size == 0) continue;
+      const Real* J = in.at(r, e);
+      Real W[6];
+      space.apply_inverse_mass(in.end[e], J, W);
+      jacobian.insert(jacobian.end(), J, J + size);
+      weighted.insert(weighted.end(), W, W + size);
     }
   }
   // A = G W G^T + S over the block.
-  const Index stride = 6 * in.ends;
+  const Index stride = (static_cast<Index>(jacobian.size()) - first_entry) / R;
   for (int r = 0; r < R; ++r)
     for (int s = 0; s < R; ++s) {
       Real value = 0;
@@ -116,7 +119,7 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
     impulse.push_back(0);
   }
 
-  if (in.kind == NmdBlockKind::contact) {
+  if (in.kind == NmdBlockKind::contact && R == 3) {
     Real slip2 = 0;
     for (int r = 1; r < 3; ++r) {
       const Real rate = this->rate(block, block.first_row + r, space.v) + in.known[r];

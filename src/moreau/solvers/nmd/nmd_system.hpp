@@ -38,17 +38,16 @@ enum class RowLevel : std::uint8_t { position, velocity, friction };
 /// (rows 0) and two friction rows bounded by mu times its impulse.
 enum class NmdBlockKind : std::uint8_t { equality, bounded, contact };
 
-/// One block as an assembler hands it over.
+/// One block as an assembler hands it over: R rows over any number of ends (a joint has two, a
+/// fluid particle's density row one per neighbour).
 struct NmdBlockInput {
-  static constexpr int kMaxRows = 6, kMaxEnds = 4;
+  static constexpr int kMaxRows = 6;
   using Vector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, kMaxRows, 1>;
   using Matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxRows, kMaxRows>;
-  using Jacobian = Eigen::Matrix<Real, Eigen::Dynamic, 6 * kMaxEnds, Eigen::RowMajor, kMaxRows, 6 * kMaxEnds>;
 
   NmdBlockKind kind = NmdBlockKind::equality;
-  int ends = 0;
-  std::array<VelocityEnd, kMaxEnds> end{};
-  Jacobian jacobian;                  // R x 6 ends: row r, end e at columns [6e, 6e + 6)
+  std::vector<VelocityEnd> end;
+  std::vector<Real> jacobian;         // R x 6 ends, row-major: row r, end e at [6 (r ends + e), + 6)
   Vector C, known, target, lower, upper;  // lower/upper in force units (N, N m); target for velocity rows
   Matrix compliance;                  // eps, R x R
   std::array<RowLevel, kMaxRows> level{};
@@ -58,16 +57,20 @@ struct NmdBlockInput {
   int memory_rows = 0;
 
   /// Sizes an input of `rows` rows over `ends` ends: zero Jacobian, C, known and target; no
-  /// compliance; unbounded position rows.
+  /// compliance; unbounded position rows. The buffers keep their capacity from block to block.
   void resize(int rows, int end_count);
   int rows() const { return static_cast<int>(C.size()); }
+  int ends() const { return static_cast<int>(end.size()); }
+  /// The six Jacobian entries of row r at end e (linear, then angular; particles use three).
+  Real* at(int r, int e) { return jacobian.data() + 6 * (static_cast<std::size_t>(r) * end.size() + e); }
+  const Real* at(int r, int e) const { return jacobian.data() + 6 * (static_cast<std::size_t>(r) * end.size() + e); }
 };
 
 struct NmdBlock {
   NmdBlockKind kind = NmdBlockKind::equality;
   int rows = 0, ends = 0;
   Index first_row = 0;
-  std::array<VelocityEnd, NmdBlockInput::kMaxEnds> end{};
+  Index first_end = 0;                // into NmdSystem::block_ends
   Index matrix = -1;                  // equality blocks: offset of the R x R inverse of G W G^T + S
   Real friction = 0;                  // contact blocks: mu of this solve (static or kinetic)
   Real* memory = nullptr;
@@ -76,7 +79,9 @@ struct NmdBlock {
 
 struct NmdSystem {
   std::vector<NmdBlock> blocks;
-  // Per row: its ends' Jacobian entries and W J^T (6 per end, from jacobian_offset), the
+  std::vector<VelocityEnd> block_ends;  // every block's ends, from NmdBlock::first_end
+  // Per row: its ends' Jacobian entries and W J^T (end.size per end: 3 for a particle, 6 for a
+  // body, none for the world; from jacobian_offset), the
   // right-hand side q, the bounds in impulse units, S_ii, the diagonal G_i W G_i^T + S_ii and l.
   std::vector<Index> jacobian_offset, row_block;
   std::vector<Real> jacobian, weighted;
@@ -86,14 +91,15 @@ struct NmdSystem {
 
   void clear();
   Index row_count() const { return static_cast<Index>(rhs.size()); }
+  const VelocityEnd* ends_of(const NmdBlock& b) const { return block_ends.data() + b.first_end; }
   /// G_i v for row i of block b over its ends.
   Real rate(const NmdBlock& b, Index row, const std::vector<Real>& v) const {
     const Real* J = jacobian.data() + jacobian_offset[row];
+    const VelocityEnd* end = ends_of(b);
     Real value = 0;
     for (int e = 0; e < b.ends; ++e) {
-      const VelocityEnd& end = b.end[e];
-      if (end.is_world()) continue;
-      for (int c = 0; c < end.size; ++c) value += J[6 * e + c] * v[end.dof + c];
+      for (int c = 0; c < end[e].size; ++c) value += J[c] * v[end[e].dof + c];
+      J += end[e].size;
     }
     return value;
   }

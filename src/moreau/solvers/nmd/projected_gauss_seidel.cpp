@@ -16,12 +16,10 @@ struct RowAccess {
   void apply(const NmdBlock& b, Index row, Real dl) const {
     if (dl == 0) return;
     const Real* W = s.weighted.data() + s.jacobian_offset[row];
+    const VelocityEnd* end = s.ends_of(b);
     for (int e = 0; e < b.ends; ++e) {
-      const VelocityEnd& end = b.end[e];
-      if (end.is_world()) continue;
-      const Real* We = W + 6 * e;
-      Real* ve = v.data() + end.dof;
-      for (int c = 0; c < end.size; ++c) ve[c] += We[c] * dl;
+      for (int c = 0; c < end[e].size; ++c) v[end[e].dof + c] += W[c] * dl;
+      W += end[e].size;
     }
   }
   // r_i = G_i v + S_ii l_i - q_i (rows of bounded and contact blocks have a diagonal S).
@@ -76,6 +74,7 @@ void solve_bounded_row(const RowAccess& a, const NmdBlock& b, Index row, Real om
 void solve_contact(const RowAccess& a, const NmdBlock& b, Real omega, FrictionBound bound) {
   const Index n = b.first_row, t1 = n + 1, t2 = n + 2;
   solve_bounded_row(a, b, n, omega);
+  if (b.rows == 1) return;  // frictionless (fluid particles on walls)
   const Real D = std::max(a.s.diagonal[t1], a.s.diagonal[t2]);
   if (D <= 0) return;
   Real l1 = a.s.impulse[t1] - omega * a.residual(b, t1) / D;

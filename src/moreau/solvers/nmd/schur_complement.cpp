@@ -15,13 +15,14 @@ void SchurComplement::build(const NmdSystem& system, const std::vector<Index>& r
     const NmdBlock& b = system.blocks[system.row_block[row]];
     const Real* J = system.jacobian.data() + system.jacobian_offset[row];
     const Real* W = system.weighted.data() + system.jacobian_offset[row];
+    const VelocityEnd* end = system.ends_of(b);
     for (int e = 0; e < b.ends; ++e) {
-      const VelocityEnd& end = b.end[e];
-      if (end.is_world()) continue;
-      for (int c = 0; c < end.size; ++c) {
-        if (J[6 * e + c] != 0) g.emplace_back(i, end.dof + c, J[6 * e + c]);
-        if (W[6 * e + c] != 0) wg.emplace_back(end.dof + c, i, W[6 * e + c]);
+      for (int c = 0; c < end[e].size; ++c) {
+        if (J[c] != 0) g.emplace_back(i, end[e].dof + c, J[c]);
+        if (W[c] != 0) wg.emplace_back(end[e].dof + c, i, W[c]);
       }
+      J += end[e].size;
+      W += end[e].size;
     }
     // S: the block's full compliance for equality blocks, the diagonal otherwise.
     const int r = row - b.first_row;
