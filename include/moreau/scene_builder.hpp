@@ -259,6 +259,7 @@ struct FluidSpec {
   double vorticity = 0;
   double surface_tension = 0;
   double relaxation = 0.01;          // [0, 1e6]
+  double bulk_modulus = 2.2e9;       // Pa, K of the density rows under "nmd" (water: 2.2e9)
   std::optional<FluidBlock> block;
   std::vector<FluidBlock> blocks;
   std::string mesh;                  // a closed OBJ surface to fill

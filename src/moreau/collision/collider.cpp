@@ -72,6 +72,24 @@ Vec3 keep_clear_of_collider(const Collider& c, const Vec3& center, const Vec3& x
   return d.distance < gap ? Vec3(x + (gap - d.distance) * d.normal) : x;
 }
 
+int collider_surfaces_within(const Collider& c, const Vec3& center, const Vec3& x, Real reach, ColliderDistance out[3]) {
+  if (c.inside && c.shape.type == ShapeType::box) {
+    const Vec3 q = c.rotation.transpose() * (x - center);
+    int count = 0;
+    for (int axis = 0; axis < 3; ++axis) {
+      const Real side = q[axis] >= 0 ? 1 : -1;  // the nearer face of this axis
+      const Real distance = c.shape.half_extents[axis] - side * q[axis];
+      if (distance >= reach) continue;
+      Vec3 normal = Vec3::Zero();
+      normal[axis] = -side;  // away from the wall, into the container
+      out[count++] = {distance, c.rotation * normal};
+    }
+    return count;
+  }
+  out[0] = collider_distance(c, center, x);
+  return out[0].distance < reach ? 1 : 0;
+}
+
 ColliderDistance collider_distance(const Collider& c, const Vec3& center, const Vec3& x) {
   const ColliderDistance d = solid_distance(c, center, x);
   if (c.inside) return {-d.distance, -d.normal};  // the solid is the complement of the shape

@@ -38,6 +38,11 @@ struct ColliderDistance {
 /// the time of the query).
 ColliderDistance collider_distance(const Collider& c, const Vec3& center, const Vec3& x);
 
+/// The collider's surfaces closer to x than `reach` (written to `out`, the count returned): the
+/// nearest one (collider_distance), or, in a box container, each wall of the up to three that a
+/// point near an edge or corner is close to (one per axis, the nearer of its two faces).
+int collider_surfaces_within(const Collider& c, const Vec3& center, const Vec3& x, Real reach, ColliderDistance out[3]);
+
 /// The point nearest to x that is at least `gap` away from the collider's solid (its position at
 /// the time of the query is `center`). A single push along the distance normal is that point for
 /// every solid shape and for round containers; in a box container a point near an edge or corner

@@ -26,6 +26,7 @@ struct FluidPhase {
   Real surface_tension = 0;        // gamma of Akinci et al. 2013, m/s^2 (see surface_tension.hpp)
   Real vorticity = 0;              // vorticity-confinement strength epsilon, m/s (see fluid_velocity.hpp)
   Real relaxation = 0;             // epsilon of the density constraint, 1/(kg m^2) (scaled, see density_constraint.hpp)
+  Real compliance = 0;             // eps of the density row under "nmd", 1/J: 1 / (K V) (solvers/nmd/constraint_fluid.hpp)
 };
 
 /// Collider walls sampled with particles (Akinci et al. 2012): each sample carries the volume

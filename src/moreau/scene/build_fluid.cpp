@@ -120,6 +120,7 @@ FluidSpec read_fluid(const JsonObject& object) {
   spec.vorticity = object.number("vorticity", spec.vorticity);
   spec.surface_tension = object.number("surface_tension", spec.surface_tension);
   spec.relaxation = object.number("relaxation", spec.relaxation);
+  spec.bulk_modulus = object.number("bulk_modulus", spec.bulk_modulus);
   if (object.has("block")) spec.block = read_block(object.object("block"));
   for (const JsonObject& block : object.object_list("blocks")) spec.blocks.push_back(read_block(block));
   // An empty list or path is a source that holds nothing, not the absence of one.
@@ -161,6 +162,9 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   const Real relaxation = place.number("relaxation", spec.relaxation, Range::closed(0, 1e6));
   const Real rest_denominator = fluid_rest_denominator(fm.kernel, d, phase.particle_mass);
   phase.relaxation = relaxation * rest_denominator;
+  // Under "nmd" the density row C = V sum W - 1 has the multiplier lambda = -p V (J), so the
+  // compliance of a bulk modulus K (C = p / K) is eps = 1 / (K V) (constraint_fluid.hpp).
+  phase.compliance = 1 / (place.number("bulk_modulus", spec.bulk_modulus, Range::positive()) * fm.particle_volume);
 
   // Explicit viscosity is stable for dt <= 0.125 h^2 / nu (Monaghan 2005, sec. 6.4).
   const Real viscous_limit = 0.125 * fm.kernel.h2 / std::max(phase.viscosity, 1e-300);

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "moreau/collision/particle_contacts.hpp"
+#include "moreau/solvers/nmd/constraint_fluid.hpp"
 #include "moreau/solvers/nmd/nmd_system.hpp"
 #include "moreau/solvers/nmd/schur_complement.hpp"
 #include "moreau/solvers/solver.hpp"
@@ -28,6 +29,8 @@ class NmdSolver final : public Solver {
   NmdSystem system_;
   SchurComplement schur_;
   ContactScratch contact_scratch_;
+  ConstraintFluid fluid_;
+  NmdBlockInput input_;  // the fluid rows' block being built (its buffers kept from step to step)
 };
 
 }  // namespace moreau

@@ -8,7 +8,7 @@ namespace moreau {
 
 void VelocitySpace::apply_inverse_mass(const VelocityEnd& e, const Real* jacobian, Real* out) const {
   if (e.size == 3) {
-    const Real w = particle_inv_mass[e.dof / 3];
+    const Real w = e.dof < 3 * particles ? particle_inv_mass[e.dof / 3] : fluid_inv_mass[(e.dof - fluid_dof(0)) / 3];
     for (int c = 0; c < 3; ++c) out[c] = w * jacobian[c];
     for (int c = 3; c < 6; ++c) out[c] = 0;
     return;
@@ -23,7 +23,11 @@ void VelocitySpace::apply_inverse_mass(const VelocityEnd& e, const Real* jacobia
 void VelocitySpace::gather(const Model& model, const State& state) {
   particles = model.particle_count();
   bodies = model.rigid.count();
-  v.resize(3 * particles + 6 * bodies);
+  fluids = state.fluid.count;
+  v.resize(3 * (particles + fluids) + 6 * bodies);
+  fluid_inv_mass.assign(state.fluid.inv_mass.begin(), state.fluid.inv_mass.begin() + fluids);
+  for (Index i = 0; i < fluids; ++i)
+    for (int c = 0; c < 3; ++c) v[fluid_dof(i) + c] = state.fluid.velocity[i][c];
   particle_inv_mass.assign(model.particle_inv_mass.begin(), model.particle_inv_mass.end());
   body_inv_mass.resize(bodies);
   body_inv_inertia.resize(bodies);
@@ -49,6 +53,8 @@ void VelocitySpace::apply_forces(const Model& model, const State& state, Real h)
     if (particle_inv_mass[p] <= 0) continue;
     for (int c = 0; c < 3; ++c) v[3 * p + c] += dv[c];
   }
+  for (Index i = 0; i < fluids; ++i)
+    for (int c = 0; c < 3; ++c) v[fluid_dof(i) + c] += dv[c];
   const RigidBodyModel& m = model.rigid;
   for (Index b = 0; b < bodies; ++b) {
     if (!m.is_dynamic(b)) continue;
@@ -65,6 +71,10 @@ void VelocitySpace::apply_forces(const Model& model, const State& state, Real h)
 void VelocitySpace::scatter(const Model& model, State& state) const {
   for (Index p = 0; p < particles; ++p)
     if (particle_inv_mass[p] > 0) state.velocity[p] = Vec3(v[3 * p], v[3 * p + 1], v[3 * p + 2]);
+  for (Index i = 0; i < fluids; ++i) {
+    const Index d = fluid_dof(i);
+    state.fluid.velocity[i] = Vec3(v[d], v[d + 1], v[d + 2]);
+  }
   for (Index b = 0; b < bodies; ++b) {
     if (!model.rigid.is_dynamic(b)) continue;
     const Index d = body_dof(b);

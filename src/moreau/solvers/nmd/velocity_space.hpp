@@ -2,7 +2,8 @@
 // The generalised velocities of the velocity-level formulation and their inverse mass.
 //
 // One flat vector v: three entries per particle (its velocity), then six per rigid body (the
-// velocity of its centre of mass, then its world angular velocity). A row's end is an offset into
+// velocity of its centre of mass, then its world angular velocity), then three per live fluid
+// particle. A row's end is an offset into
 // v (`dof`) and a size (3 or 6). The inverse mass W is block diagonal: 1/m I for a particle,
 // diag(1/m I, I^-1) for a body with I^-1 = R diag(I_principal^-1) R^T in the world at the start
 // of the solve (Lacoursiere 2007 linearises the inertia over a step). Pinned particles, fixed and
@@ -26,14 +27,16 @@ struct VelocityEnd {
 };
 
 struct VelocitySpace {
-  Index particles = 0, bodies = 0;
+  Index particles = 0, bodies = 0, fluids = 0;
   std::vector<Real> v;                 // m/s and rad/s
   std::vector<Real> particle_inv_mass; // 1/kg
+  std::vector<Real> fluid_inv_mass;    // 1/kg
   std::vector<Real> body_inv_mass;     // 1/kg
   std::vector<Mat3> body_inv_inertia;  // 1/(kg m^2), world
 
   Index particle_dof(Index p) const { return 3 * p; }
   Index body_dof(Index b) const { return 3 * particles + 6 * b; }
+  Index fluid_dof(Index i) const { return 3 * particles + 6 * bodies + 3 * i; }
   VelocityEnd end(const BodyEnd& e) const {
     switch (e.kind) {
       case BodyEndKind::world: return {};
@@ -43,6 +46,7 @@ struct VelocitySpace {
     return {};
   }
   VelocityEnd particle_end(Index p) const { return {particle_dof(p), 3}; }
+  VelocityEnd fluid_end(Index i) const { return {fluid_dof(i), 3}; }
 
   /// W_e J^T for the 6 entries of one row's end (the angular half unused for particles).
   void apply_inverse_mass(const VelocityEnd& e, const Real* jacobian, Real* out) const;
@@ -50,10 +54,10 @@ struct VelocitySpace {
   /// Reads the velocities and the inverse masses from the model and state (the body inertia at
   /// the current orientations).
   void gather(const Model& model, const State& state);
-  /// v += h (g + gyroscopic acceleration) for every free particle and dynamic body: the
+  /// v += h (g + gyroscopic acceleration) for every free particle, fluid particle and dynamic body: the
   /// unconstrained velocity v* = v + h M^-1 f. The gyroscopic term -w x (I w) is explicit.
   void apply_forces(const Model& model, const State& state, Real h);
-  /// Writes the velocities back to the state (free particles and dynamic bodies only).
+  /// Writes the velocities back to the state (free particles, fluid particles and dynamic bodies).
   void scatter(const Model& model, State& state) const;
 };
 
