@@ -117,13 +117,12 @@ TEST(CommandLine, NmdSettingsNameTheirPathAndRange) {
   expect_bad_input("nmd_key", text, {"settings.nmd", "iteration"}, "--set settings.nmd.iteration=3");
 }
 
-TEST(CommandLine, NmdRefusesAFluidSceneNamingWhatItDoesNotSimulate) {
+TEST(CommandLine, NmdRefusesANeoHookeanSceneNamingWhatItDoesNotSimulate) {
   const std::string scene = R"({"name": "f", "settings": {"solver": "nmd", "dt": 0.005},
-    "objects": [{"name": "tank", "kind": "collider", "inside": true,
-                 "shape": {"type": "box", "center": [0, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}},
-                {"name": "water", "kind": "fluid", "particle_radius": 0.05,
-                 "blocks": [{"min": [-0.2, 0.1, -0.2], "max": [0.2, 0.5, 0.2]}]}]})";
-  expect_bad_input("nmd_fluid", scene, {"settings.solver", "does not simulate particle fluids", "\"xpbd\""});
+    "objects": [{"name": "jelly", "kind": "soft_body", "mesh": {"type": "box", "min": [0, 0, 0], "max": [0.2, 0.2, 0.2], "cells": [2, 2, 2]},
+                 "material": {"model": "neo_hookean", "youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000}}]})";
+  expect_bad_input("nmd_neo_hookean", scene,
+                   {"settings.solver", "does not simulate Neo-Hookean soft bodies", "st_venant_kirchhoff"});
 }
 
 TEST(CommandLine, ExplosionExitsWithCodeThreeNamingStepTimeAndObject) {
@@ -157,6 +156,9 @@ TEST(CommandLine, FluidInputErrorsNameTheirKey) {
   expect_bad_input("viscous", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "viscosity": 1e4,
       "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})"),
                    {"objects[1].viscosity", "0.125 h^2 / nu"});
+  expect_bad_input("bulk_modulus", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "bulk_modulus": 0,
+      "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})"),
+                   {"objects[1].bulk_modulus", "out of range"});
   const std::string jet = R"({"name": "jet", "kind": "fluid", "particle_radius": 0.05, "emitter": )";
   expect_bad_input("emitter_both", scene(jet + R"({"shape": "disc", "center": [0, 0.5, 0], "direction": [0, -1, 0],
       "radius": 0.1, "speed": 1, "flow_rate": 0.01}})"),
