@@ -78,6 +78,7 @@ struct ContactMaterial {
   double static_friction = 0.5;   // mu_s
   double dynamic_friction = 0.5;  // mu_k
   double restitution = 0;         // e, in [0, 1]
+  double adhesion = 0;            // N per contact point, >= 0 ("nmd" only; rigid bodies and colliders)
 };
 
 /// One entry of "pin": particles of the object inside a region are held in place, rigidly

@@ -161,6 +161,7 @@ void detect_rigid_contacts(const Model& model, State& state, int threads) {
       mf.static_friction = 0.5 * (m.body_static_friction[a] + m.body_static_friction[b]);
       mf.dynamic_friction = 0.5 * (m.body_dynamic_friction[a] + m.body_dynamic_friction[b]);
       mf.restitution = 0.5 * (m.body_restitution[a] + m.body_restitution[b]);
+      mf.adhesion = std::max(m.body_adhesion[a], m.body_adhesion[b]);
       contacts.manifolds.push_back(mf);
       for (int c = 0; c < cm.count; ++c) {
         RigidContactPoint point;

@@ -47,6 +47,7 @@ struct RigidManifold {
   Index first = 0, count = 0;            // points [first, first + count)
   NormalFrame frame = NormalFrame::body_b;
   Real static_friction = 0, dynamic_friction = 0, restitution = 0;
+  Real adhesion = 0;                     // N per point: the larger of the two bodies' (either glue holds)
   // Per substep.
   bool touching = false;                 // a point pushed this substep
   bool sliding = false;                  // friction rows dropped at the last projection

@@ -26,6 +26,7 @@ struct RigidBodyModel {
   std::vector<Quat> body_frame_in_shape;     // principal frame -> the frame the shape was given in
   std::vector<Vec3> body_center_in_shape;    // m, centre of mass in the frame the shape was given in
   std::vector<Real> body_static_friction, body_dynamic_friction, body_restitution;
+  std::vector<Real> body_adhesion;  // N per contact point: the pull a contact holds under nmd
   std::vector<std::array<Index, 2>> pairs_without_contact;  // sorted (a < b): joined bodies
   // Initial conditions (the state at t = 0).
   std::vector<Vec3> initial_position, initial_velocity, initial_angular_velocity;

@@ -88,6 +88,7 @@ void add_collider(const ColliderSpec& spec, const SpecPlace& place, ObjectInfo& 
   c.static_friction = info.static_friction;
   c.dynamic_friction = info.dynamic_friction;
   c.restitution = info.restitution;
+  c.adhesion = info.adhesion;
   info.kind = ObjectKind::collider;
   info.collider = static_cast<Index>(ctx.model.colliders.size());
   ctx.model.colliders.push_back(c);

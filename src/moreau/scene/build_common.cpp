@@ -47,6 +47,7 @@ ContactMaterial read_contact_material(const JsonObject& object) {
     }
   }
   m.restitution = object.number("restitution", m.restitution);
+  m.adhesion = object.number("adhesion", m.adhesion);
   return m;
 }
 
@@ -61,6 +62,7 @@ void set_contact_material(const ContactMaterial& contact, const SpecPlace& place
   info.static_friction = contact.static_friction;
   info.dynamic_friction = contact.dynamic_friction;
   info.restitution = place.number("restitution", contact.restitution, Range::closed(0, 1));
+  info.adhesion = place.number("adhesion", contact.adhesion, Range::non_negative());
 }
 
 std::vector<PinSpec> read_pins(const JsonObject& object) {

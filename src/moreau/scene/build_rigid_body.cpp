@@ -186,6 +186,7 @@ void add_rigid_body(const RigidBodySpec& spec, const SpecPlace& place, ObjectInf
   m.body_static_friction.push_back(mu_s);
   m.body_dynamic_friction.push_back(mu_k);
   m.body_restitution.push_back(e);
+  m.body_adhesion.push_back(info.adhesion);
   // "position" places the shape's own origin; the state holds the centre of mass and the
   // principal frame.
   m.initial_position.push_back(position + orientation * props.center);
@@ -218,6 +219,7 @@ void add_colliders_as_bodies(Model& model) {
       m.body_static_friction.push_back(c.static_friction);
       m.body_dynamic_friction.push_back(c.dynamic_friction);
       m.body_restitution.push_back(c.restitution);
+      m.body_adhesion.push_back(c.adhesion);
       m.initial_position.push_back(position);
       m.initial_orientation.push_back(orientation);
       m.initial_velocity.push_back(c.velocity);

@@ -97,17 +97,25 @@ class JointBlocks final : public BodyRowSink {
   JointMultipliers* memory_ = nullptr;
 };
 
+// Adhesion (Gascon, Zurdo, Otaduy 2010, "Constraint-based simulation of adhesive contact"): a
+// contact point may pull as well as push, down to -A (N). The glue is the contact's own spring of
+// compliance eps: it holds while the gap is at most eps A, its stretch at full strength, and lets
+// go once pulled further (then the point is an ordinary speculative contact).
+Real adhesive_bound(Real adhesion, Real gap, Real compliance) {
+  return adhesion > 0 && gap <= compliance * adhesion ? adhesion : 0;
+}
+
 // Makes the sized input a contact block (row 0 normal, rows 1 and 2 friction) with the pair's
 // coefficients and adds it; `memory` holds the normal impulse, or all three rows' impulses.
 void add_contact(Assembly& a, Real static_friction, Real dynamic_friction, Real restitution, Real* memory,
-                 int memory_rows) {
+                 int memory_rows, Real adhesion = 0) {
   NmdBlockInput& in = a.input;
   in.kind = NmdBlockKind::contact;
   in.level[1] = in.level[2] = RowLevel::friction;
   in.C[1] = in.C[2] = 0;  // friction rows act on velocities only
   in.lower.setConstant(-std::numeric_limits<Real>::infinity());
   in.upper.setConstant(std::numeric_limits<Real>::infinity());
-  in.lower[0] = 0;
+  in.lower[0] = -adhesion;
   in.compliance.setZero();
   in.compliance(0, 0) = a.model.settings.nmd.contact_compliance;
   in.static_friction = static_friction;
@@ -168,7 +176,8 @@ void add_rigid_contacts(Assembly& a) {
         }
       }
       in.C[0] = rows.C[3 * j];
-      add_contact(a, mf.static_friction, mf.dynamic_friction, mf.restitution, points[rows.point[j]].row_impulse.data(), 3);
+      add_contact(a, mf.static_friction, mf.dynamic_friction, mf.restitution, points[rows.point[j]].row_impulse.data(), 3,
+                  adhesive_bound(mf.adhesion, in.C[0], a.model.settings.nmd.contact_compliance));
     }
   }
 }

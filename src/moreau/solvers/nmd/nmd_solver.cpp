@@ -39,7 +39,7 @@ void mark_touching(State& state) {
     for (Index i = mf.first; i < mf.first + mf.count; ++i) {
       RigidContactPoint& c = contacts.points[i];
       c.lambda_normal = c.row_impulse[0];
-      c.touching = c.lambda_normal > 0;
+      c.touching = c.lambda_normal != 0;  // pushing, or pulling by adhesion
       mf.touching |= c.touching;
     }
   }

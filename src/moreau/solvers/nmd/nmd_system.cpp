@@ -108,7 +108,8 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
     if (in.kind == NmdBlockKind::contact && r == 0) {
       // A speculative contact may close its gap within the step, no further; an impact faster
       // than the threshold that closes the gap this step leaves at e times its speed.
-      if (in.C[r] > 0) target = -in.C[r] / h;
+      // An adhesive contact (lower bound below 0) is held by its spring instead.
+      if (in.C[r] > 0 && in.lower[r] >= 0) target = -in.C[r] / h;
       if (impact) target = std::max(target, -in.restitution * rate);
     }
     rhs.push_back(target - in.known[r]);

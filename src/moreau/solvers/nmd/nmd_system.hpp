@@ -20,7 +20,8 @@
 // may close within the step, no further) and add restitution, q >= -e dC/dt before the step for
 // impacts faster than the threshold. A contact's friction rows are bounded by mu_s times the
 // normal impulse while the contact slips slower than settings.sliding_speed at the step's start,
-// by mu_k once it slides (static and kinetic Coulomb friction). `known` is the part of dC/dt from ends outside the velocity
+// by mu_k once it slides (static and kinetic Coulomb friction). An adhesive contact's normal row
+// has a negative lower bound (nmd_assembly.cpp) and no speculative target. `known` is the part of dC/dt from ends outside the velocity
 // vector (a moving collider).
 #include <array>
 #include <limits>
