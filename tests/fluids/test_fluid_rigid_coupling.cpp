@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "moreau/model/diagnostics.hpp"
+#include "fluid_tank_checks.hpp"
 #include "fluid_test_helpers.hpp"
 #include "test_helpers.hpp"
 
@@ -30,17 +31,7 @@ TEST(FluidRigidCoupling, BoxOfHalfTheWaterDensityFloatsHalfSubmerged) {
   // the soft slab: the particle surface settles about r/2 below the lattice top. The slab stays
   // flat (metacentric height +25 mm): tilt below 2 degrees.
   Scene scene = scene_from_json(rigid_slab_scene(500));
-  const Index body = scene.model.objects[scene.model.find_object("slab")].body;
-  run_steps(scene, 300);
-  Real draft = 0, tilt = 0;
-  const int samples = 75;
-  for (int k = 0; k < samples; ++k) {
-    run_steps(scene, 1);
-    const Real bottom = scene.state.rigid.position[body].y() - 0.03;
-    draft += (test::slab_tank_open_surface(scene.state.fluid) - bottom) / samples;
-    const Vec3 up = scene.state.rigid.orientation[body] * Vec3::UnitY();
-    tilt = std::max(tilt, std::acos(std::min<Real>(1, up.y())) * 180 / kPi);
-  }
+  const auto [draft, tilt] = test::measure_flotation(scene);
   std::printf("rigid slab draft %.4f m (Archimedes 0.0300 m), tilt %.3f deg\n", draft, tilt);
   EXPECT_NEAR(draft, 0.03, 0.5 * 0.00625);
   EXPECT_LT(tilt, 2.0);

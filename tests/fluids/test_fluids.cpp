@@ -11,6 +11,7 @@
 #include "moreau/io/probes.hpp"
 #include "moreau/model/diagnostics.hpp"
 #include "dam_break_check.hpp"
+#include "fluid_tank_checks.hpp"
 #include "fluid_test_helpers.hpp"
 #include "test_helpers.hpp"
 
@@ -88,53 +89,16 @@ TEST(SphKernel, SolverChunksMatchTheReferenceKernel) {
 }
 
 
-// A tank of water at rest: 0.15 x 0.15 m base, 0.2 m of water, r = 6.25 mm: 12 x 16 x 12 = 2304
-// particles, 16 layers deep (the free surface settles by about half a particle radius, so the
-// height error is ~ r / (2 H): 1.5 % here, 3 % at half this resolution).
-std::string resting_tank_scene(const std::string& settings) {
-  return R"({"name": "rest", "settings": )" + settings + R"(,
-    "objects": [
-      {"name": "tank", "kind": "collider", "inside": true,
-       "shape": {"type": "box", "center": [0, 0.25, 0], "half_extents": [0.075, 0.25, 0.075]}},
-      {"name": "water", "kind": "fluid", "particle_radius": 0.00625,
-       "block": {"min": [-0.075, 0, -0.075], "max": [0.075, 0.2, 0.075]}}]})";
-}
-
 TEST(FluidTank, SettlesToRestDensityAndHeightWithHydrostaticPressure) {
-  Scene scene = scene_from_json(resting_tank_scene(R"({"dt": 0.002, "substeps": 2, "iterations": 2})"));
+  Scene scene = scene_from_json(test::resting_tank_scene(R"({"dt": 0.002, "substeps": 2, "iterations": 2})"));
   const FluidState& f = scene.state.fluid;
-  const Real r = 0.00625, d = 2 * r;
+  const Real r = 0.00625;
   const int columns = 12;
   ASSERT_EQ(f.count, columns * columns * 16);
   run_steps(scene, 500);  // 1 s: the initial settling has died out
 
-  // Pressure p = rho g (H - y) (hydrostatics). A single particle's multiplier jitters from substep
-  // to substep (the unilateral constraint switches off whenever C < 0), so the profile is the mean
-  // pressure of each 2r-thick layer over 250 more steps (0.5 s), fitted by least squares. Only the
-  // inner columns count (more than h = 4r from the side walls): next to a wall a particle's
-  // multiplier also carries the wall's share (fluid pairs split their force between two
-  // multipliers, wall pairs do not). Layers within h of the floor or the surface are left out.
-  const int layers = 12;  // layer centres 0.03125 ... 0.16875 m
-  std::vector<Real> layer_sum(layers, 0.0), layer_y(layers, 0.0);
-  std::vector<long> layer_count(layers, 0);
-  for (int sample = 0; sample < 250; ++sample) {
-    run_steps(scene, 1);
-    for (Index i = 0; i < f.count; ++i) {
-      const Vec3& x = f.position[i];
-      const int k = static_cast<int>(std::floor((x.y() - 4 * r) / d));
-      if (std::abs(x.x()) > 0.075 - 4 * r || std::abs(x.z()) > 0.075 - 4 * r || k < 0 || k >= layers) continue;
-      layer_sum[k] += f.pressure[i], layer_y[k] += x.y(), ++layer_count[k];
-    }
-  }
-  Real sy = 0, sp = 0, syy = 0, syp = 0, spp = 0;
-  for (int k = 0; k < layers; ++k) {
-    const Real y = layer_y[k] / layer_count[k], p = layer_sum[k] / layer_count[k];
-    std::printf("layer y = %.4f m: p = %.1f Pa (hydrostatic %.1f)\n", y, p, 9810 * (0.2 - y));
-    sy += y, sp += p, syy += y * y, syp += y * p, spp += p * p;
-  }
-  const Real cov = layers * syp - sy * sp, var_y = layers * syy - sy * sy, var_p = layers * spp - sp * sp;
-  const Real slope = cov / var_y, r2 = cov * cov / (var_y * var_p);
-  const Real surface = (sp - slope * sy) / layers / -slope;  // where the fitted p vanishes
+  // Pressure p = rho g (H - y) (hydrostatics), over 250 more steps (0.5 s).
+  const auto [slope, r2, surface] = test::fit_tank_pressure(scene, 250);
   std::printf("pressure gradient %.1f Pa/m (rho g = 9810), R^2 = %.5f, p = 0 at y = %.4f m\n", -slope, r2, surface);
   // Tolerances: the cubic-spline lattice gradient is consistent to 2 % (sum_j V r_ij (x) grad W_ij
   // = -1.02 I); the settled particle arrangement adds a bias of a few per cent that depends on the

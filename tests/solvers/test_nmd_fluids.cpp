@@ -7,6 +7,7 @@
 
 #include "moreau/model/diagnostics.hpp"
 #include "dam_break_check.hpp"
+#include "fluid_tank_checks.hpp"
 #include "fluid_test_helpers.hpp"
 #include "test_helpers.hpp"
 
@@ -16,45 +17,14 @@ namespace {
 using test::run_steps;
 using test::scene_from_json;
 
-// 0.2 m of water at rest in a tank with a 0.15 m square base, r = 6.25 mm: 12 x 16 x 12 = 2,304
-// particles, 16 layers (the position-level tank of tests/fluids/test_fluids.cpp), one velocity
-// solve of 50 Gauss-Seidel sweeps per 4 ms step.
-const char* kTank = R"({"name": "tank", "settings": {"solver": "nmd", "dt": 0.004, "nmd": {"iterations": 50}},
-  "objects": [
-    {"name": "tank", "kind": "collider", "inside": true,
-     "shape": {"type": "box", "center": [0, 0.25, 0], "half_extents": [0.075, 0.25, 0.075]}},
-    {"name": "water", "kind": "fluid", "particle_radius": 0.00625,
-     "block": {"min": [-0.075, 0, -0.075], "max": [0.075, 0.2, 0.075]}}]})";
-
 TEST(NmdConstraintFluid, TankAtRestHasTheHydrostaticPressure) {
-  Scene scene = scene_from_json(kTank);
+  // The position-level test's tank (2,304 particles, 16 layers), one velocity solve of 50
+  // Gauss-Seidel sweeps per 4 ms step; the layers' pressure -lambda / V over 0.5 s after 1 s.
+  Scene scene = scene_from_json(test::resting_tank_scene(R"({"solver": "nmd", "dt": 0.004, "nmd": {"iterations": 50}})"));
   const FluidState& f = scene.state.fluid;
-  const Real r = 0.00625, d = 2 * r;
-  run_steps(scene, 250);  // 1 s
-  // The pressure -lambda / V of each particle's row, averaged per 2r-thick layer over 0.5 s, and
-  // fitted by least squares, as for the position-level tank: the inner columns (more than h = 4r
-  // from the side walls), the layers more than h from the floor and below the surface layers.
-  const int layers = 12;
-  std::vector<Real> layer_sum(layers, 0.0), layer_y(layers, 0.0);
-  std::vector<long> layer_count(layers, 0);
-  for (int sample = 0; sample < 125; ++sample) {
-    run_steps(scene, 1);
-    for (Index i = 0; i < f.count; ++i) {
-      const Vec3& x = f.position[i];
-      const int k = static_cast<int>(std::floor((x.y() - 4 * r) / d));
-      if (std::abs(x.x()) > 0.075 - 4 * r || std::abs(x.z()) > 0.075 - 4 * r || k < 0 || k >= layers) continue;
-      layer_sum[k] += f.pressure[i], layer_y[k] += x.y(), ++layer_count[k];
-    }
-  }
-  Real sy = 0, sp = 0, syy = 0, syp = 0, spp = 0;
-  for (int k = 0; k < layers; ++k) {
-    const Real y = layer_y[k] / layer_count[k], p = layer_sum[k] / layer_count[k];
-    std::printf("layer y = %.4f m: p = %.1f Pa (hydrostatic %.1f)\n", y, p, 9810 * (0.2 - y));
-    sy += y, sp += p, syy += y * y, syp += y * p, spp += p * p;
-  }
-  const Real cov = layers * syp - sy * sp, var_y = layers * syy - sy * sy, var_p = layers * spp - sp * sp;
-  const Real slope = cov / var_y, r2 = cov * cov / (var_y * var_p);
-  const Real surface = (sp - slope * sy) / layers / -slope;
+  const Real r = 0.00625;
+  run_steps(scene, 250);
+  const auto [slope, r2, surface] = test::fit_tank_pressure(scene, 125);
   Real mean_error = 0;
   for (Index i = 0; i < f.count; ++i) mean_error += std::max(f.density[i] / 1000 - 1, 0.0);
   mean_error /= f.count;
@@ -103,27 +73,6 @@ Scene nmd_slab_tank(Real density, const std::vector<std::string>& overrides = {}
                          settings);
 }
 
-// The slab's draft (open-water surface minus its bottom face) averaged over 0.3 s after 1.2 s, and
-// its largest tilt over that time (degrees).
-struct Flotation {
-  Real draft, tilt;
-};
-Flotation float_slab(Real density) {
-  Scene scene = nmd_slab_tank(density);
-  const Index body = scene.model.objects[scene.model.find_object("slab")].body;
-  run_steps(scene, 300);
-  Flotation result{0, 0};
-  const int samples = 75;
-  for (int k = 0; k < samples; ++k) {
-    run_steps(scene, 1);
-    const Real bottom = scene.state.rigid.position[body].y() - 0.03;
-    result.draft += (test::slab_tank_open_surface(scene.state.fluid) - bottom) / samples;
-    const Vec3 up = scene.state.rigid.orientation[body] * Vec3::UnitY();
-    result.tilt = std::max(result.tilt, std::acos(std::min<Real>(1, up.y())) * 180 / kPi);
-  }
-  return result;
-}
-
 TEST(NmdConstraintFluid, BoxOfHalfTheWaterDensityFloatsAtTheArchimedesDraft) {
   // Archimedes: rho_s H = rho_w T, so the 0.06 m slab of 500 kg/m^3 floats with draft T = 0.03 m.
   // Buoyancy is nothing but the density rows' push on the body (their Jacobian through the slab's
@@ -131,7 +80,8 @@ TEST(NmdConstraintFluid, BoxOfHalfTheWaterDensityFloatsAtTheArchimedesDraft) {
   // open surface is the median column top, particle centre + r; in the tank above the pressure
   // vanishes 2 mm below it), so the draft is bounded by r/2 = 3.1 mm (10 %), as the position-level
   // test bounds it (measured 0.0284 m here, 0.0285 m under xpbd).
-  const Flotation slab = float_slab(500);
+  Scene scene = nmd_slab_tank(500);
+  const test::Flotation slab = test::measure_flotation(scene);
   std::printf("nmd rigid slab draft %.4f m (Archimedes 0.0300 m), tilt %.3f deg\n", slab.draft, slab.tilt);
   EXPECT_NEAR(slab.draft, 0.03, 0.5 * 0.00625);
   EXPECT_LT(slab.tilt, 2.0);
