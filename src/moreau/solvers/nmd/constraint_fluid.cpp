@@ -81,8 +81,6 @@ void ConstraintFluid::add_rows(const Model& model, State& state, const VelocityS
       in.known[0] = -d.normal.dot(c.velocity);
       in.lower[0] = 0;
       in.compliance(0, 0) = model.settings.nmd.contact_compliance;
-      in.memory = nullptr;
-      in.memory_rows = 0;
       system.add(in, space, h, model.settings.nmd);
       }
     }
@@ -123,8 +121,6 @@ void ConstraintFluid::add_rows(const Model& model, State& state, const VelocityS
       in.C[0] = distance - closest;
       in.lower[0] = 0;
       in.compliance(0, 0) = model.settings.nmd.contact_compliance;
-      in.memory = nullptr;
-      in.memory_rows = 0;
       system.add(in, space, h, model.settings.nmd);
     }
   }

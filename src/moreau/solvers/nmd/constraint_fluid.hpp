@@ -15,6 +15,7 @@
 // Walls are unilateral rows too: a particle keeps distance r from every collider surface
 // (speculative contacts, frictionless), and distance 1.5 r from every solid sample, the closest
 // approach the position-level fluid keeps (solid_coupling.hpp).
+#include <array>
 #include <vector>
 
 #include "moreau/fluids/fluid_scratch.hpp"

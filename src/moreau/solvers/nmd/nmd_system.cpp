@@ -21,6 +21,11 @@ void NmdBlockInput::resize(int rows, int end_count) {
   upper.setConstant(rows, kInfinity);
   compliance.setZero(rows, rows);
   level.fill(RowLevel::position);
+  kind = NmdBlockKind::equality;
+  damping_time = 0;
+  static_friction = dynamic_friction = restitution = 0;
+  memory = nullptr;
+  memory_rows = 0;
 }
 
 void NmdSystem::clear() {

@@ -57,8 +57,9 @@ struct NmdBlockInput {
   Real* memory = nullptr;             // l h of the rows (kg m for positional rows): warm start in, result out
   int memory_rows = 0;
 
-  /// Sizes an input of `rows` rows over `ends` ends: zero Jacobian, C, known and target; no
-  /// compliance; unbounded position rows. The buffers keep their capacity from block to block.
+  /// Sizes an input of `rows` rows over `ends` ends and clears everything else: zero Jacobian, C,
+  /// known and target; no compliance, damping, friction, restitution or memory; an equality
+  /// block of unbounded position rows. The buffers keep their capacity from block to block.
   void resize(int rows, int end_count);
   int rows() const { return static_cast<int>(C.size()); }
   int ends() const { return static_cast<int>(end.size()); }
