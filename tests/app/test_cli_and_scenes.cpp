@@ -117,14 +117,6 @@ TEST(CommandLine, NmdSettingsNameTheirPathAndRange) {
   expect_bad_input("nmd_key", text, {"settings.nmd", "iteration"}, "--set settings.nmd.iteration=3");
 }
 
-TEST(CommandLine, NmdRefusesANeoHookeanSceneNamingWhatItDoesNotSimulate) {
-  const std::string scene = R"({"name": "f", "settings": {"solver": "nmd", "dt": 0.005},
-    "objects": [{"name": "jelly", "kind": "soft_body", "mesh": {"type": "box", "min": [0, 0, 0], "max": [0.2, 0.2, 0.2], "cells": [2, 2, 2]},
-                 "material": {"model": "neo_hookean", "youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000}}]})";
-  expect_bad_input("nmd_neo_hookean", scene,
-                   {"settings.solver", "does not simulate Neo-Hookean soft bodies", "st_venant_kirchhoff"});
-}
-
 TEST(CommandLine, ExplosionExitsWithCodeThreeNamingStepTimeAndObject) {
   // Gravity of 1e4 m/s^2 on a 0.1 s step drives particles past settings.max_speed = 100 m/s in the first step.
   const std::string scene = write_scene("explode", R"({"name": "boom", "settings": {"dt": 0.1, "substeps": 1, "duration": 1, "max_speed": 100},

@@ -8,9 +8,6 @@ namespace moreau {
 
 namespace {
 
-// Voigt order: rows 0-2 the normal strains, rows 3-5 the shears of the axis pairs (1,2), (0,2), (0,1).
-constexpr int kShearPair[3][2] = {{1, 2}, {0, 2}, {0, 1}};
-
 Mat3 deformation_gradient(const std::array<Index, 4>& p, const Vec3* x, const Mat3& rest_inverse) {
   return tet_deformation_gradient(x[p[0]], x[p[1]], x[p[2]], x[p[3]], rest_inverse);
 }
@@ -18,8 +15,10 @@ Mat3 deformation_gradient(const std::array<Index, 4>& p, const Vec3* x, const Ma
 GreenStrainTetConstraints::Rows::Vector voigt_strain(const Mat3& F) {
   const Mat3 E = 0.5 * (F.transpose() * F - Mat3::Identity());
   GreenStrainTetConstraints::Rows::Vector C;
-  for (int j = 0; j < 3; ++j) C[j] = E(j, j);
-  for (int s = 0; s < 3; ++s) C[3 + s] = 2 * E(kShearPair[s][0], kShearPair[s][1]);
+  for (int row = 0; row < 6; ++row) {
+    const int j = kVoigtPair[row][0], k = kVoigtPair[row][1];
+    C[row] = j == k ? E(j, j) : 2 * E(j, k);  // engineering shears
+  }
   return C;
 }
 
@@ -47,23 +46,28 @@ void GreenStrainTetConstraints::color(const std::vector<Real>& particle_inv_mass
   apply_permutation_to_all(permutation, particles, rest_inverse, compliance, damping_time, object);
 }
 
-GreenStrainTetConstraints::Rows GreenStrainTetConstraints::rows(Index k, const Vec3* x) const {
-  const Mat3 F = deformation_gradient(particles[k], x, rest_inverse[k]);
-  Rows r;
-  r.particle = particles[k];
+GreenStrainTetConstraints::Rows green_strain_rows(const std::array<Index, 4>& particles, const Mat3& F,
+                                                  const Mat3& rest_inverse) {
+  GreenStrainTetConstraints::Rows r;
+  r.particle = particles;
   r.C = voigt_strain(F);
   for (int row = 0; row < 6; ++row) {
+    const int j = kVoigtPair[row][0], l = kVoigtPair[row][1];
     Mat3 dC_dF = Mat3::Zero();
-    if (row < 3) {
-      dC_dF.col(row) = F.col(row);
+    if (j == l) {
+      dC_dF.col(j) = F.col(j);
     } else {
-      const int j = kShearPair[row - 3][0], l = kShearPair[row - 3][1];
       dC_dF.col(j) = F.col(l);
       dC_dF.col(l) = F.col(j);
     }
-    const std::array<Vec3, 4> g = tet_vertex_gradients(dC_dF, rest_inverse[k]);
+    const std::array<Vec3, 4> g = tet_vertex_gradients(dC_dF, rest_inverse);
     for (int i = 0; i < 4; ++i) r.gradient[i].row(row) = g[i].transpose();
   }
+  return r;
+}
+
+GreenStrainTetConstraints::Rows GreenStrainTetConstraints::rows(Index k, const Vec3* x) const {
+  Rows r = green_strain_rows(particles[k], deformation_gradient(particles[k], x, rest_inverse[k]), rest_inverse[k]);
   r.compliance = compliance[k];
   r.damping_time = damping_time[k];
   return r;

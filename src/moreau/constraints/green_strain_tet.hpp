@@ -41,4 +41,12 @@ struct GreenStrainTetConstraints {
   Real max_error(const Vec3* x, Index object) const;
 };
 
+/// Voigt order of the rows: the index pairs (j, k) of E_jk, normal strains first, then the shears.
+inline constexpr int kVoigtPair[6][2] = {{0, 0}, {1, 1}, {2, 2}, {1, 2}, {0, 2}, {0, 1}};
+
+/// The Green-strain rows of tetrahedron `particles` at deformation gradient F: C and each vertex's
+/// 6 x 3 gradient (no compliance, no damping).
+GreenStrainTetConstraints::Rows green_strain_rows(const std::array<Index, 4>& particles, const Mat3& F,
+                                                  const Mat3& rest_inverse);
+
 }  // namespace moreau

@@ -16,6 +16,7 @@ void NeoHookeanTetConstraints::add(const std::array<Index, 4>& tet, const std::a
   const Real lambda = lambda_lame + mu;  // the stable Neo-Hookean lambda (see the header)
   elements.push_back({tet, B * B.transpose(), 1 / (6 * volume), 1 / (lambda * volume), 1 / (mu * volume),
                       1 + mu / lambda, tau});
+  rest_inverse.push_back(B);
   object.push_back(obj);
 }
 
@@ -23,7 +24,7 @@ void NeoHookeanTetConstraints::color(const std::vector<Real>& particle_inv_mass)
   std::vector<std::array<Index, 4>> stencils;
   for (const auto& e : elements) stencils.push_back(e.particles);
   const auto permutation = color_constraints(stencils, particle_inv_mass, batches);
-  apply_permutation_to_all(permutation, elements, object);
+  apply_permutation_to_all(permutation, elements, rest_inverse, object);
 }
 
 namespace {

@@ -44,6 +44,7 @@ struct NeoHookeanTetConstraints {
   using Rows = RowBlock<4, 2>;
 
   std::vector<NeoHookeanElement> elements;
+  std::vector<Mat3> rest_inverse;  // B = D_m^-1, 1/m: F = D_s B (the velocity-level rows need F itself)
   std::vector<Index> object;
   ColorBatches batches;
 

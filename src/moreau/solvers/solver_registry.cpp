@@ -18,7 +18,7 @@ struct SolverEntry {
 const std::vector<SolverEntry>& registry() {
   static const std::vector<SolverEntry> entries{
       {"xpbd", [](const Model&) { return std::make_unique<XpbdSolver>(); }, nullptr},
-      {"nmd", [](const Model&) { return std::make_unique<NmdSolver>(); }, NmdSolver::refusal},
+      {"nmd", [](const Model&) { return std::make_unique<NmdSolver>(); }, nullptr},
   };
   return entries;
 }

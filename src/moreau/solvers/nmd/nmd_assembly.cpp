@@ -1,6 +1,7 @@
 #include "moreau/solvers/nmd/nmd_assembly.hpp"
 
 #include "moreau/constraints/contact_rows.hpp"
+#include "moreau/constraints/neo_hookean_green_strain.hpp"
 #include "moreau/constraints/particle_body_contact_rows.hpp"
 #include "moreau/constraints/particle_contact_rows.hpp"
 
@@ -14,6 +15,7 @@ struct Assembly {
   const VelocitySpace& space;
   Real h;
   NmdSystem& system;
+  NmdRowMemory& memory;
   NmdBlockInput input;
 
   void add() { system.add(input, space, h, model.settings.nmd); }
@@ -55,22 +57,32 @@ bool has_bounds(const NmdBlockInput& in) {
          (in.upper.array() < std::numeric_limits<Real>::infinity()).any();
 }
 
-// A family's constraint k: its rows over its particles, bilateral unless bounded.
+// One constraint's rows over its particles, bilateral unless bounded, warm-started from `memory`.
+template <class Rows>
+void add_rows(Assembly& a, const Rows& rows, Real* memory) {
+  NmdBlockInput& in = a.input;
+  set_particle_rows(in, rows, a.space);
+  in.compliance = rows.compliance;
+  in.damping_time = rows.damping_time;
+  in.lower = rows.lower;
+  in.upper = rows.upper;
+  in.kind = has_bounds(in) ? NmdBlockKind::bounded : NmdBlockKind::equality;
+  in.memory = memory;
+  in.memory_rows = Rows::kRows;
+  a.add();
+}
+
+// A family's constraints; a Neo-Hookean tetrahedron as its Green-strain rows.
 template <class Family>
 void add_family(Assembly& a, const Family& family, std::vector<typename Family::Multiplier>& lambda) {
-  using Rows = typename Family::Rows;
-  for (Index k = 0; k < static_cast<Index>(family.size()); ++k) {
-    const Rows rows = family.rows(k, a.state.position.data());
-    NmdBlockInput& in = a.input;
-    set_particle_rows(in, rows, a.space);
-    in.compliance = rows.compliance;
-    in.damping_time = rows.damping_time;
-    in.lower = rows.lower;
-    in.upper = rows.upper;
-    in.kind = has_bounds(in) ? NmdBlockKind::bounded : NmdBlockKind::equality;
-    in.memory = multiplier_rows<Family>(lambda[k]).data();
-    in.memory_rows = Rows::kRows;
-    a.add();
+  const Vec3* x = a.state.position.data();
+  const Index count = static_cast<Index>(family.size());
+  if constexpr (std::is_same_v<Family, NeoHookeanTetConstraints>) {
+    a.memory.neo_hookean.resize(count, Eigen::Matrix<Real, 6, 1>::Zero());
+    for (Index k = 0; k < count; ++k)
+      add_rows(a, neo_hookean_green_strain_rows(family, k, x), a.memory.neo_hookean[k].data());
+  } else {
+    for (Index k = 0; k < count; ++k) add_rows(a, family.rows(k, x), multiplier_rows<Family>(lambda[k]).data());
   }
 }
 
@@ -197,9 +209,9 @@ void add_particle_body_contacts(Assembly& a) {
 }  // namespace
 
 void assemble_nmd_system(const Model& model, State& state, const VelocitySpace& space, Real h, Real end_time,
-                         NmdSystem& system) {
+                         NmdSystem& system, NmdRowMemory& memory) {
   system.clear();
-  Assembly a{model, state, space, h, system, {}};
+  Assembly a{model, state, space, h, system, memory, {}};
   for_each_family(model.constraints, state.constraint_lambda,
                   [&](const auto& family, auto& lambda, int) { add_family(a, family, lambda); });
   JointBlocks joints(a);

@@ -4,15 +4,25 @@
 // (constraints/joints/joint.hpp), and one contact block per contact point: particle-collider,
 // particle-particle, rigid body-rigid body (every point of each manifold, separated ones as
 // speculative contacts) and particle-rigid body (constraints/*contact_rows.hpp). The rows are
-// the ones the position-level solver projects; here their Jacobians act on velocities.
+// the ones the position-level solver projects; here their Jacobians act on velocities. The one
+// exception: a Neo-Hookean tetrahedron is handed on as six Green-strain rows with its tangent
+// (constraints/neo_hookean_green_strain.hpp).
+#include <vector>
+
 #include "moreau/model/state.hpp"
 #include "moreau/solvers/nmd/nmd_system.hpp"
 
 namespace moreau {
 
+/// The last step's impulses of rows whose family multipliers have another size: each Neo-Hookean
+/// tetrahedron's six Green-strain rows (the state keeps the two of its XPBD pair).
+struct NmdRowMemory {
+  std::vector<Eigen::Matrix<Real, 6, 1>> neo_hookean;
+};
+
 /// Adds every block at the state's positions and velocities (`space` gathered from the state)
 /// for a solve of step h ending at time `end_time`.
 void assemble_nmd_system(const Model& model, State& state, const VelocitySpace& space, Real h, Real end_time,
-                         NmdSystem& system);
+                         NmdSystem& system, NmdRowMemory& memory);
 
 }  // namespace moreau

@@ -64,16 +64,6 @@ void NmdSolver::solve(const Model& model, const State& state) {
         state.step, state.time));
 }
 
-std::string NmdSolver::refusal(const Model& model) {
-  // The stable Neo-Hookean pair balances two rows far from zero at rest; one linearisation per
-  // step misses the geometric stiffness of that prestress, and a hanging bar swung by 10 cm
-  // instead of settling at 5 mm. The Green-strain rows vanish at rest.
-  if (model.family<NeoHookeanTetConstraints>().size() > 0)
-    return "the 'nmd' formulation does not simulate Neo-Hookean soft bodies; give each soft body "
-           "\"material\": {\"model\": \"st_venant_kirchhoff\", ...} or run with \"solver\": \"xpbd\"";
-  return {};
-}
-
 void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int threads) {
   threads = std::max(1, threads);
   timer.start();
@@ -97,7 +87,7 @@ void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int th
       timer.lap(NmdStage::fluid_neighbors);
     }
     space_.gather(model, state);
-    assemble_nmd_system(model, state, space_, h, end_time, system_);
+    assemble_nmd_system(model, state, space_, h, end_time, system_, row_memory_);
     if (fluids) fluid_.add_rows(model, state, space_, h, end_time, input_, system_);
     timer.lap(NmdStage::assemble);
     space_.apply_forces(model, state, h);

@@ -6,6 +6,7 @@
 
 #include "moreau/collision/particle_contacts.hpp"
 #include "moreau/solvers/nmd/constraint_fluid.hpp"
+#include "moreau/solvers/nmd/nmd_assembly.hpp"
 #include "moreau/solvers/nmd/nmd_system.hpp"
 #include "moreau/solvers/nmd/schur_complement.hpp"
 #include "moreau/solvers/solver.hpp"
@@ -18,10 +19,6 @@ class NmdSolver final : public Solver {
   std::vector<std::string> stage_names() const override;
   void step(const Model& model, State& state, StageTimer& timer, int threads) override;
 
-  /// Why this formulation cannot step `model` (what the scene holds that it does not simulate),
-  /// or an empty string.
-  static std::string refusal(const Model& model);
-
  private:
   void solve(const Model& model, const State& state);
 
@@ -30,6 +27,7 @@ class NmdSolver final : public Solver {
   SchurComplement schur_;
   ContactScratch contact_scratch_;
   ConstraintFluid fluid_;
+  NmdRowMemory row_memory_;
   NmdBlockInput input_;  // the fluid rows' block being built (its buffers kept from step to step)
 };
 
