@@ -15,6 +15,17 @@ BodyRows attachment_rows(const Joint& j, const JointEndPose& a, const JointEndPo
   return rows;
 }
 
+BodyRows damper_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b, bool angular) {
+  BodyRows rows = BodyRows::zero(j.bodies(), 3, JointSlot::position);
+  for (int r = 0; r < 3; ++r) {
+    if (angular)
+      rows.set_rotation_row(r, Vec3::Unit(r));
+    else
+      rows.set_point_row(r, Vec3::Unit(r), a.offset(), b.offset());
+  }
+  return rows;
+}
+
 // Turning a by dtheta adds 1/2 [dtheta, 0] dq, whose vector part is (w I - [v]x) dtheta; turning b
 // subtracts 1/2 dq [dtheta, 0], vector part (w I + [v]x) dtheta.
 BodyRows orientation_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b) {

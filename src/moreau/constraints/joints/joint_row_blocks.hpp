@@ -12,6 +12,11 @@ namespace moreau {
 /// Attachment C = p_a - p_b (3 rows): dp = dx + dtheta x r = dx - [r]x dtheta.
 BodyRows attachment_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b);
 
+/// The damper rows of a joint's `damping` (linear: three point rows along the world axes at the
+/// anchors, whose rate is the anchors' relative velocity) or `angular_damping` (three rotation
+/// rows about the world axes, the relative angular velocity). C = 0: they act on velocities only.
+BodyRows damper_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b, bool angular);
+
 /// Fixed relative orientation C = 2 s vec(dq), dq = f_a f_b^-1 = (w, v), s = sign(w) (3 rows).
 BodyRows orientation_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b);
 

@@ -1,6 +1,7 @@
 #include "moreau/solvers/nmd/nmd_assembly.hpp"
 
 #include "moreau/constraints/contact_rows.hpp"
+#include "moreau/constraints/joints/joint_row_blocks.hpp"
 #include "moreau/constraints/neo_hookean_green_strain.hpp"
 #include "moreau/constraints/particle_body_contact_rows.hpp"
 #include "moreau/constraints/particle_contact_rows.hpp"
@@ -108,6 +109,22 @@ class JointBlocks final : public BodyRowSink {
   Assembly& a_;
   JointMultipliers* memory_ = nullptr;
 };
+
+// A joint's `damping` and `angular_damping` as damper blocks (nmd_system.hpp): the anchors'
+// relative velocity and the ends' relative angular velocity decay at those rates against the
+// ends' effective mass and inertia. No memory: a damper's impulse follows the velocities.
+void add_joint_dampers(Assembly& a, const Joint& j) {
+  const JointEndPose pa = end_pose(a.state, j.ends[0]), pb = end_pose(a.state, j.ends[1]);
+  const bool rotates = j.ends[0].kind == BodyEndKind::body || j.ends[1].kind == BodyEndKind::body;
+  for (const bool angular : {false, true}) {
+    const Real rate = angular ? j.angular_damping : j.damping;
+    if (rate <= 0 || (angular && !rotates)) continue;
+    set_body_rows(a.input, damper_rows(j, pa, pb, angular), a.space);
+    for (int r = 0; r < 3; ++r) a.input.level[r] = RowLevel::velocity;
+    a.input.damper_rate = rate;
+    a.add();
+  }
+}
 
 // Adhesion (Gascon, Zurdo, Otaduy 2010, "Constraint-based simulation of adhesive contact"): a
 // contact point may pull as well as push, down to -A (N). The glue is the contact's own spring of
@@ -218,6 +235,7 @@ void assemble_nmd_system(const Model& model, State& state, const VelocitySpace& 
   for (size_t k = 0; k < model.joints.size(); ++k) {
     joints.set_memory(state.joint_lambda[k]);
     joint_rows({state, model.joints[k], h, joint_coordinate(model.joints[k], state), JointRowSet::all}, joints);
+    add_joint_dampers(a, model.joints[k]);
   }
   add_collider_contacts(a, end_time);
   add_particle_contacts(a);

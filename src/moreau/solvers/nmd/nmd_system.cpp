@@ -23,6 +23,7 @@ void NmdBlockInput::resize(int rows, int end_count) {
   level.fill(RowLevel::position);
   kind = NmdBlockKind::equality;
   damping_time = 0;
+  damper_rate = 0;
   static_friction = dynamic_friction = restitution = 0;
   memory = nullptr;
   memory_rows = 0;
@@ -91,7 +92,7 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
   // An impact (a contact closing faster than the restitution threshold within this step) is a
   // rigid collision with Newton's restitution law: its normal row drops the contact compliance,
   // which would otherwise absorb the rebound within the damping time.
-  NmdBlockInput::Matrix compliance = in.compliance;
+  NmdBlockInput::Matrix compliance = in.damper_rate > 0 ? NmdBlockInput::Matrix(A / in.damper_rate) : in.compliance;
   bool impact = false;
   if (in.kind == NmdBlockKind::contact && in.restitution > 0) {
     const Real closing = rate(block, block.first_row, space.v) + in.known[0];

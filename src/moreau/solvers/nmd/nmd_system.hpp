@@ -16,6 +16,10 @@
 //   position  a holonomic row: q = -a C + b dC/dt (the SPOOK stabilisation above),
 //   velocity  a motor: dC/dt + (eps / h) l = target (Lacoursiere's velocity constraint),
 //   friction  a dissipative row: dC/dt = 0, bounded by the contact's normal impulse.
+// A damper block (a joint's damping) is velocity rows of target 0 whose compliance is their own
+// mobility over the rate c: eps = G W G^T / c, so S = G W G^T / (c h), and alone the block
+// leaves dC/dt / (1 + c h) of its rate each step: the force -c (G W G^T)^-1 dC/dt+ is c times
+// the ends' effective mass times their relative velocity, an implicit damper of decay rate c.
 // Contact normal rows take the gap C >= 0 of speculative contacts exactly (q = -C / h: the gap
 // may close within the step, no further) and add restitution, q >= -e dC/dt before the step for
 // impacts faster than the threshold. A contact's friction rows are bounded by mu_s times the
@@ -53,6 +57,7 @@ struct NmdBlockInput {
   Matrix compliance;                  // eps, R x R
   std::array<RowLevel, kMaxRows> level{};
   Real damping_time = 0;              // s
+  Real damper_rate = 0;               // 1/s: a damper block (see NmdSystem::add), 0 otherwise
   Real static_friction = 0, dynamic_friction = 0, restitution = 0;  // contact blocks
   Real* memory = nullptr;             // l h of the rows (kg m for positional rows): warm start in, result out
   int memory_rows = 0;
