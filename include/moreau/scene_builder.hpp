@@ -218,6 +218,14 @@ struct SoftBodyMaterial {
   std::optional<double> volume_compliance;  // m^3/N: an extra volume constraint per tetrahedron
 };
 
+/// A soft body as a suction cup (the velocity-level formulation only): its boundary faces that
+/// look along `opening` at rest, except those lying in the mouth (the flat rim), are the cavity.
+struct SuctionSpec {
+  Vector3 opening{};                     // the direction the cup's mouth faces at rest
+  double atmospheric_pressure = 101325;  // Pa
+  double seal_gap = 1e-3;                // m a rim vertex may lift beyond its contact before air leaks in
+};
+
 struct SoftBodySpec {
   std::string name;
   SoftBodyMesh mesh;
@@ -230,6 +238,7 @@ struct SoftBodySpec {
   bool fluid_coupling = true;
   ContactMaterial contact;
   std::vector<PinSpec> pin;
+  std::optional<SuctionSpec> suction;
 };
 
 struct FluidBlock {

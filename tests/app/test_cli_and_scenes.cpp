@@ -117,6 +117,24 @@ TEST(CommandLine, NmdSettingsNameTheirPathAndRange) {
   expect_bad_input("nmd_key", text, {"settings.nmd", "iteration"}, "--set settings.nmd.iteration=3");
 }
 
+TEST(CommandLine, SuctionNamesWhatIsWrongAndXpbdRefusesIt) {
+  const std::string cup = std::string(MOREAU_SOURCE_DIR) + "/scenes/meshes/suction_cup.obj";
+  auto scene = [&](const std::string& solver, const std::string& mesh, const std::string& opening) {
+    return fmt::format(R"({{"name": "s", "settings": {{"solver": "{}", "dt": 0.001}},
+      "objects": [{{"name": "cup", "kind": "soft_body", "mesh": {},
+                   "material": {{"youngs_modulus": 2e6, "poisson_ratio": 0.45, "density": 1100}},
+                   "suction": {{"opening": {}}}}}]}})",
+                       solver, mesh, opening);
+  };
+  const std::string obj = fmt::format(R"({{"type": "obj", "file": "{}", "quality": 2.5}})", cup);
+  const std::string box = R"({"type": "box", "min": [0, 0, 0], "max": [0.1, 0.1, 0.1], "cells": [1, 1, 1]})";
+  expect_bad_input("suction_xpbd", scene("xpbd", obj, "[0, -1, 0]"),
+                   {"settings.solver", "does not simulate suction cups", "nmd"});
+  expect_bad_input("suction_zero", scene("nmd", obj, "[0, 0, 0]"), {"objects[0].suction.opening", "nonzero"});
+  // A box's faces looking down all lie in its bottom, the mouth: no cavity.
+  expect_bad_input("suction_box", scene("nmd", box, "[0, -1, 0]"), {"objects[0].suction.opening", "no cavity"});
+}
+
 TEST(CommandLine, ExplosionExitsWithCodeThreeNamingStepTimeAndObject) {
   // Gravity of 1e4 m/s^2 on a 0.1 s step drives particles past settings.max_speed = 100 m/s in the first step.
   const std::string scene = write_scene("explode", R"({"name": "boom", "settings": {"dt": 0.1, "substeps": 1, "duration": 1, "max_speed": 100},

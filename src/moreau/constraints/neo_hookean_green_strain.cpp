@@ -37,7 +37,7 @@ GreenStrainTetConstraints::Rows neo_hookean_green_strain_rows(const NeoHookeanTe
     }
   }
   Eigen::SelfAdjointEigenSolver<Rows::Compliance> eigen(tangent_V);
-  const Rows::Vector stiffness = eigen.eigenvalues().cwiseMax(1e-3 * mu_V);
+  const Rows::Vector stiffness = eigen.eigenvalues().cwiseMax(mu_V);
   const Rows::Compliance& Q = eigen.eigenvectors();
   r.compliance = Q * stiffness.cwiseInverse().asDiagonal() * Q.transpose();
   r.C = r.compliance * stress_V;

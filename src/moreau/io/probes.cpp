@@ -25,6 +25,7 @@ bool Probe::is_vector() const {
 int Probe::width() const {
   if (type == ProbeType::body_orientation) return 4;
   if (type == ProbeType::joint_error) return 2;
+  if (type == ProbeType::suction) return 4;
   return is_vector() ? 3 : 1;
 }
 
@@ -32,6 +33,8 @@ std::vector<std::string> probe_columns(const Probe& probe) {
   if (probe.type == ProbeType::body_orientation)
     return {probe.name + ".w", probe.name + ".x", probe.name + ".y", probe.name + ".z"};
   if (probe.type == ProbeType::joint_error) return {probe.name + ".position", probe.name + ".angle"};
+  if (probe.type == ProbeType::suction)
+    return {probe.name + ".sealed", probe.name + ".pressure_difference", probe.name + ".volume", probe.name + ".area"};
   if (!probe.is_vector()) return {probe.name};
   return {probe.name + ".x", probe.name + ".y", probe.name + ".z"};
 }
@@ -160,6 +163,11 @@ void evaluate_probe(const Probe& probe, const Model& model, const State& state, 
     case ProbeType::penetration:
       values.push_back(deepest_penetration(model, state, probe.object));
       break;
+    case ProbeType::suction: {
+      const SuctionCupState& s = state.suction[probe.cup];
+      values.insert(values.end(), {s.sealed ? 1.0 : 0.0, s.pressure_difference, s.volume, s.area});
+      break;
+    }
     case ProbeType::max_displacement: {
       Real worst = 0;
       for_each_dynamic_body(model, probe.object, [&](Index b) {

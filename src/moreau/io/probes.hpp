@@ -12,7 +12,8 @@ enum class ProbeType {
   point, energy, center_of_mass, extent, momentum, constraint_error,
   fluid_height, density_error, particle_count, escaped,
   body_position, body_orientation, body_velocity, body_angular_velocity,  // one rigid body
-  joint_error, contact_count, max_displacement, penetration
+  joint_error, contact_count, max_displacement, penetration,
+  suction  // one suction cup: sealed (0/1), pressure difference (Pa), volume (m^3), sealed area (m^2)
 };
 
 struct Probe {
@@ -28,6 +29,7 @@ struct Probe {
   Vec3 at = Vec3::Zero();            // fluid_height: a point on the vertical line measured, m
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  // escaped: particles outside this box are counted
   Index joint = -1;                  // joint_error: one joint, or -1 for every joint
+  Index cup = -1;                    // suction: index into Model::suction_cups
 
   bool is_vector() const;
   /// Number of columns the probe writes.

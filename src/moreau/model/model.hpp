@@ -7,6 +7,7 @@
 
 #include "moreau/collision/collider.hpp"
 #include "moreau/constraints/particle_families.hpp"
+#include "moreau/constraints/suction_cavity.hpp"
 #include "moreau/fluids/fluid_model.hpp"
 #include "moreau/rigid/joint_tree.hpp"
 #include "moreau/constraints/joints/joint.hpp"
@@ -76,6 +77,7 @@ struct Model {
 
   RigidBodyModel rigid;        // rigid bodies, then colliders as kinematic bodies
   std::vector<Joint> joints;
+  std::vector<SuctionCup> suction_cups;       // soft bodies with a sealed cavity (nmd only)
   JointForest joint_forest;                   // joints solved directly (empty for Gauss-Seidel)
 
   SolverSettings settings;

@@ -18,6 +18,7 @@ State make_rest_state(const Model& model) {
   s.rigid.velocity = rb.initial_velocity;
   s.rigid.angular_velocity = rb.initial_angular_velocity;
   s.joint_lambda.assign(model.joints.size(), JointMultipliers{});
+  s.suction.assign(model.suction_cups.size(), SuctionCupState{});
   return s;
 }
 

@@ -31,6 +31,7 @@ struct State {
   RigidContacts rigid_contacts;
   ParticleBodyContacts particle_body_contacts;
   std::vector<JointMultipliers> joint_lambda;  // per joint, this substep (JointSlot)
+  std::vector<SuctionCupState> suction;         // per Model::suction_cups
 };
 
 /// A state at rest in the model's rest configuration, with all buffers sized.

@@ -14,7 +14,7 @@ const std::vector<std::string> kProbeTypes{
     "point",    "energy",      "center_of_mass", "extent",           "momentum",    "constraint_error",
     "fluid_height", "density_error", "particle_count", "escaped",     "position",    "orientation",
     "velocity", "angular_velocity", "joint_error", "contact_count", "max_displacement",
-    "penetration"};
+    "penetration", "suction"};
 
 // The types whose only key besides name and type is "object": one simulated object or "*".
 const std::map<std::string, ProbeType> kObjectOrEveryProbes{{"center_of_mass", ProbeType::center_of_mass},
@@ -171,6 +171,18 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
         if (model.joints[k].name == spec.joint) p.joint = k;
       if (p.joint < 0) j.fail("joint", fmt::format("no joint is named '{}'; give a joint's name or \"*\"", spec.joint));
     }
+  } else if (type == "suction") {
+    p.type = ProbeType::suction;
+    const Index object = model.find_object(spec.object);
+    for (Index k = 0; k < static_cast<Index>(model.suction_cups.size()); ++k)
+      if (model.suction_cups[k].object == object) p.cup = k;
+    if (p.cup < 0) {
+      std::string names;
+      for (const SuctionCup& c : model.suction_cups) names += (names.empty() ? "" : ", ") + model.objects[c.object].name;
+      j.fail("object", fmt::format("no soft body named '{}' has \"suction\"; allowed: {}", spec.object,
+                                   names.empty() ? "none (the scene has no suction cup)" : names));
+    }
+    p.object = object;
   } else if (type == "escaped") {
     p.type = ProbeType::escaped;
     p.object = object_index(spec, j, model, true, Accepts::particles);  // particles only

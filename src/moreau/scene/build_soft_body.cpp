@@ -45,6 +45,14 @@ SoftBodySpec read_soft_body(const JsonObject& object) {
 
   spec.collider_gap = object.number("collider_gap", spec.collider_gap);
   spec.angular_velocity = read_vector(object, "angular_velocity", spec.angular_velocity);
+  if (const auto suction = object.optional_object("suction")) {
+    SuctionSpec s;
+    s.opening = to_vector3(suction->vec3("opening"));
+    s.atmospheric_pressure = suction->number("atmospheric_pressure", s.atmospheric_pressure);
+    s.seal_gap = suction->number("seal_gap", s.seal_gap);
+    suction->finish();
+    spec.suction = s;
+  }
   read_particle_object_keys(object, spec);
   return spec;
 }
@@ -143,6 +151,7 @@ void add_soft_body(const SoftBodySpec& spec, const SpecPlace& place, ObjectInfo&
     else m.family<GreenStrainTetConstraints>().add(g, rest, youngs, poisson, damping, object_index);
     if (has_volume) m.family<TetVolumeConstraints>().add(g, rest, volume_compliance, damping, object_index);
   }
+  if (spec.suction) add_suction_cup(*spec.suction, place.at("suction"), mesh.vertices, boundary, base, object_index, m);
   // Only surface vertices can touch anything.
   std::vector<Index> surface_vertices;
   for (const auto& f : boundary) surface_vertices.insert(surface_vertices.end(), f.begin(), f.end());

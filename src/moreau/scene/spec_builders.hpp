@@ -47,6 +47,9 @@ void read_output_settings(const JsonObject& settings, int& every, bool& write_vt
 void add_collider(const ColliderSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 void add_cloth(const ClothSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 void add_soft_body(const SoftBodySpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
+/// The soft body's cavity and rim (its boundary faces `boundary` over `rest`, numbered from `base`).
+void add_suction_cup(const SuctionSpec& spec, const SpecPlace& place, const std::vector<Vec3>& rest,
+                     const std::vector<std::array<Index, 3>>& boundary, Index base, Index object, Model& model);
 void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 void add_rigid_body(const RigidBodySpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 /// After all objects and joints: colliders become kinematic bodies for the rigid bodies.

@@ -15,9 +15,15 @@ struct SolverEntry {
   std::function<std::string(const Model&)> refusal;  // empty: every constraint scene
 };
 
+std::string xpbd_refusal(const Model& model) {
+  if (!model.suction_cups.empty())
+    return "the 'xpbd' formulation does not simulate suction cups (a soft body's \"suction\"); run with \"solver\": \"nmd\"";
+  return {};
+}
+
 const std::vector<SolverEntry>& registry() {
   static const std::vector<SolverEntry> entries{
-      {"xpbd", [](const Model&) { return std::make_unique<XpbdSolver>(); }, nullptr},
+      {"xpbd", [](const Model&) { return std::make_unique<XpbdSolver>(); }, xpbd_refusal},
       {"nmd", [](const Model&) { return std::make_unique<NmdSolver>(); }, nullptr},
   };
   return entries;

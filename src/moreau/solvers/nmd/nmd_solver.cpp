@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "moreau/collision/particle_body_contacts.hpp"
+#include "moreau/solvers/nmd/suction_rows.hpp"
 #include "moreau/errors.hpp"
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
@@ -89,12 +90,14 @@ void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int th
     space_.gather(model, state);
     assemble_nmd_system(model, state, space_, h, end_time, system_, row_memory_);
     if (fluids) fluid_.add_rows(model, state, space_, h, end_time, input_, system_);
+    add_suction_rows(model, state, space_, h, end_time - h, input_, system_);
     timer.lap(NmdStage::assemble);
     space_.apply_forces(model, state, h);
     warm_start(system_, space_, settings, h);
     solve(model, state);
     store_impulses(system_, h);
     if (fluids) fluid_.store_pressure(model, state, h);
+    store_suction(model, state, h);
     timer.lap(NmdStage::solve);
     space_.scatter(model, state);
     integrate_positions(model, state, h);
