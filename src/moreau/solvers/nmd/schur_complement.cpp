@@ -70,13 +70,22 @@ bool SchurComplement::factorize(const std::vector<char>& clamped) {
                     std::equal(pattern_outer_.begin(), pattern_outer_.end(), outer) &&
                     std::equal(pattern_inner_.begin(), pattern_inner_.end(), inner);
   if (!same) {
-    ldlt_.analyzePattern(clamped_A_);
+    supernodal_ = clamped_A_.nonZeros() > kSupernodalNonZeros;
+    if (supernodal_)
+      cholmod_.analyzePattern(clamped_A_);
+    else
+      ldlt_.analyzePattern(clamped_A_);
     pattern_outer_.assign(outer, outer + clamped_A_.outerSize() + 1);
     pattern_inner_.assign(inner, inner + clamped_A_.nonZeros());
     analysed_ = true;
   }
-  ldlt_.factorize(clamped_A_);
-  factored_ok_ = ldlt_.info() == Eigen::Success && (ldlt_.vectorD().array() > 0).all();
+  if (supernodal_) {
+    cholmod_.factorize(clamped_A_);
+    factored_ok_ = cholmod_.info() == Eigen::Success;
+  } else {
+    ldlt_.factorize(clamped_A_);
+    factored_ok_ = ldlt_.info() == Eigen::Success && (ldlt_.vectorD().array() > 0).all();
+  }
   return factored_ok_;
 }
 
