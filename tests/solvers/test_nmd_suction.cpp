@@ -65,7 +65,7 @@ PullOff pull_off(Real scale) {
 TEST(NmdSuction, CupHoldsUntilThePullExceedsTheSealedAreaTimesTheSuction) {
   // At the last step the rim holds, the cup's contact with the floor has gone to nothing: what
   // the pins pull equals the sealed area times the suction, plus the cup's weight (0.13 N): 10 %
-  // as the issue states. A cup 1.5 times as large (2.25 times the area) is strained alike by the
+  // for the weight and what the rim may still carry at the last step that holds. A cup 1.5 times as large (2.25 times the area) is strained alike by the
   // same suction, so it lets go at the same suction and 2.25 times the force: within 10 % (its
   // weight, 3.4 times larger, and its inertia do not scale with the area).
   const PullOff small = pull_off(1.0), large = pull_off(1.5);

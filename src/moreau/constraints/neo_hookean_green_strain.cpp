@@ -37,7 +37,10 @@ GreenStrainTetConstraints::Rows neo_hookean_green_strain_rows(const NeoHookeanTe
     }
   }
   Eigen::SelfAdjointEigenSolver<Rows::Compliance> eigen(tangent_V);
-  const Rows::Vector stiffness = eigen.eigenvalues().cwiseMax(mu_V);
+  // The rest tangent's smallest eigenvalue: mu (the shears) or the bulk modulus 3K = 3 lambda_Lame
+  // + 2 mu = 3 lambda - mu, which is the smaller for nu < -1/4.
+  const Real rest_smallest = std::min(mu_V, 3 * lambda_V - mu_V);
+  const Rows::Vector stiffness = eigen.eigenvalues().cwiseMax(rest_smallest);
   const Rows::Compliance& Q = eigen.eigenvectors();
   r.compliance = Q * stiffness.cwiseInverse().asDiagonal() * Q.transpose();
   r.C = r.compliance * stress_V;

@@ -11,9 +11,9 @@
 //   II(C^-1)_ijkl = (C^-1_ik C^-1_jl + C^-1_il C^-1_jk) / 2,
 // which at rest is lambda_Lame 1 (x) 1 + 2 mu II, linear elasticity. In Voigt form (engineering
 // shears) the rows take
-//   compliance alpha = (V DD)^-1   (DD with its eigenvalues raised to at least mu, the smallest
-//                                   at rest: where a large strain softens the tangent or makes it
-//                                   indefinite, the step stays as implicit as at rest),
+//   compliance alpha = (V DD)^-1   (DD with its eigenvalues raised to at least the smallest at
+//                                   rest, min(mu, 3K): where a large strain softens the tangent or
+//                                   makes it indefinite, the step stays as implicit as at rest),
 //   value      C = DD^-1 S,
 // so the rows' force -alpha^-1 C = -V S is the Neo-Hookean stress exactly, and their stiffness
 // V DD is its material tangent. On the vertices that force is -V (F S) : dF/dx, the exact

@@ -12,10 +12,10 @@ enum class FrictionBound { cone, box };
 
 /// How the system of a solve is solved (docs/scene-format.md, settings.nmd.method):
 ///   pgs     projected Gauss-Seidel over the blocks (projected_gauss_seidel.hpp),
-///   direct  the joints' and materials' rows, limits and drives included, in one sparse LDL^T with
+///   direct  the joints' and materials' rows, limits and drives included, in one sparse Cholesky factorisation (schur_complement.hpp) with
 ///           an active-set loop for the bounds; contacts by projected Gauss-Seidel, alternated
 ///           (solve_methods.hpp),
-///   hybrid  the equality rows in one sparse LDL^T, the rest by projected Gauss-Seidel, alternated.
+///   hybrid  the equality rows in one sparse Cholesky factorisation (schur_complement.hpp), the rest by projected Gauss-Seidel, alternated.
 enum class NmdMethod { pgs, direct, hybrid };
 
 struct NmdSettings {

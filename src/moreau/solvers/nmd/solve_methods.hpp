@@ -1,6 +1,6 @@
 #pragma once
 // The direct and hybrid methods of an NMD solve (nmd_settings.hpp, NmdMethod); projected
-// Gauss-Seidel is projected_gauss_seidel.hpp. Both factor a set of rows F in one sparse LDL^T,
+// Gauss-Seidel is projected_gauss_seidel.hpp. Both factor a set of rows F in one sparse Cholesky factorisation (schur_complement.hpp),
 // A_FF = G_F W G_F^T + S_F (schur_complement.hpp), and solve the remaining rows (contacts; for
 // hybrid also the bounded joint rows) by projected Gauss-Seidel sweeps, alternated until no
 // impulse moves by more than settings.tolerance or settings.iterations rounds have passed, ending

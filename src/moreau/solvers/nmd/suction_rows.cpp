@@ -60,7 +60,7 @@ void add_suction_rows(const Model& model, State& state, const VelocitySpace& spa
       for (int a = 0; a < 3; ++a) in.at(0, static_cast<int>(e))[a] = v.gradient[e][a];
     }
     in.C[0] = alpha * suction_pressure(p0, s.air_volume, v.volume);
-    in.known[0] = -v.area * normal.dot(c.velocity);  // the surface's own motion
+    in.known[0] = -v.area * normal.dot(c.velocity);  // the surface's own motion (colliders only translate)
     in.compliance(0, 0) = alpha;
     in.upper[0] = 0;  // suction pulls the cavity shut, never pushes it open
     in.kind = NmdBlockKind::bounded;
