@@ -239,6 +239,24 @@ TEST(CommandLine, FluidRunWritesParticlesAndWarnsAboutCfl) {
   EXPECT_EQ(last.substr(last.find(',')), ",64,0");
 }
 
+TEST(CommandLine, AdhesionUnderXpbdIsAWarningNamingTheObjects) {
+  // A cube glued under a ceiling: under xpbd its contacts cannot pull, so the run says so (and
+  // the cube falls); under nmd it hangs and nothing is said.
+  const std::string text = R"({"name": "glue", "settings": {"dt": 0.01, "duration": 0.1},
+    "objects": [{"name": "ceiling", "kind": "collider", "shape": {"type": "box", "center": [0, 1.1, 0], "half_extents": [1, 0.1, 1]}},
+                {"name": "cube", "kind": "rigid_body", "shape": {"type": "box", "half_extents": [0.1, 0.1, 0.1]},
+                 "position": [0, 0.9, 0], "mass": 1, "adhesion": 30}]})";
+  const std::string scene = write_scene("adhesion_xpbd", text);
+  const std::string out = fs::path(scene).parent_path() / "out";
+  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", scene, out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: the \"adhesion\" of 'cube' acts only under \"solver\": \"nmd\""), std::string::npos)
+      << r.output;
+  const auto n = test::run_moreau(fmt::format("run {} --out {}_nmd --quiet --set 'settings.solver=\"nmd\"'", scene, out));
+  ASSERT_EQ(n.exit_code, 0) << n.output;
+  EXPECT_EQ(n.output.find("adhesion"), std::string::npos) << n.output;
+}
+
 TEST(CommandLine, VersionHelpAndOutputDirectory) {
   EXPECT_EQ(test::run_moreau("--version").exit_code, 0);
   EXPECT_EQ(test::run_moreau("--help").exit_code, 0);

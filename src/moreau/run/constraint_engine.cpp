@@ -95,11 +95,23 @@ void ConstraintEngine::add_run_fields(nlohmann::json& j, bool completed) const {
 }
 
 std::vector<std::string> ConstraintEngine::warnings() const {
-  if (state_.fluid.cfl_violations == 0) return {};
-  return {fmt::format(
-      "the fluid CFL number max|v| h / (2 r) reached {:.2f} (limit {}) in {} steps; the time step is too long for "
-      "the fastest particles: lower settings.dt or raise settings.substeps",
-      state_.fluid.max_cfl, model_.fluid.cfl_limit, state_.fluid.cfl_violations)};
+  std::vector<std::string> out;
+  if (state_.fluid.cfl_violations > 0)
+    out.push_back(fmt::format(
+        "the fluid CFL number max|v| h / (2 r) reached {:.2f} (limit {}) in {} steps; the time step is too long for "
+        "the fastest particles: lower settings.dt or raise settings.substeps",
+        state_.fluid.max_cfl, model_.fluid.cfl_limit, state_.fluid.cfl_violations));
+  // Adhesion is a bound of the velocity-level contact rows; the position-level solver has none.
+  if (scene_.solver != "nmd") {
+    std::string glued;
+    for (const ObjectInfo& o : model_.objects)
+      if (o.adhesion > 0) glued += (glued.empty() ? "'" : ", '") + o.name + "'";
+    if (!glued.empty())
+      out.push_back(fmt::format("the \"adhesion\" of {} acts only under \"solver\": \"nmd\"; under \"{}\" its contacts "
+                                "push and never pull",
+                                glued, scene_.solver));
+  }
+  return out;
 }
 
 const char* kind_name(ObjectKind kind) {
