@@ -48,12 +48,8 @@ TEST(FluidRigidCoupling, DenseBoxSinks) {
   EXPECT_LT(bottom, 1.5 * 0.00625 + 1e-3);
 }
 
-const char* kBlobHitsBox = R"({"name": "hit", "settings": {"dt": 0.002, "substeps": 4, "gravity": [0, 0, 0]},
-    "objects": [
-      {"name": "water", "kind": "fluid", "particle_radius": 0.005, "velocity": [1.5, 0.2, 0],
-       "block": {"min": [-0.1, -0.01, -0.03], "max": [-0.04, 0.05, 0.03]}},
-      {"name": "box", "kind": "rigid_body", "shape": {"type": "box", "half_extents": [0.04, 0.04, 0.04]},
-       "position": [0.04, 0, 0], "density": 800}]})";
+const std::string kBlobHitsBox =
+    test::blob_hits_box_scene(R"({"dt": 0.002, "substeps": 4, "gravity": [0, 0, 0]})");
 
 TEST(FluidRigidCoupling, BlobHittingAFreeBoxConservesMomentum) {
   // No gravity: a blob of water at 1.5 m/s hits a free box off its centre line. Density reactions

@@ -101,13 +101,8 @@ TEST(NmdConstraintFluid, DenseBoxSinksToTheFloor) {
 // A blob of water thrown at a free box without gravity: every row is internal to fluid and box
 // (no walls), so linear momentum is conserved to round-off (the angular momentum only to the
 // linearisation of the box's inertia over a step).
-const char* kBlobHitsBox = R"({"name": "hit", "settings": {"solver": "nmd", "dt": 0.004, "gravity": [0, 0, 0],
-    "nmd": {"iterations": 30}},
-  "objects": [
-    {"name": "water", "kind": "fluid", "particle_radius": 0.005, "velocity": [1.5, 0.2, 0],
-     "block": {"min": [-0.1, -0.01, -0.03], "max": [-0.04, 0.05, 0.03]}},
-    {"name": "box", "kind": "rigid_body", "shape": {"type": "box", "half_extents": [0.04, 0.04, 0.04]},
-     "position": [0.04, 0, 0], "density": 800}]})";
+const std::string kBlobHitsBox = test::blob_hits_box_scene(
+    R"({"solver": "nmd", "dt": 0.004, "gravity": [0, 0, 0], "nmd": {"iterations": 30}})");
 
 TEST(NmdConstraintFluid, BlobHittingAFreeBoxConservesMomentum) {
   Scene scene = scene_from_json(kBlobHitsBox);

@@ -24,6 +24,17 @@ inline std::string resting_tank_scene(const std::string& settings) {
        "block": {"min": [-0.075, 0, -0.075], "max": [0.075, 0.2, 0.075]}}]})";
 }
 
+/// A blob of water thrown at 1.5 m/s at a free box, off its centre line, without gravity (no walls:
+/// every row is internal to fluid and box), under `settings`.
+inline std::string blob_hits_box_scene(const std::string& settings) {
+  return R"({"name": "hit", "settings": )" + settings + R"(,
+    "objects": [
+      {"name": "water", "kind": "fluid", "particle_radius": 0.005, "velocity": [1.5, 0.2, 0],
+       "block": {"min": [-0.1, -0.01, -0.03], "max": [-0.04, 0.05, 0.03]}},
+      {"name": "box", "kind": "rigid_body", "shape": {"type": "box", "half_extents": [0.04, 0.04, 0.04]},
+       "position": [0.04, 0, 0], "density": 800}]})";
+}
+
 /// The resting tank's pressure against depth: slope dp/dy (Pa/m), the fit's R^2 and the height
 /// where the fitted pressure vanishes (m).
 struct PressureProfile {

@@ -114,6 +114,7 @@ class JointBlocks final : public BodyRowSink {
 // relative velocity and the ends' relative angular velocity decay at those rates against the
 // ends' effective mass and inertia. No memory: a damper's impulse follows the velocities.
 void add_joint_dampers(Assembly& a, const Joint& j) {
+  if (j.damping <= 0 && j.angular_damping <= 0) return;
   const JointEndPose pa = end_pose(a.state, j.ends[0]), pb = end_pose(a.state, j.ends[1]);
   const bool rotates = j.ends[0].kind == BodyEndKind::body || j.ends[1].kind == BodyEndKind::body;
   for (const bool angular : {false, true}) {
