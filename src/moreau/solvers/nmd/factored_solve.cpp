@@ -60,11 +60,12 @@ bool solve_bounded(SchurComplement& schur, const VectorX& b, const VectorX& lowe
 
 }  // namespace
 
-bool solve_factored(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, SchurComplement& schur) {
+bool solve_factored(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, SchurComplement& schur,
+                    const SweepSchedule& schedule, int threads) {
   const std::vector<Index> rows = factored_rows(system, settings.method);
   const Index m = static_cast<Index>(rows.size());
   if (m == 0) {
-    projected_gauss_seidel(system, space, settings);
+    projected_gauss_seidel(system, space, settings, schedule, threads);
     return true;
   }
   const bool others = m < system.row_count();
@@ -100,7 +101,7 @@ bool solve_factored(NmdSystem& system, VelocitySpace& space, const NmdSettings& 
   for (int round = 0; round < settings.iterations && regular; ++round) {
     const Real factored_change = solve_rows();
     if (!others) break;
-    const Real sweep_change = gauss_seidel_sweep(system, space, settings, false, !bounded);
+    const Real sweep_change = gauss_seidel_sweep(system, space, settings, schedule, threads, false, !bounded);
     if (std::max(factored_change, sweep_change) <= settings.tolerance) break;
   }
   if (others && regular) solve_rows();

@@ -50,13 +50,13 @@ void mark_touching(State& state) {
 
 std::vector<std::string> NmdSolver::stage_names() const { return nmd_stage_names(); }
 
-void NmdSolver::solve(const Model& model, const State& state) {
+void NmdSolver::solve(const Model& model, const State& state, int threads) {
   const NmdSettings& settings = model.settings.nmd;
   bool solved = true;
   switch (settings.method) {
-    case NmdMethod::pgs: projected_gauss_seidel(system_, space_, settings); break;
+    case NmdMethod::pgs: projected_gauss_seidel(system_, space_, settings, schedule_, threads); break;
     case NmdMethod::direct:
-    case NmdMethod::hybrid: solved = solve_factored(system_, space_, settings, schur_); break;
+    case NmdMethod::hybrid: solved = solve_factored(system_, space_, settings, schur_, schedule_, threads); break;
   }
   if (!solved)
     throw NumericalError(fmt::format(
@@ -91,10 +91,11 @@ void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int th
     assemble_nmd_system(model, state, space_, h, end_time, system_, row_memory_);
     if (fluids) fluid_.add_rows(model, state, space_, h, end_time, input_, system_);
     add_suction_rows(model, state, space_, h, end_time - h, input_, system_);
+    schedule_.build(system_, static_cast<Index>(space_.v.size()));
     timer.lap(NmdStage::assemble);
     space_.apply_forces(model, state, h);
     warm_start(system_, space_, settings, h);
-    solve(model, state);
+    solve(model, state, threads);
     store_impulses(system_, h);
     if (fluids) fluid_.store_pressure(model, state, h);
     store_suction(model, state, h);

@@ -9,6 +9,7 @@
 #include "moreau/solvers/nmd/nmd_assembly.hpp"
 #include "moreau/solvers/nmd/nmd_system.hpp"
 #include "moreau/solvers/nmd/schur_complement.hpp"
+#include "moreau/solvers/nmd/sweep_schedule.hpp"
 #include "moreau/solvers/solver.hpp"
 
 namespace moreau {
@@ -20,11 +21,12 @@ class NmdSolver final : public Solver {
   void step(const Model& model, State& state, StageTimer& timer, int threads) override;
 
  private:
-  void solve(const Model& model, const State& state);
+  void solve(const Model& model, const State& state, int threads);
 
   VelocitySpace space_;
   NmdSystem system_;
   SchurComplement schur_;
+  SweepSchedule schedule_;  // the sweeps' order for threads (rebuilt after each assembly)
   ContactScratch contact_scratch_;
   ConstraintFluid fluid_;
   NmdRowMemory row_memory_;

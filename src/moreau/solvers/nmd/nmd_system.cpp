@@ -55,6 +55,7 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
   block.first_row = row_count();
   block.first_end = static_cast<Index>(block_ends.size());
   block_ends.insert(block_ends.end(), in.end.begin(), in.end.end());
+  for (Index e = block.first_end; e < static_cast<Index>(block_ends.size()); ++e) block_ends[e].moves = space.moves(block_ends[e]);
   block.memory = in.memory;
   block.memory_rows = in.memory_rows;
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <omp.h>
+
 namespace moreau {
 
 namespace {
@@ -18,7 +20,8 @@ struct RowAccess {
     const Real* W = s.weighted.data() + s.jacobian_offset[row];
     const VelocityEnd* end = s.ends_of(b);
     for (int e = 0; e < b.ends; ++e) {
-      for (int c = 0; c < end[e].size; ++c) v[end[e].dof + c] += W[c] * dl;
+      if (end[e].moves)  // an immovable end's W is 0: skipping it leaves it untouched for other threads
+        for (int c = 0; c < end[e].size; ++c) v[end[e].dof + c] += W[c] * dl;
       W += end[e].size;
     }
   }
@@ -103,30 +106,86 @@ void warm_start(NmdSystem& system, VelocitySpace& space, const NmdSettings& sett
   }
 }
 
-Real gauss_seidel_sweep(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, bool equality_blocks,
-                        bool bounded_blocks) {
-  const RowAccess a{system, space.v};
+namespace {
+
+// The largest impulse change of one block's update.
+Real solve_block(const RowAccess& a, const NmdBlock& b, const NmdSettings& settings) {
   const Real omega = settings.over_relaxation;
+  Real before[NmdBlockInput::kMaxRows];
+  for (int i = 0; i < b.rows; ++i) before[i] = a.s.impulse[b.first_row + i];
+  switch (b.kind) {
+    case NmdBlockKind::equality: solve_equality(a, b, omega); break;
+    case NmdBlockKind::bounded:
+      for (int i = 0; i < b.rows; ++i) solve_bounded_row(a, b, b.first_row + i, omega);
+      break;
+    case NmdBlockKind::contact: solve_contact(a, b, omega, settings.friction); break;
+  }
   Real largest = 0;
-  for (const NmdBlock& b : system.blocks) {
-    if ((b.kind == NmdBlockKind::equality && !equality_blocks) || (b.kind == NmdBlockKind::bounded && !bounded_blocks))
-      continue;
-    Real before[NmdBlockInput::kMaxRows];
-    for (int i = 0; i < b.rows; ++i) before[i] = system.impulse[b.first_row + i];
-    switch (b.kind) {
-      case NmdBlockKind::equality: solve_equality(a, b, omega); break;
-      case NmdBlockKind::bounded:
-        for (int i = 0; i < b.rows; ++i) solve_bounded_row(a, b, b.first_row + i, omega);
-        break;
-      case NmdBlockKind::contact: solve_contact(a, b, omega, settings.friction); break;
+  for (int i = 0; i < b.rows; ++i) largest = std::max(largest, std::abs(a.s.impulse[b.first_row + i] - before[i]));
+  return largest;
+}
+
+// The blocks of tasks [first, last) in schedule order; returns the largest change.
+Real solve_tasks(const RowAccess& a, const SweepSchedule& schedule, Index first, Index last,
+                 const NmdSettings& settings, bool equality_blocks, bool bounded_blocks) {
+  Real largest = 0;
+  for (Index t = first; t < last; ++t)
+    for (Index i = schedule.task_block[t]; i < schedule.task_end[t]; ++i) {
+      const NmdBlock& b = a.s.blocks[i];
+      if ((b.kind == NmdBlockKind::equality && !equality_blocks) || (b.kind == NmdBlockKind::bounded && !bounded_blocks))
+        continue;
+      largest = std::max(largest, solve_block(a, b, settings));
     }
-    for (int i = 0; i < b.rows; ++i) largest = std::max(largest, std::abs(system.impulse[b.first_row + i] - before[i]));
+  return largest;
+}
+
+// One sweep, level by level (sweep_schedule.hpp), by every thread of the enclosing parallel
+// region: each level's tasks are split between the threads, and the loop's implicit barrier
+// closes the level. Returns this thread's largest change.
+Real shared_sweep(const RowAccess& a, const SweepSchedule& schedule, const NmdSettings& settings, bool equality_blocks,
+                  bool bounded_blocks) {
+  Real largest = 0;
+  for (Index level = 0; level < schedule.levels(); ++level) {
+#pragma omp for schedule(static)
+    for (Index t = schedule.level_first[level]; t < schedule.level_first[level + 1]; ++t)
+      largest = std::max(largest, solve_tasks(a, schedule, t, t + 1, settings, equality_blocks, bounded_blocks));
   }
   return largest;
 }
 
-void projected_gauss_seidel(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings) {
-  for (int sweep = 0; sweep < settings.iterations; ++sweep) gauss_seidel_sweep(system, space, settings, true, true);
+// Threads for a sweep: one unless the levels hold 64 tasks on average. Measured on two cores:
+// 1000 boxes on the ground (111 tasks a level) solve 1.68x faster on two threads; the 210-box
+// pyramid (5 a level: its contacts chain along the rows) and a 2462-tetrahedron soft body (45 a
+// level) gain nothing, the barrier closing each level costing what the second thread saves.
+int sweep_threads(const SweepSchedule& schedule, int threads) {
+  constexpr Index kTasksPerThread = 64;
+  return schedule.tasks() >= kTasksPerThread * std::max<Index>(1, schedule.levels()) ? std::max(1, threads) : 1;
+}
+
+}  // namespace
+
+Real gauss_seidel_sweep(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings,
+                        const SweepSchedule& schedule, int threads, bool equality_blocks, bool bounded_blocks) {
+  const RowAccess a{system, space.v};
+  const int team = sweep_threads(schedule, threads);
+  if (team == 1) return solve_tasks(a, schedule, 0, schedule.tasks(), settings, equality_blocks, bounded_blocks);
+  std::vector<Real> largest(team, 0);
+#pragma omp parallel num_threads(team)
+  largest[omp_get_thread_num()] = shared_sweep(a, schedule, settings, equality_blocks, bounded_blocks);
+  return *std::max_element(largest.begin(), largest.end());
+}
+
+void projected_gauss_seidel(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings,
+                            const SweepSchedule& schedule, int threads) {
+  const RowAccess a{system, space.v};
+  const int team = sweep_threads(schedule, threads);
+  if (team == 1) {
+    for (int sweep = 0; sweep < settings.iterations; ++sweep)
+      solve_tasks(a, schedule, 0, schedule.tasks(), settings, true, true);
+    return;
+  }
+#pragma omp parallel num_threads(team)
+  for (int sweep = 0; sweep < settings.iterations; ++sweep) shared_sweep(a, schedule, settings, true, true);
 }
 
 void store_impulses(const NmdSystem& system, Real h) {

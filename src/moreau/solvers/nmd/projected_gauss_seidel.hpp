@@ -14,8 +14,10 @@
 //              nmd_system.hpp)
 //   then v += W G^T dl for the change actually taken.
 // Warm start: l from the blocks' memory (the last solve's impulses), clamped to the bounds.
-// The sweep is serial in a fixed order: the result does not depend on the thread count.
+// Threads share a sweep level by level (sweep_schedule.hpp): every velocity and impulse sees the
+// same operations in the same order as in a serial sweep in assembly order, for any thread count.
 #include "moreau/solvers/nmd/nmd_system.hpp"
+#include "moreau/solvers/nmd/sweep_schedule.hpp"
 
 namespace moreau {
 
@@ -23,14 +25,14 @@ namespace moreau {
 /// W G^T l to the velocities.
 void warm_start(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, Real h);
 
-/// One sweep over the blocks in order, the equality and bounded blocks included or skipped (the
-/// direct and hybrid methods factor those, solve_methods.hpp). Returns the largest impulse change.
-Real gauss_seidel_sweep(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, bool equality_blocks,
-                        bool bounded_blocks);
-
+/// One sweep over the blocks in the schedule's order on up to `threads` threads (the same result
+/// for any count), the equality and bounded blocks included or skipped (the direct and hybrid
+/// methods factor those, solve_methods.hpp). Returns the largest impulse change.
+Real gauss_seidel_sweep(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings,
+                        const SweepSchedule& schedule, int threads, bool equality_blocks, bool bounded_blocks);
 /// settings.iterations sweeps; afterwards system.impulse holds l and space.v holds v+.
-void projected_gauss_seidel(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings);
-
+void projected_gauss_seidel(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings,
+                            const SweepSchedule& schedule, int threads);
 /// Writes l h of each block's first memory_rows rows to its memory.
 void store_impulses(const NmdSystem& system, Real h);
 

@@ -18,10 +18,13 @@
 // repeat each other, which leaves A singular unless every contact has a compliance.
 #include "moreau/solvers/nmd/nmd_system.hpp"
 #include "moreau/solvers/nmd/schur_complement.hpp"
+#include "moreau/solvers/nmd/sweep_schedule.hpp"
 
 namespace moreau {
 
-/// Returns false when A_FF was not positive definite (the caller reports it).
-bool solve_factored(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, SchurComplement& schur);
+/// The sweeps run on up to `threads` threads in the schedule's order (the same result for any
+/// count). Returns false when A_FF was not positive definite (the caller reports it).
+bool solve_factored(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, SchurComplement& schur,
+                    const SweepSchedule& schedule, int threads);
 
 }  // namespace moreau

@@ -6,6 +6,13 @@
 
 namespace moreau {
 
+bool VelocitySpace::moves(const VelocityEnd& e) const {
+  if (e.size == 0) return false;
+  if (e.size == 3) return (e.dof < 3 * particles ? particle_inv_mass[e.dof / 3] : fluid_inv_mass[(e.dof - fluid_dof(0)) / 3]) > 0;
+  const Index b = (e.dof - 3 * particles) / 6;
+  return body_inv_mass[b] > 0 || !body_inv_inertia[b].isZero(0);
+}
+
 void VelocitySpace::apply_inverse_mass(const VelocityEnd& e, const Real* jacobian, Real* out) const {
   if (e.size == 3) {
     const Real w = e.dof < 3 * particles ? particle_inv_mass[e.dof / 3] : fluid_inv_mass[(e.dof - fluid_dof(0)) / 3];

@@ -21,7 +21,8 @@ struct State;
 /// One end of a row block in the velocity vector; dof < 0 is the world (no velocity).
 struct VelocityEnd {
   Index dof = -1;
-  int size = 0;  // 3 (particle) or 6 (body)
+  int size = 0;       // 3 (particle) or 6 (body)
+  bool moves = true;  // false when its inverse mass is zero (set by NmdSystem::add): impulses leave it alone
 
   bool is_world() const { return dof < 0; }
 };
@@ -47,6 +48,9 @@ struct VelocitySpace {
   }
   VelocityEnd particle_end(Index p) const { return {particle_dof(p), 3}; }
   VelocityEnd fluid_end(Index i) const { return {fluid_dof(i), 3}; }
+
+  /// Whether an impulse can change the end's velocity (a non-zero inverse mass or inertia).
+  bool moves(const VelocityEnd& e) const;
 
   /// W_e J^T for the 6 entries of one row's end (the angular half unused for particles).
   void apply_inverse_mass(const VelocityEnd& e, const Real* jacobian, Real* out) const;
