@@ -214,6 +214,8 @@ ContactManifold collide_shapes(const Shape& a, const Pose& pa, const Shape& b, c
     if (a.type != ShapeType::plane) collide_plane(a, pa, pb, margin, c);
   } else if (a.is_round() && b.is_round()) {
     collide_round(a, pa, b, pb, margin, c);
+  } else if (a.type == ShapeType::box && b.type == ShapeType::box) {
+    collide_boxes(a, pa, b, pb, margin, c);
   } else if (a.is_polyhedron() && b.is_polyhedron()) {
     collide_polyhedra(a, pa, b, pb, margin, c);
   } else if (a.type == ShapeType::sphere && b.is_polyhedron()) {

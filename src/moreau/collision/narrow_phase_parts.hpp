@@ -1,6 +1,7 @@
 #pragma once
 // Internal pieces of the narrow phase, shared by its source files (not part of the engine's API).
 #include <array>
+#include <limits>
 
 #include "moreau/collision/narrow_phase.hpp"
 
@@ -56,9 +57,30 @@ ContactManifold reduce_to_manifold(const Candidates& c, const Pose& pose_a, cons
 void closest_points_of_segments(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1, Vec3& on_p,
                                 Vec3& on_q);
 
+/// The deepest separation of one polyhedron from the face planes of the other, and that face.
+struct FaceAxis {
+  Real separation = -std::numeric_limits<Real>::infinity();
+  Index face = -1;
+};
+
+/// What a separating-axis test of two overlapping polyhedra found: the best face axis of each
+/// and the best edge-edge axis (oriented from A to B, with the two edge directions crossed).
+struct SeparatingAxes {
+  FaceAxis face_a, face_b;
+  Real edge_separation = -std::numeric_limits<Real>::infinity();
+  Vec3 edge_axis = Vec3::Zero(), edge_dir_a = Vec3::Zero(), edge_dir_b = Vec3::Zero();
+};
+
 /// Box/hull against box/hull by separating axes.
 void collide_polyhedra(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                        Candidates& out);
+/// Box against box: the same axes and contacts as collide_polyhedra, each axis's separation in
+/// closed form from the boxes' rotation matrices (box_contacts.cpp).
+void collide_boxes(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin, Candidates& out);
+/// The contacts of overlapping polyhedra from their axes: an edge-edge contact when an edge axis
+/// separates clearly more than any face, else the incident face clipped against the reference face.
+void contacts_from_axes(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
+                        const SeparatingAxes& axes, Candidates& out);
 /// Sphere A against box/hull B.
 void collide_sphere_polyhedron(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                                Candidates& out);

@@ -13,11 +13,6 @@ Vec3 world_support(const Shape& s, const Pose& p, const Vec3& direction) {
   return p.to_world(s.polyhedron.vertices[s.polyhedron.support_vertex(p.orientation.conjugate() * direction)]);
 }
 
-struct FaceAxis {
-  Real separation = -std::numeric_limits<Real>::infinity();
-  Index face = -1;
-};
-
 // Deepest separation of `other` from each face plane of `self` (both posed).
 FaceAxis best_face_axis(const Shape& self, const Pose& ps, const Shape& other, const Pose& po) {
   FaceAxis best;
@@ -70,14 +65,13 @@ void support_edge(const Shape& s, const Pose& p, const Vec3& d, const Vec3& axis
 
 void collide_polyhedra(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                        Candidates& out) {
-  const FaceAxis face_a = best_face_axis(a, pa, b, pb);
-  if (face_a.separation > margin) return;
-  const FaceAxis face_b = best_face_axis(b, pb, a, pa);
-  if (face_b.separation > margin) return;
+  SeparatingAxes axes;
+  axes.face_a = best_face_axis(a, pa, b, pb);
+  if (axes.face_a.separation > margin) return;
+  axes.face_b = best_face_axis(b, pb, a, pa);
+  if (axes.face_b.separation > margin) return;
 
   // Edge-edge axes, oriented from A to B.
-  Real edge_separation = -std::numeric_limits<Real>::infinity();
-  Vec3 edge_axis, edge_dir_a, edge_dir_b;
   const Vec3 ab = pb.position - pa.position;
   for (const Vec3& da_local : a.polyhedron.edge_directions) {
     const Vec3 da = pa.orientation * da_local;
@@ -90,19 +84,25 @@ void collide_polyhedra(const Shape& a, const Pose& pa, const Shape& b, const Pos
       if (axis.dot(ab) < 0) axis = -axis;
       const Real s = axis.dot(world_support(b, pb, -axis)) - axis.dot(world_support(a, pa, axis));
       if (s > margin) return;
-      if (s > edge_separation) edge_separation = s, edge_axis = axis, edge_dir_a = da, edge_dir_b = db;
+      if (s > axes.edge_separation) axes.edge_separation = s, axes.edge_axis = axis, axes.edge_dir_a = da, axes.edge_dir_b = db;
     }
   }
+  contacts_from_axes(a, pa, b, pb, margin, axes, out);
+}
 
+void contacts_from_axes(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
+                        const SeparatingAxes& axes, Candidates& out) {
+  const FaceAxis& face_a = axes.face_a;
+  const FaceAxis& face_b = axes.face_b;
   // Prefer faces (stable manifolds) unless an edge axis separates clearly more.
   const Real scale = std::min(a.bounding_radius(), b.bounding_radius());
   const Real face_separation = std::max(face_a.separation, face_b.separation);
-  if (edge_separation > face_separation + 1e-3 * scale) {
+  if (axes.edge_separation > face_separation + 1e-3 * scale) {
     Vec3 a0, a1, b0, b1, on_a, on_b;
-    support_edge(a, pa, edge_dir_a, edge_axis, a0, a1);
-    support_edge(b, pb, edge_dir_b, -edge_axis, b0, b1);
+    support_edge(a, pa, axes.edge_dir_a, axes.edge_axis, a0, a1);
+    support_edge(b, pb, axes.edge_dir_b, -axes.edge_axis, b0, b1);
     closest_points_of_segments(a0, a1, b0, b1, on_a, on_b);
-    out.normal = -edge_axis;
+    out.normal = -axes.edge_axis;
     out.frame = NormalFrame::body_b;
     out.add({on_a, on_b, 0, 0, (on_a - on_b).dot(out.normal)});
     return;
