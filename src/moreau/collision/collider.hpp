@@ -19,7 +19,7 @@ struct Collider {
   Real static_friction = 0.5;         // mu_s
   Real dynamic_friction = 0.5;        // mu_k
   Real restitution = 0;               // e
-  Real adhesion = 0;                  // N per contact point with a rigid body (nmd)
+  Real adhesion = 0;                  // N per contact point with a rigid body or a particle (nmd)
   bool inside = false;                // a container: the solid is outside the shape (a tank keeps particles in)
   bool fluid_walls = true;            // sampled with wall particles for the fluid density
 

@@ -70,6 +70,7 @@ void detect_particle_body_contacts(const Model& model, State& state) {
   c.static_friction.resize(n);
   c.dynamic_friction.resize(n);
   c.restitution.resize(n);
+  c.adhesion.resize(n);
   for (size_t q = 0; q < n; ++q) {
     const auto [b, p] = c.pair[q];
     // Coefficients: the mean of the two sides (Mueller 2020), as for the other contacts.
@@ -77,6 +78,7 @@ void detect_particle_body_contacts(const Model& model, State& state) {
     c.static_friction[q] = 0.5 * (particle_object.static_friction + m.body_static_friction[b]);
     c.dynamic_friction[q] = 0.5 * (particle_object.dynamic_friction + m.body_dynamic_friction[b]);
     c.restitution[q] = 0.5 * (particle_object.restitution + m.body_restitution[b]);
+    c.adhesion[q] = std::max(particle_object.adhesion, m.body_adhesion[b]);
   }
 }
 

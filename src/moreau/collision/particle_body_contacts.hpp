@@ -24,6 +24,7 @@ struct ParticleBodyContacts {
   std::vector<Vec3> normal;            // world, at the last projection
   std::vector<Vec3> offset;            // world, body surface point minus body centre, at the last projection
   std::vector<Real> static_friction, dynamic_friction, restitution;  // combined (means)
+  std::vector<Real> adhesion;          // N: the larger of the two sides' (glue on either holds; nmd)
   std::vector<Index> by_x;             // detection scratch: particles sorted by x
 
   size_t size() const { return pair.size(); }

@@ -19,6 +19,7 @@ void ColliderContacts::clear() {
   static_friction.clear();
   dynamic_friction.clear();
   restitution.clear();
+  adhesion.clear();
 }
 
 void ParticleContacts::clear() {
@@ -59,6 +60,7 @@ void detect_collider_contacts(const Model& model, State& state) {
       c.static_friction.push_back(combine(obj.static_friction, col.static_friction));
       c.dynamic_friction.push_back(combine(obj.dynamic_friction, col.dynamic_friction));
       c.restitution.push_back(combine(obj.restitution, col.restitution));
+      c.adhesion.push_back(std::max(obj.adhesion, col.adhesion));
     }
     if (static_cast<Index>(c.particle.size()) > group_start) c.group_offsets.push_back(group_start);
   }

@@ -23,6 +23,7 @@ struct ColliderContacts {
   std::vector<Real> lambda_normal;    // kg m, accumulated over the substep
   std::vector<Vec3> normal;           // outward normal at the last projection
   std::vector<Real> static_friction, dynamic_friction, restitution;  // combined coefficients
+  std::vector<Real> adhesion;         // N: the larger of the two sides' (glue on either holds; nmd)
 
   size_t size() const { return particle.size(); }
   void clear();

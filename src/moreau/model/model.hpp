@@ -32,7 +32,7 @@ struct ObjectInfo {
   bool self_collision = false;                // particle contacts within the object
   bool fluid_coupling = true;                 // cloth / soft body: sampled as a two-way boundary of the fluids
   Real static_friction = 0.5, dynamic_friction = 0.5, restitution = 0;
-  Real adhesion = 0;                          // N per contact point (rigid contacts under nmd)
+  Real adhesion = 0;                          // N per contact point under nmd: rigid contacts, and cloth and soft-body particles on bodies and colliders
 
   Index particle_count() const { return particle_end - particle_begin; }
   bool has_particles() const { return particle_end > particle_begin; }

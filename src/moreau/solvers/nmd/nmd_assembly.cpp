@@ -167,7 +167,8 @@ void add_collider_contacts(Assembly& a, Real end_time) {
                                                               c.static_friction[q], Vec3::Zero(), x, x);
     set_particle_rows(a.input, rows, a.space);
     for (int r = 0; r < 3; ++r) a.input.known[r] = -rows.gradient[0].row(r).dot(col.velocity);  // dC/dt = grad . (v_p - v_c)
-    add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1);
+    add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1,
+                adhesive_bound(c.adhesion[q], a.input.C[0], a.model.settings.nmd.contact_compliance));
   }
 }
 
@@ -220,7 +221,8 @@ void add_particle_body_contacts(Assembly& a) {
     const ParticleBodyContactRows contact =
         particle_body_rows(a.model, a.state, now, b, p, c.static_friction[q], ContactPoints::all);
     set_body_rows(a.input, contact.rows, a.space);
-    add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1);
+    add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1,
+                adhesive_bound(c.adhesion[q], a.input.C[0], a.model.settings.nmd.contact_compliance));
   }
 }
 
