@@ -86,7 +86,7 @@ Index touching_particle_body_count(const Model& model, const State& state, Index
   const ParticleBodyContacts& c = state.particle_body_contacts;
   Index count = 0;
   for (size_t q = 0; q < c.size(); ++q) {
-    if (c.lambda_normal[q] <= 0) continue;
+    if (c.lambda_normal[q] == 0) continue;  // pushing, or pulling by adhesion
     const auto [b, p] = c.pair[q];
     if (object >= 0 && model.rigid.body_object[b] != object && model.particle_object[p] != object) continue;
     ++count;

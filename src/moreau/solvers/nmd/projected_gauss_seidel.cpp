@@ -153,6 +153,8 @@ Real shared_sweep(const RowAccess& a, const SweepSchedule& schedule, const NmdSe
   return largest;
 }
 
+}  // namespace
+
 // Threads for a sweep: one unless the levels hold 64 tasks on average. Measured on two cores:
 // 1000 boxes on the ground (111 tasks a level) solve 1.68x faster on two threads; the 210-box
 // pyramid (5 a level: its contacts chain along the rows) and a 2462-tetrahedron soft body (45 a
@@ -161,8 +163,6 @@ int sweep_threads(const SweepSchedule& schedule, int threads) {
   constexpr Index kTasksPerThread = 64;
   return schedule.tasks() >= kTasksPerThread * std::max<Index>(1, schedule.levels()) ? std::max(1, threads) : 1;
 }
-
-}  // namespace
 
 Real gauss_seidel_sweep(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings,
                         const SweepSchedule& schedule, int threads, bool equality_blocks, bool bounded_blocks) {

@@ -25,6 +25,9 @@ namespace moreau {
 /// W G^T l to the velocities.
 void warm_start(NmdSystem& system, VelocitySpace& space, const NmdSettings& settings, Real h);
 
+/// The threads a sweep of `schedule` runs on, at most `threads`: one unless its levels hold 64
+/// tasks on average (below that a level's barrier costs what a second thread saves).
+int sweep_threads(const SweepSchedule& schedule, int threads);
 /// One sweep over the blocks in the schedule's order on up to `threads` threads (the same result
 /// for any count), the equality and bounded blocks included or skipped (the direct and hybrid
 /// methods factor those, solve_methods.hpp). Returns the largest impulse change.
