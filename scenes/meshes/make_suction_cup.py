@@ -4,8 +4,9 @@
 The profile (metres): a flat annular rim on y = 0 between the inner radius r_i and the outer
 radius r_o, an outer dome of height h_o over the outer edge, an inner dome (the cavity's roof) of
 height h_i over the inner edge, and a cylindrical stem of radius r_s and height h_s on top that a
-handle can hold. The domes are quarter ellipses. Usage: make_suction_cup.py [out.obj] (tetgen
-fills the surface when a scene loads it as a soft-body mesh of type "obj")."""
+handle can hold. The domes are quarter ellipses. Usage: make_suction_cup.py [out.obj [segments arc]]
+(32 segments around the axis and 8 points along each dome by default; tetgen fills the surface
+when a scene loads it as a soft-body mesh of type "obj")."""
 import math
 import sys
 
@@ -13,6 +14,8 @@ r_o, r_i = 0.025, 0.019      # rim: outer and inner radius
 h_o, h_i = 0.013, 0.008      # outer and inner dome heights above the mouth
 r_s, h_s = 0.006, 0.010      # stem radius and height above the outer dome's top
 segments, arc = 32, 8        # around the axis; points along each dome
+if len(sys.argv) > 3:
+    segments, arc = int(sys.argv[2]), int(sys.argv[3])
 
 def ellipse(r, h, stop_r):
     """Quarter ellipse (r cos t, h sin t) from the rim up to radius stop_r."""

@@ -4,7 +4,7 @@
 
 namespace moreau {
 
-CavityVolume cavity_volume(const SuctionCup& cup, const Vec3* x, const Vec3& o, const Vec3& n) {
+CavityVolume cavity_volume(const SuctionCup& cup, const Vec3* x, const Vec3& o, const Vec3& n, const Vec3& center) {
   CavityVolume out;
   out.gradient.assign(cup.cavity_vertices.size(), Vec3::Zero());
   auto slot = [&](Index p) {
@@ -16,6 +16,10 @@ CavityVolume cavity_volume(const SuctionCup& cup, const Vec3* x, const Vec3& o, 
     const Real mean_height = (n.dot(x1 - o) + n.dot(x2 - o) + n.dot(x3 - o)) / 3;
     out.volume -= mean_height * normal_area;
     out.area -= normal_area;
+    // The plane turning by dtheta about the centre lifts each height by dtheta . (n x (x - c)) and
+    // tilts n by dtheta x n, which changes n . a_t by (dtheta x n) . a_t = dtheta . (n x a_t).
+    const Vec3 a_t = 0.5 * (x2 - x1).cross(x3 - x1);
+    out.surface_turn -= normal_area * n.cross((x1 + x2 + x3) / 3 - center) + mean_height * n.cross(a_t);
     const Vec3 shared = n * (normal_area / 3);
     out.gradient[slot(t[0])] -= shared + 0.5 * mean_height * (x2 - x3).cross(n);
     out.gradient[slot(t[1])] -= shared + 0.5 * mean_height * (x3 - x1).cross(n);

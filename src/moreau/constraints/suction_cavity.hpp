@@ -10,7 +10,10 @@
 //   V = -sum_t dbar_t (n . a_t),   a_t = (x2 - x1) x (x3 - x1) / 2,  dbar_t = (d1 + d2 + d3)/3,
 // exact for flat triangles, and the sealed area (the footprint) is A = -sum_t n . a_t. Its gradient:
 //   dV/dx_1 = -[ n (n . a_t)/3 + dbar_t (x2 - x3) x n / 2 ]   (and cyclic),
-// and a surface moving at velocity u changes V at the rate -A (n . u).
+// and a surface moving at velocity u changes V at the rate -A (n . u). A surface on a rigid body
+// (centre c) that turns by dtheta changes every height by dtheta . (n x (x - c)) and tilts n by
+// dtheta x n (so n . a_t by dtheta . (n x a_t)); the body's row Jacobian is
+//   dV/dx_body = -A n,   dV/dtheta_body = -sum_t [ (n . a_t) n x (xbar_t - c) + dbar_t n x a_t ].
 //
 // Air. Inside, air at pressure p fills V; outside is the atmosphere p0. The lip is a check
 // valve: while the cavity would be above p0 air escapes, so the air holds the amount that fills
@@ -42,7 +45,7 @@ struct SuctionCup {
 /// Where a cup stands this step.
 struct SuctionCupState {
   bool sealed = false;
-  Index collider = -1;            // the surface sealed on
+  Index collider = -1, body = -1;  // the surface sealed on: a collider's or a rigid body's
   Real air_volume = 0;            // V_air, m^3: the air inside, as its volume at p0
   Real volume = 0, area = 0;      // V (m^3) and A (m^2) at the last assembly
   Real pressure_difference = 0;   // dp, Pa: the row's force in the last solve (0 unsealed)
@@ -52,10 +55,13 @@ struct SuctionCupState {
 struct CavityVolume {
   Real volume = 0, area = 0;
   std::vector<Vec3> gradient;  // dV/dx per cavity vertex (SuctionCup::cavity_vertices order)
+  Vec3 surface_turn = Vec3::Zero();  // dV/dtheta of the surface turning about `center`
 };
 
-/// V, A and dV/dx of `cup` over the plane (o, n) at positions x.
-CavityVolume cavity_volume(const SuctionCup& cup, const Vec3* x, const Vec3& o, const Vec3& n);
+/// V, A and dV/dx of `cup` over the plane (o, n) at positions x, and dV/dtheta of the plane
+/// turning about `center`.
+CavityVolume cavity_volume(const SuctionCup& cup, const Vec3* x, const Vec3& o, const Vec3& n,
+                           const Vec3& center = Vec3::Zero());
 
 /// The suction dp = p0 (1 - V_air / V) (0 when V <= V_air).
 inline Real suction_pressure(Real p0, Real air_volume, Real volume) {

@@ -1,23 +1,56 @@
 #include "moreau/solvers/nmd/suction_rows.hpp"
 
+#include "moreau/constraints/particle_body_contact_rows.hpp"
+
 namespace moreau {
 
 namespace {
 
-// Whether every rim vertex is within its contact gap plus the seal gap of collider c.
-bool rim_touches(const Model& model, const SuctionCup& cup, const Collider& c, const Vec3& center, const Vec3* x) {
-  for (Index p : cup.rim)
-    if (collider_distance(c, center, x[p]).distance > model.particle_collider_gap[p] + cup.seal_gap) return false;
-  return true;
-}
+// A surface a cup can seal on: a collider at the step's start, or a rigid body as it stands.
+struct Surface {
+  const Model& model;
+  const State& state;
+  Real time;
+  Index collider = -1, body = -1;
 
-// The collider's tangent plane under the rim's centroid: a point on it and its normal.
-std::pair<Vec3, Vec3> surface_plane(const SuctionCup& cup, const Collider& c, const Vec3& center, const Vec3* x) {
+  ColliderDistance distance(const Vec3& x) const {
+    if (collider >= 0) {
+      const Collider& c = model.colliders[collider];
+      return collider_distance(c, c.position_at(time), x);
+    }
+    const ParticleBodyNormal near = nearest_on_body(model, state, body, x);
+    return {near.surface.distance, near.normal};
+  }
+  // Whether every rim vertex is within its contact gap plus the seal gap.
+  bool holds(const SuctionCup& cup) const {
+    for (Index p : cup.rim)
+      if (distance(state.position[p]).distance > model.particle_collider_gap[p] + cup.seal_gap) return false;
+    return true;
+  }
+};
+
+// The surface's tangent plane under the rim's centroid: a point on it and its normal.
+std::pair<Vec3, Vec3> surface_plane(const SuctionCup& cup, const Surface& surface, const Vec3* x) {
   Vec3 centroid = Vec3::Zero();
   for (Index p : cup.rim) centroid += x[p];
   centroid /= static_cast<Real>(cup.rim.size());
-  const ColliderDistance d = collider_distance(c, center, centroid);
+  const ColliderDistance d = surface.distance(centroid);
   return {centroid - d.distance * d.normal, d.normal};
+}
+
+// The colliders, then the rigid bodies that are not colliders, until one holds the whole rim.
+bool find_seal(const Model& model, const State& state, Real time, const SuctionCup& cup, SuctionCupState& s) {
+  for (Index c = 0; c < static_cast<Index>(model.colliders.size()); ++c)
+    if (Surface{model, state, time, c, -1}.holds(cup)) {
+      s.collider = c;
+      return true;
+    }
+  for (const ObjectInfo& o : model.objects)
+    if (o.kind == ObjectKind::rigid_body && Surface{model, state, time, -1, o.body}.holds(cup)) {
+      s.body = o.body;
+      return true;
+    }
+  return false;
 }
 
 }  // namespace
@@ -29,21 +62,16 @@ void add_suction_rows(const Model& model, State& state, const VelocitySpace& spa
     const SuctionCup& cup = model.suction_cups[k];
     SuctionCupState& s = state.suction[k];
     if (s.sealed) {
-      const Collider& c = model.colliders[s.collider];
-      if (!rim_touches(model, cup, c, c.position_at(start_time), x)) s = SuctionCupState{};  // air rushes in
-    } else {
-      for (size_t c = 0; c < model.colliders.size() && !s.sealed; ++c) {
-        const Collider& col = model.colliders[c];
-        if (!rim_touches(model, cup, col, col.position_at(start_time), x)) continue;
-        s.sealed = true;
-        s.collider = static_cast<Index>(c);
-        s.air_volume = std::numeric_limits<Real>::infinity();  // set from the volume below
-      }
+      if (!Surface{model, state, start_time, s.collider, s.body}.holds(cup)) s = SuctionCupState{};  // air rushes in
+    } else if (find_seal(model, state, start_time, cup, s)) {
+      s.sealed = true;
+      s.air_volume = std::numeric_limits<Real>::infinity();  // set from the volume below
     }
     if (!s.sealed) continue;
-    const Collider& c = model.colliders[s.collider];
-    const auto [point, normal] = surface_plane(cup, c, c.position_at(start_time), x);
-    const CavityVolume v = cavity_volume(cup, x, point, normal);
+    const Surface surface{model, state, start_time, s.collider, s.body};
+    const auto [point, normal] = surface_plane(cup, surface, x);
+    const Vec3 center = s.body >= 0 ? state.rigid.position[s.body] : Vec3::Zero();
+    const CavityVolume v = cavity_volume(cup, x, point, normal, center);
     s.volume = v.volume;
     s.area = v.area;
     if (!(v.volume > 0)) {  // the cavity squeezed flat: nothing sealed in
@@ -54,13 +82,23 @@ void add_suction_rows(const Model& model, State& state, const VelocitySpace& spa
     const Real p0 = cup.atmospheric_pressure;
     const Real alpha = suction_compliance(p0, s.air_volume, v.volume);
 
-    in.resize(1, static_cast<int>(cup.cavity_vertices.size()));
-    for (size_t e = 0; e < cup.cavity_vertices.size(); ++e) {
+    const int vertices = static_cast<int>(cup.cavity_vertices.size());
+    in.resize(1, vertices + (s.body >= 0 ? 1 : 0));
+    for (int e = 0; e < vertices; ++e) {
       in.end[e] = space.particle_end(cup.cavity_vertices[e]);
-      for (int a = 0; a < 3; ++a) in.at(0, static_cast<int>(e))[a] = v.gradient[e][a];
+      for (int a = 0; a < 3; ++a) in.at(0, e)[a] = v.gradient[e][a];
+    }
+    if (s.body >= 0) {  // the body carrying the surface, pulled by the same suction
+      in.end[vertices] = space.end(BodyEnd{BodyEndKind::body, s.body});
+      const Vec3 linear = -v.area * normal;
+      for (int a = 0; a < 3; ++a) {
+        in.at(0, vertices)[a] = linear[a];
+        in.at(0, vertices)[3 + a] = v.surface_turn[a];
+      }
+    } else {
+      in.known[0] = -v.area * normal.dot(model.colliders[s.collider].velocity);  // the collider's own motion (colliders only translate)
     }
     in.C[0] = alpha * suction_pressure(p0, s.air_volume, v.volume);
-    in.known[0] = -v.area * normal.dot(c.velocity);  // the surface's own motion (colliders only translate)
     in.compliance(0, 0) = alpha;
     in.upper[0] = 0;  // suction pulls the cavity shut, never pushes it open
     in.kind = NmdBlockKind::bounded;
