@@ -1,5 +1,7 @@
 #include "moreau/solvers/nmd/nmd_assembly.hpp"
 
+#include <omp.h>
+
 #include "moreau/constraints/contact_rows.hpp"
 #include "moreau/constraints/joints/joint_row_blocks.hpp"
 #include "moreau/constraints/neo_hookean_green_strain.hpp"
@@ -136,10 +138,9 @@ Real adhesive_bound(Real adhesion, Real gap, Real compliance) {
 }
 
 // Makes the sized input a contact block (row 0 normal, rows 1 and 2 friction) with the pair's
-// coefficients and adds it; `memory` holds the normal impulse, or all three rows' impulses.
-void add_contact(Assembly& a, Real static_friction, Real dynamic_friction, Real restitution, Real* memory,
-                 int memory_rows, Real adhesion = 0) {
-  NmdBlockInput& in = a.input;
+// coefficients; `memory` holds the normal impulse, or all three rows' impulses.
+void set_contact(NmdBlockInput& in, const NmdSettings& settings, Real static_friction, Real dynamic_friction,
+                 Real restitution, Real* memory, int memory_rows, Real adhesion) {
   in.kind = NmdBlockKind::contact;
   in.level[1] = in.level[2] = RowLevel::friction;
   in.C[1] = in.C[2] = 0;  // friction rows act on velocities only
@@ -147,12 +148,19 @@ void add_contact(Assembly& a, Real static_friction, Real dynamic_friction, Real 
   in.upper.setConstant(std::numeric_limits<Real>::infinity());
   in.lower[0] = -adhesion;
   in.compliance.setZero();
-  in.compliance(0, 0) = a.model.settings.nmd.contact_compliance;
+  in.compliance(0, 0) = settings.contact_compliance;
   in.static_friction = static_friction;
   in.dynamic_friction = dynamic_friction;
   in.restitution = restitution;
   in.memory = memory;
   in.memory_rows = memory_rows;
+}
+
+// The same, added to the system.
+void add_contact(Assembly& a, Real static_friction, Real dynamic_friction, Real restitution, Real* memory,
+                 int memory_rows, Real adhesion = 0) {
+  set_contact(a.input, a.model.settings.nmd, static_friction, dynamic_friction, restitution, memory, memory_rows,
+              adhesion);
   a.add();
 }
 
@@ -185,30 +193,52 @@ void add_particle_contacts(Assembly& a) {
   }
 }
 
-void add_rigid_contacts(Assembly& a) {
+// Every point of every manifold, in manifold order: room for all of them is made at once (each
+// point is a block of 3 rows over two bodies, 36 Jacobian entries), then the manifolds are filled
+// in parallel, each into its own slots, so the system is the same for any thread count.
+void add_rigid_contacts(Assembly& a, int threads) {
   RigidContacts& contacts = a.state.rigid_contacts;
+  const Index manifolds = static_cast<Index>(contacts.manifolds.size());
+  std::vector<Index> first(manifolds + 1, 0);  // each manifold's first point among all
+  for (Index m = 0; m < manifolds; ++m) first[m + 1] = first[m] + contacts.manifolds[m].count;
+  const Index points = first[manifolds];
+  constexpr Index kRows = 3, kEntries = 3 * 12;
+  const NmdSlot base{static_cast<Index>(a.system.blocks.size()), a.system.row_count(),
+                     static_cast<Index>(a.system.block_ends.size()), static_cast<Index>(a.system.jacobian.size()), -1};
+  a.system.grow(points, 2 * points, kRows * points, kEntries * points, 0);
   const SubstepStart now{a.state.position.data(), a.state.rigid.position.data(), a.state.rigid.orientation.data()};
-  for (RigidManifold& mf : contacts.manifolds) {
-    RigidContactPoint* points = contacts.points.data() + mf.first;
-    const ContactRows rows = manifold_rows(mf, points, a.state.rigid, now, ContactPoints::all);
-    for (int j = 0; j < rows.points; ++j) {
-      NmdBlockInput& in = a.input;
-      in.resize(3, 2);
-      for (int e = 0; e < 2; ++e) in.end[e] = a.space.end(rows.end[e]);
-      for (int r = 0; r < 3; ++r) {  // point rows (body_rows.hpp) along each direction
-        const int row = 3 * j + r;
-        const Vec3& d = rows.direction[row];
-        const Vec3 angular_a = rows.offset_a[row].cross(d), angular_b = rows.offset_b[row].cross(d);
-        for (int c = 0; c < 3; ++c) {
-          in.at(r, 0)[c] = d[c];
-          in.at(r, 0)[3 + c] = angular_a[c];
-          in.at(r, 1)[c] = -d[c];
-          in.at(r, 1)[3 + c] = -angular_b[c];
+  constexpr Index kPointsPerThread = 256;  // below this, one thread
+#pragma omp parallel num_threads(points >= kPointsPerThread * threads ? threads : 1)
+  {
+    NmdBlockInput in;
+#pragma omp for schedule(static)
+    for (Index m = 0; m < manifolds; ++m) {
+      RigidManifold& mf = contacts.manifolds[m];
+      RigidContactPoint* point = contacts.points.data() + mf.first;
+      const ContactRows rows = manifold_rows(mf, point, a.state.rigid, now, ContactPoints::all);
+      for (int j = 0; j < rows.points; ++j) {
+        in.resize(3, 2);
+        for (int e = 0; e < 2; ++e) in.end[e] = a.space.end(rows.end[e]);
+        for (int r = 0; r < 3; ++r) {  // point rows (body_rows.hpp) along each direction
+          const int row = 3 * j + r;
+          const Vec3& d = rows.direction[row];
+          const Vec3 angular_a = rows.offset_a[row].cross(d), angular_b = rows.offset_b[row].cross(d);
+          for (int c = 0; c < 3; ++c) {
+            in.at(r, 0)[c] = d[c];
+            in.at(r, 0)[3 + c] = angular_a[c];
+            in.at(r, 1)[c] = -d[c];
+            in.at(r, 1)[3 + c] = -angular_b[c];
+          }
         }
+        in.C[0] = rows.C[3 * j];
+        set_contact(in, a.model.settings.nmd, mf.static_friction, mf.dynamic_friction, mf.restitution,
+                    point[rows.point[j]].row_impulse.data(), 3,
+                    adhesive_bound(mf.adhesion, in.C[0], a.model.settings.nmd.contact_compliance));
+        const Index k = first[m] + j;  // ContactPoints::all: every point of the manifold, in order
+        a.system.fill({base.block + k, base.first_row + kRows * k, base.first_end + 2 * k,
+                       base.first_entry + kEntries * k, -1},
+                      in, a.space, a.h, a.model.settings.nmd);
       }
-      in.C[0] = rows.C[3 * j];
-      add_contact(a, mf.static_friction, mf.dynamic_friction, mf.restitution, points[rows.point[j]].row_impulse.data(), 3,
-                  adhesive_bound(mf.adhesion, in.C[0], a.model.settings.nmd.contact_compliance));
     }
   }
 }
@@ -229,7 +259,7 @@ void add_particle_body_contacts(Assembly& a) {
 }  // namespace
 
 void assemble_nmd_system(const Model& model, State& state, const VelocitySpace& space, Real h, Real end_time,
-                         NmdSystem& system, NmdRowMemory& memory) {
+                         NmdSystem& system, NmdRowMemory& memory, int threads) {
   system.clear();
   Assembly a{model, state, space, h, system, memory, {}};
   for_each_family(model.constraints, state.constraint_lambda,
@@ -242,7 +272,7 @@ void assemble_nmd_system(const Model& model, State& state, const VelocitySpace& 
   }
   add_collider_contacts(a, end_time);
   add_particle_contacts(a);
-  add_rigid_contacts(a);
+  add_rigid_contacts(a, threads);
   add_particle_body_contacts(a);
 }
 

@@ -21,8 +21,9 @@ struct NmdRowMemory {
 };
 
 /// Adds every block at the state's positions and velocities (`space` gathered from the state)
-/// for a solve of step h ending at time `end_time`.
+/// for a solve of step h ending at time `end_time`; the rigid contact points are filled on up to
+/// `threads` threads (the same system for any count).
 void assemble_nmd_system(const Model& model, State& state, const VelocitySpace& space, Real h, Real end_time,
-                         NmdSystem& system, NmdRowMemory& memory);
+                         NmdSystem& system, NmdRowMemory& memory, int threads = 1);
 
 }  // namespace moreau

@@ -46,16 +46,50 @@ void NmdSystem::clear() {
   inverse.clear();
 }
 
+void NmdSystem::grow(Index block_count, Index end_count, Index rows, Index entries, Index matrix_entries) {
+  blocks.resize(blocks.size() + block_count);
+  block_ends.resize(block_ends.size() + end_count);
+  for (std::vector<Real>* row_values : {&rhs, &lower, &upper, &sigma, &diagonal, &impulse})
+    row_values->resize(row_values->size() + rows);
+  jacobian_offset.resize(jacobian_offset.size() + rows);
+  row_block.resize(row_block.size() + rows);
+  jacobian.resize(jacobian.size() + entries);
+  weighted.resize(weighted.size() + entries);
+  inverse.resize(inverse.size() + matrix_entries);
+  sigma_block.resize(sigma_block.size() + matrix_entries);
+}
+
+NmdSlot NmdSystem::reserve(const NmdBlockInput& in) {
+  const int R = in.rows();
+  Index stride = 0;  // Jacobian entries per row: the sizes of the ends (the world's end keeps none)
+  for (const VelocityEnd& e : in.end) stride += e.size;
+  NmdSlot slot;
+  slot.block = static_cast<Index>(blocks.size());
+  slot.first_row = row_count();
+  slot.first_end = static_cast<Index>(block_ends.size());
+  slot.first_entry = static_cast<Index>(jacobian.size());
+  slot.matrix = in.kind == NmdBlockKind::equality ? static_cast<Index>(inverse.size()) : -1;
+  grow(1, in.ends(), R, R * stride, slot.matrix >= 0 ? R * R : 0);
+  return slot;
+}
+
 void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h, const NmdSettings& settings) {
+  fill(reserve(in), in, space, h, settings);
+}
+
+void NmdSystem::fill(const NmdSlot& slot, const NmdBlockInput& in, const VelocitySpace& space, Real h,
+                     const NmdSettings& settings) {
   const int R = in.rows();
   NmdBlock block;
   block.kind = in.kind;
   block.rows = R;
   block.ends = in.ends();
-  block.first_row = row_count();
-  block.first_end = static_cast<Index>(block_ends.size());
-  block_ends.insert(block_ends.end(), in.end.begin(), in.end.end());
-  for (Index e = block.first_end; e < static_cast<Index>(block_ends.size()); ++e) block_ends[e].moves = space.moves(block_ends[e]);
+  block.first_row = slot.first_row;
+  block.first_end = slot.first_end;
+  for (int e = 0; e < in.ends(); ++e) {
+    block_ends[slot.first_end + e] = in.end[e];
+    block_ends[slot.first_end + e].moves = space.moves(in.end[e]);
+  }
   block.memory = in.memory;
   block.memory_rows = in.memory_rows;
 
@@ -67,22 +101,24 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
   for (int r = 0; r < R; ++r) scale[r] = in.level[r] == RowLevel::position ? spook : 1 / h;
 
   NmdBlockInput::Matrix A = NmdBlockInput::Matrix::Zero(R, R);
-  const Index first_entry = static_cast<Index>(jacobian.size());
+  const Index first_entry = slot.first_entry;
+  Index entry = first_entry;
   for (int r = 0; r < R; ++r) {
-    jacobian_offset.push_back(static_cast<Index>(jacobian.size()));
-    row_block.push_back(static_cast<Index>(blocks.size()));
+    jacobian_offset[slot.first_row + r] = entry;
+    row_block[slot.first_row + r] = slot.block;
     for (int e = 0; e < in.ends(); ++e) {
       const int size = in.end[e].size;  // the world's end keeps no entries
       if (size == 0) continue;
       const Real* J = in.at(r, e);
       Real W[6];
       space.apply_inverse_mass(in.end[e], J, W);
-      jacobian.insert(jacobian.end(), J, J + size);
-      weighted.insert(weighted.end(), W, W + size);
+      std::copy(J, J + size, jacobian.begin() + entry);
+      std::copy(W, W + size, weighted.begin() + entry);
+      entry += size;
     }
   }
   // A = G W G^T + S over the block.
-  const Index stride = (static_cast<Index>(jacobian.size()) - first_entry) / R;
+  const Index stride = (entry - first_entry) / R;
   for (int r = 0; r < R; ++r)
     for (int s = 0; s < R; ++s) {
       Real value = 0;
@@ -119,12 +155,13 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
       if (in.C[r] > 0 && in.lower[r] >= 0) target = -in.C[r] / h;
       if (impact) target = std::max(target, -in.restitution * rate);
     }
-    rhs.push_back(target - in.known[r]);
-    sigma.push_back(scale[r] * compliance(r, r));
-    diagonal.push_back(A(r, r));
-    lower.push_back(in.lower[r] * h);
-    upper.push_back(in.upper[r] * h);
-    impulse.push_back(0);
+    const Index row = slot.first_row + r;
+    rhs[row] = target - in.known[r];
+    sigma[row] = scale[r] * compliance(r, r);
+    diagonal[row] = A(r, r);
+    lower[row] = in.lower[r] * h;
+    upper[row] = in.upper[r] * h;
+    impulse[row] = 0;
   }
 
   if (in.kind == NmdBlockKind::contact && R == 3) {
@@ -136,7 +173,7 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
     block.friction = slip2 > settings.sliding_speed * settings.sliding_speed ? in.dynamic_friction : in.static_friction;
   }
   if (in.kind == NmdBlockKind::equality) {
-    block.matrix = static_cast<Index>(inverse.size());
+    block.matrix = slot.matrix;
     // An equality block between immovable ends with no compliance has a singular matrix: its
     // pseudo-inverse leaves the part it cannot move alone.
     Eigen::LDLT<NmdBlockInput::Matrix> ldlt(A);
@@ -147,11 +184,11 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
                 : NmdBlockInput::Matrix(A.completeOrthogonalDecomposition().pseudoInverse());
     for (int r = 0; r < R; ++r)
       for (int s = 0; s < R; ++s) {
-        inverse.push_back(inv(r, s));
-        sigma_block.push_back(0.5 * (scale[r] + scale[s]) * compliance(r, s));
+        inverse[slot.matrix + r * R + s] = inv(r, s);
+        sigma_block[slot.matrix + r * R + s] = 0.5 * (scale[r] + scale[s]) * compliance(r, s);
       }
   }
-  blocks.push_back(block);
+  blocks[slot.block] = block;
 }
 
 }  // namespace moreau

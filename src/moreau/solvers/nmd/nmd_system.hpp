@@ -31,6 +31,7 @@
 #include <limits>
 #include <vector>
 
+#include "moreau/math/uninitialized_allocator.hpp"
 #include "moreau/solvers/nmd/nmd_settings.hpp"
 #include "moreau/solvers/nmd/velocity_space.hpp"
 
@@ -84,6 +85,12 @@ struct NmdBlock {
   int memory_rows = 0;
 };
 
+/// Where a reserved block's data go in the system's arrays (NmdSystem::reserve).
+struct NmdSlot {
+  Index block = 0, first_row = 0, first_end = 0, first_entry = 0;
+  Index matrix = -1;  // equality blocks: the offset of their R x R matrices
+};
+
 struct NmdSystem {
   std::vector<NmdBlock> blocks;
   std::vector<VelocityEnd> block_ends;  // every block's ends, from NmdBlock::first_end
@@ -91,7 +98,7 @@ struct NmdSystem {
   // body, none for the world; from jacobian_offset), the
   // right-hand side q, the bounds in impulse units, S_ii, the diagonal G_i W G_i^T + S_ii and l.
   std::vector<Index> jacobian_offset, row_block;
-  std::vector<Real> jacobian, weighted;
+  std::vector<Real, UninitializedAllocator<Real>> jacobian, weighted;  // grown, then filled block by block
   std::vector<Real> rhs, lower, upper, sigma, diagonal, impulse;
   std::vector<Real> sigma_block;      // equality blocks: S, R x R (row-major), at NmdBlock::matrix
   std::vector<Real> inverse;          // equality blocks: (G W G^T + S)^-1, R x R
@@ -113,6 +120,15 @@ struct NmdSystem {
   /// Adds a block for a solve of step h with velocities `space.v` at the step's start (before
   /// forces): its right-hand side, regularisation, bounds and local matrix.
   void add(const NmdBlockInput& input, const VelocitySpace& space, Real h, const NmdSettings& settings);
+  /// add() in two halves, so that blocks can be filled in parallel after being reserved in order:
+  /// reserve() appends room for a block of input's shape (rows, ends and their sizes, kind), and
+  /// fill() writes the block there, touching nothing outside its slot.
+  NmdSlot reserve(const NmdBlockInput& input);
+  /// Appends zeroed room for `block_count` blocks with `end_count` ends, `rows` rows, `entries`
+  /// Jacobian entries and `matrix_entries` entries of equality-block matrices in all.
+  void grow(Index block_count, Index end_count, Index rows, Index entries, Index matrix_entries);
+  void fill(const NmdSlot& slot, const NmdBlockInput& input, const VelocitySpace& space, Real h,
+            const NmdSettings& settings);
 };
 
 }  // namespace moreau
