@@ -1,5 +1,7 @@
 #include "moreau/collision/rigid_contacts.hpp"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -89,6 +91,7 @@ void detect_rigid_contacts(const Model& model, State& state, int threads) {
   bp.lower.resize(n);
   bp.upper.resize(n);
   bp.margin.resize(n);
+#pragma omp parallel for schedule(static) num_threads(threads)
   for (Index b = 0; b < n; ++b) {
     const Real radius = m.body_shape[b].bounding_radius();
     const Real size = std::isfinite(radius) ? radius : 0;
@@ -102,19 +105,30 @@ void detect_rigid_contacts(const Model& model, State& state, int threads) {
   std::sort(bp.order.begin(), bp.order.end(), [&](Index a, Index b) {
     return bp.lower[a].x() < bp.lower[b].x() || (bp.lower[a].x() == bp.lower[b].x() && a < b);
   });
-  bp.pairs.clear();
-  for (Index i = 0; i < n; ++i) {
-    const Index a = bp.order[i];
-    for (Index j = i + 1; j < n; ++j) {
-      const Index b = bp.order[j];
-      if (bp.lower[b].x() > bp.upper[a].x()) break;
-      if (!m.is_dynamic(a) && !m.is_dynamic(b)) continue;
-      if ((bp.lower[a].array() > bp.upper[b].array()).any() || (bp.lower[b].array() > bp.upper[a].array()).any())
-        continue;
-      if (joined(m, a, b)) continue;
-      bp.pairs.push_back({std::min(a, b), std::max(a, b)});
+  // Each body's sweep on its own (threads split the bodies); the finds are merged and sorted, so
+  // the pair list does not depend on the thread count.
+  const int team = std::max(1, threads);
+  bp.thread_pairs.resize(team);
+#pragma omp parallel num_threads(team)
+  {
+    std::vector<std::array<Index, 2>>& found = bp.thread_pairs[omp_get_thread_num()];
+    found.clear();
+#pragma omp for schedule(dynamic, 64)
+    for (Index i = 0; i < n; ++i) {
+      const Index a = bp.order[i];
+      for (Index j = i + 1; j < n; ++j) {
+        const Index b = bp.order[j];
+        if (bp.lower[b].x() > bp.upper[a].x()) break;
+        if (!m.is_dynamic(a) && !m.is_dynamic(b)) continue;
+        if ((bp.lower[a].array() > bp.upper[b].array()).any() || (bp.lower[b].array() > bp.upper[a].array()).any())
+          continue;
+        if (joined(m, a, b)) continue;
+        found.push_back({std::min(a, b), std::max(a, b)});
+      }
     }
   }
+  bp.pairs.clear();
+  for (const auto& found : bp.thread_pairs) bp.pairs.insert(bp.pairs.end(), found.begin(), found.end());
   std::sort(bp.pairs.begin(), bp.pairs.end());
 
   // Narrow phase per pair (parallel), gathered in pair order.

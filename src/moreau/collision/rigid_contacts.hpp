@@ -59,6 +59,7 @@ struct RigidBroadPhaseScratch {
   std::vector<Index> order;                  // bodies sorted by lower x
   std::vector<Real> margin;                  // per body, m
   std::vector<std::array<Index, 2>> pairs;
+  std::vector<std::vector<std::array<Index, 2>>> thread_pairs;  // the sweep's finds per thread, then merged
   std::vector<std::vector<ContactManifold>> pair_manifolds;  // per pair: one, or one per mesh triangle
   std::vector<RigidManifold> previous_manifolds;  // last step's, to carry stuck slip over
   std::vector<RigidContactPoint> previous_points;
