@@ -59,7 +59,7 @@ void NmdSystem::grow(Index block_count, Index end_count, Index rows, Index entri
   sigma_block.resize(sigma_block.size() + matrix_entries);
 }
 
-NmdSlot NmdSystem::reserve(const NmdBlockInput& in) {
+void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h, const NmdSettings& settings) {
   const int R = in.rows();
   Index stride = 0;  // Jacobian entries per row: the sizes of the ends (the world's end keeps none)
   for (const VelocityEnd& e : in.end) stride += e.size;
@@ -70,11 +70,7 @@ NmdSlot NmdSystem::reserve(const NmdBlockInput& in) {
   slot.first_entry = static_cast<Index>(jacobian.size());
   slot.matrix = in.kind == NmdBlockKind::equality ? static_cast<Index>(inverse.size()) : -1;
   grow(1, in.ends(), R, R * stride, slot.matrix >= 0 ? R * R : 0);
-  return slot;
-}
-
-void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h, const NmdSettings& settings) {
-  fill(reserve(in), in, space, h, settings);
+  fill(slot, in, space, h, settings);
 }
 
 void NmdSystem::fill(const NmdSlot& slot, const NmdBlockInput& in, const VelocitySpace& space, Real h,

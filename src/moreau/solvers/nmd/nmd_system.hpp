@@ -85,7 +85,7 @@ struct NmdBlock {
   int memory_rows = 0;
 };
 
-/// Where a reserved block's data go in the system's arrays (NmdSystem::reserve).
+/// Where a block's data go in the system's arrays (room made by NmdSystem::grow).
 struct NmdSlot {
   Index block = 0, first_row = 0, first_end = 0, first_entry = 0;
   Index matrix = -1;  // equality blocks: the offset of their R x R matrices
@@ -120,12 +120,11 @@ struct NmdSystem {
   /// Adds a block for a solve of step h with velocities `space.v` at the step's start (before
   /// forces): its right-hand side, regularisation, bounds and local matrix.
   void add(const NmdBlockInput& input, const VelocitySpace& space, Real h, const NmdSettings& settings);
-  /// add() in two halves, so that blocks can be filled in parallel after being reserved in order:
-  /// reserve() appends room for a block of input's shape (rows, ends and their sizes, kind), and
-  /// fill() writes the block there, touching nothing outside its slot.
-  NmdSlot reserve(const NmdBlockInput& input);
-  /// Appends zeroed room for `block_count` blocks with `end_count` ends, `rows` rows, `entries`
-  /// Jacobian entries and `matrix_entries` entries of equality-block matrices in all.
+  /// add() in two halves, so that blocks can be filled in parallel after room for them is made in
+  /// order: grow() appends room for `block_count` blocks with `end_count` ends, `rows` rows,
+  /// `entries` Jacobian entries (and as many of W J^T, left uninitialised) and `matrix_entries`
+  /// entries of equality-block matrices in all; fill() writes one block into its slot there,
+  /// touching nothing outside it.
   void grow(Index block_count, Index end_count, Index rows, Index entries, Index matrix_entries);
   void fill(const NmdSlot& slot, const NmdBlockInput& input, const VelocitySpace& space, Real h,
             const NmdSettings& settings);

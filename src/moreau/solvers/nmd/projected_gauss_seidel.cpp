@@ -156,7 +156,7 @@ Real shared_sweep(const RowAccess& a, const SweepSchedule& schedule, const NmdSe
 }  // namespace
 
 // Threads for a sweep: one unless the levels hold 64 tasks on average. Measured on two cores:
-// 1000 boxes on the ground (111 tasks a level) solve 1.68x faster on two threads; the 210-box
+// 1000 boxes on the ground (111 tasks a level) solve 1.71x faster on two threads; the 210-box
 // pyramid (5 a level: its contacts chain along the rows) and a 2462-tetrahedron soft body (45 a
 // level) gain nothing, the barrier closing each level costing what the second thread saves.
 int sweep_threads(const SweepSchedule& schedule, int threads) {
