@@ -100,6 +100,12 @@ struct NmdSystem {
   std::vector<Index> jacobian_offset, row_block;
   std::vector<Real, UninitializedAllocator<Real>> jacobian, weighted;  // grown, then filled block by block
   std::vector<Real> rhs, lower, upper, sigma, diagonal, impulse;
+  // Per row: a contact's friction rows keep G_t W G_n^T, how much their rate changes per unit of
+  // the normal row's impulse (0 on every other row).
+  std::vector<Real> normal_coupling;
+  // Per row: 1 / diagonal (0 where the diagonal is not positive), so a sweep multiplies; a
+  // contact's friction rows both keep 1 / the larger of their two diagonals.
+  std::vector<Real> inverse_diagonal;
   std::vector<Real> sigma_block;      // equality blocks: S, R x R (row-major), at NmdBlock::matrix
   std::vector<Real> inverse;          // equality blocks: (G W G^T + S)^-1, R x R
 
@@ -112,9 +118,18 @@ struct NmdSystem {
     const VelocityEnd* end = ends_of(b);
     Real value = 0;
     for (int e = 0; e < b.ends; ++e) {
-      for (int c = 0; c < end[e].size; ++c) value += J[c] * v[end[e].dof + c];
+      value += end_rate(J, v.data() + end[e].dof, end[e].size);
       J += end[e].size;
     }
+    return value;
+  }
+  /// One end's share of G_i v. The products are summed in pairs, not in one running sum: a
+  /// Gauss-Seidel row waits on this sum, and pairs halve the chain of dependent additions.
+  static Real end_rate(const Real* J, const Real* v, int size) {
+    if (size == 6) return ((J[0] * v[0] + J[1] * v[1]) + (J[2] * v[2] + J[3] * v[3])) + (J[4] * v[4] + J[5] * v[5]);
+    if (size == 3) return (J[0] * v[0] + J[1] * v[1]) + J[2] * v[2];
+    Real value = 0;
+    for (int c = 0; c < size; ++c) value += J[c] * v[c];
     return value;
   }
   /// Adds a block for a solve of step h with velocities `space.v` at the step's start (before

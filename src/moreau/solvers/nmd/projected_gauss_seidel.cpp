@@ -66,27 +66,63 @@ void solve_equality(const RowAccess& a, const NmdBlock& b, Real omega) {
 }
 
 void solve_bounded_row(const RowAccess& a, const NmdBlock& b, Index row, Real omega) {
-  const Real D = a.s.diagonal[row];
-  if (D <= 0) return;
+  const Real inverse_D = a.s.inverse_diagonal[row];
+  if (inverse_D <= 0) return;
   Real& l = a.s.impulse[row];
-  const Real next = std::clamp(l - omega * a.residual(b, row) / D, a.s.lower[row], a.s.upper[row]);
+  const Real next = std::clamp(l - omega * a.residual(b, row) * inverse_D, a.s.lower[row], a.s.upper[row]);
   a.apply(b, row, next - l);
   l = next;
 }
 
+// A contact point: the normal row, then its two friction rows bounded by mu times the new normal
+// impulse (solved together, by Jacobi between them, with the larger of their diagonals). It is
+// the Gauss-Seidel update of the rows one after the other, fused: the three rates are read in one
+// pass over the ends, the friction rates take the normal update through their coupling
+// G_t W G_n^T (v changes by W G_n^T dl_n, so G_t v by G_t W G_n^T dl_n), and v takes the three
+// impulse changes in one pass.
 void solve_contact(const RowAccess& a, const NmdBlock& b, Real omega, FrictionBound bound) {
   const Index n = b.first_row, t1 = n + 1, t2 = n + 2;
-  solve_bounded_row(a, b, n, omega);
-  if (b.rows == 1) return;  // frictionless (fluid particles on walls)
-  const Real D = std::max(a.s.diagonal[t1], a.s.diagonal[t2]);
-  if (D <= 0) return;
-  Real l1 = a.s.impulse[t1] - omega * a.residual(b, t1) / D;
-  Real l2 = a.s.impulse[t2] - omega * a.residual(b, t2) / D;
-  project_friction(l1, l2, a.s.impulse[n], b, bound);
-  a.apply(b, t1, l1 - a.s.impulse[t1]);
-  a.apply(b, t2, l2 - a.s.impulse[t2]);
-  a.s.impulse[t1] = l1;
-  a.s.impulse[t2] = l2;
+  if (b.rows == 1) return solve_bounded_row(a, b, n, omega);  // frictionless (fluid particles on walls)
+  NmdSystem& s = a.s;
+  const VelocityEnd* end = s.ends_of(b);
+  const Index stride = s.jacobian_offset[t1] - s.jacobian_offset[n];
+  const Real* J = s.jacobian.data() + s.jacobian_offset[n];
+  Real rate_n = 0, rate_1 = 0, rate_2 = 0;
+  for (int e = 0, c0 = 0; e < b.ends; c0 += end[e].size, ++e) {
+    if (end[e].size == 0) continue;  // the world
+    const Real* v = a.v.data() + end[e].dof;
+    rate_n += NmdSystem::end_rate(J + c0, v, end[e].size);
+    rate_1 += NmdSystem::end_rate(J + stride + c0, v, end[e].size);
+    rate_2 += NmdSystem::end_rate(J + 2 * stride + c0, v, end[e].size);
+  }
+  Real dn = 0;
+  if (s.inverse_diagonal[n] > 0) {
+    const Real next = std::clamp(
+        s.impulse[n] - omega * (rate_n + s.sigma[n] * s.impulse[n] - s.rhs[n]) * s.inverse_diagonal[n], s.lower[n],
+        s.upper[n]);
+    dn = next - s.impulse[n];
+    s.impulse[n] = next;
+  }
+  Real d1 = 0, d2 = 0;
+  const Real inverse_D = s.inverse_diagonal[t1];  // 1 / max(D_t1, D_t2)
+  if (inverse_D > 0) {
+    const Real r1 = rate_1 + s.normal_coupling[t1] * dn + s.sigma[t1] * s.impulse[t1] - s.rhs[t1];
+    const Real r2 = rate_2 + s.normal_coupling[t2] * dn + s.sigma[t2] * s.impulse[t2] - s.rhs[t2];
+    Real l1 = s.impulse[t1] - omega * r1 * inverse_D, l2 = s.impulse[t2] - omega * r2 * inverse_D;
+    project_friction(l1, l2, s.impulse[n], b, bound);
+    d1 = l1 - s.impulse[t1];
+    d2 = l2 - s.impulse[t2];
+    s.impulse[t1] = l1;
+    s.impulse[t2] = l2;
+  }
+  if (dn == 0 && d1 == 0 && d2 == 0) return;
+  const Real* W = s.weighted.data() + s.jacobian_offset[n];
+  for (int e = 0, c0 = 0; e < b.ends; c0 += end[e].size, ++e) {
+    if (!end[e].moves) continue;  // an immovable end's W is 0: skipping it leaves it untouched for other threads
+    Real* v = a.v.data() + end[e].dof;
+    for (int c = 0; c < end[e].size; ++c)
+      v[c] += W[c0 + c] * dn + W[stride + c0 + c] * d1 + W[2 * stride + c0 + c] * d2;
+  }
 }
 
 }  // namespace
@@ -108,11 +144,8 @@ void warm_start(NmdSystem& system, VelocitySpace& space, const NmdSettings& sett
 
 namespace {
 
-// The largest impulse change of one block's update.
-Real solve_block(const RowAccess& a, const NmdBlock& b, const NmdSettings& settings) {
+void solve_block(const RowAccess& a, const NmdBlock& b, const NmdSettings& settings) {
   const Real omega = settings.over_relaxation;
-  Real before[NmdBlockInput::kMaxRows];
-  for (int i = 0; i < b.rows; ++i) before[i] = a.s.impulse[b.first_row + i];
   switch (b.kind) {
     case NmdBlockKind::equality: solve_equality(a, b, omega); break;
     case NmdBlockKind::bounded:
@@ -120,12 +153,11 @@ Real solve_block(const RowAccess& a, const NmdBlock& b, const NmdSettings& setti
       break;
     case NmdBlockKind::contact: solve_contact(a, b, omega, settings.friction); break;
   }
-  Real largest = 0;
-  for (int i = 0; i < b.rows; ++i) largest = std::max(largest, std::abs(a.s.impulse[b.first_row + i] - before[i]));
-  return largest;
 }
 
-// The blocks of tasks [first, last) in schedule order; returns the largest change.
+// The blocks of tasks [first, last) in schedule order; returns the largest impulse change when
+// kTrackChange (the convergence test of gauss_seidel_sweep), 0 otherwise.
+template <bool kTrackChange>
 Real solve_tasks(const RowAccess& a, const SweepSchedule& schedule, Index first, Index last,
                  const NmdSettings& settings, bool equality_blocks, bool bounded_blocks) {
   Real largest = 0;
@@ -134,7 +166,15 @@ Real solve_tasks(const RowAccess& a, const SweepSchedule& schedule, Index first,
       const NmdBlock& b = a.s.blocks[i];
       if ((b.kind == NmdBlockKind::equality && !equality_blocks) || (b.kind == NmdBlockKind::bounded && !bounded_blocks))
         continue;
-      largest = std::max(largest, solve_block(a, b, settings));
+      if constexpr (kTrackChange) {
+        Real before[NmdBlockInput::kMaxRows];
+        for (int r = 0; r < b.rows; ++r) before[r] = a.s.impulse[b.first_row + r];
+        solve_block(a, b, settings);
+        for (int r = 0; r < b.rows; ++r)
+          largest = std::max(largest, std::abs(a.s.impulse[b.first_row + r] - before[r]));
+      } else {
+        solve_block(a, b, settings);
+      }
     }
   return largest;
 }
@@ -142,13 +182,14 @@ Real solve_tasks(const RowAccess& a, const SweepSchedule& schedule, Index first,
 // One sweep, level by level (sweep_schedule.hpp), by every thread of the enclosing parallel
 // region: each level's tasks are split between the threads, and the loop's implicit barrier
 // closes the level. Returns this thread's largest change.
+template <bool kTrackChange>
 Real shared_sweep(const RowAccess& a, const SweepSchedule& schedule, const NmdSettings& settings, bool equality_blocks,
                   bool bounded_blocks) {
   Real largest = 0;
   for (Index level = 0; level < schedule.levels(); ++level) {
 #pragma omp for schedule(static)
     for (Index t = schedule.level_first[level]; t < schedule.level_first[level + 1]; ++t)
-      largest = std::max(largest, solve_tasks(a, schedule, t, t + 1, settings, equality_blocks, bounded_blocks));
+      largest = std::max(largest, solve_tasks<kTrackChange>(a, schedule, t, t + 1, settings, equality_blocks, bounded_blocks));
   }
   return largest;
 }
@@ -168,10 +209,10 @@ Real gauss_seidel_sweep(NmdSystem& system, VelocitySpace& space, const NmdSettin
                         const SweepSchedule& schedule, int threads, bool equality_blocks, bool bounded_blocks) {
   const RowAccess a{system, space.v};
   const int team = sweep_threads(schedule, threads);
-  if (team == 1) return solve_tasks(a, schedule, 0, schedule.tasks(), settings, equality_blocks, bounded_blocks);
+  if (team == 1) return solve_tasks<true>(a, schedule, 0, schedule.tasks(), settings, equality_blocks, bounded_blocks);
   std::vector<Real> largest(team, 0);
 #pragma omp parallel num_threads(team)
-  largest[omp_get_thread_num()] = shared_sweep(a, schedule, settings, equality_blocks, bounded_blocks);
+  largest[omp_get_thread_num()] = shared_sweep<true>(a, schedule, settings, equality_blocks, bounded_blocks);
   return *std::max_element(largest.begin(), largest.end());
 }
 
@@ -181,11 +222,11 @@ void projected_gauss_seidel(NmdSystem& system, VelocitySpace& space, const NmdSe
   const int team = sweep_threads(schedule, threads);
   if (team == 1) {
     for (int sweep = 0; sweep < settings.iterations; ++sweep)
-      solve_tasks(a, schedule, 0, schedule.tasks(), settings, true, true);
+      solve_tasks<false>(a, schedule, 0, schedule.tasks(), settings, true, true);
     return;
   }
 #pragma omp parallel num_threads(team)
-  for (int sweep = 0; sweep < settings.iterations; ++sweep) shared_sweep(a, schedule, settings, true, true);
+  for (int sweep = 0; sweep < settings.iterations; ++sweep) shared_sweep<false>(a, schedule, settings, true, true);
 }
 
 void store_impulses(const NmdSystem& system, Real h) {
