@@ -294,7 +294,38 @@ struct RigidBodySpec {
   bool fluid_coupling = true;
 };
 
-using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec>;
+/// A rod's centreline at rest: a helix about `axis` through `center` (the start lies at
+/// center + radius along a direction across the axis), rising `pitch` per turn.
+struct RodHelix {
+  Vector3 center{};                       // m, on the axis at the start's height
+  Vector3 axis{0, 1, 0};                  // the direction it rises along
+  double radius = 0;                      // m
+  double pitch = 0;                       // m per turn (0: a circle's arc)
+  double turns = 1;
+};
+
+/// "kind": "rod": a Cosserat rod of rigid segments joined by bend-twist and stretch-shear
+/// constraints (docs/scene-format.md, "Rods").
+struct RodSpec {
+  std::string name;
+  std::vector<Vector3> points;            // m, a polyline at rest; or
+  std::optional<RodHelix> helix;
+  std::optional<int> segments;            // default: one per polyline edge, 16 per helix turn
+  std::optional<Vector3> normal;          // the section's first axis at the start (default: any across the rod)
+  std::optional<double> radius;           // m, a round section; or
+  std::optional<Vector2> radii;           // m, an elliptic section: along the first axis, along the second
+  std::optional<double> youngs_modulus;   // Pa, E (required)
+  std::optional<double> shear_modulus;    // Pa, G; or
+  std::optional<double> poisson_ratio;    // G = E / (2 (1 + nu)), default nu = 0.3
+  double density = 1000;                  // kg/m^3
+  std::string start = "free", end = "free";  // "free", "clamped" or "pinned" to the world where it is
+  double damping_time = 0;                // s, Kelvin-Voigt: the strain rates' stress is damping_time times the stiffness
+  Vector3 velocity{};                     // m/s
+  ContactMaterial contact;
+  bool self_collision = true;
+};
+
+using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec, RodSpec>;
 
 // ---- Joints ---------------------------------------------------------------------------------
 

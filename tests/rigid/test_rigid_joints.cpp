@@ -50,10 +50,10 @@ TEST(RigidJoints, ProjectionsRemoveAViolationOfEveryJointType) {
       const Real h = 1.0 / 1200;
       Real drive_start = 0;
       reset_joints(s.model, s.state, &drive_start);
-      const int solves = solve_joint_forest(s.model, s.state, h);
-      project_joints(s.model, s.state, &drive_start, h);
+      const int solves = solve_joint_forest(s.model, s.state, SubstepStart{}, h);
+      project_joints(s.model, s.state, &drive_start, SubstepStart{}, h);
       const JointError once = joint_error(s.model.joints[0], s.state);
-      for (int k = 0; k < 19; ++k) project_joints(s.model, s.state, &drive_start, h);
+      for (int k = 0; k < 19; ++k) project_joints(s.model, s.state, &drive_start, SubstepStart{}, h);
       const JointError after = joint_error(s.model.joints[0], s.state);
       const std::string what = j + (direct ? " direct" : " gauss_seidel");
       EXPECT_GT(before.position + before.angle, 5e-4) << what;

@@ -13,7 +13,7 @@ namespace moreau {
 namespace {
 
 bool takes_part(const Model& model, Index body) {
-  return model.objects[model.rigid.body_object[body]].kind == ObjectKind::rigid_body;
+  return model.objects[model.rigid.body_object[body]].has_bodies();
 }
 
 }  // namespace

@@ -65,6 +65,9 @@ void carry_contact_memory(const RigidBodyModel& m, RigidContacts& contacts) {
 
 // Pairs of bodies a joint keeps from colliding.
 bool joined(const RigidBodyModel& m, Index a, Index b) {
+  const std::vector<Index>& group = m.body_contact_group;  // may stop short of the bodies added after a rod
+  const Index groups = static_cast<Index>(group.size());
+  if (a < groups && b < groups && group[a] >= 0 && group[a] == group[b]) return true;
   const std::array<Index, 2> key{std::min(a, b), std::max(a, b)};
   return std::binary_search(m.pairs_without_contact.begin(), m.pairs_without_contact.end(), key);
 }

@@ -12,6 +12,12 @@
 //               one side 0 for a limit that may only push, +-max for a drive of bounded force.
 //               A solver converts them to its multiplier: XPBD's lambda is the force times h^2.
 //   slot        where the block's multipliers live in the joint's multipliers (JointMultipliers),
+//   damping_time, motion
+//               stiffness-proportional (Kelvin-Voigt) damping of compliant rows: a force
+//               -(damping_time / alpha) dC/dt besides -C / alpha. A position-level solver needs
+//               `motion`, J times the ends' motion since the substep start (empty when the rows
+//               were read without the start poses: no damping then); a velocity-level solver
+//               takes damping_time as its relaxation time.
 //   velocity_drive, target_velocity
 //               a velocity drive's single row: dC/dt should be target_velocity. A position-level
 //               solver takes its C (the drive's coordinate minus the start plus h times the
@@ -44,6 +50,8 @@ struct BodyRows {
   Vector C, compliance, lower, upper;
   std::array<Jacobian, 2> jacobian;
   int slot = 0;
+  Real damping_time = 0;  // s
+  Vector motion;          // m or rad, per row; empty: unknown
   bool velocity_drive = false;
   Real target_velocity = 0;
 
@@ -87,6 +95,18 @@ struct BodyRows {
       upper(r) = 0;
   }
 };
+
+/// The XPBD update of damped rows (Macklin, Mueller, Chentanez 2016, eq. 26) in the form of an
+/// undamped one: with gamma = damping_time / h, (1 + gamma) J W J^T dl + alpha~ dl =
+/// -(C + alpha~ l + gamma J dx) divided by 1 + gamma is the undamped update with
+/// C' = (C + gamma J dx) / (1 + gamma) and alpha~' = alpha~ / (1 + gamma). Rows without damping
+/// or without `motion` are left as they are.
+inline void apply_xpbd_damping(const BodyRows& rows, Real h, BodyRows::Vector& C, BodyRows::Vector& alpha_tilde) {
+  if (rows.damping_time <= 0 || rows.motion.size() != rows.size()) return;
+  const Real gamma = rows.damping_time / h;
+  C = (C + gamma * rows.motion) / (1 + gamma);
+  alpha_tilde /= 1 + gamma;
+}
 
 /// Receives the row blocks of a constraint in order. A Gauss-Seidel solver projects each block as
 /// it arrives (the next block is evaluated at the corrected poses); a global solver collects them.

@@ -9,6 +9,7 @@
 
 #include "moreau/collision/collider_surface.hpp"
 #include "moreau/errors.hpp"
+#include "moreau/io/rod_frame.hpp"
 #include "moreau/collision/shape_surface.hpp"
 
 namespace moreau {
@@ -59,10 +60,11 @@ FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string sc
     hi = hi.cwiseMax(x);
   }
   for (const ObjectInfo& o : model.objects)
-    if (o.kind == ObjectKind::rigid_body) {
-      lo = lo.cwiseMin(model.rigid.initial_position[o.body]);
-      hi = hi.cwiseMax(model.rigid.initial_position[o.body]);
-    }
+    if (o.has_bodies())
+      for (Index b = o.body; b < o.body + o.body_count; ++b) {
+        lo = lo.cwiseMin(model.rigid.initial_position[b]);
+        hi = hi.cwiseMax(model.rigid.initial_position[b]);
+      }
   for (const auto& e : model.fluid.emitters) {
     lo = lo.cwiseMin(e.center);
     hi = hi.cwiseMax(e.center);
@@ -73,7 +75,7 @@ FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string sc
 void FrameWriter::write(const State& state) {
   for (size_t o = 0; o < model_.objects.size(); ++o) {
     const ObjectInfo& obj = model_.objects[o];
-    const bool particles_only = obj.kind == ObjectKind::fluid;
+    const bool particles_only = obj.kind == ObjectKind::fluid || obj.kind == ObjectKind::rod;  // .vtp files
     const std::string file = fmt::format("frames/{}_{:06d}.{}", safe_file_name(obj.name), frame_, particles_only ? "vtp" : "vtu");
     const std::string path = out_dir_ + "/" + file;
     if (obj.kind == ObjectKind::fluid) {
@@ -92,6 +94,8 @@ void FrameWriter::write(const State& state) {
       write_vtp(path, x, {{"velocity", v}},
                 {{"density", density}, {"pressure", pressure}, {"id", id},
                  {"radius", std::vector<Real>(x.size(), model_.fluid.particle_radius)}});
+    } else if (obj.kind == ObjectKind::rod) {
+      write_rod_frame(path, model_, model_.rods[obj.rod], state);
     } else if (obj.kind == ObjectKind::rigid_body) {
       // The body's surface in the world, with the velocity of each surface point.
       const Index b = obj.body;

@@ -1,5 +1,7 @@
 #include "moreau/io/probes.hpp"
 
+#include "moreau/rods/rod_geometry.hpp"
+
 #include <cmath>
 #include <algorithm>
 #include <limits>
@@ -11,6 +13,7 @@ namespace moreau {
 bool Probe::is_vector() const {
   switch (type) {
     case ProbeType::point:
+    case ProbeType::rod_point:
     case ProbeType::center_of_mass:
     case ProbeType::momentum:
     case ProbeType::body_position:
@@ -62,6 +65,16 @@ void evaluate_probe(const Probe& probe, const Model& model, const State& state, 
       else push3(state.velocity[p]);
       break;
     }
+    case ProbeType::rod_point: {
+      const RodModel& rod = model.rods[probe.rod];
+      if (probe.quantity == "velocity") push3(rod_point_velocity(rod, state.rigid, probe.rod_point));
+      else if (probe.quantity == "displacement") push3(rod_point(rod, state.rigid, probe.rod_point) - rod.rest_points[probe.rod_point]);
+      else push3(rod_point(rod, state.rigid, probe.rod_point));
+      break;
+    }
+    case ProbeType::rod_twist:
+      values.push_back(rod_twist(model.rods[probe.rod], model.joints, state));
+      break;
     case ProbeType::energy: {
       Real e = 0;
       if (probe.quantity == "kinetic" || probe.quantity == "total") e += kinetic_energy(model, state, probe.object);

@@ -13,7 +13,8 @@ enum class ProbeType {
   fluid_height, density_error, particle_count, escaped,
   body_position, body_orientation, body_velocity, body_angular_velocity,  // one rigid body
   joint_error, contact_count, max_displacement, penetration,
-  suction  // one suction cup: sealed (0/1), pressure difference (Pa), volume (m^3), sealed area (m^2)
+  suction,  // one suction cup: sealed (0/1), pressure difference (Pa), volume (m^3), sealed area (m^2)
+  rod_point, rod_twist  // a rod's centreline point ("point" on a rod); its twist (rad)
 };
 
 struct Probe {
@@ -30,6 +31,7 @@ struct Probe {
   Vec3 box_min = Vec3::Zero(), box_max = Vec3::Zero();  // escaped: particles outside this box are counted
   Index joint = -1;                  // joint_error: one joint, or -1 for every joint
   Index cup = -1;                    // suction: index into Model::suction_cups
+  Index rod = -1, rod_point = -1;    // rod_point, rod_twist: index into Model::rods; its centreline point
 
   bool is_vector() const;
   /// Number of columns the probe writes.

@@ -40,36 +40,69 @@ void write_file(const std::string& path, const std::string& xml, const AppendedD
 
 }  // namespace
 
-void write_vtp(const std::string& path, const std::vector<Vec3>& points, const std::vector<VtkPointArray>& vector_arrays,
-               const std::vector<VtkScalarArray>& scalar_arrays) {
+namespace {
+
+// The <PointData> or <CellData> section of vector and scalar arrays.
+std::string data_section(const char* tag, const std::vector<VtkPointArray>& vectors,
+                         const std::vector<VtkScalarArray>& scalars, AppendedData& data) {
+  std::string xml = fmt::format("<{}>\n", tag);
+  for (const auto& a : vectors)
+    xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n",
+                       a.name, data.add(flatten(a.values)));
+  for (const auto& a : scalars)
+    xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"1\" format=\"appended\" offset=\"{}\"/>\n",
+                       a.name, data.add(std::vector<double>(a.values.begin(), a.values.end())));
+  return xml + fmt::format("</{}>\n", tag);
+}
+
+// A poly-data file whose cells are `cell_points` consecutive points each, in the <Verts> or
+// <Lines> section.
+void write_poly_data(const std::string& path, const std::vector<Vec3>& points, const char* section, size_t cells,
+                     const std::vector<std::int64_t>& conn, const std::vector<VtkPointArray>& point_vectors,
+                     const std::vector<VtkScalarArray>& point_scalars, const std::vector<VtkPointArray>& cell_vectors,
+                     const std::vector<VtkScalarArray>& cell_scalars, int points_per_cell) {
   AppendedData data;
+  const bool lines = std::string(section) == "Lines";
   std::string xml;
   xml += "<?xml version=\"1.0\"?>\n";
   xml += "<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
   xml += "<PolyData>\n";
-  xml += fmt::format("<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+  xml += fmt::format("<Piece NumberOfPoints=\"{}\" NumberOfVerts=\"{}\" NumberOfLines=\"{}\" NumberOfStrips=\"0\" "
                      "NumberOfPolys=\"0\">\n",
-                     points.size(), points.size());
-  xml += "<PointData>\n";
-  for (const auto& a : vector_arrays)
-    xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n",
-                       a.name, data.add(flatten(a.values)));
-  for (const auto& a : scalar_arrays)
-    xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"1\" format=\"appended\" offset=\"{}\"/>\n",
-                       a.name, data.add(std::vector<double>(a.values.begin(), a.values.end())));
-  xml += "</PointData>\n<Points>\n";
+                     points.size(), lines ? 0 : cells, lines ? cells : 0);
+  xml += data_section("PointData", point_vectors, point_scalars, data);
+  if (!cell_vectors.empty() || !cell_scalars.empty()) xml += data_section("CellData", cell_vectors, cell_scalars, data);
+  xml += "<Points>\n";
   xml += fmt::format("<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n",
                      data.add(flatten(points)));
-  xml += "</Points>\n<Verts>\n";
-  std::vector<std::int64_t> conn(points.size()), offsets(points.size());
-  for (size_t p = 0; p < points.size(); ++p) {
-    conn[p] = static_cast<std::int64_t>(p);
-    offsets[p] = static_cast<std::int64_t>(p + 1);
-  }
+  xml += fmt::format("</Points>\n<{}>\n", section);
+  std::vector<std::int64_t> offsets(cells);
+  for (size_t c = 0; c < cells; ++c) offsets[c] = static_cast<std::int64_t>(points_per_cell * (c + 1));
   xml += fmt::format("<DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>\n", data.add(conn));
   xml += fmt::format("<DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>\n", data.add(offsets));
-  xml += "</Verts>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
+  xml += fmt::format("</{}>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_", section);
   write_file(path, xml, data);
+}
+
+}  // namespace
+
+void write_vtp(const std::string& path, const std::vector<Vec3>& points, const std::vector<VtkPointArray>& vector_arrays,
+               const std::vector<VtkScalarArray>& scalar_arrays) {
+  std::vector<std::int64_t> conn(points.size());
+  for (size_t p = 0; p < points.size(); ++p) conn[p] = static_cast<std::int64_t>(p);
+  write_poly_data(path, points, "Verts", points.size(), conn, vector_arrays, scalar_arrays, {}, {}, 1);
+}
+
+void write_polyline_vtp(const std::string& path, const std::vector<Vec3>& points,
+                        const std::vector<VtkPointArray>& point_vectors, const std::vector<VtkScalarArray>& point_scalars,
+                        const std::vector<VtkPointArray>& cell_vectors, const std::vector<VtkScalarArray>& cell_scalars) {
+  const size_t cells = points.empty() ? 0 : points.size() - 1;
+  std::vector<std::int64_t> conn;
+  for (size_t c = 0; c < cells; ++c) {
+    conn.push_back(static_cast<std::int64_t>(c));
+    conn.push_back(static_cast<std::int64_t>(c + 1));
+  }
+  write_poly_data(path, points, "Lines", cells, conn, point_vectors, point_scalars, cell_vectors, cell_scalars, 2);
 }
 
 void write_vtu(const std::string& path, const std::vector<Vec3>& points, const std::vector<Index>& connectivity,

@@ -41,6 +41,12 @@ void write_vtu(const std::string& path, const std::vector<Vec3>& points, const s
 void write_vtp(const std::string& path, const std::vector<Vec3>& points, const std::vector<VtkPointArray>& vector_arrays,
                const std::vector<VtkScalarArray>& scalar_arrays);
 
+/// Writes a polyline (.vtp) through `points`: one line cell per consecutive pair, with point and
+/// cell arrays (cell k runs from point k to point k + 1).
+void write_polyline_vtp(const std::string& path, const std::vector<Vec3>& points,
+                        const std::vector<VtkPointArray>& point_vectors, const std::vector<VtkScalarArray>& point_scalars,
+                        const std::vector<VtkPointArray>& cell_vectors, const std::vector<VtkScalarArray>& cell_scalars);
+
 /// A ParaView collection (.pvd): each entry is (time, part, file relative to the .pvd).
 struct PvdEntry {
   Real time;

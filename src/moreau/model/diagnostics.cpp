@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "moreau/rods/rod_geometry.hpp"
+
 namespace moreau {
 
 namespace {
@@ -45,6 +47,8 @@ Real potential_energy(const Model& model, const State& state, Index object) {
 Real elastic_energy(const Model& model, const State& state, Index object) {
   Real energy = 0;
   for_each_family(model.constraints, [&](const auto& family, int) { energy += family.energy(state.position.data(), object); });
+  for (const RodModel& rod : model.rods)
+    if (object < 0 || rod.object == object) energy += rod_elastic_energy(rod, model.joints, state);
   return energy;
 }
 

@@ -12,11 +12,12 @@
 #include "moreau/rigid/joint_tree.hpp"
 #include "moreau/constraints/joints/joint.hpp"
 #include "moreau/rigid/rigid_bodies.hpp"
+#include "moreau/rods/rod_model.hpp"
 #include "moreau/solvers/nmd/nmd_settings.hpp"
 
 namespace moreau {
 
-enum class ObjectKind { collider, cloth, soft_body, fluid, rigid_body };
+enum class ObjectKind { collider, cloth, soft_body, fluid, rigid_body, rod };
 
 /// One named scene object. Particles of an object are the contiguous range [particle_begin, particle_end).
 /// Fluid objects have no particles here: theirs live in FluidState (phase `fluid_phase`).
@@ -28,7 +29,10 @@ struct ObjectInfo {
   std::vector<std::array<Index, 4>> tets;     // global particle indices (soft bodies)
   Index collider = -1;                        // index into Model::colliders (colliders only)
   Index fluid_phase = -1;                     // index into Model::fluid.phases (fluids only)
-  Index body = -1;                            // index into Model::rigid (rigid bodies; colliders that rigid bodies touch)
+  Index body = -1;                            // index into Model::rigid (rigid bodies; colliders that rigid bodies touch;
+                                              // a rod's first segment)
+  Index body_count = 0;                       // rigid bodies: 1; rods: their segments
+  Index rod = -1;                             // index into Model::rods (rods only)
   bool self_collision = false;                // particle contacts within the object
   bool fluid_coupling = true;                 // cloth / soft body: sampled as a two-way boundary of the fluids
   Real static_friction = 0.5, dynamic_friction = 0.5, restitution = 0;
@@ -37,7 +41,9 @@ struct ObjectInfo {
   Index particle_count() const { return particle_end - particle_begin; }
   bool has_particles() const { return particle_end > particle_begin; }
   /// Has simulated particles (in the model's particle arrays or, for fluids, in FluidState).
-  bool is_simulated() const { return has_particles() || kind == ObjectKind::fluid || kind == ObjectKind::rigid_body; }
+  bool is_simulated() const { return has_particles() || kind == ObjectKind::fluid || has_bodies(); }
+  /// Moves as dynamic rigid bodies: a rigid body, or a rod's segments.
+  bool has_bodies() const { return kind == ObjectKind::rigid_body || kind == ObjectKind::rod; }
 };
 
 // How the joints' equality rows are solved each iteration: the direct tree solver of Deul et al.
@@ -77,6 +83,7 @@ struct Model {
 
   RigidBodyModel rigid;        // rigid bodies, then colliders as kinematic bodies
   std::vector<Joint> joints;
+  std::vector<RodModel> rods;                 // rods: their segments are bodies of `rigid`, their junctions joints
   std::vector<SuctionCup> suction_cups;       // soft bodies with a sealed cavity (nmd only)
   JointForest joint_forest;                   // joints solved directly (empty for Gauss-Seidel)
 

@@ -37,7 +37,7 @@ struct JointRows {
 // joint's at zero length) stay zero.
 class RowStack final : public BodyRowSink {
  public:
-  RowStack(JointRows& rows, const JointMultipliers& lambda, Real inv_h2) : rows_(rows), lambda_(lambda), inv_h2_(inv_h2) {}
+  RowStack(JointRows& rows, const JointMultipliers& lambda, Real h) : rows_(rows), lambda_(lambda), h_(h) {}
   void take(const BodyRows& block) override {
     const int n = block.size();
     if (n == 3)
@@ -54,19 +54,22 @@ class RowStack final : public BodyRowSink {
   template <int N>
   void place(const BodyRows& block) {
     const int n = block.size();
-    rows_.c.segment<N>(next_, n) = block.C;
-    rows_.alpha_tilde.segment<N>(next_, n) = block.compliance * inv_h2_;
+    BodyRows::Vector C = block.C, alpha_tilde = block.compliance / (h_ * h_);
+    apply_xpbd_damping(block, h_, C, alpha_tilde);
+    rows_.c.segment<N>(next_, n) = C;
+    rows_.alpha_tilde.segment<N>(next_, n) = alpha_tilde;
     rows_.lambda.segment<N>(next_, n) = Eigen::Map<const Eigen::Matrix<Real, N, 1>>(lambda_.data() + block.slot, n);
     for (int e = 0; e < 2; ++e) rows_.jacobian[e].middleRows<N>(next_, n) = block.jacobian[e];
   }
 
   JointRows& rows_;
   const JointMultipliers& lambda_;
-  Real inv_h2_;
+  Real h_;
   int next_ = 0;
 };
 
-JointRows joint_rows_now(const Joint& j, const JointMultipliers& lambda, const State& state, Real h) {
+JointRows joint_rows_now(const Joint& j, const JointMultipliers& lambda, const State& state, const SubstepStart& start,
+                         Real h) {
   const int n = direct_rows(j);
   const Real inv_h2 = 1 / (h * h);
   JointRows rows;
@@ -74,8 +77,8 @@ JointRows joint_rows_now(const Joint& j, const JointMultipliers& lambda, const S
   rows.alpha_tilde.resize(n);
   rows.lambda.resize(n);
   for (auto& jac : rows.jacobian) jac.resize(n, 6);
-  RowStack stack(rows, lambda, inv_h2);
-  joint_rows({state, j, h, 0, JointRowSet::equality}, stack);
+  RowStack stack(rows, lambda, h);
+  joint_rows({state, j, h, 0, JointRowSet::equality, &start}, stack);
   if (const int taken = stack.rows_taken(); taken < n) {
     rows.c.tail(n - taken).setZero();
     rows.alpha_tilde.tail(n - taken).setConstant(j.compliance * inv_h2);
@@ -177,7 +180,7 @@ namespace {
 
 // One linearised solve (a Newton step on every tree joint's equality rows), skipped when the largest
 // |C + alpha~ lambda| is already below the tolerance; returns whether it solved.
-bool direct_pass(const Model& model, State& state, Real h) {
+bool direct_pass(const Model& model, State& state, const SubstepStart& start, Real h) {
   const JointForest& forest = model.joint_forest;
   const size_t n = forest.nodes.size();
   Real residual = 0;
@@ -197,7 +200,7 @@ bool direct_pass(const Model& model, State& state, Real h) {
       s[i].setZero(6);
     } else {
       const Joint& j = model.joints[node.index];
-      rows[i] = joint_rows_now(j, state.joint_lambda[node.index], state, h);
+      rows[i] = joint_rows_now(j, state.joint_lambda[node.index], state, start, h);
       diagonal[i] = -Block(rows[i].alpha_tilde.asDiagonal());
       s[i] = rows[i].c + rows[i].alpha_tilde.cwiseProduct(rows[i].lambda);
       residual = std::max(residual, s[i].cwiseAbs().maxCoeff());
@@ -248,10 +251,10 @@ bool direct_pass(const Model& model, State& state, Real h) {
 
 }  // namespace
 
-int solve_joint_forest(const Model& model, State& state, Real h) {
+int solve_joint_forest(const Model& model, State& state, const SubstepStart& start, Real h) {
   if (model.joint_forest.empty()) return 0;
   int passes = 0;
-  while (passes < kMaxDirectPasses && direct_pass(model, state, h)) ++passes;
+  while (passes < kMaxDirectPasses && direct_pass(model, state, start, h)) ++passes;
   return passes;
 }
 

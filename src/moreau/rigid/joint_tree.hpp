@@ -29,6 +29,7 @@
 
 #include "moreau/math/types.hpp"
 #include "moreau/constraints/joints/joint.hpp"
+#include "moreau/constraints/substep_start.hpp"
 #include "moreau/rigid/rigid_bodies.hpp"
 
 namespace moreau {
@@ -63,6 +64,7 @@ inline constexpr int kMaxDirectPasses = 8;
 
 /// Solves every tree joint's equality rows, re-linearising up to kMaxDirectPasses times until they
 /// hold; accumulates their multipliers. Returns the number of linear solves done.
-int solve_joint_forest(const Model& model, State& state, Real h);
+/// `start` holds the poses at the substep start (for damped rows, body_rows.hpp).
+int solve_joint_forest(const Model& model, State& state, const SubstepStart& start, Real h);
 
 }  // namespace moreau

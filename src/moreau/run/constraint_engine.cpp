@@ -76,6 +76,7 @@ void ConstraintEngine::add_run_fields(nlohmann::json& j, bool completed) const {
                  {"colliders", m.colliders.size()},
                  {"rigid_bodies", std::count_if(m.objects.begin(), m.objects.end(),
                                                 [](const ObjectInfo& o) { return o.kind == ObjectKind::rigid_body; })},
+                 {"rods", m.rods.size()},
                  {"joints", m.joints.size()},
                  {"constraints", constraints}};
   nlohmann::json stages = nlohmann::json::object();
@@ -115,7 +116,7 @@ std::vector<std::string> ConstraintEngine::warnings() const {
 }
 
 const char* kind_name(ObjectKind kind) {
-  static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid", "rigid_body"};
+  static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid", "rigid_body", "rod"};
   return kinds[static_cast<int>(kind)];
 }
 
@@ -126,9 +127,9 @@ std::vector<WorldObject> ConstraintEngine::objects() const {
     if (o.has_particles()) {
       w.first = o.particle_begin;
       w.count = o.particle_count();
-    } else if (o.kind == ObjectKind::rigid_body) {
+    } else if (o.has_bodies()) {
       w.first = o.body;
-      w.count = 1;
+      w.count = o.body_count;
     } else if (o.kind == ObjectKind::fluid) {
       for (Index i = 0; i < state_.fluid.count; ++i) w.count += state_.fluid.phase[i] == o.fluid_phase;
     }
@@ -176,6 +177,15 @@ std::string ConstraintEngine::summary() const {
                        motions[static_cast<int>(r.body_motion[o.body])], shapes[static_cast<int>(r.body_shape[o.body].type)],
                        r.body_mass[o.body], r.body_inertia[o.body].x(), r.body_inertia[o.body].y(),
                        r.body_inertia[o.body].z());
+    }
+    if (o.kind == ObjectKind::rod) {
+      const RodModel& rod = m.rods[o.rod];
+      Real length = 0, mass = 0;
+      for (Index k = 0; k < rod.segments; ++k) {
+        length += rod.segment_length[k];
+        mass += m.rigid.body_mass[rod.first_body + k];
+      }
+      s += fmt::format(" {} segments, length {:.6g} m, mass {:.6g} kg", rod.segments, length, mass);
     }
     if (o.has_particles())
       s += fmt::format(" {} particles, {} surface triangles, {} tetrahedra", o.particle_count(), o.surface.size(), o.tets.size());

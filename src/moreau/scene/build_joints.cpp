@@ -4,6 +4,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "moreau/scene/spec_builders.hpp"
 
@@ -30,6 +31,25 @@ JointEndSpec read_end(const JsonObject& joint, const nlohmann::json& value, int 
   return end;
 }
 
+// A rod's centreline point by "vertex" (0 to the segment count) or the rest point nearest "nearest".
+Index rod_point_index(const JointEndSpec& spec, const SpecPlace& ref, const RodModel& rod) {
+  if (spec.vertex && spec.nearest) ref.fail("vertex", "give exactly one of \"vertex\" or \"nearest\"");
+  if (spec.vertex) return ref.integer("vertex", *spec.vertex, 0, rod.points() - 1);
+  const Vec3 p = ref.vector("nearest", *spec.nearest);
+  Index best = 0;
+  for (Index k = 1; k < rod.points(); ++k)
+    if ((rod.rest_points[k] - p).squaredNorm() < (rod.rest_points[best] - p).squaredNorm()) best = k;
+  return best;
+}
+
+// The rest position of a joint end that is a rod's centreline point, if it is one.
+std::optional<Vec3> rod_end_point(const JointEndSpec& spec, const SpecPlace& joint, int slot, const Model& model) {
+  const Index o = model.find_object(spec.object);
+  if (o < 0 || model.objects[o].kind != ObjectKind::rod || !(spec.vertex || spec.nearest)) return std::nullopt;
+  const RodModel& rod = model.rods[model.objects[o].rod];
+  return rod.rest_points[rod_point_index(spec, joint.at(fmt::format("bodies[{}]", slot)), rod)];
+}
+
 // The model's end: the world, a body, or one particle (by vertex or the one nearest a point).
 JointEnd resolve_end(const JointEndSpec& spec, const SpecPlace& joint, int slot, const Model& model) {
   JointEnd end;
@@ -40,7 +60,7 @@ JointEnd resolve_end(const JointEndSpec& spec, const SpecPlace& joint, int slot,
     const Index o = model.find_object(spec.object);
     if (o < 0 || model.objects[o].kind != ObjectKind::rigid_body)
       joint.fail("bodies", fmt::format("{} is '{}', which is not a rigid body of this scene; give \"world\", a rigid "
-                                       "body's name or {{\"object\": <cloth or soft body>, \"vertex\": i}}",
+                                       "body's name or {{\"object\": <cloth, soft body or rod>, \"vertex\": i}}",
                                        where, spec.object));
     end.kind = BodyEndKind::body;
     end.index = model.objects[o].body;
@@ -48,8 +68,15 @@ JointEnd resolve_end(const JointEndSpec& spec, const SpecPlace& joint, int slot,
   }
   const SpecPlace ref = joint.at(where);
   const Index o = model.find_object(spec.object);
+  if (o >= 0 && model.objects[o].kind == ObjectKind::rod) {
+    // A rod's centreline point: the segment it starts (the last point ends the last segment).
+    const RodModel& rod = model.rods[model.objects[o].rod];
+    end.kind = BodyEndKind::body;
+    end.index = rod.first_body + rod.segment_of_point(rod_point_index(spec, ref, rod));
+    return end;
+  }
   if (o < 0 || !model.objects[o].has_particles())
-    ref.fail("object", fmt::format("'{}' is not a cloth or soft body of this scene", spec.object));
+    ref.fail("object", fmt::format("'{}' is not a cloth, soft body or rod of this scene", spec.object));
   const ObjectInfo& info = model.objects[o];
   end.kind = BodyEndKind::particle;
   if (spec.vertex && spec.nearest) ref.fail("vertex", "give exactly one of \"vertex\" or \"nearest\"");
@@ -211,10 +238,15 @@ void add_joint(const JointSpec& spec, const SpecPlace& j, Model& model) {
     j.fail("bodies", "a joint cannot connect a body to itself");
   const bool oriented_ends = joint.ends[0].kind != BodyEndKind::particle && joint.ends[1].kind != BodyEndKind::particle;
 
-  if (spec.anchor.has_value() == spec.anchors.has_value())
+  // A rod's point is the anchor unless one is given.
+  std::optional<Vec3> rod_point = rod_end_point(spec.bodies[0], j, 0, model);
+  if (!rod_point) rod_point = rod_end_point(spec.bodies[1], j, 1, model);
+  if (spec.anchor && spec.anchors) j.fail("anchor", "give exactly one of \"anchor\" (one world point) or \"anchors\" (one per end)");
+  if (!spec.anchor && !spec.anchors && !rod_point)
     j.fail("anchor", "give exactly one of \"anchor\" (one world point) or \"anchors\" (one per end)");
   std::array<Vec3, 2> anchors;
   if (spec.anchor) anchors[0] = anchors[1] = j.vector("anchor", *spec.anchor);
+  else if (!spec.anchors) anchors[0] = anchors[1] = *rod_point;
   else anchors = {j.vector("anchors", (*spec.anchors)[0]), j.vector("anchors", (*spec.anchors)[1])};
   const Vec3 axis_in = j.vector("axis", spec.axis);
   if (axis_in.norm() <= 0) j.fail("axis", "the axis must not be zero");
@@ -280,7 +312,8 @@ void add_joint(const JointSpec& spec, const SpecPlace& j, Model& model) {
       if (joint.lower > joint.upper) j.fail("min", "\"min\" must not exceed \"max\"");
       break;
     }
-    case JointType::fixed: break;
+    case JointType::fixed:
+    case JointType::rod: break;  // rods make their own (build_rod.cpp)
   }
   if (spec.drive) add_drive(*spec.drive, j, joint);
   // Joined bodies do not collide with each other unless asked to.

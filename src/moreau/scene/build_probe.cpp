@@ -14,7 +14,7 @@ const std::vector<std::string> kProbeTypes{
     "point",    "energy",      "center_of_mass", "extent",           "momentum",    "constraint_error",
     "fluid_height", "density_error", "particle_count", "escaped",     "position",    "orientation",
     "velocity", "angular_velocity", "joint_error", "contact_count", "max_displacement",
-    "penetration", "suction"};
+    "penetration", "suction", "twist"};
 
 // The types whose only key besides name and type is "object": one simulated object or "*".
 const std::map<std::string, ProbeType> kObjectOrEveryProbes{{"center_of_mass", ProbeType::center_of_mass},
@@ -38,7 +38,7 @@ std::vector<std::string> probe_keys(const std::string& type) {
   return keys;
 }
 
-enum class Accepts { any, fluids, solids, bodies, particles };
+enum class Accepts { any, fluids, solids, bodies, particles, rods, points };
 
 Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& model, bool allow_all,
                    Accepts accepts = Accepts::any) {
@@ -49,6 +49,8 @@ Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& m
     if (accepts == Accepts::solids) return o.has_particles();
     if (accepts == Accepts::bodies) return o.kind == ObjectKind::rigid_body;
     if (accepts == Accepts::particles) return o.has_particles() || o.kind == ObjectKind::fluid;
+    if (accepts == Accepts::rods) return o.kind == ObjectKind::rod;
+    if (accepts == Accepts::points) return o.has_particles() || o.kind == ObjectKind::rod;
     return o.is_simulated();
   };
   const Index i = model.find_object(name);
@@ -63,6 +65,8 @@ Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& m
                                      : accepts == Accepts::solids ? "cloth or soft-body "
                                      : accepts == Accepts::bodies ? "rigid-body "
                                      : accepts == Accepts::particles ? "cloth, soft-body or fluid "
+                                     : accepts == Accepts::rods      ? "rod "
+                                     : accepts == Accepts::points    ? "cloth, soft-body or rod "
                                                                      : "simulated ",
                                      name, names));
   }
@@ -113,11 +117,25 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
   const std::string& type = j.choice("type", spec.type, kProbeTypes);
   if (type == "point") {
     p.type = ProbeType::point;
-    p.object = object_index(spec, j, model, false, Accepts::solids);
+    p.object = object_index(spec, j, model, false, Accepts::points);
     const ObjectInfo& o = model.objects[p.object];
     if (spec.vertex.has_value() == spec.nearest.has_value())
       j.fail("vertex", "give exactly one of \"vertex\" (index) or \"nearest\" (position, m)");
-    if (spec.vertex) {
+    if (o.kind == ObjectKind::rod) {
+      // A rod's centreline point, 0 to its segment count.
+      p.type = ProbeType::rod_point;
+      p.rod = o.rod;
+      const RodModel& rod = model.rods[o.rod];
+      if (spec.vertex) {
+        p.rod_point = j.integer("vertex", *spec.vertex, 0, rod.points() - 1);
+      } else {
+        const Vec3 target = j.vector("nearest", *spec.nearest);
+        p.rod_point = 0;
+        for (Index k = 1; k < rod.points(); ++k)
+          if ((rod.rest_points[k] - target).squaredNorm() < (rod.rest_points[p.rod_point] - target).squaredNorm())
+            p.rod_point = k;
+      }
+    } else if (spec.vertex) {
       p.particle = o.particle_begin + j.integer("vertex", *spec.vertex, 0, o.particle_count() - 1);
     } else {
       const Vec3 target = j.vector("nearest", *spec.nearest);
@@ -183,6 +201,10 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
                                    names.empty() ? "none (the scene has no suction cup)" : names));
     }
     p.object = object;
+  } else if (type == "twist") {
+    p.type = ProbeType::rod_twist;
+    p.object = object_index(spec, j, model, false, Accepts::rods);
+    p.rod = model.objects[p.object].rod;
   } else if (type == "escaped") {
     p.type = ProbeType::escaped;
     p.object = object_index(spec, j, model, true, Accepts::particles);  // particles only

@@ -172,6 +172,7 @@ void add_rigid_body(const RigidBodySpec& spec, const SpecPlace& place, ObjectInf
 
   info.kind = ObjectKind::rigid_body;
   info.body = m.count();
+  info.body_count = 1;
   info.fluid_coupling = spec.fluid_coupling;
   const bool dynamic = !fixed && !kinematic;
   m.body_shape.push_back(std::move(shape));

@@ -35,6 +35,7 @@ ClothSpec read_cloth(const JsonObject& object);
 SoftBodySpec read_soft_body(const JsonObject& object);
 FluidSpec read_fluid(const JsonObject& object);
 RigidBodySpec read_rigid_body(const JsonObject& object);
+RodSpec read_rod(const JsonObject& object);
 JointSpec read_joint(const JsonObject& joint);
 ProbeSpec read_probe(const JsonObject& probe);
 /// "settings" of a constraint-engine scene.
@@ -52,6 +53,8 @@ void add_suction_cup(const SuctionSpec& spec, const SpecPlace& place, const std:
                      const std::vector<std::array<Index, 3>>& boundary, Index base, Index object, Model& model);
 void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 void add_rigid_body(const RigidBodySpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
+/// The rod's segments (rigid bodies), its junctions and end conditions (joints).
+void add_rod(const RodSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 /// After all objects and joints: colliders become kinematic bodies for the rigid bodies.
 void add_colliders_as_bodies(Model& model);
 /// After all objects: one joint (pairs_without_contact is sorted by finish_joints).

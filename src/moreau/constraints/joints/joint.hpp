@@ -11,18 +11,21 @@
 //   spherical  spherical_joint.cpp  swing and twist limits, attachment (3)
 //   prismatic  prismatic_joint.cpp  orientation (3), no sideways offset (2), slide limits, drive
 //   distance   distance_joint.cpp   |d| in [min, max] (1)
+//   rod        rod_joint.cpp        a Cosserat rod's junction: bend-twist (3) and stretch-shear (3),
+//                                   each with a compliance per axis of the joint frame
 // Adding a joint type: its file with a JointTypeRules, one line in joint_types.cpp, and its name
 // in the scene builder.
 #include <array>
 #include <string>
 
 #include "moreau/constraints/body_rows.hpp"
+#include "moreau/constraints/substep_start.hpp"
 
 namespace moreau {
 
 struct State;
 
-enum class JointType { fixed, spherical, hinge, prismatic, distance };
+enum class JointType { fixed, spherical, hinge, prismatic, distance, rod };
 enum class DriveMode { none, position, velocity };
 
 struct JointEnd {
@@ -52,6 +55,10 @@ struct Joint {
   Real drive_target = 0;                 // rad or m (position drive); rad/s or m/s (velocity drive)
   Real drive_max = 0;                    // N m or N; 0 = unlimited
   Real drive_compliance = 0;             // rad/(N m) or m/N
+  Real damping_time = 0;                 // s: stiffness-proportional damping of compliant equality rows (rods)
+  // Rod junctions: compliance per axis of the joint frame (x along the rod, y and z across it).
+  Vec3 rod_compliance = Vec3::Zero();          // m/N: stretch along x, shear along y and z
+  Vec3 rod_angular_compliance = Vec3::Zero();  // rad/(N m): twist about x, bending about y and z
 
   std::array<BodyEnd, 2> bodies() const { return {ends[0].body(), ends[1].body()}; }
 };
@@ -81,6 +88,7 @@ struct JointRowContext {
   Real h = 0;                // s, the substep
   Real drive_start = 0;      // rad or m: the drive's coordinate at the substep start
   JointRowSet set = JointRowSet::all;
+  const SubstepStart* start = nullptr;  // the poses at the substep start, for damped rows (position level)
 
   bool wants_equality() const { return set != JointRowSet::all_but_equality; }
   bool wants_others() const { return set != JointRowSet::equality; }

@@ -26,6 +26,24 @@ BodyRows damper_rows(const Joint& j, const JointEndPose& a, const JointEndPose& 
   return rows;
 }
 
+void set_damping(BodyRows& rows, const JointRowContext& c) {
+  if (c.joint.damping_time <= 0) return;
+  rows.damping_time = c.joint.damping_time;
+  if (c.start == nullptr || c.start->body_position == nullptr) return;
+  rows.motion = BodyRows::Vector::Zero(rows.size());
+  for (int e = 0; e < 2; ++e) {
+    const BodyEnd& end = rows.end[e];
+    Eigen::Matrix<Real, 6, 1> move = Eigen::Matrix<Real, 6, 1>::Zero();
+    if (end.kind == BodyEndKind::body) {
+      move.head<3>() = c.state.rigid.position[end.index] - c.start->body_position[end.index];
+      move.tail<3>() = orientation_error(c.state.rigid.orientation[end.index], c.start->body_orientation[end.index]);
+    } else if (end.kind == BodyEndKind::particle) {
+      move.head<3>() = c.state.position[end.index] - c.start->particle_position[end.index];
+    }
+    rows.motion += rows.jacobian[e] * move;
+  }
+}
+
 // Turning a by dtheta adds 1/2 [dtheta, 0] dq, whose vector part is (w I - [v]x) dtheta; turning b
 // subtracts 1/2 dq [dtheta, 0], vector part (w I + [v]x) dtheta.
 BodyRows orientation_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b) {

@@ -17,6 +17,11 @@ BodyRows attachment_rows(const Joint& j, const JointEndPose& a, const JointEndPo
 /// rows about the world axes, the relative angular velocity). C = 0: they act on velocities only.
 BodyRows damper_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b, bool angular);
 
+/// Gives compliant rows the joint's damping_time and, when the context has the substep start,
+/// their `motion`: J times each end's motion since then (dx, and the rotation vector
+/// 2 vec(q q_start^-1) of a body).
+void set_damping(BodyRows& rows, const JointRowContext& c);
+
 /// Fixed relative orientation C = 2 s vec(dq), dq = f_a f_b^-1 = (w, v), s = sign(w) (3 rows).
 BodyRows orientation_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b);
 

@@ -20,7 +20,7 @@ struct JointTypeRules {
 /// has_other_rows of the types with a coordinate (hinge, prismatic): a limit or a drive on it.
 inline bool has_limit_or_drive(const Joint& joint) { return joint.limited || joint.drive != DriveMode::none; }
 
-extern const JointTypeRules kFixedJoint, kSphericalJoint, kHingeJoint, kPrismaticJoint, kDistanceJoint;
+extern const JointTypeRules kFixedJoint, kSphericalJoint, kHingeJoint, kPrismaticJoint, kDistanceJoint, kRodJoint;
 
 inline JointEndPose end_pose_a(const JointRowContext& c) { return end_pose(c.state, c.joint.ends[0]); }
 inline JointEndPose end_pose_b(const JointRowContext& c) { return end_pose(c.state, c.joint.ends[1]); }

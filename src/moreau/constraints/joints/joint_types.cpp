@@ -11,6 +11,7 @@ const JointTypeRules& rules(JointType type) {
     case JointType::hinge: return kHingeJoint;
     case JointType::prismatic: return kPrismaticJoint;
     case JointType::distance: return kDistanceJoint;
+    case JointType::rod: return kRodJoint;
   }
   return kSphericalJoint;
 }

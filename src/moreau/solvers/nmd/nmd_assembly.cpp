@@ -53,6 +53,7 @@ void set_body_rows(NmdBlockInput& in, const BodyRows& rows, const VelocitySpace&
     in.lower[r] = rows.lower[r];
     in.upper[r] = rows.upper[r];
   }
+  in.damping_time = rows.damping_time;  // SPOOK's tau: the force -(C + tau dC/dt) / eps
 }
 
 bool has_bounds(const NmdBlockInput& in) {

@@ -54,14 +54,14 @@ void reset_joints(const Model& model, State& state, Real* drive_start) {
   }
 }
 
-void project_joints(const Model& model, State& state, const Real* drive_start, Real h) {
+void project_joints(const Model& model, State& state, const Real* drive_start, const SubstepStart& start, Real h) {
   GaussSeidelProjection projection(model, state, h);
   for (size_t k = 0; k < model.joints.size(); ++k) {
     const bool direct = model.joint_forest.in_tree(k);  // equality rows already solved (joint_tree.hpp)
     if (direct && !has_other_rows(model.joints[k])) continue;
     projection.set_multipliers(state.joint_lambda[k]);
     joint_rows({state, model.joints[k], h, drive_start[k],
-                direct ? JointRowSet::all_but_equality : JointRowSet::all},
+                direct ? JointRowSet::all_but_equality : JointRowSet::all, &start},
                projection);
   }
 }

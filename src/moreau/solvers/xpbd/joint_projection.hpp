@@ -3,7 +3,7 @@
 // each substep, and the velocity pass for joint damping.
 // Damping (Mueller et al. 2020, eq. 32): the anchors' relative velocity and the bodies' relative
 // angular velocity lose the fraction min(c h, 1) per substep, c in 1/s.
-#include "moreau/math/types.hpp"
+#include "moreau/constraints/substep_start.hpp"
 
 namespace moreau {
 
@@ -16,7 +16,7 @@ void reset_joints(const Model& model, State& state, Real* drive_start);
 
 /// One Gauss-Seidel pass over all joints in scene order, block by block (each block evaluated at
 /// the poses the previous ones left); the rows the direct tree solver took are skipped. One thread.
-void project_joints(const Model& model, State& state, const Real* drive_start, Real h);
+void project_joints(const Model& model, State& state, const Real* drive_start, const SubstepStart& start, Real h);
 
 /// Joint damping (velocity pass).
 void damp_joints(const Model& model, State& state, Real h);

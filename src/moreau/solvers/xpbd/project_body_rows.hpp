@@ -5,6 +5,7 @@
 // with W_e = diag(1/m_e I, I_e^-1) the inverse mass of end e (I^-1 in the world),
 //   (sum_e J_e W_e J_e^T + alpha~) dlambda = -(C + alpha~ lambda),   alpha~ = alpha / h^2,
 //   dx_e = 1/m_e J_e,x^T dlambda,   q_e += 1/2 [I_e^-1 J_e,theta^T dlambda, 0] q_e (normalised).
+// Damped rows take their damping by apply_xpbd_damping (body_rows.hpp).
 // Bounds clamp the accumulated multiplier, lower h^2 <= lambda + dlambda <= upper h^2 (projected
 // Gauss-Seidel); a block whose matrix is singular (both ends immovable) is left alone.
 #include "moreau/constraints/body_rows.hpp"
@@ -18,7 +19,8 @@ inline void xpbd_project_body_rows(const BodyRows& rows, const std::array<BodyHa
   using Matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, BodyRows::kMaxRows, BodyRows::kMaxRows>;
   const int n = rows.size();
   const Real h2 = h * h;
-  const BodyRows::Vector alpha_tilde = rows.compliance / h2;
+  BodyRows::Vector alpha_tilde = rows.compliance / h2, C = rows.C;
+  apply_xpbd_damping(rows, h, C, alpha_tilde);
   Matrix K = alpha_tilde.asDiagonal();
   for (int e = 0; e < 2; ++e) {
     const BodyHandle& body = ends[e];
@@ -32,7 +34,7 @@ inline void xpbd_project_body_rows(const BodyRows& rows, const std::array<BodyHa
   }
   if (K.determinant() <= 1e-300) return;
   Eigen::Map<BodyRows::Vector> accumulated(lambda, n);
-  BodyRows::Vector dl = K.ldlt().solve(-(rows.C + alpha_tilde.cwiseProduct(accumulated)));
+  BodyRows::Vector dl = K.ldlt().solve(-(C + alpha_tilde.cwiseProduct(accumulated)));
   dl = (accumulated + dl).cwiseMax(rows.lower * h2).cwiseMin(rows.upper * h2) - accumulated;
   accumulated += dl;
   for (int e = 0; e < 2; ++e) {

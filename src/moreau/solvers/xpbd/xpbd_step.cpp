@@ -139,8 +139,8 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
         if (rigid) {
 #pragma omp single
           {
-            solve_joint_forest(model, state, h);
-            project_joints(model, state, work.joint_drive_start.data(), h);
+            solve_joint_forest(model, state, start, h);
+            project_joints(model, state, work.joint_drive_start.data(), start, h);
             timer.lap(XpbdStage::joints);
             project_rigid_contacts(model, state, start);
             project_particle_body_contacts(model, state, start);
