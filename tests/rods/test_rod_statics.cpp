@@ -39,8 +39,9 @@ std::string settings(const Run& run, const char* gravity, int xpbd_iterations = 
   if (run.solver == "xpbd")
     return fmt::format(R"("settings": {{"dt": 0.01, "substeps": 20, "iterations": {}, "duration": 3, "gravity": {}}})",
                        xpbd_iterations, gravity);
-  return fmt::format(R"("settings": {{"solver": "nmd", "dt": 1, "duration": 25, "gravity": {}, "nmd": {{"method": "direct"}}}})",
-                     gravity);
+  const Real dt = run.solver == "nmd" ? 1 : 0.01;  // "nmd_dynamic": steps of 0.01 s
+  return fmt::format(R"("settings": {{"solver": "nmd", "dt": {}, "duration": 25, "gravity": {}, "nmd": {{"method": "direct"}}}})",
+                     dt, gravity);
 }
 
 // The probes' values after the run's steps.
@@ -115,6 +116,97 @@ void check_twist(const Run& run) {
 
 TEST(RodStatics, EndTorqueTwistsTheRodByTLOverGJUnderXpbd) { check_twist(kXpbd); }
 TEST(RodStatics, EndTorqueTwistsTheRodByTLOverGJUnderNmd) { check_twist(kNmd); }
+
+}  // namespace
+}  // namespace moreau
+
+namespace moreau {
+namespace {
+
+// A steel rod (E = 200 GPa, 7800 kg/m^3) of 100 segments hanging 1 m from a pin, a 100 kg sphere on
+// its lower end: it stretches by (F L + q L^2 / 2) / (E A) = 15.8 um, F the sphere's weight and q
+// the rod's per metre. The direct tree solver holds the junctions exactly each substep, so one
+// iteration and five give the same stretch (xpbd); nmd solves the same rows directly, in steps of
+// 0.01 s: the rod swings on its pin as a pendulum (3.1 rad/s), which steps of 1 s would not follow.
+const Run kNmdDynamic{"nmd_dynamic", 100};
+
+Real hanging_stretch(const Run& run, int xpbd_iterations) {
+  const std::string json = fmt::format(
+      R"({{"name": "hanging", {},
+      "objects": [{{"name": "rod", "kind": "rod", "points": [[0, 2, 0], [0, 1, 0]], "segments": 100, "radius": 0.01,
+                    "youngs_modulus": 2e11, "poisson_ratio": 0.3, "density": 7800, "start": "pinned", "damping_time": 0.002}},
+                  {{"name": "weight", "kind": "rigid_body", "shape": {{"type": "sphere", "radius": 0.05}}, "position": [0, 0.95, 0], "mass": 100}}],
+      "joints": [{{"name": "hook", "type": "spherical", "bodies": [{{"object": "rod", "vertex": 100}}, "weight"]}}],
+      "probes": [{{"name": "end", "type": "point", "object": "rod", "vertex": 100, "quantity": "displacement"}}]}})",
+      settings(run, "[0, -9.81, 0]", xpbd_iterations));
+  return -run_scene(json, run)[1];
+}
+
+TEST(RodStatics, StiffSteelRodStretchesByFLOverEAWhateverTheIterations) {
+  const Real area = kPi * 1e-4, EA = 2e11 * area, F = 100 * kG, q = 7800 * area * kG;
+  const Real theory = (F + q / 2) / EA;  // L = 1 m
+  const Real one = hanging_stretch(kXpbd, 1), five = hanging_stretch(kXpbd, 5), nmd = hanging_stretch(kNmdDynamic, 1);
+  std::printf("steel rod, 100 segments, 100 kg: stretch %.6e m (1 iteration), %.6e m (5), %.6e m (nmd); (F L + q L^2/2) / "
+              "(E A) %.6e m (%+.3f %%)\n",
+              one, five, nmd, theory, 100 * (one / theory - 1));
+  EXPECT_NEAR(one / theory, 1, 0.01);
+  EXPECT_NEAR(nmd / theory, 1, 0.01);
+  EXPECT_NEAR(five / one, 1, 1e-6);  // the direct solve's answer does not depend on the iterations
+}
+
+// The elastica of a cantilever bent far by its own weight q: with arc length s, the angle theta
+// and the bending moment m = E I theta',
+//   theta' = m / (E I),  m' = q (L - s) cos theta,  x' = cos theta,  y' = sin theta,
+// (the weight of the rod beyond s turns the section at s), clamped at s = 0 (theta = 0) and free
+// at s = L (m = 0). Shooting on m(0) by bisection, RK4 on 4000 steps: the tip's (x, y).
+Vec2 elastica_tip(Real q, Real EI, Real L) {
+  auto tip = [&](Real m0, Vec2* end) {
+    Eigen::Vector4d y(0, m0, 0, 0);  // theta, m, x, y
+    auto f = [&](Real s, const Eigen::Vector4d& u) {
+      return Eigen::Vector4d(u[1] / EI, q * (L - s) * std::cos(u[0]), std::cos(u[0]), std::sin(u[0]));
+    };
+    const int n = 4000;
+    const Real h = L / n;
+    for (int k = 0; k < n; ++k) {
+      const Real s = k * h;
+      const Eigen::Vector4d k1 = f(s, y), k2 = f(s + h / 2, y + h / 2 * k1), k3 = f(s + h / 2, y + h / 2 * k2),
+                            k4 = f(s + h, y + h * k3);
+      y += h / 6 * (k1 + 2 * k2 + 2 * k3 + k4);
+    }
+    if (end) *end = Vec2(y[2], y[3]);
+    return y[1];  // m(L): 0 at the answer
+  };
+  Real lo = -q * L * L / 2, hi = 0;  // m(L) <= 0 at lo, > 0 at hi
+  for (int k = 0; k < 80; ++k) {
+    const Real mid = (lo + hi) / 2;
+    (tip(mid, nullptr) > 0 ? hi : lo) = mid;
+  }
+  Vec2 end;
+  tip((lo + hi) / 2, &end);
+  return end;
+}
+
+// q L^3 / (E I) = 5: small-deflection theory would drop the tip 0.625 L; the elastica's tip ends
+// at x = 0.85 L, 0.50 L down. The rod (50 segments) must land within 1 % of L of it. Its first
+// mode (4.9 rad/s) is critically damped by damping_time = 0.4 s, so xpbd settles within its 3 s.
+void check_elastica(const Run& run) {
+  const Real density = 1000, q = density * kArea * kG, EI = q / 5, E = EI / kInertia;
+  const Vec2 theory = elastica_tip(q, EI, kLength);
+  const std::string json = fmt::format(
+      R"({{"name": "elastica", {},
+      "objects": [{{"name": "rod", "kind": "rod", "points": [[0, 1, 0], [1, 1, 0]], "segments": 50, "radius": 0.01,
+                    "youngs_modulus": {}, "poisson_ratio": 0.3, "density": {}, "start": "clamped", "damping_time": 0.4}}],
+      "probes": [{{"name": "tip", "type": "point", "object": "rod", "vertex": 50}}]}})",
+      settings(run, "[0, -9.81, 0]"), E, density);
+  const std::vector<double> tip = run_scene(json, run);
+  const Vec2 rod(tip[0], tip[1] - 1);
+  std::printf("elastica q L^3 / E I = 5, %s, 50 segments: tip (%.5f, %.5f) m, shooting (%.5f, %.5f) m, off by %.2e m\n",
+              run.solver.c_str(), rod.x(), rod.y(), theory.x(), theory.y(), (rod - theory).norm());
+  EXPECT_LT((rod - theory).norm(), 0.01 * kLength);
+}
+
+TEST(RodStatics, CantileverBentFarByItsWeightFollowsTheElasticaUnderXpbd) { check_elastica(kXpbd); }
+TEST(RodStatics, CantileverBentFarByItsWeightFollowsTheElasticaUnderNmd) { check_elastica(kNmd); }
 
 }  // namespace
 }  // namespace moreau
