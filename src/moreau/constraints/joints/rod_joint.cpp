@@ -4,14 +4,20 @@
 // along the rod, so any rest curvature and twist are in the frames.
 //   bend-twist      C = 2 s vec(f_b^-1 f_a), the relative rotation in b's frame (rad, 3 rows):
 //                   twist about x, bending about y and z
-//   stretch-shear   C = f_a^T (p_a - p_b), the anchors' gap in a's frame (m, 3 rows):
+//   stretch-shear   C = R_a^T (p_a - p_b), the anchors' gap in a's frame (m, 3 rows):
 //                   stretch along x, shear along y and z
 // With the junction's share l of the rod's length (the distance between the segment centres),
 // the rod's energy (l/2) (k^T K k + g^T S g) for curvature and twist k = theta/l and strain
 // g = gap/l gives the compliances per axis: l/(G J), l/(E I_y), l/(E I_z) and l/(E A),
-// l/(G A), l/(G A) (scene/build_rod.cpp). Both blocks are the world-frame rows of a fixed joint
-// (joint_row_blocks.hpp) turned into the frame; the frame's own turn is left out of the
-// Jacobian, which is exact where C = 0 and second order in the per-junction strain elsewhere.
+// l/(G A), l/(G A) (scene/build_rod.cpp).
+// The Jacobians are exact, the turn of the frames included: a twisted rod buckles by the
+// coupling of its twisting moment with the turn of the frame it is measured in (Greenhill), which
+// an approximate Jacobian gets wrong in proportion to the twist per junction.
+//   bend-twist     turning a by dtheta (world) makes q = f_b^-1 f_a = (w, v) into
+//                  q + 1/2 [R_b^T dtheta, 0] q, whose vector part grows by 1/2 (w I - [v]x) R_b^T
+//                  dtheta; turning b takes the same away: J_a,theta = s (w I - [v]x) R_b^T = -J_b,theta
+//   stretch-shear  J_a = [R_a^T, R_a^T ([d]x - [r_a]x)], J_b = [-R_a^T, R_a^T [r_b]x] with d = p_a - p_b
+//                  and r the anchors' offsets from the centres (R_a^T d turns with a)
 // A junction's damping_time damps its strain rates in proportion to its stiffness (Kelvin-Voigt,
 // set_damping). Every row is an equality row the direct tree solver may take.
 #include "moreau/constraints/joints/joint_row_blocks.hpp"
@@ -21,23 +27,38 @@ namespace moreau {
 
 namespace {
 
-// Rows R^T C with R^T J: the block's values measured along the axes of the frame R.
-BodyRows in_frame(BodyRows rows, const Mat3& R, const Vec3& compliance) {
-  rows.C = R.transpose() * rows.C;
-  for (BodyRows::Jacobian& J : rows.jacobian) J = R.transpose() * J;
-  rows.compliance = compliance;
+BodyRows bend_twist_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b) {
+  BodyRows rows = BodyRows::zero(j.bodies(), 3, JointSlot::orientation);
+  const Quat q = b.frame().conjugate() * a.frame();
+  const Real s = q.w() >= 0 ? 1 : -1;
+  rows.C = 2 * s * q.vec();
+  const Mat3 Ja = s * (q.w() * Mat3::Identity() - cross_matrix(q.vec())) * b.frame().toRotationMatrix().transpose();
+  rows.jacobian[0].rightCols<3>() = Ja;
+  rows.jacobian[1].rightCols<3>() = -Ja;
+  rows.compliance = j.rod_angular_compliance;
+  return rows;
+}
+
+BodyRows stretch_shear_rows(const Joint& j, const JointEndPose& a, const JointEndPose& b) {
+  BodyRows rows = BodyRows::zero(j.bodies(), 3, JointSlot::position);
+  const Mat3 Rt = a.frame().toRotationMatrix().transpose();
+  const Vec3 d = a.anchor() - b.anchor();
+  rows.C = Rt * d;
+  rows.jacobian[0].leftCols<3>() = Rt;
+  rows.jacobian[0].rightCols<3>() = Rt * (cross_matrix(d) - cross_matrix(a.offset()));
+  rows.jacobian[1].leftCols<3>() = -Rt;
+  rows.jacobian[1].rightCols<3>() = Rt * cross_matrix(b.offset());
+  rows.compliance = j.rod_compliance;
   return rows;
 }
 
 void rod_rows(const JointRowContext& c, BodyRowSink& sink) {
   if (!c.wants_equality()) return;
-  const JointEndPose a = end_pose_a(c), b = end_pose_b(c);
-  BodyRows bend_twist = in_frame(orientation_rows(c.joint, a, b), b.frame().toRotationMatrix(), c.joint.rod_angular_compliance);
+  BodyRows bend_twist = bend_twist_rows(c.joint, end_pose_a(c), end_pose_b(c));
   set_damping(bend_twist, c);
   sink.take(bend_twist);
-  // The orientation rows moved the bodies: the attachment is read at the new poses.
-  const JointEndPose a2 = end_pose_a(c), b2 = end_pose_b(c);
-  BodyRows stretch_shear = in_frame(attachment_rows(c.joint, a2, b2), a2.frame().toRotationMatrix(), c.joint.rod_compliance);
+  // The bend-twist rows moved the bodies: the gap is read at the new poses.
+  BodyRows stretch_shear = stretch_shear_rows(c.joint, end_pose_a(c), end_pose_b(c));
   set_damping(stretch_shear, c);
   sink.take(stretch_shear);
 }
