@@ -2,19 +2,18 @@
 // appended data read back value for value).
 #include <gtest/gtest.h>
 
-#include <cstdint>
-#include <cstring>
 #include <fstream>
 #include <map>
-#include <regex>
 
 #include "moreau/errors.hpp"
 #include "moreau/geometry/mesh_generators.hpp"
 #include "moreau/geometry/mesh_readers.hpp"
 #include "moreau/io/vtk_writer.hpp"
 #include "test_helpers.hpp"
+#include "vtk_read.hpp"
 
 using namespace moreau;
+using moreau::test::read_appended_float64;
 
 namespace {
 
@@ -38,22 +37,6 @@ std::map<std::array<Index, 3>, int> face_use_counts(const TetMesh& m) {
 }
 
 void write_text(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
-
-// Reads the VTK XML file's appended Float64 array `name` back into numbers.
-std::vector<double> read_appended_float64(const std::string& path, const std::string& name) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string file((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  std::smatch m;
-  const std::regex array("Name=\"" + name + "\"[^>]*offset=\"([0-9]+)\"");
-  if (!std::regex_search(file, m, array)) return {};
-  const size_t data_start = file.find("<AppendedData encoding=\"raw\">\n_") + std::strlen("<AppendedData encoding=\"raw\">\n_");
-  const size_t at = data_start + std::stoull(m[1]);
-  std::uint64_t bytes = 0;
-  std::memcpy(&bytes, file.data() + at, sizeof(bytes));
-  std::vector<double> values(bytes / sizeof(double));
-  std::memcpy(values.data(), file.data() + at + sizeof(bytes), bytes);
-  return values;
-}
 
 }  // namespace
 

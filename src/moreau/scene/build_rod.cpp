@@ -178,6 +178,7 @@ RodSpec read_rod(const JsonObject& object) {
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   spec.contact = read_contact_material(object);
   spec.self_collision = object.boolean("self_collision", spec.self_collision);
+  spec.fluid_coupling = object.boolean("fluid_coupling", spec.fluid_coupling);
   return spec;
 }
 
@@ -304,6 +305,7 @@ void add_rod(const RodSpec& spec, const SpecPlace& place, ObjectInfo& info, Scen
   }
 
   info.kind = ObjectKind::rod;
+  info.fluid_coupling = spec.fluid_coupling;
   info.body = rod.first_body;
   info.body_count = segments;
   info.rod = static_cast<Index>(model.rods.size());
