@@ -323,7 +323,6 @@ struct RodSpec {
   Vector3 velocity{};                     // m/s
   ContactMaterial contact;
   bool self_collision = true;
-  bool fluid_coupling = true;
 };
 
 using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec, RodSpec>;

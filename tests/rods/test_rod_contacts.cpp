@@ -61,3 +61,26 @@ TEST(RodContacts, RodsRestOnTheGroundOnEachOtherAndOnABox) {
 
 }  // namespace
 }  // namespace moreau
+
+namespace moreau {
+namespace {
+
+// A ring (a helix of one turn without pitch: its two ends meet) and a tight coil (pitch 1.5 r,
+// so neighbouring turns touch) at rest without gravity stay still: capsules that touch in the
+// rest shape do not collide, so nothing pushes them apart.
+TEST(RodContacts, CapsulesTouchingInTheRestShapeDoNotPushEachOther) {
+  for (const char* pitch : {"0", "0.015"}) {
+    World w = World::from_json(fmt::format(
+        R"({{"name": "ring", "settings": {{"dt": 0.01, "substeps": 10, "duration": 0.5, "gravity": [0, 0, 0]}},
+        "objects": [{{"name": "ring", "kind": "rod", "helix": {{"radius": 0.1, "pitch": {}, "turns": 1.5}}, "segments": 48,
+                      "radius": 0.01, "youngs_modulus": 1e8, "density": 1000}}],
+        "probes": [{{"name": "moved", "type": "max_displacement", "object": "ring"}}]}})",
+        pitch));
+    for (int s = 0; s < 50; ++s) w.step();
+    std::printf("rod coil, pitch %s m: largest displacement %.2e m after 0.5 s at rest\n", pitch, w.probe_values()[0]);
+    EXPECT_LT(w.probe_values()[0], 1e-9) << pitch;
+  }
+}
+
+}  // namespace
+}  // namespace moreau

@@ -16,9 +16,9 @@ namespace {
 // A 1 m cantilever (E = 1 GPa, 1000 kg/m^3, r = 1 cm, 20 segments), weightless, set
 // moving by a uniform 5 cm/s: its tip swings at omega_1 = beta_1^2 sqrt(E I / (rho A L^4)) =
 // 17.58 rad/s (2.798 Hz). The segments' rotary inertia lowers it by about (beta_1 r / 2L)^2, 1e-4.
-// A small Kelvin-Voigt damping (2 ms) takes the higher modes away within 0.5 s (the second decays
-// at 12/s, the first at 0.15/s, which moves its frequency by 2e-4); the period is the mean spacing
-// of the tip's upward zero crossings from 0.5 s to 4 s.
+// A small Kelvin-Voigt damping (2 ms) takes the higher modes away within 0.5 s (a mode decays at
+// omega^2 tau / 2: the second at 12/s, the first at 0.31/s, which moves its frequency by 2e-4);
+// the period is the mean spacing of the tip's upward zero crossings from 0.5 s to 4 s.
 Real first_frequency(const std::string& solver_settings, int steps_per_second) {
   World w = World::from_json(fmt::format(
       R"({{"name": "ringing", "settings": {{{}, "duration": 4, "gravity": [0, 0, 0]}},

@@ -172,7 +172,7 @@ FluidSolidSamples sample_fluid_solids(const Model& model, Real particle_radius, 
   for (Index b = 0; b < model.rigid.count(); ++b) {
     const Index o = model.rigid.body_object[b];
     const ObjectInfo& info = model.objects[o];
-    if (!info.has_bodies() || !info.fluid_coupling) continue;
+    if (info.kind != ObjectKind::rigid_body || !info.fluid_coupling) continue;
     sampler.sample_rigid_body(o, b);
     sampler.finish_object(2 * particle_radius, kernel);
     s.sampled_body.push_back(b);

@@ -57,8 +57,9 @@ Real junction_twist(const Joint& junction, const State& state) {
 
 Real rod_twist(const RodModel& rod, const std::vector<Joint>& joints, const State& state) {
   Real twist = 0;
-  for (Index k = 0; k < rod.joint_count; ++k)  // the junctions and the clamped ends
-    if (joints[rod.first_joint + k].type == JointType::rod) twist += junction_twist(joints[rod.first_joint + k], state);
+  for (Index k = 0; k + 1 < rod.segments; ++k) twist += junction_twist(joints[rod.first_joint + k], state);
+  // A clamped start turns the first segment against the world: that is twist of the rod too.
+  if (rod.start_joint >= 0 && !joints[rod.start_joint].rod_pinned) twist += junction_twist(joints[rod.start_joint], state);
   return twist;
 }
 

@@ -16,9 +16,9 @@ Vec3 rod_point_velocity(const RodModel& rod, const RigidBodyState& bodies, Index
 /// The twist at one junction now (rad): the rotation of its second frame relative to its first
 /// about the first's x axis (the rod's tangent), in (-pi, pi].
 Real junction_twist(const Joint& junction, const State& state);
-/// The twist of the rod now (rad): the sum over its junctions and clamped ends of the relative
-/// rotation about the rod's tangent, beyond the rest shape's (a clamped start's is the turn of
-/// the first segment against the world).
+/// The twist of the rod now (rad): the turn of its last segment about the tangent relative to its
+/// start, beyond the rest shape's: the sum over its junctions, and over a clamped start's (the
+/// first segment's turn against the world).
 Real rod_twist(const RodModel& rod, const std::vector<Joint>& joints, const State& state);
 /// The elastic energy of the rod's junctions and held ends now (J): the sum of C^2 / (2 alpha)
 /// over their rows.

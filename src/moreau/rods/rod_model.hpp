@@ -14,6 +14,7 @@ struct RodModel {
   Index first_body = -1, segments = 0;   // segment k is rigid body first_body + k
   Index first_joint = -1;                // junction k (between segments k and k + 1) is joint first_joint + k
   Index joint_count = 0;                 // the junctions, then the ends held to the world
+  Index start_joint = -1, end_joint = -1;  // the joints holding the start and the end (-1: free)
   std::vector<Real> segment_length;      // m, per segment
   std::vector<Vec3> rest_points;         // m, the centreline at rest (segments + 1 points)
 

@@ -224,7 +224,10 @@ void add_joint(const JointSpec& spec, const SpecPlace& j, Model& model) {
   joint.name = spec.name;
   if (joint.name.empty()) j.fail("name", "a joint needs a name");
   for (const Joint& other : model.joints)
-    if (other.name == joint.name) j.fail("name", fmt::format("another joint is already named '{}'", joint.name));
+    if (other.name == joint.name)
+      j.fail("name", fmt::format("another joint is already named '{}' (a rod names its own junctions "
+                                 "<rod>.junction<k>, <rod>.start and <rod>.end)",
+                                 joint.name));
   const std::string& type = j.choice("type", spec.type, kJointTypes);
   joint.type = type == "fixed"       ? JointType::fixed
                : type == "spherical" ? JointType::spherical
@@ -235,18 +238,21 @@ void add_joint(const JointSpec& spec, const SpecPlace& j, Model& model) {
   if (joint.ends[0].kind == BodyEndKind::world && joint.ends[1].kind == BodyEndKind::world)
     j.fail("bodies", "a joint needs at least one end that is not the world");
   if (joint.ends[0].kind == joint.ends[1].kind && joint.ends[0].index == joint.ends[1].index)
-    j.fail("bodies", "a joint cannot connect a body to itself");
+    j.fail("bodies", "a joint cannot connect a body to itself (a rod's points k and k + 1 are the two ends of one "
+                     "rigid segment)");
   const bool oriented_ends = joint.ends[0].kind != BodyEndKind::particle && joint.ends[1].kind != BodyEndKind::particle;
 
-  // A rod's point is the anchor unless one is given.
-  std::optional<Vec3> rod_point = rod_end_point(spec.bodies[0], j, 0, model);
-  if (!rod_point) rod_point = rod_end_point(spec.bodies[1], j, 1, model);
+  // A rod's point is its end's anchor unless one is given (the other end takes it too, if it is
+  // not a rod's point itself).
+  const std::array<std::optional<Vec3>, 2> rod_point{rod_end_point(spec.bodies[0], j, 0, model),
+                                                      rod_end_point(spec.bodies[1], j, 1, model)};
   if (spec.anchor && spec.anchors) j.fail("anchor", "give exactly one of \"anchor\" (one world point) or \"anchors\" (one per end)");
-  if (!spec.anchor && !spec.anchors && !rod_point)
+  if (!spec.anchor && !spec.anchors && !rod_point[0] && !rod_point[1])
     j.fail("anchor", "give exactly one of \"anchor\" (one world point) or \"anchors\" (one per end)");
   std::array<Vec3, 2> anchors;
   if (spec.anchor) anchors[0] = anchors[1] = j.vector("anchor", *spec.anchor);
-  else if (!spec.anchors) anchors[0] = anchors[1] = *rod_point;
+  else if (!spec.anchors)
+    for (int k = 0; k < 2; ++k) anchors[k] = rod_point[k] ? *rod_point[k] : *rod_point[1 - k];
   else anchors = {j.vector("anchors", (*spec.anchors)[0]), j.vector("anchors", (*spec.anchors)[1])};
   const Vec3 axis_in = j.vector("axis", spec.axis);
   if (axis_in.norm() <= 0) j.fail("axis", "the axis must not be zero");

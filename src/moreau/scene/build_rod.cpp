@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "moreau/collision/narrow_phase_parts.hpp"
 #include "moreau/scene/spec_builders.hpp"
 
 namespace moreau {
@@ -119,6 +120,8 @@ std::vector<Quat> segment_frames(const std::vector<Vec3>& points, const RodSpec&
   normal.normalize();
   for (size_t k = 0; k + 1 < points.size(); ++k) {
     const Vec3 t = (points[k + 1] - points[k]).normalized();
+    if (t.dot(tangent) < -1 + 1e-9)
+      place.fail("points", fmt::format("the centreline turns back on itself at point {}; a rod's segments may not reverse", k));
     normal = Quat::FromTwoVectors(tangent, t) * normal;
     normal = (normal - normal.dot(t) * t).normalized();
     tangent = t;
@@ -178,7 +181,6 @@ RodSpec read_rod(const JsonObject& object) {
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   spec.contact = read_contact_material(object);
   spec.self_collision = object.boolean("self_collision", spec.self_collision);
-  spec.fluid_coupling = object.boolean("fluid_coupling", spec.fluid_coupling);
   return spec;
 }
 
@@ -267,7 +269,8 @@ void add_rod(const RodSpec& spec, const SpecPlace& place, ObjectInfo& info, Scen
     model.joints.push_back(std::move(j));
   }
   // Ends held where they are: clamped keeps the end's position and direction through a junction
-  // with the world for the half segment beyond the end's centre; pinned only its position.
+  // with the world for the half segment beyond the end's centre; pinned only its position (the
+  // junction's stretch-shear rows).
   auto hold = [&](const std::string& mode, const char* which, Index k, Real along) {
     if (mode == "free") return;
     Joint j = joint_named(which);
@@ -279,33 +282,42 @@ void add_rod(const RodSpec& spec, const SpecPlace& place, ObjectInfo& info, Scen
     body.frame = junction_frame();
     // The world end comes first at the start (the rod runs from it), last at the end.
     j.ends = along < 0 ? std::array<JointEnd, 2>{world, body} : std::array<JointEnd, 2>{body, world};
-    if (mode == "clamped") {
-      j.type = JointType::rod;
-      set_junction_compliance(j, half, s, material);
-    } else {
-      j.type = JointType::spherical;
-      j.compliance = half / (material.E * s.area);
-    }
+    j.type = JointType::rod;
+    j.rod_pinned = mode == "pinned";
+    set_junction_compliance(j, half, s, material);
+    (along < 0 ? rod.start_joint : rod.end_joint) = static_cast<Index>(model.joints.size());
     model.joints.push_back(std::move(j));
   };
   hold(start, "start", 0, -rod.segment_length[0] / 2);
   hold(end, "end", segments - 1, rod.segment_length[segments - 1] / 2);
   rod.joint_count = static_cast<Index>(model.joints.size()) - rod.first_joint;
 
-  // Segments that overlap at rest never touch: neighbours, and those within the reach of the
-  // capsules' radius (a thick rod of short segments). Others collide when self_collision is on.
+  // Segments that touch at rest never collide: neighbours, those within the reach of the section
+  // along the rod (1 + ceil(2 r / l) apart), and any others whose capsules overlap in the rest
+  // shape (a closed ring, tight helix turns, a folded polyline). The rest collide with each other
+  // when self_collision is on.
   if (spec.self_collision) {
     const Index reach = 1 + static_cast<Index>(std::ceil(2 * s.collision_radius / shortest));
+    const Real touching = 2 * s.collision_radius * (1 + 1e-9);
     for (Index a = 0; a < segments; ++a)
-      for (Index b = a + 1; b < segments && b - a <= reach; ++b)
-        m.pairs_without_contact.push_back({rod.first_body + a, rod.first_body + b});
+      for (Index b = a + 1; b < segments; ++b) {
+        bool apart = b - a > reach;
+        const Vec3 ca = 0.5 * (points[a] + points[a + 1]), cb = 0.5 * (points[b] + points[b + 1]);
+        const bool far = (ca - cb).norm() > 0.5 * (rod.segment_length[a] + rod.segment_length[b]) + touching;
+        if (apart && !far) {
+          Vec3 on_a, on_b;
+          narrow::closest_points_of_segments(points[a], points[a + 1], points[b], points[b + 1], on_a, on_b);
+          apart = (on_a - on_b).norm() > touching;
+        }
+        if (!apart) m.pairs_without_contact.push_back({rod.first_body + a, rod.first_body + b});
+      }
   } else {
     m.body_contact_group.resize(m.count(), -1);
     for (Index k = 0; k < segments; ++k) m.body_contact_group[rod.first_body + k] = object;
   }
 
   info.kind = ObjectKind::rod;
-  info.fluid_coupling = spec.fluid_coupling;
+  info.fluid_coupling = false;  // rods are not sampled for the particle fluids
   info.body = rod.first_body;
   info.body_count = segments;
   info.rod = static_cast<Index>(model.rods.size());

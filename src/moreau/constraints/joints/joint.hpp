@@ -59,6 +59,7 @@ struct Joint {
   // Rod junctions: compliance per axis of the joint frame (x along the rod, y and z across it).
   Vec3 rod_compliance = Vec3::Zero();          // m/N: stretch along x, shear along y and z
   Vec3 rod_angular_compliance = Vec3::Zero();  // rad/(N m): twist about x, bending about y and z
+  bool rod_pinned = false;                     // a pinned rod end: stretch-shear rows only, free to turn
 
   std::array<BodyEnd, 2> bodies() const { return {ends[0].body(), ends[1].body()}; }
 };

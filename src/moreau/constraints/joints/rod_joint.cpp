@@ -18,8 +18,9 @@
 //                  dtheta; turning b takes the same away: J_a,theta = s (w I - [v]x) R_b^T = -J_b,theta
 //   stretch-shear  J_a = [R_a^T, R_a^T ([d]x - [r_a]x)], J_b = [-R_a^T, R_a^T [r_b]x] with d = p_a - p_b
 //                  and r the anchors' offsets from the centres (R_a^T d turns with a)
-// A junction's damping_time damps its strain rates in proportion to its stiffness (Kelvin-Voigt,
-// set_damping). Every row is an equality row the direct tree solver may take.
+// A pinned rod end (rod_pinned) keeps the stretch-shear rows only. A junction's damping_time damps
+// its strain rates in proportion to its stiffness (Kelvin-Voigt, set_damping). Every row is an
+// equality row the direct tree solver may take.
 #include "moreau/constraints/joints/joint_row_blocks.hpp"
 #include "moreau/constraints/joints/joint_type_rules.hpp"
 
@@ -54,22 +55,24 @@ BodyRows stretch_shear_rows(const Joint& j, const JointEndPose& a, const JointEn
 
 void rod_rows(const JointRowContext& c, BodyRowSink& sink) {
   if (!c.wants_equality()) return;
-  BodyRows bend_twist = bend_twist_rows(c.joint, end_pose_a(c), end_pose_b(c));
-  set_damping(bend_twist, c);
-  sink.take(bend_twist);
+  if (!c.joint.rod_pinned) {
+    BodyRows bend_twist = bend_twist_rows(c.joint, end_pose_a(c), end_pose_b(c));
+    set_damping(bend_twist, c);
+    sink.take(bend_twist);
+  }
   // The bend-twist rows moved the bodies: the gap is read at the new poses.
   BodyRows stretch_shear = stretch_shear_rows(c.joint, end_pose_a(c), end_pose_b(c));
   set_damping(stretch_shear, c);
   sink.take(stretch_shear);
 }
 
-JointError rod_error(const Joint&, const JointEndPose& a, const JointEndPose& b) {
-  return {(a.anchor() - b.anchor()).norm(), orientation_error(a.frame(), b.frame()).norm()};
+JointError rod_error(const Joint& j, const JointEndPose& a, const JointEndPose& b) {
+  return {(a.anchor() - b.anchor()).norm(), j.rod_pinned ? Real(0) : orientation_error(a.frame(), b.frame()).norm()};
 }
 
 }  // namespace
 
-const JointTypeRules kRodJoint{rod_rows, [](const Joint&) { return 6; }, [](const Joint&) { return false; }, rod_error,
-                               no_coordinate};
+const JointTypeRules kRodJoint{rod_rows, [](const Joint& j) { return j.rod_pinned ? 3 : 6; },
+                               [](const Joint&) { return false; }, rod_error, no_coordinate};
 
 }  // namespace moreau
