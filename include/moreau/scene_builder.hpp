@@ -325,7 +325,21 @@ struct RodSpec {
   bool self_collision = true;
 };
 
-using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec, RodSpec>;
+/// "kind": "granular": grains (spheres) on a lattice filling boxes, each a particle that touches
+/// the others, the colliders, rigid bodies and rods with friction and restitution
+/// (docs/scene-format.md, "Granular media").
+struct GranularSpec {
+  std::string name;
+  std::vector<FluidBlock> blocks;         // m, boxes the grains fill
+  std::optional<double> radius;           // m, one radius; or
+  std::optional<Vector2> radius_range;    // m, radii drawn uniformly from [min, max] (polydisperse)
+  int seed = 1;                           // of the radius draws
+  double density = 2600;                  // kg/m^3 of a grain
+  Vector3 velocity{};                     // m/s
+  ContactMaterial contact;
+};
+
+using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec, RodSpec, GranularSpec>;
 
 // ---- Joints ---------------------------------------------------------------------------------
 

@@ -102,9 +102,13 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
         if (model.particle_inv_mass[i] <= 0 && model.particle_inv_mass[j] <= 0) return;
         const Real contact_distance = model.particle_radius[i] + model.particle_radius[j];
         if (oi == oj) {
-          if (!model.objects[oi].self_collision) return;
-          // Neighbours that are closer than the contact distance at rest never collide.
-          if ((model.particle_rest_position[i] - model.particle_rest_position[j]).norm() < contact_distance) return;
+          const ObjectInfo& object = model.objects[oi];
+          if (!object.self_collision) return;
+          // Neighbours that are closer than the contact distance at rest never collide (grains
+          // have no neighbours: each touches every other).
+          if (object.kind != ObjectKind::granular &&
+              (model.particle_rest_position[i] - model.particle_rest_position[j]).norm() < contact_distance)
+            return;
         }
         const Real reach = contact_distance + std::min(k * dt * (state.velocity[i] - state.velocity[j]).norm(), contact_distance);
         if ((state.position[i] - state.position[j]).squaredNorm() < reach * reach) pairs.push_back({i, j});

@@ -17,7 +17,7 @@
 
 namespace moreau {
 
-enum class ObjectKind { collider, cloth, soft_body, fluid, rigid_body, rod };
+enum class ObjectKind { collider, cloth, soft_body, fluid, rigid_body, rod, granular };
 
 /// One named scene object. Particles of an object are the contiguous range [particle_begin, particle_end).
 /// Fluid objects have no particles here: theirs live in FluidState (phase `fluid_phase`).

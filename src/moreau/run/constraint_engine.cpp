@@ -116,7 +116,7 @@ std::vector<std::string> ConstraintEngine::warnings() const {
 }
 
 const char* kind_name(ObjectKind kind) {
-  static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid", "rigid_body", "rod"};
+  static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid", "rigid_body", "rod", "granular"};
   return kinds[static_cast<int>(kind)];
 }
 

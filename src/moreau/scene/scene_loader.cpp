@@ -42,13 +42,14 @@ Scene build_fem_scene_file(const JsonObject& top, const JsonObject& settings, co
 // One object of "objects", read into its kind's spec.
 ObjectSpec read_object(const JsonObject& object) {
   const std::string name = object.string("name");
-  const std::string kind = object.choice("kind", {"collider", "cloth", "soft_body", "fluid", "rigid_body", "rod"});
+  const std::string kind = object.choice("kind", {"collider", "cloth", "soft_body", "fluid", "rigid_body", "rod", "granular"});
   ObjectSpec spec;
   if (kind == "collider") spec = read_collider(object);
   else if (kind == "rigid_body") spec = read_rigid_body(object);
   else if (kind == "cloth") spec = read_cloth(object);
   else if (kind == "fluid") spec = read_fluid(object);
   else if (kind == "rod") spec = read_rod(object);
+  else if (kind == "granular") spec = read_granular(object);
   else spec = read_soft_body(object);
   std::visit([&](auto& s) { s.name = name; }, spec);
   object.finish();

@@ -36,6 +36,7 @@ SoftBodySpec read_soft_body(const JsonObject& object);
 FluidSpec read_fluid(const JsonObject& object);
 RigidBodySpec read_rigid_body(const JsonObject& object);
 RodSpec read_rod(const JsonObject& object);
+GranularSpec read_granular(const JsonObject& object);
 JointSpec read_joint(const JsonObject& joint);
 ProbeSpec read_probe(const JsonObject& probe);
 /// "settings" of a constraint-engine scene.
@@ -55,6 +56,8 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
 void add_rigid_body(const RigidBodySpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 /// The rod's segments (rigid bodies), its junctions and end conditions (joints).
 void add_rod(const RodSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
+/// The grains: particles on a lattice in the blocks, all of them in the particle contacts.
+void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 /// After all objects and joints: colliders become kinematic bodies for the rigid bodies.
 void add_colliders_as_bodies(Model& model);
 /// After all objects: one joint (pairs_without_contact is sorted by finish_joints).
