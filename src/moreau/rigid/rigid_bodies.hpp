@@ -15,6 +15,21 @@ enum class BodyMotion {
   kinematic,  // moves with its prescribed velocity and angular velocity; infinite mass
 };
 
+/// One body as a builder describes it (RigidBodyModel::add fills every per-body array from it).
+struct BodyDescription {
+  Shape shape;
+  Index object = -1;                           // owning scene object
+  BodyMotion motion = BodyMotion::dynamic;
+  Real mass = 0;                               // kg (0 for colliders)
+  Vec3 inertia = Vec3::Zero();                 // kg m^2, principal
+  Quat frame_in_shape = Quat::Identity();      // principal frame -> the frame the shape was given in
+  Vec3 center_in_shape = Vec3::Zero();         // m
+  Real static_friction = 0, dynamic_friction = 0, restitution = 0, adhesion = 0;
+  Vec3 position = Vec3::Zero();                // m, centre of mass at t = 0
+  Quat orientation = Quat::Identity();         // principal frame -> world at t = 0
+  Vec3 velocity = Vec3::Zero(), angular_velocity = Vec3::Zero();  // m/s, rad/s (world)
+};
+
 struct RigidBodyModel {
   std::vector<Shape> body_shape;
   std::vector<Index> body_object;            // owning scene object
@@ -35,6 +50,8 @@ struct RigidBodyModel {
   std::vector<Quat> initial_orientation;
 
   Index count() const { return static_cast<Index>(body_shape.size()); }
+  /// Appends a body; its inverse mass and inertia are 0 unless it is dynamic. Returns its index.
+  Index add(BodyDescription body);
   bool empty() const { return body_shape.empty(); }
   bool is_dynamic(Index b) const { return body_motion[b] == BodyMotion::dynamic; }
 };

@@ -174,30 +174,29 @@ void add_rigid_body(const RigidBodySpec& spec, const SpecPlace& place, ObjectInf
   info.body = m.count();
   info.body_count = 1;
   info.fluid_coupling = spec.fluid_coupling;
-  const bool dynamic = !fixed && !kinematic;
-  m.body_shape.push_back(std::move(shape));
-  m.body_object.push_back(static_cast<Index>(ctx.model.objects.size()));
-  m.body_motion.push_back(fixed ? BodyMotion::fixed : kinematic ? BodyMotion::kinematic : BodyMotion::dynamic);
-  m.body_mass.push_back(mass);
-  m.body_inv_mass.push_back(dynamic ? 1 / mass : 0);
-  m.body_inertia.push_back(inertia);
-  m.body_inv_inertia.push_back(dynamic ? Vec3(inertia.cwiseInverse()) : Vec3(Vec3::Zero()));
-  m.body_frame_in_shape.push_back(Quat(principal));
-  m.body_center_in_shape.push_back(props.center);
-  m.body_static_friction.push_back(mu_s);
-  m.body_dynamic_friction.push_back(mu_k);
-  m.body_restitution.push_back(e);
-  m.body_adhesion.push_back(info.adhesion);
-  // "position" places the shape's own origin; the state holds the centre of mass and the
-  // principal frame.
-  m.initial_position.push_back(position + orientation * props.center);
-  m.initial_orientation.push_back((orientation * Quat(principal)).normalized());
   const Vec3 v = place.vector("velocity", spec.velocity), w = place.vector("angular_velocity", spec.angular_velocity);
   if (fixed && (v != Vec3::Zero() || w != Vec3::Zero()))
     place.fail("velocity", "a fixed body cannot move; use \"kinematic\": true for prescribed motion");
+  BodyDescription body;
+  body.shape = std::move(shape);
+  body.object = static_cast<Index>(ctx.model.objects.size());
+  body.motion = fixed ? BodyMotion::fixed : kinematic ? BodyMotion::kinematic : BodyMotion::dynamic;
+  body.mass = mass;
+  body.inertia = inertia;
+  body.frame_in_shape = Quat(principal);
+  body.center_in_shape = props.center;
+  body.static_friction = mu_s;
+  body.dynamic_friction = mu_k;
+  body.restitution = e;
+  body.adhesion = info.adhesion;
+  // "position" places the shape's own origin; the state holds the centre of mass and the
+  // principal frame.
+  body.position = position + orientation * props.center;
+  body.orientation = (orientation * Quat(principal)).normalized();
   // A body's velocity is that of its centre of mass: v_com = v_origin + w x (com - origin).
-  m.initial_velocity.push_back(v + w.cross(orientation * props.center));
-  m.initial_angular_velocity.push_back(w);
+  body.velocity = v + w.cross(orientation * props.center);
+  body.angular_velocity = w;
+  m.add(std::move(body));
 }
 
 void add_colliders_as_bodies(Model& model) {
@@ -208,23 +207,18 @@ void add_colliders_as_bodies(Model& model) {
     if (info.kind != ObjectKind::collider) continue;
     const Collider& c = model.colliders[info.collider];
     auto add = [&](Shape shape, const Vec3& position, const Quat& orientation) {
-      m.body_shape.push_back(std::move(shape));
-      m.body_object.push_back(static_cast<Index>(o));
-      m.body_motion.push_back(c.velocity == Vec3::Zero() ? BodyMotion::fixed : BodyMotion::kinematic);
-      m.body_mass.push_back(0);
-      m.body_inv_mass.push_back(0);
-      m.body_inertia.push_back(Vec3::Zero());
-      m.body_inv_inertia.push_back(Vec3::Zero());
-      m.body_frame_in_shape.push_back(Quat::Identity());
-      m.body_center_in_shape.push_back(Vec3::Zero());
-      m.body_static_friction.push_back(c.static_friction);
-      m.body_dynamic_friction.push_back(c.dynamic_friction);
-      m.body_restitution.push_back(c.restitution);
-      m.body_adhesion.push_back(c.adhesion);
-      m.initial_position.push_back(position);
-      m.initial_orientation.push_back(orientation);
-      m.initial_velocity.push_back(c.velocity);
-      m.initial_angular_velocity.push_back(Vec3::Zero());
+      BodyDescription body;
+      body.shape = std::move(shape);
+      body.object = static_cast<Index>(o);
+      body.motion = c.velocity == Vec3::Zero() ? BodyMotion::fixed : BodyMotion::kinematic;
+      body.static_friction = c.static_friction;
+      body.dynamic_friction = c.dynamic_friction;
+      body.restitution = c.restitution;
+      body.adhesion = c.adhesion;
+      body.position = position;
+      body.orientation = orientation;
+      body.velocity = c.velocity;
+      m.add(std::move(body));
     };
     // A plane is the half-space y <= 0 of a frame whose y axis is the normal.
     auto plane = [&](const Vec3& point, const Vec3& normal) {

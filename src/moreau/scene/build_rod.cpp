@@ -224,23 +224,19 @@ void add_rod(const RodSpec& spec, const SpecPlace& place, ObjectInfo& info, Scen
     const Vec3 inertia = mass * Vec3(s.half_z * s.half_z / 4 + length * length / 12,
                                      (s.half_x * s.half_x + s.half_z * s.half_z) / 4,
                                      s.half_x * s.half_x / 4 + length * length / 12);
-    m.body_shape.push_back(make_capsule(s.collision_radius, length / 2));
-    m.body_object.push_back(object);
-    m.body_motion.push_back(BodyMotion::dynamic);
-    m.body_mass.push_back(mass);
-    m.body_inv_mass.push_back(1 / mass);
-    m.body_inertia.push_back(inertia);
-    m.body_inv_inertia.push_back(inertia.cwiseInverse());
-    m.body_frame_in_shape.push_back(Quat::Identity());
-    m.body_center_in_shape.push_back(Vec3::Zero());
-    m.body_static_friction.push_back(info.static_friction);
-    m.body_dynamic_friction.push_back(info.dynamic_friction);
-    m.body_restitution.push_back(info.restitution);
-    m.body_adhesion.push_back(info.adhesion);
-    m.initial_position.push_back(0.5 * (points[k] + points[k + 1]));
-    m.initial_orientation.push_back(frames[k]);
-    m.initial_velocity.push_back(velocity);
-    m.initial_angular_velocity.push_back(Vec3::Zero());
+    BodyDescription body;
+    body.shape = make_capsule(s.collision_radius, length / 2);
+    body.object = object;
+    body.mass = mass;
+    body.inertia = inertia;
+    body.static_friction = info.static_friction;
+    body.dynamic_friction = info.dynamic_friction;
+    body.restitution = info.restitution;
+    body.adhesion = info.adhesion;
+    body.position = 0.5 * (points[k] + points[k + 1]);
+    body.orientation = frames[k];
+    body.velocity = velocity;
+    m.add(std::move(body));
   }
 
   // Junctions: segment k's end meets segment k + 1's start; each stands for the length between
