@@ -115,14 +115,8 @@ void write_vtu(const std::string& path, const std::vector<Vec3>& points, const s
   xml += "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">\n";
   xml += "<UnstructuredGrid>\n";
   xml += fmt::format("<Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n", points.size(), cells);
-  xml += "<PointData>\n";
-  for (const auto& a : point_arrays)
-    xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>\n",
-                       a.name, data.add(flatten(a.values)));
-  for (const auto& a : point_scalars)
-    xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"1\" format=\"appended\" offset=\"{}\"/>\n",
-                       a.name, data.add(std::vector<double>(a.values.begin(), a.values.end())));
-  xml += "</PointData>\n<CellData>\n";
+  xml += data_section("PointData", point_arrays, point_scalars, data);
+  xml += "<CellData>\n";
   for (const auto& a : cell_arrays)
     xml += fmt::format("<DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{}\"/>\n",
                        a.name, a.components, data.add(std::vector<double>(a.values.begin(), a.values.end())));
