@@ -20,7 +20,10 @@ namespace {
 // 0.6 m apart, a third dropped from 5 cm across them (its segment 4 centred over the left rod),
 // and a fourth dropped from 5 cm along the top of a fixed box 0.2 m high and 1.2 m long. At rest
 // after 2 s: the lower rods' centrelines at r, the crossing rod's at 3r where it lies on the left
-// rod, the fourth's at 0.2 m + r. Under xpbd the contact between two rods (Gauss-Seidel, after
+// rod, the fourth's at 0.2 m + r. A fifth lies across a 0.4 m block, overhanging it unevenly:
+// it stays where it fell, its middle on the block and its ends above it (the capsules over the
+// block's edges once took contact normals tilted towards the block's centre, and such a rod
+// perched 4.5 mm above the block or slid off along itself). Under xpbd the contact between two rods (Gauss-Seidel, after
 // the rods' direct solve) and the rods meet only through the iterations: with one, the crossing
 // rod rests 0.38 mm into the other; with four (here), 0.1 mm.
 std::vector<double> rest_heights(const std::string& solver_settings, int steps) {
@@ -32,16 +35,20 @@ std::vector<double> rest_heights(const std::string& solver_settings, int steps) 
                   {{"name": "right", {}, "points": [[0.3, 0.03, -0.5], [0.3, 0.03, 0.5]]}},
                   {{"name": "across", {}, "points": [[-0.525, 0.08, 0], [0.475, 0.08, 0]]}},
                   {{"name": "table", "kind": "rigid_body", "fixed": true, "shape": {{"type": "box", "size": [0.4, 0.2, 1.2]}}, "position": [2, 0.1, 0]}},
-                  {{"name": "on_table", {}, "points": [[2, 0.25, -0.5], [2, 0.25, 0.5]]}}],
+                  {{"name": "on_table", {}, "points": [[2, 0.25, -0.5], [2, 0.25, 0.5]]}},
+                  {{"name": "block", "kind": "rigid_body", "fixed": true, "shape": {{"type": "box", "size": [0.4, 0.2, 0.4]}}, "position": [4, 0.1, 0]}},
+                  {{"name": "overhanging", {}, "points": [[4, 0.25, -0.525], [4, 0.25, 0.475]]}}],
       "probes": [{{"name": "left", "type": "point", "object": "left", "vertex": 10}},
                  {{"name": "right", "type": "point", "object": "right", "vertex": 10}},
                  {{"name": "across4", "type": "point", "object": "across", "vertex": 4}},
                  {{"name": "across5", "type": "point", "object": "across", "vertex": 5}},
-                 {{"name": "on_table", "type": "point", "object": "on_table", "vertex": 10}}]}})",
-      solver_settings, rod, rod, rod, rod));
+                 {{"name": "on_table", "type": "point", "object": "on_table", "vertex": 10}},
+                 {{"name": "overhanging", "type": "point", "object": "overhanging", "vertex": 10}},
+                 {{"name": "overhanging_end", "type": "point", "object": "overhanging", "vertex": 0}}]}})",
+      solver_settings, rod, rod, rod, rod, rod));
   for (int s = 0; s < steps; ++s) w.step();
   const std::vector<double> v = w.probe_values();
-  return {v[1], v[4], (v[7] + v[10]) / 2, v[13]};
+  return {v[1], v[4], (v[7] + v[10]) / 2, v[13], v[16], v[17] + 0.025, v[19]};
 }
 
 TEST(RodContacts, RodsRestOnTheGroundOnEachOtherAndOnABox) {
@@ -56,6 +63,12 @@ TEST(RodContacts, RodsRestOnTheGroundOnEachOtherAndOnABox) {
     EXPECT_NEAR(h[1], r, 1e-4) << name;
     EXPECT_NEAR(h[2], 3 * r, 2e-4) << name;
     EXPECT_NEAR(h[3], 0.2 + r, 1e-4) << name;
+    std::printf("rod across a 0.4 m block, overhanging 0.325 and 0.275 m, %s: middle at %.5f m (0.2 + r = %.3f), slid %.2e m "
+                "along itself, far end at %.5f m\n",
+                name, h[4], 0.2 + r, h[5], h[6]);
+    EXPECT_NEAR(h[4], 0.2 + r, 5e-4) << name;  // the overhangs' moments may lift the middle a little
+    EXPECT_LT(std::abs(h[5]), 1e-3) << name;
+    EXPECT_GT(h[6], 0.2) << name;
   }
 }
 

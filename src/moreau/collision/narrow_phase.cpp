@@ -220,6 +220,8 @@ ContactManifold collide_shapes(const Shape& a, const Pose& pa, const Shape& b, c
     collide_polyhedra(a, pa, b, pb, margin, c);
   } else if (a.type == ShapeType::sphere && b.is_polyhedron()) {
     collide_sphere_polyhedron(a, pa, b, pb, margin, c);
+  } else if (a.type == ShapeType::capsule && b.is_polyhedron()) {
+    collide_capsule_polyhedron(a, pa, b, pb, margin, c);
   } else {
     collide_convex_mpr(a, pa, b, pb, margin, c);
   }

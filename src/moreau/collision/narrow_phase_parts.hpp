@@ -84,6 +84,12 @@ void contacts_from_axes(const Shape& a, const Pose& pa, const Shape& b, const Po
 /// Sphere A against box/hull B.
 void collide_sphere_polyhedron(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                                Candidates& out);
+/// A capsule (A) against a box or hull (B) by the closest points of its core: the point of the
+/// core deepest in B or nearest it (a convex function along the core, minimised by golden-section
+/// search), and the farthest points of the core towards each end that face the same side of B,
+/// so a capsule lying on a face rests on two points.
+void collide_capsule_polyhedron(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
+                                Candidates& out);
 /// Any convex pair by Minkowski portal refinement (libccd) for the normal, then feature clipping.
 void collide_convex_mpr(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
                         Candidates& out);

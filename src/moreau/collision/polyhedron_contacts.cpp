@@ -1,4 +1,5 @@
-// Box/hull pairs by separating axes, and a sphere against a box/hull by its closest point.
+// Box/hull pairs by separating axes, and a sphere or a capsule against a box/hull by the closest
+// points of its core.
 #include <cmath>
 #include <limits>
 
@@ -128,6 +129,64 @@ void collide_sphere_polyhedron(const Shape& a, const Pose& pa, const Shape& b, c
   out.normal = pb.orientation * near.normal;
   out.frame = NormalFrame::body_b;
   out.add({pa.position, pb.to_world(near.point), a.radius, 0, separation});
+}
+
+// The signed distance from B of the core point p0 + t (p1 - p0) is convex in t (B is convex), so
+// golden-section search finds its minimum; the normal there is the contact's. Taking the
+// polyhedron's own nearest point avoids the bias of a penetration search along the line between
+// the centres, which tilted the normal of a short capsule lying over a box's edge towards the
+// box's centre and pushed it sideways off the edge.
+void collide_capsule_polyhedron(const Shape& a, const Pose& pa, const Shape& b, const Pose& pb, Real margin,
+                                Candidates& out) {
+  const Vec3 axis = pa.orientation * Vec3(0, a.half_height, 0);
+  const Vec3 p0 = pb.to_local(pa.position - axis), p1 = pb.to_local(pa.position + axis);  // B's frame
+  const ConvexPolyhedron& poly = b.polyhedron;
+  auto at = [&](Real t) { return Vec3(p0 + t * (p1 - p0)); };
+  auto query = [&](Real t) { return nearest_polyhedron_point(poly, at(t)); };
+  constexpr Real kGolden = 0.6180339887498949;
+  Real lo = 0, hi = 1, x1 = hi - kGolden * (hi - lo), x2 = lo + kGolden * (hi - lo);
+  Real f1 = query(x1).distance, f2 = query(x2).distance;
+  for (int k = 0; k < 60 && hi - lo > 1e-9; ++k) {
+    if (f1 <= f2) {
+      hi = x2, x2 = x1, f2 = f1;
+      x1 = hi - kGolden * (hi - lo), f1 = query(x1).distance;
+    } else {
+      lo = x1, x1 = x2, f1 = f2;
+      x2 = lo + kGolden * (hi - lo), f2 = query(x2).distance;
+    }
+  }
+  // The ends themselves may be the minimum (the search only approaches them).
+  Real best_t = 0.5 * (lo + hi);
+  SurfacePoint best = query(best_t);
+  for (Real t : {0.0, 1.0})
+    if (const SurfacePoint end = query(t); end.distance < best.distance) best = end, best_t = t;
+  const Real separation = best.distance - a.radius;
+  if (separation > margin) return;
+  const Vec3 n = best.normal;
+  out.normal = pb.orientation * n;
+  out.frame = NormalFrame::body_b;
+  auto add = [&](const Vec3& core, const SurfacePoint& near) {
+    out.add({pb.to_world(core), pb.to_world(near.point), a.radius, 0, near.distance - a.radius});
+  };
+  add(at(best_t), best);
+  // Towards each end, the farthest core point whose nearest point on B faces along n and lies
+  // within the margin: the end itself, or the boundary found by bisection.
+  constexpr Real kSameNormal = 0.999;
+  auto faces_n = [&](const SurfacePoint& q) { return q.normal.dot(n) > kSameNormal && q.distance - a.radius <= margin; };
+  const Real length = (p1 - p0).norm();
+  for (Real end : {0.0, 1.0}) {
+    Real inside = best_t, outside = end;
+    SurfacePoint q = query(end);
+    if (!faces_n(q)) {
+      for (int k = 0; k < 40; ++k) {
+        const Real mid = 0.5 * (inside + outside);
+        (faces_n(query(mid)) ? inside : outside) = mid;
+      }
+      outside = inside;
+      q = query(inside);
+    }
+    if (std::abs(outside - best_t) * length > 1e-6 * (1 + length)) add(at(outside), q);
+  }
 }
 
 }  // namespace moreau::narrow
