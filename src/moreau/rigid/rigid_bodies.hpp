@@ -43,6 +43,7 @@ struct RigidBodyModel {
   std::vector<Real> body_static_friction, body_dynamic_friction, body_restitution;
   std::vector<Real> body_adhesion;  // N per contact point: the pull a contact holds under nmd
   std::vector<std::array<Index, 2>> pairs_without_contact;  // sorted (a < b): joined bodies
+  std::vector<std::array<Index, 2>> particle_pairs_without_contact;  // sorted (body, particle): joined by a joint
   std::vector<Index> body_contact_group;     // bodies of one group never touch each other (a rod without
                                              // self-collision); -1 or past the end: none
   // Initial conditions (the state at t = 0).

@@ -322,18 +322,22 @@ void add_joint(const JointSpec& spec, const SpecPlace& j, Model& model) {
     case JointType::rod: break;  // rods make their own (build_rod.cpp)
   }
   if (spec.drive) add_drive(*spec.drive, j, joint);
-  // Joined bodies do not collide with each other unless asked to.
+  // Joined bodies, and a body and a particle joined, do not collide with each other unless asked to.
   if (!spec.collide && joint.ends[0].kind == BodyEndKind::body && joint.ends[1].kind == BodyEndKind::body) {
     const Index a = joint.ends[0].index, b = joint.ends[1].index;
     model.rigid.pairs_without_contact.push_back({std::min(a, b), std::max(a, b)});
   }
+  for (int e = 0; e < 2; ++e)
+    if (!spec.collide && joint.ends[e].kind == BodyEndKind::body && joint.ends[1 - e].kind == BodyEndKind::particle)
+      model.rigid.particle_pairs_without_contact.push_back({joint.ends[e].index, joint.ends[1 - e].index});
   model.joints.push_back(std::move(joint));
 }
 
 void finish_joints(Model& model) {
-  auto& pairs = model.rigid.pairs_without_contact;
-  std::sort(pairs.begin(), pairs.end());
-  pairs.erase(std::unique(pairs.begin(), pairs.end()), pairs.end());
+  for (auto* pairs : {&model.rigid.pairs_without_contact, &model.rigid.particle_pairs_without_contact}) {
+    std::sort(pairs->begin(), pairs->end());
+    pairs->erase(std::unique(pairs->begin(), pairs->end()), pairs->end());
+  }
 }
 
 }  // namespace moreau
