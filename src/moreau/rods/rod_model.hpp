@@ -21,6 +21,13 @@ struct RodModel {
   Index points() const { return segments + 1; }
   /// Whether centreline point k of the rod is the start of segment k (the last point ends the last segment).
   Index segment_of_point(Index k) const { return k < segments ? k : segments - 1; }
+  /// The centreline point nearest `p` at rest (the lowest index on a tie).
+  Index nearest_rest_point(const Vec3& p) const {
+    Index best = 0;
+    for (Index k = 1; k < points(); ++k)
+      if ((rest_points[k] - p).squaredNorm() < (rest_points[best] - p).squaredNorm()) best = k;
+    return best;
+  }
   /// Centreline point k's offset from its segment's centre in the segment's frame.
   Vec3 point_in_segment(Index k) const {
     const Real half = segment_length[segment_of_point(k)] / 2;

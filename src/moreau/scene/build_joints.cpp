@@ -35,11 +35,7 @@ JointEndSpec read_end(const JsonObject& joint, const nlohmann::json& value, int 
 Index rod_point_index(const JointEndSpec& spec, const SpecPlace& ref, const RodModel& rod) {
   if (spec.vertex && spec.nearest) ref.fail("vertex", "give exactly one of \"vertex\" or \"nearest\"");
   if (spec.vertex) return ref.integer("vertex", *spec.vertex, 0, rod.points() - 1);
-  const Vec3 p = ref.vector("nearest", *spec.nearest);
-  Index best = 0;
-  for (Index k = 1; k < rod.points(); ++k)
-    if ((rod.rest_points[k] - p).squaredNorm() < (rod.rest_points[best] - p).squaredNorm()) best = k;
-  return best;
+  return rod.nearest_rest_point(ref.vector("nearest", *spec.nearest));
 }
 
 // The rest position of a joint end that is a rod's centreline point, if it is one.

@@ -129,11 +129,7 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
       if (spec.vertex) {
         p.rod_point = j.integer("vertex", *spec.vertex, 0, rod.points() - 1);
       } else {
-        const Vec3 target = j.vector("nearest", *spec.nearest);
-        p.rod_point = 0;
-        for (Index k = 1; k < rod.points(); ++k)
-          if ((rod.rest_points[k] - target).squaredNorm() < (rod.rest_points[p.rod_point] - target).squaredNorm())
-            p.rod_point = k;
+        p.rod_point = rod.nearest_rest_point(j.vector("nearest", *spec.nearest));
       }
     } else if (spec.vertex) {
       p.particle = o.particle_begin + j.integer("vertex", *spec.vertex, 0, o.particle_count() - 1);

@@ -40,7 +40,6 @@ void NmdSystem::clear() {
   lower.clear();
   upper.clear();
   sigma.clear();
-  diagonal.clear();
   impulse.clear();
   normal_coupling.clear();
   inverse_diagonal.clear();
@@ -51,7 +50,7 @@ void NmdSystem::clear() {
 void NmdSystem::grow(Index block_count, Index end_count, Index rows, Index entries, Index matrix_entries) {
   blocks.resize(blocks.size() + block_count);
   block_ends.resize(block_ends.size() + end_count);
-  for (std::vector<Real>* row_values : {&rhs, &lower, &upper, &sigma, &diagonal, &impulse, &normal_coupling, &inverse_diagonal})
+  for (std::vector<Real>* row_values : {&rhs, &lower, &upper, &sigma, &impulse, &normal_coupling, &inverse_diagonal})
     row_values->resize(row_values->size() + rows);
   jacobian_offset.resize(jacobian_offset.size() + rows);
   row_block.resize(row_block.size() + rows);
@@ -156,18 +155,13 @@ void NmdSystem::fill(const NmdSlot& slot, const NmdBlockInput& in, const Velocit
     const Index row = slot.first_row + r;
     rhs[row] = target - in.known[r];
     sigma[row] = scale[r] * compliance(r, r);
-    diagonal[row] = A(r, r);
     normal_coupling[row] =
         in.kind == NmdBlockKind::contact && r > 0 ? A(r, 0) - 0.5 * (scale[r] + scale[0]) * compliance(r, 0) : 0;
+    const Real D = in.kind == NmdBlockKind::contact && r > 0 ? std::max(A(1, 1), A(2, 2)) : A(r, r);
+    inverse_diagonal[row] = D > 0 ? 1 / D : 0;
     lower[row] = in.lower[r] * h;
     upper[row] = in.upper[r] * h;
     impulse[row] = 0;
-  }
-
-  for (int r = 0; r < R; ++r) {
-    const Index row = slot.first_row + r;
-    const Real D = in.kind == NmdBlockKind::contact && r > 0 ? std::max(A(1, 1), A(2, 2)) : A(r, r);
-    inverse_diagonal[row] = D > 0 ? 1 / D : 0;
   }
   if (in.kind == NmdBlockKind::contact && R == 3) {
     Real slip2 = 0;

@@ -96,14 +96,14 @@ struct NmdSystem {
   std::vector<VelocityEnd> block_ends;  // every block's ends, from NmdBlock::first_end
   // Per row: its ends' Jacobian entries and W J^T (end.size per end: 3 for a particle, 6 for a
   // body, none for the world; from jacobian_offset), the
-  // right-hand side q, the bounds in impulse units, S_ii, the diagonal G_i W G_i^T + S_ii and l.
+  // right-hand side q, the bounds in impulse units, S_ii and l.
   std::vector<Index> jacobian_offset, row_block;
   std::vector<Real, UninitializedAllocator<Real>> jacobian, weighted;  // grown, then filled block by block
-  std::vector<Real> rhs, lower, upper, sigma, diagonal, impulse;
+  std::vector<Real> rhs, lower, upper, sigma, impulse;
   // Per row: a contact's friction rows keep G_t W G_n^T, how much their rate changes per unit of
   // the normal row's impulse (0 on every other row).
   std::vector<Real> normal_coupling;
-  // Per row: 1 / diagonal (0 where the diagonal is not positive), so a sweep multiplies; a
+  // Per row: 1 / (G_i W G_i^T + S_ii), 0 where that is not positive, so a sweep multiplies; a
   // contact's friction rows both keep 1 / the larger of their two diagonals.
   std::vector<Real> inverse_diagonal;
   std::vector<Real> sigma_block;      // equality blocks: S, R x R (row-major), at NmdBlock::matrix
