@@ -393,6 +393,10 @@ struct ProbeSpec {
   std::optional<Vector3> at;         // fluid_height: a point on the vertical line measured, m
   std::optional<FluidBlock> box;     // escaped: particles outside this box are counted
   std::string family = "all";        // constraint_error: one family or all
+  std::optional<Vector3> center;     // angle_of_repose: a point on the pile's axis, m
+  std::optional<double> bin;         // angle_of_repose: width of the rings the surface is binned in, m
+  std::optional<Vector3> point;      // mass_flow: a point on the plane, m
+  std::optional<Vector3> normal;     // mass_flow: the plane's normal (the positive direction)
 };
 
 // ---- The builder ----------------------------------------------------------------------------

@@ -65,27 +65,35 @@ TEST(GranularContacts, TwoGrainsPartAtETimesTheirClosingSpeed) {
 
 // A column of 3159 grains (r = 5 mm, 0.1 x 0.4 x 0.1 m) released on the ground. Without friction
 // the grains slide apart into one layer (their tops within a diameter of the ground); with friction
-// they stand as a pile whose height grows with mu (the angle of repose rises with friction).
-Real pile_height(Real mu) {
+// they stand as a pile whose height and angle of repose grow with mu.
+struct Pile {
+  Real top, angle;  // m, degrees
+};
+
+Pile settled_pile(Real mu) {
   World w = World::from_json(fmt::format(
       R"({{"name": "pile", "settings": {{"dt": 0.005, "substeps": 10, "duration": 2}},
       "objects": [{{"name": "ground", "kind": "collider", "shape": {{"type": "plane"}}, "friction": {0}}},
                   {{"name": "sand", "kind": "granular", "blocks": [{{"min": [-0.05, 0, -0.05], "max": [0.05, 0.4, 0.05]}}],
                     "radius": 0.005, "density": 2600, "friction": {0}}}],
-      "probes": [{{"name": "top", "type": "extent", "object": "sand", "axis": "y", "quantity": "max"}}]}})",
+      "probes": [{{"name": "top", "type": "extent", "object": "sand", "axis": "y", "quantity": "max"}},
+                 {{"name": "angle", "type": "angle_of_repose", "object": "sand"}}]}})",
       mu));
   for (int s = 0; s < 400; ++s) w.step();
-  return w.probe_values()[0];
+  return {w.probe_values()[0], w.probe_values()[1]};
 }
 
 TEST(GranularContacts, FrictionlessGrainsSpreadFlatAndFrictionBuildsAPile) {
-  std::vector<Real> heights;
-  for (Real mu : {0.0, 0.2, 0.5, 0.8}) heights.push_back(pile_height(mu));
-  std::printf("column of grains after 2 s: top %.4f m (mu 0), %.4f (0.2), %.4f (0.5), %.4f (0.8)\n", heights[0],
-              heights[1], heights[2], heights[3]);
-  EXPECT_LT(heights[0], 0.015);  // one layer: tops at r = 5 mm, within a diameter
-  EXPECT_LT(heights[1], heights[2]);
-  EXPECT_LT(heights[2], heights[3]);
+  std::vector<Pile> piles;
+  for (Real mu : {0.0, 0.2, 0.5, 0.8}) piles.push_back(settled_pile(mu));
+  std::printf("column of grains after 2 s: top %.4f m (mu 0), %.4f (0.2), %.4f (0.5), %.4f (0.8); angle of repose "
+              "%.1f, %.1f, %.1f degrees (mu 0.2, 0.5, 0.8)\n", piles[0].top, piles[1].top, piles[2].top, piles[3].top,
+              piles[1].angle, piles[2].angle, piles[3].angle);
+  EXPECT_LT(piles[0].top, 0.015);  // one layer: tops at r = 5 mm, within a diameter
+  EXPECT_LT(piles[1].top, piles[2].top);
+  EXPECT_LT(piles[2].top, piles[3].top);
+  EXPECT_LT(piles[1].angle, piles[2].angle);
+  EXPECT_LT(piles[2].angle, piles[3].angle);
 }
 
 }  // namespace

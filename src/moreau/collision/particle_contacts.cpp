@@ -72,47 +72,100 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
   c.clear();
   if (!model.settings.particle_contacts || model.contact_particle.size() < 2) return;
 
-  // Cell size: the largest contact distance, so every candidate lies in the 27 cells around a particle.
-  Real max_radius = 0, max_speed = 0;
-  for (Index p : model.contact_particle) {
+  // A pair is a candidate within reach r_i + r_j + min(k dt |v_i - v_j|, r_i + r_j), at most
+  // 4 r_max. The grid's cells are 2.5 r_max: every pair within that distance lies in the 27 cells
+  // around either particle. With V the particles' mean velocity, |v_i - v_j| <= |v_i - V| +
+  // |v_j - V|, so a pair of particles that each move less than u = 0.25 r_max / (k dt) apart from
+  // V reaches at most 2.5 r_max. The others are "fast" and search the 125 cells around them
+  // (5 r_max). A block falling as one is slow everywhere; a few rattlers in a pile do not
+  // coarsen the grid for all.
+  const Index n = static_cast<Index>(model.contact_particle.size());
+  Real max_radius = 0;
+  Vec3 mean_velocity = Vec3::Zero();
+  scratch.contact_position.resize(n);
+  for (Index a = 0; a < n; ++a) {
+    const Index p = model.contact_particle[a];
     max_radius = std::max(max_radius, model.particle_radius[p]);
-    max_speed = std::max(max_speed, state.velocity[p].norm());
+    mean_velocity += state.velocity[p];
+    scratch.contact_position[a] = state.position[p];
   }
+  mean_velocity /= static_cast<Real>(n);
   const Real dt = model.settings.dt, k = model.settings.contact_margin_factor;
-  // The swept margin is capped at two radii to keep the grid useful when one particle is fast.
-  const Real cell = 2 * max_radius + std::min(2 * k * dt * max_speed, 2 * max_radius);
-  scratch.hash.build(model.contact_particle, state.position.data(), cell);
+  const Real slow_speed = 0.25 * max_radius / (k * dt);
+  scratch.fast.resize(n);
+  for (Index a = 0; a < n; ++a)
+    scratch.fast[a] = (state.velocity[model.contact_particle[a]] - mean_velocity).squaredNorm() > slow_speed * slow_speed;
+  // The Morton-sorted grid of the fluids: the particles of a cell are contiguous in `order`, and
+  // cells near in space are near in memory, so the pairs come out in a spatially coherent order.
+  const CellGrid& grid = scratch.grid;
+  scratch.grid.build(scratch.contact_position.data(), n, GridFrame{Vec3::Zero(), 2.5 * max_radius});
+  const std::vector<Index>& order = grid.order();
+  const Index cells = grid.cell_count();
+  // Positions, radii and particle ids in the sorted order, so the scans below read memory in sequence.
+  scratch.sorted_position.resize(n);
+  scratch.sorted_radius.resize(n);
+  scratch.sorted_particle.resize(n);
+  scratch.sorted_fast.resize(n);
+  for (Index s = 0; s < n; ++s) {
+    const Index a = order[s];
+    scratch.sorted_position[s] = scratch.contact_position[a];
+    scratch.sorted_particle[s] = model.contact_particle[a];
+    scratch.sorted_radius[s] = model.particle_radius[model.contact_particle[a]];
+    scratch.sorted_fast[s] = scratch.fast[a];
+  }
 
   threads = std::max(1, threads);
   scratch.thread_pairs.resize(threads);
-  const Index n = static_cast<Index>(model.contact_particle.size());
 #pragma omp parallel num_threads(threads)
   {
     auto& pairs = scratch.thread_pairs[omp_get_thread_num()];
     pairs.clear();
-    // Static schedule: thread t gets the t-th contiguous chunk, so concatenating the per-thread
-    // lists in thread order reproduces the serial order for any thread count.
-#pragma omp for schedule(static)
-    for (Index a = 0; a < n; ++a) {
-      const Index i = model.contact_particle[a];
+    // The candidate at sorted positions s and t: kept if within its reach.
+    auto consider = [&](Index s, Index t) __attribute__((always_inline)) {
+      const Real contact_distance = scratch.sorted_radius[s] + scratch.sorted_radius[t];
+      const Real distance2 = (scratch.sorted_position[s] - scratch.sorted_position[t]).squaredNorm();
+      if (distance2 >= 4 * contact_distance * contact_distance) return;  // beyond any reach
+      const Index i = scratch.sorted_particle[s], j = scratch.sorted_particle[t];
+      if (model.particle_inv_mass[i] <= 0 && model.particle_inv_mass[j] <= 0) return;
       const Index oi = model.particle_object[i];
-      scratch.hash.for_each_near(state.position[i], [&](Index j) {
-        if (j <= i) return;
-        const Index oj = model.particle_object[j];
-        if (model.particle_inv_mass[i] <= 0 && model.particle_inv_mass[j] <= 0) return;
-        const Real contact_distance = model.particle_radius[i] + model.particle_radius[j];
-        if (oi == oj) {
-          const ObjectInfo& object = model.objects[oi];
-          if (!object.self_collision) return;
-          // Neighbours that are closer than the contact distance at rest never collide (grains
-          // have no neighbours: each touches every other).
-          if (object.kind != ObjectKind::granular &&
-              (model.particle_rest_position[i] - model.particle_rest_position[j]).norm() < contact_distance)
-            return;
+      if (oi == model.particle_object[j]) {
+        const ObjectInfo& object = model.objects[oi];
+        if (!object.self_collision) return;
+        // Neighbours that are closer than the contact distance at rest never collide (grains
+        // have no neighbours: each touches every other).
+        if (object.kind != ObjectKind::granular &&
+            (model.particle_rest_position[i] - model.particle_rest_position[j]).norm() < contact_distance)
+          return;
+      }
+      const Real reach =
+          contact_distance + std::min(k * dt * (state.velocity[i] - state.velocity[j]).norm(), contact_distance);
+      if (distance2 < reach * reach) pairs.push_back({std::min(i, j), std::max(i, j)});
+    };
+    // Static schedule: thread t gets the t-th contiguous run of cells, so concatenating the
+    // per-thread lists in thread order reproduces the serial order for any thread count.
+    // Each pair is visited once: two slow particles from the earlier one in the sort (its own
+    // cell's later particles and the 13 cells ahead of it), a pair with a fast particle from the
+    // fast one, two fast particles from the earlier one.
+#pragma omp for schedule(static)
+    for (Index c = 0; c < cells; ++c) {
+      CellRange ahead[13], wide[125];
+      const int ahead_count = grid.ranges_ahead(grid.cell_coord(c), ahead);
+      int wide_count = -1;  // the 125 cells, gathered when the cell holds a fast particle
+      const Index end = grid.cell_begin(c + 1);
+      for (Index s = grid.cell_begin(c); s < end; ++s) {
+        if (!scratch.sorted_fast[s]) {
+          for (Index t = s + 1; t < end; ++t)
+            if (!scratch.sorted_fast[t]) consider(s, t);
+          for (int r = 0; r < ahead_count; ++r)
+            for (Index t = ahead[r].first; t < ahead[r].second; ++t)
+              if (!scratch.sorted_fast[t]) consider(s, t);
+        } else {
+          if (wide_count < 0) wide_count = grid.ranges_within(grid.cell_coord(c), 2, wide);
+          for (int r = 0; r < wide_count; ++r)
+            for (Index t = wide[r].first; t < wide[r].second; ++t)
+              if (t != s && (!scratch.sorted_fast[t] || t > s)) consider(s, t);
         }
-        const Real reach = contact_distance + std::min(k * dt * (state.velocity[i] - state.velocity[j]).norm(), contact_distance);
-        if ((state.position[i] - state.position[j]).squaredNorm() < reach * reach) pairs.push_back({i, j});
-      });
+      }
     }
   }
   for (const auto& pairs : scratch.thread_pairs) c.pair.insert(c.pair.end(), pairs.begin(), pairs.end());

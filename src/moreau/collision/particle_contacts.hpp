@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "moreau/constraints/constraint_batches.hpp"
-#include "moreau/geometry/spatial_hash.hpp"
+#include "moreau/geometry/cell_grid.hpp"
 
 namespace moreau {
 
@@ -42,8 +42,13 @@ struct ParticleContacts {
 
 /// Reused buffers of contact detection (no allocation once their capacity suffices).
 struct ContactScratch {
-  SpatialHash hash;
-  std::vector<Index> contact_particles;
+  CellGrid grid;
+  std::vector<Vec3> contact_position;  // positions of Model::contact_particle, in its order
+  std::vector<char> fast;              // per contact particle: searches the 125 cells around it
+  std::vector<Vec3> sorted_position;   // the same, and the particles' radii and ids, in the grid's order
+  std::vector<Real> sorted_radius;
+  std::vector<Index> sorted_particle;
+  std::vector<char> sorted_fast;
   std::vector<std::vector<std::array<Index, 2>>> thread_pairs;
   std::vector<std::uint64_t> particle_colors;
   std::vector<int> pair_color;

@@ -1,12 +1,12 @@
 #include "moreau/io/probes.hpp"
 
-#include "moreau/rods/rod_geometry.hpp"
-
 #include <cmath>
 #include <algorithm>
 #include <limits>
 
 #include "moreau/collision/penetration.hpp"
+#include "moreau/io/granular_probes.hpp"
+#include "moreau/rods/rod_geometry.hpp"
 
 namespace moreau {
 
@@ -74,6 +74,14 @@ void evaluate_probe(const Probe& probe, const Model& model, const State& state, 
     }
     case ProbeType::rod_twist:
       values.push_back(rod_twist(model.rods[probe.rod], model.joints, state));
+      break;
+    case ProbeType::angle_of_repose:
+      values.push_back(angle_of_repose(model, state, probe.object, probe.pile_axis, probe.ring_width));
+      break;
+    case ProbeType::mass_flow:
+      values.push_back(probe.quantity == "beyond"
+                           ? mass_beyond(model, state, probe.object, probe.plane_point, probe.plane_normal)
+                           : mass_flow_rate(model, state, probe.object, probe.plane_point, probe.plane_normal));
       break;
     case ProbeType::energy: {
       Real e = 0;

@@ -1,6 +1,7 @@
 #pragma once
 // Probes: named measurements written to probes.csv, one row per output step. Scalars give one
 // column `<name>`, vectors three columns `<name>.x, <name>.y, <name>.z`.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,8 @@ enum class ProbeType {
   body_position, body_orientation, body_velocity, body_angular_velocity,  // one rigid body
   joint_error, contact_count, max_displacement, penetration,
   suction,  // one suction cup: sealed (0/1), pressure difference (Pa), volume (m^3), sealed area (m^2)
-  rod_point, rod_twist  // a rod's centreline point ("point" on a rod); its twist (rad)
+  rod_point, rod_twist,  // a rod's centreline point ("point" on a rod); its twist (rad)
+  angle_of_repose, mass_flow  // a pile's surface slope (degrees); the mass through a plane (kg/s or kg)
 };
 
 struct Probe {
@@ -32,6 +34,9 @@ struct Probe {
   Index joint = -1;                  // joint_error: one joint, or -1 for every joint
   Index cup = -1;                    // suction: index into Model::suction_cups
   Index rod = -1, rod_point = -1;    // rod_point, rod_twist: index into Model::rods; its centreline point
+  std::optional<Vec3> pile_axis;     // angle_of_repose: a point on the pile's axis (default: its centre of mass), m
+  Real ring_width = 0;               // angle_of_repose: the rings' width, m
+  Vec3 plane_point = Vec3::Zero(), plane_normal = Vec3::UnitY();  // mass_flow; quantity rate|beyond
 
   bool is_vector() const;
   /// Number of columns the probe writes.

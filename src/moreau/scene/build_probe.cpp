@@ -14,7 +14,7 @@ const std::vector<std::string> kProbeTypes{
     "point",    "energy",      "center_of_mass", "extent",           "momentum",    "constraint_error",
     "fluid_height", "density_error", "particle_count", "escaped",     "position",    "orientation",
     "velocity", "angular_velocity", "joint_error", "contact_count", "max_displacement",
-    "penetration", "suction", "twist"};
+    "penetration", "suction", "twist", "angle_of_repose", "mass_flow"};
 
 // The types whose only key besides name and type is "object": one simulated object or "*".
 const std::map<std::string, ProbeType> kObjectOrEveryProbes{{"center_of_mass", ProbeType::center_of_mass},
@@ -35,10 +35,12 @@ std::vector<std::string> probe_keys(const std::string& type) {
   if (type == "fluid_height") add({"at"});
   if (type == "escaped") add({"box"});
   if (type == "constraint_error") add({"family"});
+  if (type == "angle_of_repose") add({"center", "bin"});
+  if (type == "mass_flow") add({"point", "normal", "quantity"});
   return keys;
 }
 
-enum class Accepts { any, fluids, solids, bodies, particles, rods, points };
+enum class Accepts { any, fluids, solids, bodies, particles, rods, points, grains };
 
 Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& model, bool allow_all,
                    Accepts accepts = Accepts::any) {
@@ -51,6 +53,7 @@ Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& m
     if (accepts == Accepts::particles) return o.has_particles() || o.kind == ObjectKind::fluid;
     if (accepts == Accepts::rods) return o.kind == ObjectKind::rod;
     if (accepts == Accepts::points) return o.has_particles() || o.kind == ObjectKind::rod;
+    if (accepts == Accepts::grains) return o.kind == ObjectKind::granular;
     return o.is_simulated();
   };
   const Index i = model.find_object(name);
@@ -67,6 +70,7 @@ Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& m
                                      : accepts == Accepts::particles ? "cloth, soft-body or fluid "
                                      : accepts == Accepts::rods      ? "rod "
                                      : accepts == Accepts::points    ? "cloth, soft-body or rod "
+                                     : accepts == Accepts::grains    ? "granular "
                                                                      : "simulated ",
                                      name, names));
   }
@@ -95,7 +99,8 @@ ProbeSpec read_probe(const JsonObject& j) {
   if (p.type == "extent") {
     p.axis = j.string("axis");
     p.quantity = j.string("quantity");
-  } else if (p.type == "point" || p.type == "energy" || p.type == "density_error" || p.type == "momentum") {
+  } else if (p.type == "point" || p.type == "energy" || p.type == "density_error" || p.type == "momentum" ||
+             p.type == "mass_flow") {
     if (j.has("quantity")) p.quantity = j.string("quantity");
   }
   if (p.type == "momentum") p.about = read_vector(j, "about", p.about);
@@ -106,6 +111,14 @@ ProbeSpec read_probe(const JsonObject& j) {
     box.finish();
   }
   if (p.type == "constraint_error" && j.has("family")) p.family = j.string("family");
+  if (p.type == "angle_of_repose") {
+    p.center = read_optional_vector(j, "center");
+    p.bin = read_optional_number(j, "bin");
+  }
+  if (p.type == "mass_flow") {
+    p.point = read_optional_vector(j, "point");
+    p.normal = read_optional_vector(j, "normal");
+  }
   j.finish();
   return p;
 }
@@ -201,6 +214,23 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
     p.type = ProbeType::rod_twist;
     p.object = object_index(spec, j, model, false, Accepts::rods);
     p.rod = model.objects[p.object].rod;
+  } else if (type == "angle_of_repose") {
+    p.type = ProbeType::angle_of_repose;
+    p.object = object_index(spec, j, model, false, Accepts::grains);
+    if (spec.center) p.pile_axis = j.vector("center", *spec.center);
+    Real largest_radius = 0;
+    const ObjectInfo& o = model.objects[p.object];
+    for (Index q = o.particle_begin; q < o.particle_end; ++q) largest_radius = std::max(largest_radius, model.particle_radius[q]);
+    p.ring_width = spec.bin ? j.number("bin", *spec.bin, Range::positive()) : 2 * largest_radius;
+  } else if (type == "mass_flow") {
+    p.type = ProbeType::mass_flow;
+    p.object = object_index(spec, j, model, true, Accepts::particles);  // particles only
+    p.plane_point = j.required_vector("point", spec.point);
+    if (!spec.normal) j.fail("normal", "missing required key: the plane's normal, the direction counted positive");
+    const Vec3 n = j.vector("normal", *spec.normal);
+    if (!(n.norm() > 0)) j.fail("normal", "the normal must not be zero");
+    p.plane_normal = n.normalized();
+    p.quantity = quantity(spec, j, "rate", {"rate", "beyond"});
   } else if (type == "escaped") {
     p.type = ProbeType::escaped;
     p.object = object_index(spec, j, model, true, Accepts::particles);  // particles only
