@@ -337,6 +337,8 @@ struct GranularSpec {
   double density = 2600;                  // kg/m^3 of a grain
   Vector3 velocity{};                     // m/s
   ContactMaterial contact;
+  double cohesion = 0;                    // N, the largest pull of a bond between two touching grains
+  std::optional<double> cohesion_distance;  // m, the gap at which a bond lets go (default r_max / 10)
 };
 
 using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec, RodSpec, GranularSpec>;

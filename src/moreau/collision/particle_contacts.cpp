@@ -30,11 +30,19 @@ void ParticleContacts::clear() {
   static_friction.clear();
   dynamic_friction.clear();
   restitution.clear();
+  cohesion.clear();
+  cohesion_distance.clear();
 }
 
 namespace {
-// Friction and restitution of a pair: the mean of the two (Mueller 2020, sec. 3.5).
+// Friction and restitution of a pair: the mean of the two (Mueller 2020, sec. 3.5). Cohesion too:
+// a cohesive grain on a dry one holds with half its bond.
 Real combine(Real a, Real b) { return 0.5 * (a + b); }
+
+// The gap within which two objects' particles pull on each other: 0 unless their bond has strength.
+Real bond_distance(const ObjectInfo& a, const ObjectInfo& b) {
+  return combine(a.cohesion, b.cohesion) > 0 ? combine(a.cohesion_distance, b.cohesion_distance) : 0;
+}
 }  // namespace
 
 void detect_collider_contacts(const Model& model, State& state) {
@@ -72,13 +80,13 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
   c.clear();
   if (!model.settings.particle_contacts || model.contact_particle.size() < 2) return;
 
-  // A pair is a candidate within reach r_i + r_j + min(k dt |v_i - v_j|, r_i + r_j), at most
-  // 4 r_max. The grid's cells are 2.5 r_max: every pair within that distance lies in the 27 cells
-  // around either particle. With V the particles' mean velocity, |v_i - v_j| <= |v_i - V| +
-  // |v_j - V|, so a pair of particles that each move less than u = 0.25 r_max / (k dt) apart from
-  // V reaches at most 2.5 r_max. The others are "fast" and search the 125 cells around them
-  // (5 r_max). A block falling as one is slow everywhere; a few rattlers in a pile do not
-  // coarsen the grid for all.
+  // A pair is a candidate within reach r_i + r_j + g + min(k dt |v_i - v_j|, r_i + r_j), at most
+  // 4 r_max + g_max (g the pair's bond distance, g_max <= r_max the largest). The grid's cells are
+  // 2.5 r_max + g_max: every pair within that distance lies in the 27 cells around either
+  // particle. With V the particles' mean velocity, |v_i - v_j| <= |v_i - V| + |v_j - V|, so a pair
+  // of particles that each move less than u = 0.25 r_max / (k dt) apart from V reaches at most a
+  // cell. The others are "fast" and search the 125 cells around them (two cells each way). A block
+  // falling as one is slow everywhere; a few rattlers in a pile do not coarsen the grid for all.
   const Index n = static_cast<Index>(model.contact_particle.size());
   Real max_radius = 0;
   Vec3 mean_velocity = Vec3::Zero();
@@ -90,6 +98,9 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     scratch.contact_position[a] = state.position[p];
   }
   mean_velocity /= static_cast<Real>(n);
+  Real max_bond = 0;
+  for (const ObjectInfo& object : model.objects)
+    if (object.cohesion > 0) max_bond = std::max(max_bond, object.cohesion_distance);
   const Real dt = model.settings.dt, k = model.settings.contact_margin_factor;
   const Real slow_speed = 0.25 * max_radius / (k * dt);
   scratch.fast.resize(n);
@@ -98,7 +109,7 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
   // The Morton-sorted grid of the fluids: the particles of a cell are contiguous in `order`, and
   // cells near in space are near in memory, so the pairs come out in a spatially coherent order.
   const CellGrid& grid = scratch.grid;
-  scratch.grid.build(scratch.contact_position.data(), n, GridFrame{Vec3::Zero(), 2.5 * max_radius});
+  scratch.grid.build(scratch.contact_position.data(), n, GridFrame{Vec3::Zero(), 2.5 * max_radius + max_bond});
   const std::vector<Index>& order = grid.order();
   const Index cells = grid.cell_count();
   // Positions, radii and particle ids in the sorted order, so the scans below read memory in sequence.
@@ -124,11 +135,12 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     auto consider = [&](Index s, Index t) __attribute__((always_inline)) {
       const Real contact_distance = scratch.sorted_radius[s] + scratch.sorted_radius[t];
       const Real distance2 = (scratch.sorted_position[s] - scratch.sorted_position[t]).squaredNorm();
-      if (distance2 >= 4 * contact_distance * contact_distance) return;  // beyond any reach
+      const Real farthest = 2 * contact_distance + max_bond;
+      if (distance2 >= farthest * farthest) return;  // beyond any reach
       const Index i = scratch.sorted_particle[s], j = scratch.sorted_particle[t];
       if (model.particle_inv_mass[i] <= 0 && model.particle_inv_mass[j] <= 0) return;
-      const Index oi = model.particle_object[i];
-      if (oi == model.particle_object[j]) {
+      const Index oi = model.particle_object[i], oj = model.particle_object[j];
+      if (oi == oj) {
         const ObjectInfo& object = model.objects[oi];
         if (!object.self_collision) return;
         // Neighbours that are closer than the contact distance at rest never collide (grains
@@ -137,8 +149,8 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
             (model.particle_rest_position[i] - model.particle_rest_position[j]).norm() < contact_distance)
           return;
       }
-      const Real reach =
-          contact_distance + std::min(k * dt * (state.velocity[i] - state.velocity[j]).norm(), contact_distance);
+      const Real reach = contact_distance + bond_distance(model.objects[oi], model.objects[oj]) +
+                         std::min(k * dt * (state.velocity[i] - state.velocity[j]).norm(), contact_distance);
       if (distance2 < reach * reach) pairs.push_back({std::min(i, j), std::max(i, j)});
     };
     // Static schedule: thread t gets the t-th contiguous run of cells, so concatenating the
@@ -214,12 +226,16 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
   c.static_friction.resize(m);
   c.dynamic_friction.resize(m);
   c.restitution.resize(m);
+  c.cohesion.resize(m);
+  c.cohesion_distance.resize(m);
   for (size_t q = 0; q < m; ++q) {
     const ObjectInfo& a = model.objects[model.particle_object[c.pair[q][0]]];
     const ObjectInfo& b = model.objects[model.particle_object[c.pair[q][1]]];
     c.static_friction[q] = combine(a.static_friction, b.static_friction);
     c.dynamic_friction[q] = combine(a.dynamic_friction, b.dynamic_friction);
     c.restitution[q] = combine(a.restitution, b.restitution);
+    c.cohesion[q] = combine(a.cohesion, b.cohesion);
+    c.cohesion_distance[q] = bond_distance(a, b);
   }
 }
 

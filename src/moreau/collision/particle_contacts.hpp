@@ -5,7 +5,8 @@
 //
 // Candidates are gathered once per step within r_i + r_j + k dt (|v| + dt |g|) (k = 2; Mueller
 // et al. 2020, sec. 3.5, uses k dt |v|; we add the fall under gravity so resting contacts are
-// never missed) and re-evaluated every substep.
+// never missed) and re-evaluated every substep. Pairs of cohesive grains reach further by their
+// bond's distance.
 #include <vector>
 
 #include "moreau/constraints/constraint_batches.hpp"
@@ -35,6 +36,8 @@ struct ParticleContacts {
   std::vector<Real> lambda_normal;
   std::vector<Vec3> normal;           // (x_a - x_b)/|x_a - x_b| at the last projection
   std::vector<Real> static_friction, dynamic_friction, restitution;
+  std::vector<Real> cohesion;           // N: the largest pull of the pair's bond (0: none)
+  std::vector<Real> cohesion_distance;  // m: the gap within which the bond pulls
 
   size_t size() const { return pair.size(); }
   void clear();

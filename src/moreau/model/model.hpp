@@ -37,6 +37,8 @@ struct ObjectInfo {
   bool fluid_coupling = true;                 // cloth / soft body: sampled as a two-way boundary of the fluids
   Real static_friction = 0.5, dynamic_friction = 0.5, restitution = 0;
   Real adhesion = 0;                          // N per contact point under nmd: rigid contacts, and cloth and soft-body particles on bodies and colliders
+  Real cohesion = 0;                          // granular: N, the largest pull of a bond between two grains
+  Real cohesion_distance = 0;                 // granular: m, the gap at which a bond lets go
 
   Index particle_count() const { return particle_end - particle_begin; }
   bool has_particles() const { return particle_end > particle_begin; }

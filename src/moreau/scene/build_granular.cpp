@@ -1,6 +1,6 @@
 // "kind": "granular" objects: grains as particles on a lattice filling boxes, each touching the
-// others, colliders, rigid bodies and rods through the particle contacts (with friction and
-// restitution); polydisperse radii drawn from a seeded generator.
+// others, colliders, rigid bodies and rods through the particle contacts (with friction,
+// restitution and cohesion); polydisperse radii drawn from a seeded generator.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -31,6 +31,8 @@ GranularSpec read_granular(const JsonObject& object) {
   spec.density = object.number("density", spec.density);
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   spec.contact = read_contact_material(object);
+  spec.cohesion = object.number("cohesion", spec.cohesion);
+  spec.cohesion_distance = read_optional_number(object, "cohesion_distance");
   return spec;
 }
 
@@ -79,6 +81,12 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
   if (static_cast<Index>(positions.size()) > kMaxGrains)
     place.fail("blocks", fmt::format("the blocks hold {} grains; at most {} per scene", positions.size(), kMaxGrains));
   set_contact_material(spec.contact, place, info);
+  info.cohesion = place.number("cohesion", spec.cohesion, Range::non_negative());
+  info.cohesion_distance = spec.cohesion_distance
+                               ? place.number("cohesion_distance", *spec.cohesion_distance, Range::non_negative())
+                               : 0.1 * r_max;
+  if (info.cohesion_distance > r_max)
+    place.fail("cohesion_distance", fmt::format("a bond may reach at most the largest radius, {} m", r_max));
   info.kind = ObjectKind::granular;
   info.self_collision = true;
   info.fluid_coupling = false;

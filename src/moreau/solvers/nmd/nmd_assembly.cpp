@@ -190,7 +190,13 @@ void add_particle_contacts(Assembly& a) {
         i, j, a.model.particle_radius[i] + a.model.particle_radius[j], c.static_friction[q], x, x);
     if (rows.gradient[0].isZero()) continue;  // coincident centres: no direction
     set_particle_rows(a.input, rows, a.space);
-    add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1);
+    // Cohesion: within its reach a bond pulls with at most F (N), and adds F to the normal force
+    // that bounds the friction.
+    const Real cohesion = rows.C[0] < c.cohesion_distance[q] ? c.cohesion[q] : 0;
+    set_contact(a.input, a.model.settings.nmd, c.static_friction[q], c.dynamic_friction[q], c.restitution[q],
+                &c.lambda_normal[q], 1, cohesion);
+    a.input.cohesion = cohesion;
+    a.add();
   }
 }
 

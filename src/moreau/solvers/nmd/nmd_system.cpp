@@ -25,6 +25,7 @@ void NmdBlockInput::resize(int rows, int end_count) {
   damping_time = 0;
   damper_rate = 0;
   static_friction = dynamic_friction = restitution = 0;
+  cohesion = 0;
   memory = nullptr;
   memory_rows = 0;
 }
@@ -170,6 +171,7 @@ void NmdSystem::fill(const NmdSlot& slot, const NmdBlockInput& in, const Velocit
       slip2 += rate * rate;
     }
     block.friction = slip2 > settings.sliding_speed * settings.sliding_speed ? in.dynamic_friction : in.static_friction;
+    block.cohesion = in.cohesion * h;
   }
   if (in.kind == NmdBlockKind::equality) {
     block.matrix = slot.matrix;

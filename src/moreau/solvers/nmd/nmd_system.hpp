@@ -60,6 +60,7 @@ struct NmdBlockInput {
   Real damping_time = 0;              // s
   Real damper_rate = 0;               // 1/s: a damper block (see NmdSystem::add), 0 otherwise
   Real static_friction = 0, dynamic_friction = 0, restitution = 0;  // contact blocks
+  Real cohesion = 0;                  // N, contact blocks: a bond's strength, added to the normal force in the friction bound
   Real* memory = nullptr;             // l h of the rows (kg m for positional rows): warm start in, result out
   int memory_rows = 0;
 
@@ -81,6 +82,7 @@ struct NmdBlock {
   Index first_end = 0;                // into NmdSystem::block_ends
   Index matrix = -1;                  // equality blocks: offset of the R x R inverse of G W G^T + S
   Real friction = 0;                  // contact blocks: mu of this solve (static or kinetic)
+  Real cohesion = 0;                  // contact blocks: F h of a bond (the friction bound is mu (l_n + F h))
   Real* memory = nullptr;
   int memory_rows = 0;
 };

@@ -29,9 +29,10 @@ struct RowAccess {
   Real residual(const NmdBlock& b, Index row) const { return rate(b, row) + s.sigma[row] * s.impulse[row] - s.rhs[row]; }
 };
 
-// The friction impulse (l1, l2) of a contact projected onto its bound mu l_n.
+// The friction impulse (l1, l2) of a contact projected onto its bound mu (l_n + F h), F h a
+// cohesive bond's share (0 without one).
 void project_friction(Real& l1, Real& l2, Real normal, const NmdBlock& b, FrictionBound bound) {
-  const Real limit = b.friction * std::max(normal, Real(0));
+  const Real limit = b.friction * std::max(normal + b.cohesion, Real(0));
   if (bound == FrictionBound::box) {
     l1 = std::clamp(l1, -limit, limit);
     l2 = std::clamp(l2, -limit, limit);

@@ -38,26 +38,35 @@ void project_particle_contacts(const Model& model, State& state, const SubstepCo
     const auto [C, n] = pair_contact_normal(s.x[i], s.x[j], model.particle_radius[i] + model.particle_radius[j]);
     if (n.isZero()) return;  // coincident centres: no direction to push along
     c.normal[q] = n;
-    if (C >= 0) return;
-    const Real dl = -C / w;
+    // Apart beyond the bond's reach (0 without cohesion): no contact.
+    if (C >= c.cohesion_distance[q]) return;
+    // Cohesion: within its reach the bond pulls the pair together, with a force of at most F
+    // (the substep's multiplier, a force times h^2, bounded below by -F h^2), and adds F h^2 to
+    // the normal multiplier that bounds the friction.
+    const Real bond = c.cohesion[q] * s.h * s.h;
+    const Real dl = std::max(-C / w, -bond - c.lambda_normal[q]);
     c.lambda_normal[q] += dl;
     s.x[i] += wi * dl * n;
     s.x[j] -= wj * dl * n;
     const Vec3 slip = tangential_part((s.x[i] - s.x_start[i]) - (s.x[j] - s.x_start[j]), n);
-    if (slip.norm() < c.static_friction[q] * c.lambda_normal[q] * w) {
+    if (slip.norm() < c.static_friction[q] * (c.lambda_normal[q] + bond) * w) {
       s.x[i] -= (wi / w) * slip;
       s.x[j] += (wj / w) * slip;
     }
   });
 }
 
+Vec3 friction_velocity_change(const Vec3& v_rel, const Vec3& n, Real lambda_n, Real w, Real mu_k, Real h) {
+  const Vec3 vt = v_rel - n.dot(v_rel) * n;
+  const Real vt_norm = vt.norm();
+  if (!(vt_norm > 0)) return Vec3::Zero();
+  return -vt / vt_norm * std::min(mu_k * w * lambda_n / h, vt_norm);
+}
+
 Vec3 contact_velocity_change(const Vec3& v_rel, const Vec3& v_rel_before, const Vec3& n, Real lambda_n, Real w,
                              Real mu_k, Real e, Real h, Real g) {
   const Real vn = n.dot(v_rel);
-  const Vec3 vt = v_rel - vn * n;
-  Vec3 dv = Vec3::Zero();
-  const Real vt_norm = vt.norm();
-  if (vt_norm > 0) dv -= vt / vt_norm * std::min(mu_k * w * lambda_n / h, vt_norm);
+  Vec3 dv = friction_velocity_change(v_rel, n, lambda_n, w, mu_k, h);
   const Real vn_before = n.dot(v_rel_before);
   if (std::abs(vn) <= 2 * g * h) e = 0;
   dv += n * (-vn + std::max(-e * vn_before, 0.0));
@@ -86,12 +95,23 @@ void particle_contact_velocities(const Model& model, State& state, const Vec3* v
   ParticleContacts& c = state.particle_contacts;
   const Real g = model.settings.gravity.norm();
   for_each_by_color(c.batches, [&](Index q) {
-    if (c.lambda_normal[q] <= 0) return;
     const auto [i, j] = c.pair[q];
+    // A bond within its reach adds F h^2 to the normal multiplier of the friction; a pair that
+    // only pulled gets no restitution (its separation is the bond's to stop).
+    Real bond = 0;
+    if (c.cohesion[q] > 0) {
+      const Real gap = (state.position[i] - state.position[j]).norm() - model.particle_radius[i] - model.particle_radius[j];
+      if (gap < c.cohesion_distance[q]) bond = c.cohesion[q] * h * h;
+    }
+    if (c.lambda_normal[q] + bond <= 0) return;
     const Real wi = model.particle_inv_mass[i], wj = model.particle_inv_mass[j], w = wi + wj;
-    const Vec3 dv = contact_velocity_change(state.velocity[i] - state.velocity[j],
-                                            velocity_before[i] - velocity_before[j], c.normal[q],
-                                            c.lambda_normal[q], w, c.dynamic_friction[q], c.restitution[q], h, g);
+    const Vec3 v_rel = state.velocity[i] - state.velocity[j];
+    const Vec3 dv = c.lambda_normal[q] > 0
+                        ? contact_velocity_change(v_rel, velocity_before[i] - velocity_before[j], c.normal[q],
+                                                  c.lambda_normal[q] + bond, w, c.dynamic_friction[q],
+                                                  c.restitution[q], h, g)
+                        : friction_velocity_change(v_rel, c.normal[q], bond + c.lambda_normal[q], w,
+                                                   c.dynamic_friction[q], h);
     // Impulse p = dv / (wi + wj): particle i gains wi p, particle j loses wj p.
     state.velocity[i] += (wi / w) * dv;
     state.velocity[j] -= (wj / w) * dv;

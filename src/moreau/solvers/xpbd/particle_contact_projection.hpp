@@ -8,6 +8,12 @@
 //   substep's iterations; x_i += w_i dlambda_n n, x_j -= w_j dlambda_n n.
 //   Static friction, all or nothing: the slip s (the friction rows' values) is cancelled, split
 //   by inverse mass, when |s| / w < mu_s lambda_n.
+//   Cohesion of two grains (a bond of strength F and reach g): the normal row also acts while
+//   0 <= C < g, pulling the pair together, and lambda_n is bounded below by -F h^2: the bond
+//   pulls with at most F and holds the pair together against a pull below F (the adhesion
+//   constraint of Gascon, Zurdo and Otaduy 2010, with a reach). Within its reach the bond adds
+//   F h^2 to lambda_n in the friction bounds, static and dynamic (Coulomb friction on the normal
+//   force plus the bond's, as cohesive DEM contacts do), so bonded grains resist shear too.
 // Velocity pass (once per substep, after v = (x - x_start)/h), on the contacts that pushed:
 //   dynamic friction  dv = -v_t/|v_t| min(mu_k w lambda_n / h, |v_t|)
 //     (the normal impulse of the substep is lambda_n / h; we use this dimensionally consistent
@@ -32,6 +38,9 @@ void project_particle_contacts(const Model& model, State& state, const SubstepCo
 /// multiplier, w the summed inverse masses along n, g = |gravity| (the resting-speed cut-off).
 Vec3 contact_velocity_change(const Vec3& v_rel, const Vec3& v_rel_before, const Vec3& n, Real lambda_n, Real w,
                              Real mu_k, Real e, Real h, Real g);
+
+/// The dynamic-friction part of contact_velocity_change alone.
+Vec3 friction_velocity_change(const Vec3& v_rel, const Vec3& n, Real lambda_n, Real w, Real mu_k, Real h);
 
 /// Velocity pass: dynamic friction and restitution of the contacts active in this substep;
 /// `velocity_before` holds the particles' velocities after prediction.

@@ -71,7 +71,8 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   work.fit(model);
   detect_collider_contacts(model, state);
   detect_particle_contacts(model, state, work.contact_scratch, threads);
-  const bool rigid = !model.rigid.empty();
+  // Rigid bodies, or joints alone (a joint may hold a particle to the world).
+  const bool rigid = !model.rigid.empty() || !model.joints.empty();
   if (rigid) {
     detect_rigid_contacts(model, state, threads);
     detect_particle_body_contacts(model, state);
