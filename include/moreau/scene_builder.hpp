@@ -341,7 +341,22 @@ struct GranularSpec {
   std::optional<double> cohesion_distance;  // m, the gap at which a bond lets go (default r_max / 10)
 };
 
-using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec, RodSpec, GranularSpec>;
+/// "kind": "shape_matched": particles on a lattice filling boxes, held in their rest shape by
+/// shape matching over overlapping clusters (docs/scene-format.md, "Shape matching").
+struct ShapeMatchedSpec {
+  std::string name;
+  std::vector<FluidBlock> blocks;           // m, boxes the particles fill
+  double radius = 0;                        // m, of a particle (the lattice spacing is 2 r)
+  double density = 1000;                    // kg/m^3 of the filled volume
+  std::optional<double> frequency;          // Hz: how fast a particle pulled off its goal returns; absent: rigid
+  std::optional<double> cluster_radius;     // m: particles within it of a cluster centre join it; absent: one cluster
+  std::optional<double> cluster_spacing;    // m: cluster centres on a lattice (default: the cluster radius)
+  Vector3 velocity{};                       // m/s
+  ContactMaterial contact;
+};
+
+using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec, RodSpec, GranularSpec,
+                                ShapeMatchedSpec>;
 
 // ---- Joints ---------------------------------------------------------------------------------
 
@@ -397,6 +412,7 @@ struct ProbeSpec {
   std::string family = "all";        // constraint_error: one family or all
   std::optional<Vector3> center;     // angle_of_repose: a point on the pile's axis, m
   std::optional<double> bin;         // angle_of_repose: width of the rings the surface is binned in, m
+  std::optional<double> resting_speed;  // angle_of_repose: only particles slower than this count, m/s
   std::optional<Vector3> point;      // mass_flow: a point on the plane, m
   std::optional<Vector3> normal;     // mass_flow: the plane's normal (the positive direction)
 };

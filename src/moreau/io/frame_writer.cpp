@@ -76,7 +76,7 @@ void FrameWriter::write(const State& state) {
   for (size_t o = 0; o < model_.objects.size(); ++o) {
     const ObjectInfo& obj = model_.objects[o];
     const bool particles_only = obj.kind == ObjectKind::fluid || obj.kind == ObjectKind::rod ||
-                                obj.kind == ObjectKind::granular;  // .vtp files
+                                obj.kind == ObjectKind::granular || obj.kind == ObjectKind::shape_matched;  // .vtp files
     const std::string file = fmt::format("frames/{}_{:06d}.{}", safe_file_name(obj.name), frame_, particles_only ? "vtp" : "vtu");
     const std::string path = out_dir_ + "/" + file;
     if (obj.kind == ObjectKind::fluid) {
@@ -95,8 +95,9 @@ void FrameWriter::write(const State& state) {
       write_vtp(path, x, {{"velocity", v}},
                 {{"density", density}, {"pressure", pressure}, {"id", id},
                  {"radius", std::vector<Real>(x.size(), model_.fluid.particle_radius)}});
-    } else if (obj.kind == ObjectKind::granular) {
-      // Grains: position, velocity, displacement and radius (ParaView: "Point Gaussian" by radius).
+    } else if (obj.kind == ObjectKind::granular || obj.kind == ObjectKind::shape_matched) {
+      // Grains or shape-matched particles: position, velocity, displacement and radius
+      // (ParaView: "Point Gaussian" by radius).
       const Index b = obj.particle_begin, n = obj.particle_count();
       std::vector<Vec3> x(state.position.begin() + b, state.position.begin() + b + n);
       std::vector<Vec3> v(state.velocity.begin() + b, state.velocity.begin() + b + n), u(n);

@@ -33,12 +33,17 @@ Vec3 up_direction(const Model& model) {
 }  // namespace
 
 Real angle_of_repose(const Model& model, const State& state, Index object, const std::optional<Vec3>& axis_point,
-                     Real bin) {
+                     Real bin, const std::optional<std::pair<Vec3, Vec3>>& region, Real resting_speed) {
   constexpr Real kNan = std::numeric_limits<Real>::quiet_NaN();
   const Vec3 up = up_direction(model);
+  auto counted = [&](const Vec3& x, const Vec3& v) {
+    if (resting_speed > 0 && v.squaredNorm() >= resting_speed * resting_speed) return false;
+    return !region || ((x.array() >= region->first.array()).all() && (x.array() <= region->second.array()).all());
+  };
   Vec3 axis = Vec3::Zero();
   Real mass = 0, base = std::numeric_limits<Real>::infinity();
-  for_each_particle(model, state, object, [&](Real m, const Vec3& x, const Vec3&, Real r) {
+  for_each_particle(model, state, object, [&](Real m, const Vec3& x, const Vec3& v, Real r) {
+    if (!counted(x, v)) return;
     axis += m * x;
     mass += m;
     base = std::min(base, x.dot(up) - r);
@@ -48,7 +53,8 @@ Real angle_of_repose(const Model& model, const State& state, Index object, const
 
   // Surface height of each ring: its highest particle top above the pile's bottom.
   std::vector<Real> surface;
-  for_each_particle(model, state, object, [&](Real, const Vec3& x, const Vec3&, Real r) {
+  for_each_particle(model, state, object, [&](Real, const Vec3& x, const Vec3& v, Real r) {
+    if (!counted(x, v)) return;
     const Vec3 d = x - axis;
     const Real rho = (d - d.dot(up) * up).norm();
     const size_t ring = static_cast<size_t>(rho / bin);

@@ -2,6 +2,7 @@
 // Probes of piles and flows of particles: the angle of repose of a pile, and the mass flowing
 // through a plane (a silo's orifice, a chute's cross-section).
 #include <optional>
+#include <utility>
 
 #include "moreau/model/state.hpp"
 
@@ -17,8 +18,12 @@ namespace moreau {
 /// height lies between 20 % and 80 % of the highest ring's, which leaves out the rounded top and
 /// the single-grain toe; the angle is atan(-s) of the fitted slope s = dh/drho. NaN when fewer than
 /// three rings lie on the flank.
+/// Only the particles inside `region` (min, max corners) count when it is given, and only those
+/// slower than `resting_speed` (m/s) when it is positive: a pile under the silo that feeds it,
+/// without the stream falling onto it.
 Real angle_of_repose(const Model& model, const State& state, Index object, const std::optional<Vec3>& axis_point,
-                     Real bin);
+                     Real bin, const std::optional<std::pair<Vec3, Vec3>>& region = std::nullopt,
+                     Real resting_speed = 0);
 
 /// Mass flow through the plane through `point` with unit normal n, kg/s, positive along n:
 /// sum of m_i (v_i . n) over the particles within delta of the plane, divided by 2 delta (the flux

@@ -76,7 +76,8 @@ void evaluate_probe(const Probe& probe, const Model& model, const State& state, 
       values.push_back(rod_twist(model.rods[probe.rod], model.joints, state));
       break;
     case ProbeType::angle_of_repose:
-      values.push_back(angle_of_repose(model, state, probe.object, probe.pile_axis, probe.ring_width));
+      values.push_back(angle_of_repose(model, state, probe.object, probe.pile_axis, probe.ring_width, probe.pile_region,
+                                        probe.resting_speed));
       break;
     case ProbeType::mass_flow:
       values.push_back(probe.quantity == "beyond"

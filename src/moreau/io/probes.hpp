@@ -36,6 +36,8 @@ struct Probe {
   Index rod = -1, rod_point = -1;    // rod_point, rod_twist: index into Model::rods; its centreline point
   std::optional<Vec3> pile_axis;     // angle_of_repose: a point on the pile's axis (default: its centre of mass), m
   Real ring_width = 0;               // angle_of_repose: the rings' width, m
+  std::optional<std::pair<Vec3, Vec3>> pile_region;  // angle_of_repose: only particles in this box (min, max), m
+  Real resting_speed = 0;            // angle_of_repose: only particles slower than this (m/s; 0: all)
   Vec3 plane_point = Vec3::Zero(), plane_normal = Vec3::UnitY();  // mass_flow; quantity rate|beyond
 
   bool is_vector() const;

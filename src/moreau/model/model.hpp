@@ -13,11 +13,12 @@
 #include "moreau/constraints/joints/joint.hpp"
 #include "moreau/rigid/rigid_bodies.hpp"
 #include "moreau/rods/rod_model.hpp"
+#include "moreau/shape_matching/shape_matching.hpp"
 #include "moreau/solvers/nmd/nmd_settings.hpp"
 
 namespace moreau {
 
-enum class ObjectKind { collider, cloth, soft_body, fluid, rigid_body, rod, granular };
+enum class ObjectKind { collider, cloth, soft_body, fluid, rigid_body, rod, granular, shape_matched };
 
 /// One named scene object. Particles of an object are the contiguous range [particle_begin, particle_end).
 /// Fluid objects have no particles here: theirs live in FluidState (phase `fluid_phase`).
@@ -86,6 +87,7 @@ struct Model {
   RigidBodyModel rigid;        // rigid bodies, then colliders as kinematic bodies
   std::vector<Joint> joints;
   std::vector<RodModel> rods;                 // rods: their segments are bodies of `rigid`, their junctions joints
+  ShapeMatchClusters shape_matching;          // the clusters of shape-matched objects
   std::vector<SuctionCup> suction_cups;       // soft bodies with a sealed cavity (nmd only)
   JointForest joint_forest;                   // joints solved directly (empty for Gauss-Seidel)
 

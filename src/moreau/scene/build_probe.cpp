@@ -35,7 +35,7 @@ std::vector<std::string> probe_keys(const std::string& type) {
   if (type == "fluid_height") add({"at"});
   if (type == "escaped") add({"box"});
   if (type == "constraint_error") add({"family"});
-  if (type == "angle_of_repose") add({"center", "bin"});
+  if (type == "angle_of_repose") add({"center", "bin", "box", "resting_speed"});
   if (type == "mass_flow") add({"point", "normal", "quantity"});
   return keys;
 }
@@ -105,7 +105,7 @@ ProbeSpec read_probe(const JsonObject& j) {
   }
   if (p.type == "momentum") p.about = read_vector(j, "about", p.about);
   if (p.type == "fluid_height") p.at = to_vector3(j.vec3("at"));
-  if (p.type == "escaped") {
+  if (p.type == "escaped" || (p.type == "angle_of_repose" && j.has("box"))) {
     const JsonObject box = j.object("box");
     p.box = FluidBlock{to_vector3(box.vec3("min")), to_vector3(box.vec3("max"))};
     box.finish();
@@ -114,6 +114,7 @@ ProbeSpec read_probe(const JsonObject& j) {
   if (p.type == "angle_of_repose") {
     p.center = read_optional_vector(j, "center");
     p.bin = read_optional_number(j, "bin");
+    p.resting_speed = read_optional_number(j, "resting_speed");
   }
   if (p.type == "mass_flow") {
     p.point = read_optional_vector(j, "point");
@@ -222,6 +223,8 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
     const ObjectInfo& o = model.objects[p.object];
     for (Index q = o.particle_begin; q < o.particle_end; ++q) largest_radius = std::max(largest_radius, model.particle_radius[q]);
     p.ring_width = spec.bin ? j.number("bin", *spec.bin, Range::positive()) : 2 * largest_radius;
+    if (spec.box) p.pile_region = std::make_pair(j.vector("box.min", spec.box->min), j.vector("box.max", spec.box->max));
+    if (spec.resting_speed) p.resting_speed = j.number("resting_speed", *spec.resting_speed, Range::positive());
   } else if (type == "mass_flow") {
     p.type = ProbeType::mass_flow;
     p.object = object_index(spec, j, model, true, Accepts::particles);  // particles only

@@ -21,6 +21,7 @@ enum class XpbdStage : int {
   velocity_pass,
   fluid_velocity,
   check_state,
+  shape_matching,
   count
 };
 
@@ -31,7 +32,8 @@ constexpr int xpbd_family_stage(int family) { return static_cast<int>(XpbdStage:
 inline std::vector<std::string> xpbd_stage_names() {
   std::vector<std::string> names{"detect_contacts",   "predict",        "fluid_neighbors", "fluid_density",
                                  "particle_contacts", "collider_contacts", "joints",       "rigid_contacts",
-                                 "update_velocity",   "velocity_pass",  "fluid_velocity",  "check_state"};
+                                 "update_velocity",   "velocity_pass",  "fluid_velocity",  "check_state",
+                                 "shape_matching"};
   for (std::string_view family : particle_family_names()) names.emplace_back(family);
   return names;
 }

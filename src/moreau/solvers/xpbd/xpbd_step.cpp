@@ -17,6 +17,7 @@
 #include "moreau/solvers/xpbd/joint_projection.hpp"
 #include "moreau/solvers/xpbd/particle_body_contact_projection.hpp"
 #include "moreau/solvers/xpbd/particle_contact_projection.hpp"
+#include "moreau/solvers/xpbd/project_shape_matching.hpp"
 #include "moreau/solvers/xpbd/rigid_contact_projection.hpp"
 #include "moreau/solvers/xpbd/particle_projections.hpp"
 #include "moreau/solvers/state_check.hpp"
@@ -121,6 +122,11 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
           xpbd_project(family, lambda.data(), ctx);
           lap(xpbd_family_stage(index));
         });
+        if (!model.shape_matching.empty()) {
+#pragma omp single
+          project_shape_matching(model, ctx);
+          lap(XpbdStage::shape_matching);
+        }
         // The fluid before the contacts: what it pushes into a collider, the contacts push out.
         if (fluids) {
           if (coupled_solids) place_solid_samples(model, state);
