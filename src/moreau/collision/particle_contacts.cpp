@@ -50,16 +50,27 @@ void detect_collider_contacts(const Model& model, State& state) {
   c.clear();
   if (model.colliders.empty()) return;
   const Real dt = model.settings.dt, k = model.settings.contact_margin_factor;
+  // A solid collider's surface lies within its bounding sphere: a particle farther from its centre
+  // than that sphere plus its reach needs no distance query (a silo's walls and floor pieces
+  // against thousands of grains). Planes and containers have no such bound (-1).
+  const Index colliders = static_cast<Index>(model.colliders.size());
+  std::vector<Real> bound(colliders, -1);
+  for (Index ci = 0; ci < colliders; ++ci) {
+    const Collider& col = model.colliders[ci];
+    if (!col.inside && col.shape.type != ShapeType::plane) bound[ci] = col.shape.bounding_radius();
+  }
   for (Index p = 0; p < model.particle_count(); ++p) {
     if (model.particle_inv_mass[p] <= 0) continue;
     const ObjectInfo& obj = model.objects[model.particle_object[p]];
     const Index group_start = static_cast<Index>(c.particle.size());
-    for (Index ci = 0; ci < static_cast<Index>(model.colliders.size()); ++ci) {
+    for (Index ci = 0; ci < colliders; ++ci) {
       const Collider& col = model.colliders[ci];
-      const Real d = collider_distance(col, col.position_at(state.time), state.position[p]).distance;
       // Reach: what the particle can travel in the step, by its velocity and by gravity.
       const Real reach = model.particle_collider_gap[p] +
                          k * dt * ((state.velocity[p] - col.velocity).norm() + dt * model.settings.gravity.norm());
+      const Vec3 center = col.position_at(state.time);
+      if (bound[ci] >= 0 && (state.position[p] - center).squaredNorm() > (bound[ci] + reach) * (bound[ci] + reach)) continue;
+      const Real d = collider_distance(col, center, state.position[p]).distance;
       if (d > reach) continue;
       c.particle.push_back(p);
       c.collider.push_back(ci);
@@ -85,8 +96,9 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
   // 2.5 r_max + g_max: every pair within that distance lies in the 27 cells around either
   // particle. With V the particles' mean velocity, |v_i - v_j| <= |v_i - V| + |v_j - V|, so a pair
   // of particles that each move less than u = 0.25 r_max / (k dt) apart from V reaches at most a
-  // cell. The others are "fast" and search the 125 cells around them (two cells each way). A block
-  // falling as one is slow everywhere; a few rattlers in a pile do not coarsen the grid for all.
+  // cell. The others are "fast" and search the cells (two each way at most) within 4 r_max + g_max
+  // of them. A block falling as one is slow everywhere; a few rattlers in a pile do not coarsen
+  // the grid for all.
   const Index n = static_cast<Index>(model.contact_particle.size());
   Real max_radius = 0;
   Vec3 mean_velocity = Vec3::Zero();
@@ -162,7 +174,6 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     for (Index c = 0; c < cells; ++c) {
       CellRange ahead[13], wide[125];
       const int ahead_count = grid.ranges_ahead(grid.cell_coord(c), ahead);
-      int wide_count = -1;  // the 125 cells, gathered when the cell holds a fast particle
       const Index end = grid.cell_begin(c + 1);
       for (Index s = grid.cell_begin(c); s < end; ++s) {
         if (!scratch.sorted_fast[s]) {
@@ -172,7 +183,8 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
             for (Index t = ahead[r].first; t < ahead[r].second; ++t)
               if (!scratch.sorted_fast[t]) consider(s, t);
         } else {
-          if (wide_count < 0) wide_count = grid.ranges_within(grid.cell_coord(c), 2, wide);
+          // The cells within the farthest reach, 4 r_max + g_max, of the particle.
+          const int wide_count = grid.ranges_near(scratch.sorted_position[s], 4 * max_radius + max_bond, wide);
           for (int r = 0; r < wide_count; ++r)
             for (Index t = wide[r].first; t < wide[r].second; ++t)
               if (t != s && (!scratch.sorted_fast[t] || t > s)) consider(s, t);

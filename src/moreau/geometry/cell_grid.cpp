@@ -159,4 +159,31 @@ int CellGrid::ranges_ahead(const CellCoord& c, CellRange* out) const {
   return count;
 }
 
+int CellGrid::ranges_near(const Vec3& x, Real radius, CellRange* out) const {
+  const CellCoord c = frame_.cell_of(x);
+  const Real h = frame_.cell_size;
+  const Vec3 local = (x - frame_.origin) / h;  // in cells
+  int count = 0;
+  // The squared distance from x to cell (i) along one axis, in cells.
+  auto gap = [&](int axis, int i) {
+    const Real d = std::max({Real(0), i - local[axis], local[axis] - (i + 1)});
+    return d * d;
+  };
+  const Real reach2 = (radius / h) * (radius / h);
+  for (int dz = -2; dz <= 2; ++dz) {
+    const Real gz = gap(2, c[2] + dz);
+    if (gz > reach2) continue;
+    for (int dy = -2; dy <= 2; ++dy) {
+      const Real gy = gz + gap(1, c[1] + dy);
+      if (gy > reach2) continue;
+      for (int dx = -2; dx <= 2; ++dx) {
+        if (gy + gap(0, c[0] + dx) > reach2) continue;
+        const Index cell = find_cell({c[0] + dx, c[1] + dy, c[2] + dz});
+        if (cell >= 0) out[count++] = {cell_begin_[cell], cell_begin_[cell + 1]};
+      }
+    }
+  }
+  return count;
+}
+
 }  // namespace moreau

@@ -60,6 +60,9 @@ class CellGrid {
   /// ahead of it (offset (dx, dy, dz) with dz > 0, or dz = 0 and dy > 0, or dz = dy = 0 and dx > 0):
   /// visiting them from every cell visits each pair of neighbouring cells once.
   int ranges_ahead(const CellCoord& c, CellRange* out) const;
+  /// Writes to `out` the ranges of the non-empty cells that reach within `radius` of x (at most 2
+  /// cells' width: 125 cells); returns their count.
+  int ranges_near(const Vec3& x, Real radius, CellRange* out) const;
 
   /// The 63-bit Morton key of non-negative cell offsets (21 bits per axis, interleaved x, y, z).
   static std::uint64_t morton_key(std::uint32_t cx, std::uint32_t cy, std::uint32_t cz);
