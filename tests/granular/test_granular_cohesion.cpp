@@ -63,5 +63,17 @@ TEST(GranularCohesion, DryGrainsDoNotHang) {
   EXPECT_NEAR(dry.stretch, 0.5 * 9.81 * 0.25, 0.01);
 }
 
+// A bond's reach without a bond is refused with its path (it would widen the pair search for nothing).
+TEST(GranularCohesion, AReachWithoutABondIsRefused) {
+  try {
+    World::from_json(R"({"name": "bad", "settings": {"dt": 0.001, "duration": 1},
+        "objects": [{"name": "sand", "kind": "granular", "blocks": [{"min": [0, 0, 0], "max": [0.1, 0.1, 0.1]}],
+                     "radius": 0.01, "cohesion_distance": 0.001}]})");
+    ADD_FAILURE() << "no error";
+  } catch (const std::exception& e) {
+    EXPECT_NE(std::string(e.what()).find("objects[0].cohesion_distance"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace moreau

@@ -15,11 +15,11 @@ namespace moreau {
 namespace {
 
 // Grains placed on the surface of a cone of slope 30 degrees (radius 0.15 m, apex on the axis at
-// x = z = 0.3 m), at random angles and at distances rho spread finely over the radius: a ring of
-// width 2r holds ~ 20 grains, its highest is at its inner edge, so every ring's height lies on the
-// same line shifted by half a ring and the fitted slope is the cone's. The tolerance, 0.3 degrees,
-// is the scatter of the innermost grain's distance within each ring (1/20 of a ring ~ 0.3 mm over
-// a flank of 90 mm).
+// x = z = 0.3 m), at random angles and at distances rho spread evenly over the radius: a ring of
+// width 2r = 6 mm holds ~ 860 grains and its highest is at its inner edge, so every ring's height
+// lies on the same line shifted by half a ring and the fitted slope is the cone's. The
+// tolerance, 0.3 degrees, allows for rings cut unevenly by the flank's 20 % and 80 % bounds; the
+// measured error is below 0.01 degrees.
 TEST(GranularProbes, AngleOfReposeOfAConeIsItsSlope) {
   World w = World::from_json(R"({"name": "cone", "settings": {"dt": 0.001, "duration": 1},
       "objects": [{"name": "sand", "kind": "granular", "blocks": [{"min": [0, 0, 0], "max": [0.3, 0.06, 0.3]}],
@@ -62,7 +62,7 @@ TEST(GranularProbes, MassFlowThroughAPlaneIsTheMassThatPasses) {
   Real integral = 0, steady_sum = 0;
   int steady_samples = 0;
   const Real dt = w.dt();
-  while (w.probe_values()[1] < total - 1e-12) {
+  while (w.probe_values()[1] < total - 1e-12 && w.time() < 1) {  // the block passes in 0.25 s
     w.step();
     const std::vector<double> p = w.probe_values();
     integral += p[0] * dt;

@@ -1,7 +1,6 @@
 // Grains draining from a flat-bottomed silo through a square orifice: unlike a liquid, whose
 // outflow grows with the head as sqrt(H) (Torricelli), a granular flow rate does not depend on
-// the fill height (the walls carry the weight above the orifice: Janssen), so a silo filled twice
-// as high drains at the same rate (Beverloo et al. 1961).
+// the fill height, so a silo filled twice as high drains at the same rate (Beverloo et al. 1961).
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>

@@ -39,9 +39,16 @@ namespace {
 // a cohesive grain on a dry one holds with half its bond.
 Real combine(Real a, Real b) { return 0.5 * (a + b); }
 
-// The gap within which two objects' particles pull on each other: 0 unless their bond has strength.
+// The strength of the bond between two objects' particles: only grains bond (a dry granular
+// object has cohesion 0 and cohesion_distance 0).
+Real bond_strength(const ObjectInfo& a, const ObjectInfo& b) {
+  return a.kind == ObjectKind::granular && b.kind == ObjectKind::granular ? combine(a.cohesion, b.cohesion) : 0;
+}
+
+// The gap within which two objects' particles pull on each other: 0 unless their bond has
+// strength; at most the largest cohesion_distance of a cohesive object.
 Real bond_distance(const ObjectInfo& a, const ObjectInfo& b) {
-  return combine(a.cohesion, b.cohesion) > 0 ? combine(a.cohesion_distance, b.cohesion_distance) : 0;
+  return bond_strength(a, b) > 0 ? combine(a.cohesion_distance, b.cohesion_distance) : 0;
 }
 }  // namespace
 
@@ -139,10 +146,10 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
 
   threads = std::max(1, threads);
   scratch.thread_pairs.resize(threads);
+  for (auto& list : scratch.thread_pairs) list.clear();  // OpenMP may run fewer threads than asked
 #pragma omp parallel num_threads(threads)
   {
     auto& pairs = scratch.thread_pairs[omp_get_thread_num()];
-    pairs.clear();
     // The candidate at sorted positions s and t: kept if within its reach.
     auto consider = [&](Index s, Index t) __attribute__((always_inline)) {
       const Real contact_distance = scratch.sorted_radius[s] + scratch.sorted_radius[t];
@@ -246,7 +253,7 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     c.static_friction[q] = combine(a.static_friction, b.static_friction);
     c.dynamic_friction[q] = combine(a.dynamic_friction, b.dynamic_friction);
     c.restitution[q] = combine(a.restitution, b.restitution);
-    c.cohesion[q] = combine(a.cohesion, b.cohesion);
+    c.cohesion[q] = bond_strength(a, b);
     c.cohesion_distance[q] = bond_distance(a, b);
   }
 }

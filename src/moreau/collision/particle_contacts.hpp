@@ -3,10 +3,10 @@
 // solver evaluates (constraint rows: constraints/particle_contact_rows.hpp; XPBD's projection:
 // solvers/xpbd/particle_contact_projection.hpp).
 //
-// Candidates are gathered once per step within r_i + r_j + k dt (|v| + dt |g|) (k = 2; Mueller
-// et al. 2020, sec. 3.5, uses k dt |v|; we add the fall under gravity so resting contacts are
-// never missed) and re-evaluated every substep. Pairs of cohesive grains reach further by their
-// bond's distance.
+// Candidates are gathered once per step and re-evaluated every substep: with a collider within
+// r + k dt (|v - v_c| + dt |g|) (k = 2; Mueller et al. 2020, sec. 3.5, uses k dt |v|; we add the
+// fall under gravity so resting contacts are never missed); two particles within
+// r_i + r_j + g + min(k dt |v_i - v_j|, r_i + r_j), g the reach of a bond between cohesive grains.
 #include <vector>
 
 #include "moreau/constraints/constraint_batches.hpp"

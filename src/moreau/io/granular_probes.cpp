@@ -57,6 +57,8 @@ Real angle_of_repose(const Model& model, const State& state, Index object, const
     if (!counted(x, v)) return;
     const Vec3 d = x - axis;
     const Real rho = (d - d.dot(up) * up).norm();
+    constexpr Real kMostRings = 1e6;  // a grain flung far away does not size the rings
+    if (!(rho / bin < kMostRings)) return;
     const size_t ring = static_cast<size_t>(rho / bin);
     if (ring >= surface.size()) surface.resize(ring + 1, -1);
     surface[ring] = std::max(surface[ring], x.dot(up) + r - base);

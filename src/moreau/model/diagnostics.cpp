@@ -49,6 +49,7 @@ Real elastic_energy(const Model& model, const State& state, Index object) {
   for_each_family(model.constraints, [&](const auto& family, int) { energy += family.energy(state.position.data(), object); });
   for (const RodModel& rod : model.rods)
     if (object < 0 || rod.object == object) energy += rod_elastic_energy(rod, model.joints, state);
+  energy += shape_match_energy(model.shape_matching, state.position.data(), object);
   return energy;
 }
 

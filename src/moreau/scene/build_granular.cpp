@@ -87,6 +87,9 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
                                : 0.1 * r_max;
   if (info.cohesion_distance > r_max)
     place.fail("cohesion_distance", fmt::format("a bond may reach at most the largest radius, {} m", r_max));
+  if (spec.cohesion_distance && info.cohesion == 0)
+    place.fail("cohesion_distance", "a bond's reach needs a bond: give \"cohesion\" (N) too");
+  if (info.cohesion == 0) info.cohesion_distance = 0;  // dry grains reach no further than they touch
   info.kind = ObjectKind::granular;
   info.self_collision = true;
   info.fluid_coupling = false;

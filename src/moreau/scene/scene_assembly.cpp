@@ -51,9 +51,6 @@ Scene assemble_scene(const SceneSpec& spec, const std::string& source, const std
     if (info.name.empty()) place.fail("name", "an object needs a name");
     if (scene.model.find_object(info.name) >= 0)
       place.fail("name", fmt::format("another object is already named '{}'; names must be unique", info.name));
-    if (std::holds_alternative<ShapeMatchedSpec>(spec.objects[k]) && scene.solver != "xpbd")
-      place.fail("kind", fmt::format("shape-matched objects are solved under \"xpbd\" (settings.solver is \"{}\")",
-                                     scene.solver));
     add_object(spec.objects[k], place, info, ctx);
     scene.model.objects.push_back(std::move(info));
   }

@@ -1,6 +1,7 @@
 #include "moreau/shape_matching/shape_matching.hpp"
 
 #include <Eigen/SVD>
+#include <vector>
 
 namespace moreau {
 
@@ -40,6 +41,21 @@ void shape_match_goals(const ShapeMatchClusters& clusters, Index k, const Vec3* 
     A += clusters.mass[e] * (x[clusters.particle[e]] - center) * clusters.rest_offset[e].transpose();
   const Mat3 R = polar_rotation(A);
   for (Index e = begin; e < end; ++e) goals[e - begin] = center + R * clusters.rest_offset[e];
+}
+
+Real shape_match_energy(const ShapeMatchClusters& clusters, const Vec3* x, Index object) {
+  Real energy = 0;
+  std::vector<Vec3> goals;
+  for (Index k = 0; k < clusters.size(); ++k) {
+    if (clusters.omega[k] <= 0 || (object >= 0 && clusters.object[k] != object)) continue;
+    const Index begin = clusters.offsets[k], end = clusters.offsets[k + 1];
+    goals.resize(end - begin);
+    shape_match_goals(clusters, k, x, goals.data());
+    const Real w2 = clusters.omega[k] * clusters.omega[k];
+    for (Index e = begin; e < end; ++e)
+      energy += 0.5 * clusters.mass[e] * w2 * (x[clusters.particle[e]] - goals[e - begin]).squaredNorm();
+  }
+  return energy;
 }
 
 }  // namespace moreau

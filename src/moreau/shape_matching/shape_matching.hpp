@@ -8,9 +8,10 @@
 // current mass centre c = sum m_i x_i / M, and the goals are g_i = c + R q_i.
 //
 // As an XPBD constraint: the energy E = 1/2 sum m_i omega^2 |x_i - g_i|^2 (omega = 2 pi f, f the
-// cluster's frequency: a particle pulled off its goal oscillates at f) gives each particle the
-// compliance 1/(m_i omega^2), so one projection moves every particle of the cluster by the same
-// fraction of the way to its goal:
+// cluster's frequency: a particle of one cluster pulled off its goal oscillates at f; one in k
+// overlapping clusters feels each, about sqrt(k) f) gives each particle the compliance
+// 1/(m_i omega^2), so a substep's first projection moves every particle of the cluster by the same
+// fraction of the way to its goal (solvers/xpbd/project_shape_matching.hpp has the multiplier):
 //   x_i += s (g_i - x_i),   s = w_i / (w_i + 1/(m_i omega^2 h^2)) = omega^2 h^2 / (1 + omega^2 h^2),
 // and s = 1 for a rigid cluster (f infinite). The same s for all keeps sum m_i (g_i - x_i) = 0
 // (c is the mass centre of the goals too): the projection conserves linear momentum. It also
@@ -45,6 +46,10 @@ Mat3 polar_rotation(const Mat3& A);
 
 /// Goals g_i of cluster k at positions x, written to goals[0 .. cluster size).
 void shape_match_goals(const ShapeMatchClusters& clusters, Index k, const Vec3* x, Vec3* goals);
+
+/// Elastic energy 1/2 sum m_i omega^2 |x_i - g_i|^2 of the compliant clusters of `object` (-1:
+/// all), J; rigid clusters store none.
+Real shape_match_energy(const ShapeMatchClusters& clusters, const Vec3* x, Index object);
 
 /// The share s of the way to the goals that one projection moves (see above).
 inline Real shape_match_share(Real omega, Real h) {

@@ -21,10 +21,16 @@ std::string xpbd_refusal(const Model& model) {
   return {};
 }
 
+std::string nmd_refusal(const Model& model) {
+  if (!model.shape_matching.empty())
+    return "the 'nmd' formulation does not simulate shape-matched objects (\"kind\": \"shape_matched\"); run with \"solver\": \"xpbd\"";
+  return {};
+}
+
 const std::vector<SolverEntry>& registry() {
   static const std::vector<SolverEntry> entries{
       {"xpbd", [](const Model&) { return std::make_unique<XpbdSolver>(); }, xpbd_refusal},
-      {"nmd", [](const Model&) { return std::make_unique<NmdSolver>(); }, nullptr},
+      {"nmd", [](const Model&) { return std::make_unique<NmdSolver>(); }, nmd_refusal},
   };
   return entries;
 }

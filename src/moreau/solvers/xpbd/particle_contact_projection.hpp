@@ -14,7 +14,8 @@
 //   constraint of Gascon, Zurdo and Otaduy 2010, with a reach). Within its reach the bond adds
 //   F h^2 to lambda_n in the friction bounds, static and dynamic (Coulomb friction on the normal
 //   force plus the bond's, as cohesive DEM contacts do), so bonded grains resist shear too.
-// Velocity pass (once per substep, after v = (x - x_start)/h), on the contacts that pushed:
+// Velocity pass (once per substep, after v = (x - x_start)/h), on the contacts that pushed (and
+// bonded pairs within reach, which get the dynamic friction only):
 //   dynamic friction  dv = -v_t/|v_t| min(mu_k w lambda_n / h, |v_t|)
 //     (the normal impulse of the substep is lambda_n / h; we use this dimensionally consistent
 //      reading of Mueller 2020, eq. 30, whose f_n h mixes force and velocity)

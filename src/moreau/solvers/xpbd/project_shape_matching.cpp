@@ -6,17 +6,22 @@
 
 namespace moreau {
 
-void project_shape_matching(const Model& model, const SubstepContext& s) {
+void project_shape_matching(const Model& model, const SubstepContext& s, Vec3* lambda) {
   const ShapeMatchClusters& clusters = model.shape_matching;
   thread_local std::vector<Vec3> goals;
   for (Index k = 0; k < clusters.size(); ++k) {
     const Index begin = clusters.offsets[k], end = clusters.offsets[k + 1];
     goals.resize(end - begin);
     shape_match_goals(clusters, k, s.x, goals.data());
-    const Real share = shape_match_share(clusters.omega[k], s.h);
+    const Real omega2 = clusters.omega[k] * clusters.omega[k];
     for (Index e = begin; e < end; ++e) {
       const Index p = clusters.particle[e];
-      if (s.inv_mass[p] > 0) s.x[p] += share * (goals[e - begin] - s.x[p]);
+      const Real w = s.inv_mass[p];
+      if (w <= 0) continue;
+      const Real alpha_tilde = omega2 > 0 ? s.inv_h2 / (clusters.mass[e] * omega2) : 0;
+      const Vec3 dl = (-(s.x[p] - goals[e - begin]) - alpha_tilde * lambda[e]) / (w + alpha_tilde);
+      lambda[e] += dl;
+      s.x[p] += w * dl;
     }
   }
 }

@@ -53,6 +53,7 @@ void predict(const Model& model, State& state, XpbdWorkspace& work, Real h) {
   });
   clear(state.collider_contacts.lambda_normal, Real{0});
   clear(state.particle_contacts.lambda_normal, Real{0});
+  clear(work.shape_match_lambda, Vec3::Zero());
 #pragma omp barrier
 }
 
@@ -124,7 +125,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
         });
         if (!model.shape_matching.empty()) {
 #pragma omp single
-          project_shape_matching(model, ctx);
+          project_shape_matching(model, ctx, work.shape_match_lambda.data());
           lap(XpbdStage::shape_matching);
         }
         // The fluid before the contacts: what it pushes into a collider, the contacts push out.
