@@ -68,16 +68,23 @@ std::vector<ScenePair> every_pair() {
   return pairs;
 }
 
-// The refusals expected: a formulation and what a scene it refuses holds (an object key).
+// The refusals expected: a formulation and what a scene it refuses holds (an object key, or
+// "key=value" for an object whose key has that string value).
 struct ExpectedRefusal {
   std::string solver, reason, key;
 };
-const std::vector<ExpectedRefusal> kRefusals = {{"xpbd", "does not simulate suction cups", "suction"}};
+const std::vector<ExpectedRefusal> kRefusals = {{"xpbd", "does not simulate suction cups", "suction"},
+                                                {"nmd", "does not simulate shape-matched objects", "kind=shape_matched"}};
 
 bool holds_key(const std::string& scene, const std::string& key) {
   const nlohmann::json json = nlohmann::json::parse(std::ifstream(fs::path(MOREAU_SOURCE_DIR) / scene));
-  for (const auto& object : json.value("objects", nlohmann::json::array()))
-    if (object.contains(key)) return true;
+  const size_t equals = key.find('=');
+  const std::string name = key.substr(0, equals);
+  for (const auto& object : json.value("objects", nlohmann::json::array())) {
+    if (!object.contains(name)) continue;
+    if (equals == std::string::npos) return true;
+    if (object[name].is_string() && object[name].get<std::string>() == key.substr(equals + 1)) return true;
+  }
   return false;
 }
 
