@@ -209,7 +209,7 @@ TEST(CommandLine, RigidAndJointInputErrorsNameTheirKey) {
   // extent, particle_count and escaped count particles: a rigid body has none to count.
   expect_bad_input("extent_of_body", R"({"name": "r", "objects": [{"name": "a", "kind": "rigid_body", "shape": {"type": "sphere", "radius": 0.1},
       "position": [0, 0, 0]}], "probes": [{"name": "low", "type": "extent", "object": "a", "axis": "y", "quantity": "min"}]})",
-                   {"probes[0].object", "no cloth, soft-body or fluid object named 'a'"});
+                   {"probes[0].object", "no particle (cloth, soft-body, granular, shape-matched or fluid) object named 'a'"});
 }
 
 TEST(CommandLine, FluidRunWritesParticlesAndWarnsAboutCfl) {

@@ -65,11 +65,11 @@ Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& m
     else if (allow_all) names += ", *";
     probe.fail("object", fmt::format("no {}object named '{}'; allowed: {}",
                                      accepts == Accepts::fluids   ? "fluid "
-                                     : accepts == Accepts::solids ? "cloth or soft-body "
+                                     : accepts == Accepts::solids ? "particle (cloth, soft-body, granular or shape-matched) "
                                      : accepts == Accepts::bodies ? "rigid-body "
-                                     : accepts == Accepts::particles ? "cloth, soft-body or fluid "
+                                     : accepts == Accepts::particles ? "particle (cloth, soft-body, granular, shape-matched or fluid) "
                                      : accepts == Accepts::rods      ? "rod "
-                                     : accepts == Accepts::points    ? "cloth, soft-body or rod "
+                                     : accepts == Accepts::points    ? "particle (cloth, soft-body, granular or shape-matched) or rod "
                                      : accepts == Accepts::grains    ? "granular "
                                                                      : "simulated ",
                                      name, names));
