@@ -122,16 +122,14 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     if (object.cohesion > 0) max_bond = std::max(max_bond, object.cohesion_distance);
   const Real dt = model.settings.dt, k = model.settings.contact_margin_factor;
   const Real slow_speed = 0.25 * max_radius / (k * dt);
-  scratch.fast.resize(n);
-  for (Index a = 0; a < n; ++a)
-    scratch.fast[a] = (state.velocity[model.contact_particle[a]] - mean_velocity).squaredNorm() > slow_speed * slow_speed;
   // The Morton-sorted grid of the fluids: the particles of a cell are contiguous in `order`, and
   // cells near in space are near in memory, so the pairs come out in a spatially coherent order.
   const CellGrid& grid = scratch.grid;
   scratch.grid.build(scratch.contact_position.data(), n, GridFrame{Vec3::Zero(), 2.5 * max_radius + max_bond});
   const std::vector<Index>& order = grid.order();
   const Index cells = grid.cell_count();
-  // Positions, radii and particle ids in the sorted order, so the scans below read memory in sequence.
+  // Positions, radii, particle ids and speed classes in the sorted order, so the scans below read
+  // memory in sequence.
   scratch.sorted_position.resize(n);
   scratch.sorted_radius.resize(n);
   scratch.sorted_particle.resize(n);
@@ -141,7 +139,8 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     scratch.sorted_position[s] = scratch.contact_position[a];
     scratch.sorted_particle[s] = model.contact_particle[a];
     scratch.sorted_radius[s] = model.particle_radius[model.contact_particle[a]];
-    scratch.sorted_fast[s] = scratch.fast[a];
+    scratch.sorted_fast[s] =
+        (state.velocity[scratch.sorted_particle[s]] - mean_velocity).squaredNorm() > slow_speed * slow_speed;
   }
 
   threads = std::max(1, threads);

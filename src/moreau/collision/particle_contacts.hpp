@@ -47,11 +47,10 @@ struct ParticleContacts {
 struct ContactScratch {
   CellGrid grid;
   std::vector<Vec3> contact_position;  // positions of Model::contact_particle, in its order
-  std::vector<char> fast;              // per contact particle: searches the 125 cells around it
   std::vector<Vec3> sorted_position;   // the same, and the particles' radii and ids, in the grid's order
   std::vector<Real> sorted_radius;
   std::vector<Index> sorted_particle;
-  std::vector<char> sorted_fast;
+  std::vector<char> sorted_fast;       // moves fast apart from the mean: searches its whole reach
   std::vector<std::vector<std::array<Index, 2>>> thread_pairs;
   std::vector<std::uint64_t> particle_colors;
   std::vector<int> pair_color;

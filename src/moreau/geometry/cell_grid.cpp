@@ -137,11 +137,11 @@ Index CellGrid::find_cell(const CellCoord& c) const {
   return static_cast<Index>(it - cell_key_.begin());
 }
 
-int CellGrid::ranges_within(const CellCoord& c, int reach, CellRange* out) const {
+int CellGrid::neighbor_ranges(const CellCoord& c, CellRange* out) const {
   int count = 0;
-  for (int dz = -reach; dz <= reach; ++dz)
-    for (int dy = -reach; dy <= reach; ++dy)
-      for (int dx = -reach; dx <= reach; ++dx) {
+  for (int dz = -1; dz <= 1; ++dz)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
         const Index cell = find_cell({c[0] + dx, c[1] + dy, c[2] + dz});
         if (cell >= 0) out[count++] = {cell_begin_[cell], cell_begin_[cell + 1]};
       }

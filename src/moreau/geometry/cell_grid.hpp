@@ -52,10 +52,7 @@ class CellGrid {
   /// The cell at integer coordinates c, or -1 if it holds no point.
   Index find_cell(const CellCoord& c) const;
   /// Writes to out[0..27) the ranges of the non-empty cells among the 27 around c; returns their count.
-  int neighbor_ranges(const CellCoord& c, CellRange* out) const { return ranges_within(c, 1, out); }
-  /// Writes to out[0..(2 reach + 1)^3) the ranges of the non-empty cells within `reach` cells of c
-  /// along each axis (z slowest, x fastest); returns their count.
-  int ranges_within(const CellCoord& c, int reach, CellRange* out) const;
+  int neighbor_ranges(const CellCoord& c, CellRange* out) const;
   /// Writes to out[0..13) the ranges of the non-empty cells among the 13 neighbours of c that lie
   /// ahead of it (offset (dx, dy, dz) with dz > 0, or dz = 0 and dy > 0, or dz = dy = 0 and dx > 0):
   /// visiting them from every cell visits each pair of neighbouring cells once.

@@ -24,6 +24,12 @@ std::optional<double> read_optional_number(const JsonObject& object, const std::
   return object.number(key);
 }
 
+FluidBlock read_block(const JsonObject& block) {
+  FluidBlock b{to_vector3(block.vec3("min")), to_vector3(block.vec3("max"))};
+  block.finish();
+  return b;
+}
+
 std::optional<Vector2> read_optional_pair(const JsonObject& object, const std::string& key) {
   if (!object.has(key)) return std::nullopt;
   const Vec2 v = object.vec2(key, Range::any());

@@ -43,12 +43,6 @@ void add_block(const FluidBlock& block, const SpecPlace& place, Real d, std::vec
   fill_block(lo, hi, d, out);
 }
 
-FluidBlock read_block(const JsonObject& block) {
-  FluidBlock b{to_vector3(block.vec3("min")), to_vector3(block.vec3("max"))};
-  block.finish();
-  return b;
-}
-
 FluidEmitterSpec read_emitter(const JsonObject& e) {
   FluidEmitterSpec spec;
   spec.center = to_vector3(e.vec3("center"));

@@ -21,10 +21,7 @@ Real unit_draw(std::mt19937_64& generator) { return static_cast<Real>(generator(
 
 GranularSpec read_granular(const JsonObject& object) {
   GranularSpec spec;
-  for (const JsonObject& block : object.object_list("blocks")) {
-    spec.blocks.push_back({to_vector3(block.vec3("min")), to_vector3(block.vec3("max"))});
-    block.finish();
-  }
+  for (const JsonObject& block : object.object_list("blocks")) spec.blocks.push_back(read_block(block));
   spec.radius = read_optional_number(object, "radius");
   spec.radius_range = read_optional_pair(object, "radius_range");
   if (object.has("seed")) spec.seed = read_integer(object, "seed");

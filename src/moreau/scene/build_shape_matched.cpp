@@ -13,10 +13,7 @@ namespace moreau {
 
 ShapeMatchedSpec read_shape_matched(const JsonObject& object) {
   ShapeMatchedSpec spec;
-  for (const JsonObject& block : object.object_list("blocks")) {
-    spec.blocks.push_back({to_vector3(block.vec3("min")), to_vector3(block.vec3("max"))});
-    block.finish();
-  }
+  for (const JsonObject& block : object.object_list("blocks")) spec.blocks.push_back(read_block(block));
   spec.radius = object.number("radius");
   spec.density = object.number("density", spec.density);
   spec.frequency = read_optional_number(object, "frequency");

@@ -75,6 +75,8 @@ Vector3 read_vector(const JsonObject& object, const std::string& key, const Vect
 std::optional<Vector3> read_optional_vector(const JsonObject& object, const std::string& key);
 std::optional<double> read_optional_number(const JsonObject& object, const std::string& key);
 std::optional<Vector2> read_optional_pair(const JsonObject& object, const std::string& key);
+/// A box {"min": [x, y, z], "max": [x, y, z]} in m (fluid, granular and shape-matched blocks).
+FluidBlock read_block(const JsonObject& block);
 /// An integer of any value an int holds (the adder checks its range).
 int read_integer(const JsonObject& object, const std::string& key);
 /// "friction": a number (static = dynamic) or {"static": mu_s, "dynamic": mu_k}; and "restitution".

@@ -51,11 +51,4 @@ void shape_match_goals(const ShapeMatchClusters& clusters, Index k, const Vec3* 
 /// all), J; rigid clusters store none.
 Real shape_match_energy(const ShapeMatchClusters& clusters, const Vec3* x, Index object);
 
-/// The share s of the way to the goals that one projection moves (see above).
-inline Real shape_match_share(Real omega, Real h) {
-  if (omega <= 0) return 1;
-  const Real a = omega * omega * h * h;
-  return a / (1 + a);
-}
-
 }  // namespace moreau
