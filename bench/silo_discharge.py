@@ -2,17 +2,19 @@
 """Granular flow from a flat-bottomed silo: Beverloo's law and the angle of repose of the pile.
 
 1. Discharge: a 10 x 10 cm silo filled to 15 cm with 20,736 grains (r = 2 mm, 2600 kg/m^3,
-   mu = 0.5) drains through a square orifice of side D = 20, 24, 28 and 32 mm (5 to 8 grain
-   diameters) for 1.2 s. The flow rate W is the least-squares slope of the discharged mass (the
+   mu = 0.5, the engine's rolling resistance unless --rolling-resistance) drains through a square
+   orifice of side D = 20, 24, 28 and 32 mm (5 to 8 grain diameters) for 1.2 s. The flow rate W is the least-squares slope of the discharged mass (the
    scene's `discharged` probe, `mass_flow` "beyond" the orifice plane) over [0.3, 1.2] s. Beverloo
    et al. (1961): W = C rho_b sqrt(g) (D - k d)^(5/2) for a 3D silo, so W^(2/5) is linear in D; the
    script fits k and C, and the plain power law W ~ D^n (n above 5/2 where k d matters).
 2. Pile: a silo of the same section filled to 10 cm drains through D = 24 mm onto the ground 15 cm
-   below for 5 s, for mu = 0.3, 0.5 and 0.8 (walls, floor, ground and grains alike); the
+   below for 5 s, for mu = 0.3, 0.5 and 0.8 (or --friction; walls, floor, ground and grains alike); the
    `pile_angle` probe (`angle_of_repose` about the orifice's axis, of the grains below the silo's
    floor moving slower than 5 cm/s: the pile without the stream that feeds it) at the end.
+Both run 1 XPBD iteration per substep unless --iterations.
 
 Usage: bench/silo_discharge.py [--moreau build/moreau] [--out DIR] [--threads N] [--only discharge|pile]
+                               [--friction MU ...] [--rolling-resistance MU_R] [--iterations N]
 """
 import argparse
 import csv
@@ -26,7 +28,7 @@ RADIUS = 0.002
 DENSITY = 2600
 
 
-def silo(D, fill, mu, duration, W=0.1, drop=0.15):
+def silo(D, fill, mu, duration, W=0.1, drop=0.15, rolling=None, iterations=1):
     t, w, d, h = 0.01, W / 2, D / 2, fill + 0.05
 
     def box(name, lo, hi):
@@ -43,6 +45,8 @@ def silo(D, fill, mu, duration, W=0.1, drop=0.15):
         {"name": "sand", "kind": "granular", "blocks": [{"min": [-w, 0, -w], "max": [w, fill, w]}],
          "radius": RADIUS, "density": DENSITY, "friction": mu},
     ]
+    if rolling is not None:
+        objects[-1]["rolling_resistance"] = rolling
     probes = [
         {"name": "flow", "type": "mass_flow", "object": "sand", "point": [0, 0, 0], "normal": [0, -1, 0]},
         {"name": "discharged", "type": "mass_flow", "object": "sand", "point": [0, 0, 0], "normal": [0, -1, 0],
@@ -50,7 +54,8 @@ def silo(D, fill, mu, duration, W=0.1, drop=0.15):
         {"name": "pile_angle", "type": "angle_of_repose", "object": "sand", "center": [0, -drop, 0],
          "box": {"min": [-1, -drop - 0.01, -1], "max": [1, -0.02, 1]}, "resting_speed": 0.05},
     ]
-    return {"name": "silo", "settings": {"dt": 0.0025, "substeps": 5, "duration": duration, "output": {"every": 8}},
+    return {"name": "silo", "settings": {"dt": 0.0025, "substeps": 5, "iterations": iterations, "duration": duration,
+                                         "output": {"every": 8}},
             "objects": objects, "probes": probes}
 
 
@@ -81,7 +86,7 @@ def discharge(args):
     print("silo 10 x 10 cm filled to 15 cm, grains r = 2 mm, mu = 0.5; flow over [0.3, 1.2] s")
     widths, rates = [], []
     for D in (0.020, 0.024, 0.028, 0.032):
-        rows, summary = run(args, silo(D, 0.15, 0.5, 1.2), f"discharge_{D * 1000:g}mm")
+        rows, summary = run(args, silo(D, 0.15, 0.5, 1.2, iterations=args.iterations), f"discharge_{D * 1000:g}mm")
         window = [r for r in rows if r["time"] >= 0.3 - 1e-9]
         rate, _ = line_fit([r["time"] for r in window], [r["discharged"] for r in window])
         half = len(window) // 2
@@ -105,9 +110,11 @@ def discharge(args):
 
 
 def pile(args):
-    print("silo 10 x 10 cm filled to 10 cm draining through 24 mm onto the ground 15 cm below, 5 s")
-    for mu in (0.3, 0.5, 0.8):
-        rows, summary = run(args, silo(0.024, 0.10, mu, 5.0), f"pile_mu{mu:g}")
+    print(f"silo 10 x 10 cm filled to 10 cm draining through 24 mm onto the ground 15 cm below, 5 s, "
+          f"{args.iterations} iteration(s) per substep")
+    for mu in args.friction:
+        rows, summary = run(args, silo(0.024, 0.10, mu, 5.0, rolling=args.rolling_resistance, iterations=args.iterations),
+                            f"pile_mu{mu:g}")
         last = rows[-1]
         print(f"  mu = {mu}: angle of repose {last['pile_angle']:.1f} degrees, discharged {last['discharged']:.3f} kg, "
               f"{summary['wall_time_s']:.1f} s wall")
@@ -119,6 +126,9 @@ def main():
     parser.add_argument("--out", default=os.path.join(ROOT, "out", "silo_discharge"))
     parser.add_argument("--threads", type=int, default=0)
     parser.add_argument("--only", choices=["discharge", "pile"])
+    parser.add_argument("--friction", type=float, nargs="+", default=[0.3, 0.5, 0.8], help="the piles' mu")
+    parser.add_argument("--iterations", type=int, default=1, help="XPBD iterations per substep")
+    parser.add_argument("--rolling-resistance", type=float, help="the grains' mu_r (default: the engine's)")
     args = parser.parse_args()
     if args.only != "pile":
         discharge(args)

@@ -53,6 +53,13 @@ struct NmdSolverSettings {
   std::optional<bool> warm_start;
 };
 
+/// settings.sleep: grains that stay slow rest until something reaches them. Unset fields keep
+/// the engine defaults.
+struct SleepSolverSettings {
+  std::optional<double> speed;  // m/s: a grain slower than this is still
+  std::optional<double> time;   // s: an island still this long falls asleep
+};
+
 /// "settings". Unset fields keep the engine defaults listed in docs/scene-format.md.
 struct SceneSettings {
   std::string solver = "xpbd";          // a registered constraint-engine formulation
@@ -67,6 +74,7 @@ struct SceneSettings {
   std::string joint_solver = "direct";  // "direct" or "gauss_seidel"
   FluidSolverSettings fluid;
   NmdSolverSettings nmd;
+  std::optional<SleepSolverSettings> sleep;  // absent: grains never sleep
   int output_every = 1;                 // output.every: frames and probe rows every N steps
   bool write_vtk = true;                // output.formats contains "vtk"
 };
@@ -339,6 +347,7 @@ struct GranularSpec {
   ContactMaterial contact;
   double cohesion = 0;                    // N, the largest pull of a bond between two touching grains
   std::optional<double> cohesion_distance;  // m, the gap at which a bond lets go (default r_max / 10)
+  double rolling_resistance = 0.5;        // mu_r: a contact's rolling torque is at most mu_r R* times its normal force
 };
 
 /// "kind": "shape_matched": particles on a lattice filling boxes, held in their rest shape by

@@ -1,6 +1,6 @@
 // Granular media ("kind": "granular"): grains as particles touching each other and the ground.
-// Restitution against the ground and between grains, frictionless grains spreading flat, and a
-// pile that stands taller the more friction its grains have.
+// Restitution against the ground and between grains, grains spreading flat without friction or
+// rolling resistance, and a pile that stands steeper the more of either its grains have.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -63,37 +63,43 @@ TEST(GranularContacts, TwoGrainsPartAtETimesTheirClosingSpeed) {
   EXPECT_LT(std::abs(v[6]), 1e-12);
 }
 
-// A column of 3159 grains (r = 5 mm, 0.1 x 0.4 x 0.1 m) released on the ground. Without friction
-// the grains slide apart into one layer (their tops within a diameter of the ground); with friction
-// they stand as a pile whose height and angle of repose grow with mu.
+// A column of 3159 grains (r = 5 mm, 0.1 x 0.4 x 0.1 m) released on the ground and left 2 s to
+// collapse. Without friction, or with friction but without rolling resistance (perfect spheres
+// roll on), the grains spread into one layer (their tops within a diameter of the ground); with
+// both they stand as a pile whose angle of repose grows with mu and with mu_r.
 struct Pile {
   Real top, angle;  // m, degrees
 };
 
-Pile settled_pile(Real mu) {
+Pile settled_pile(Real mu, Real mu_r) {
   World w = World::from_json(fmt::format(
       R"({{"name": "pile", "settings": {{"dt": 0.005, "substeps": 10, "duration": 2}},
       "objects": [{{"name": "ground", "kind": "collider", "shape": {{"type": "plane"}}, "friction": {0}}},
                   {{"name": "sand", "kind": "granular", "blocks": [{{"min": [-0.05, 0, -0.05], "max": [0.05, 0.4, 0.05]}}],
-                    "radius": 0.005, "density": 2600, "friction": {0}}}],
+                    "radius": 0.005, "density": 2600, "friction": {0}, "rolling_resistance": {1}}}],
       "probes": [{{"name": "top", "type": "extent", "object": "sand", "axis": "y", "quantity": "max"}},
                  {{"name": "angle", "type": "angle_of_repose", "object": "sand"}}]}})",
-      mu));
+      mu, mu_r));
   for (int s = 0; s < 400; ++s) w.step();
   return {w.probe_values()[0], w.probe_values()[1]};
 }
 
-TEST(GranularContacts, FrictionlessGrainsSpreadFlatAndFrictionBuildsAPile) {
-  std::vector<Pile> piles;
-  for (Real mu : {0.0, 0.2, 0.5, 0.8}) piles.push_back(settled_pile(mu));
-  std::printf("column of grains after 2 s: top %.4f m (mu 0), %.4f (0.2), %.4f (0.5), %.4f (0.8); angle of repose "
-              "%.1f, %.1f, %.1f degrees (mu 0.2, 0.5, 0.8)\n", piles[0].top, piles[1].top, piles[2].top, piles[3].top,
-              piles[1].angle, piles[2].angle, piles[3].angle);
-  EXPECT_LT(piles[0].top, 0.015);  // one layer: tops at r = 5 mm, within a diameter
-  EXPECT_LT(piles[1].top, piles[2].top);
-  EXPECT_LT(piles[2].top, piles[3].top);
-  EXPECT_LT(piles[1].angle, piles[2].angle);
-  EXPECT_LT(piles[2].angle, piles[3].angle);
+TEST(GranularContacts, GrainsSpreadFlatWithoutFrictionOrRollingResistanceAndPileUpWithBoth) {
+  const Pile frictionless = settled_pile(0, 0.5), rolling = settled_pile(0.5, 0);
+  std::vector<Pile> by_friction, by_rolling;
+  for (Real mu : {0.2, 0.5, 0.8}) by_friction.push_back(settled_pile(mu, 0.5));
+  for (Real mu_r : {0.2, 1.0}) by_rolling.push_back(settled_pile(0.5, mu_r));
+  std::printf("column of grains after 2 s: top %.4f m without friction, %.4f m without rolling resistance; "
+              "with mu_r 0.5: angle of repose %.1f, %.1f, %.1f degrees at mu 0.2, 0.5, 0.8; with mu 0.5: %.1f, %.1f, "
+              "%.1f degrees at mu_r 0.2, 0.5, 1.0\n",
+              frictionless.top, rolling.top, by_friction[0].angle, by_friction[1].angle, by_friction[2].angle,
+              by_rolling[0].angle, by_friction[1].angle, by_rolling[1].angle);
+  EXPECT_LT(frictionless.top, 0.015);  // one layer: tops at r = 5 mm, within a diameter
+  EXPECT_LT(rolling.top, 0.015);
+  EXPECT_LT(by_friction[0].angle, by_friction[1].angle);
+  EXPECT_LT(by_friction[1].angle, by_friction[2].angle);
+  EXPECT_LT(by_rolling[0].angle, by_friction[1].angle);
+  EXPECT_LT(by_friction[1].angle, by_rolling[1].angle);
 }
 
 }  // namespace

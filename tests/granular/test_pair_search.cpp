@@ -37,7 +37,7 @@ Scene scattered_grains(std::uint64_t seed) {
   return scene;
 }
 
-// The pairs within reach r_i + r_j + g + min(k dt |v_i - v_j|, r_i + r_j), checked one by one.
+// The pairs within reach r_i + r_j + g + min(k dt (|v_i - v_j| + dt |gravity|), r_i + r_j), checked one by one.
 std::set<std::array<Index, 2>> every_pair_within_reach(const Model& m, const State& s) {
   std::set<std::array<Index, 2>> pairs;
   const Real k = m.settings.contact_margin_factor, dt = m.settings.dt;
@@ -47,7 +47,8 @@ std::set<std::array<Index, 2>> every_pair_within_reach(const Model& m, const Sta
       const Real cohesion = 0.5 * (a.cohesion + b.cohesion);
       const Real bond = cohesion > 0 ? 0.5 * (a.cohesion_distance + b.cohesion_distance) : 0;
       const Real d = m.particle_radius[i] + m.particle_radius[j];
-      const Real reach = d + bond + std::min(k * dt * (s.velocity[i] - s.velocity[j]).norm(), d);
+      const Real fall = dt * m.settings.gravity.norm();
+      const Real reach = d + bond + std::min(k * dt * ((s.velocity[i] - s.velocity[j]).norm() + fall), d);
       if ((s.position[i] - s.position[j]).norm() < reach) pairs.insert({i, j});
     }
   return pairs;

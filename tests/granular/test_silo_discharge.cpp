@@ -28,7 +28,7 @@ std::string silo_scene(Real fill) {
                       box("floor_front", {-d, -t, -w}, {d, 0, -d}) + box("floor_back", {-d, -t, d}, {d, 0, w}) +
                       box("wall_left", {-w - t, -t, -w - t}, {-w, h, w + t}) + box("wall_right", {w, -t, -w - t}, {w + t, h, w + t}) +
                       box("wall_front", {-w, -t, -w - t}, {w, h, -w}) + box("wall_back", {-w, -t, w}, {w, h, w + t});
-  return fmt::format(R"({{"name": "silo", "settings": {{"dt": 0.0025, "substeps": 5, "duration": 1}},
+  return fmt::format(R"({{"name": "silo", "settings": {{"dt": 0.0025, "substeps": 5, "iterations": 4, "duration": 1}},
       "objects": [{} {{"name": "sand", "kind": "granular", "blocks": [{{"min": [{}, 0, {}], "max": [{}, {}, {}]}}],
                      "radius": 0.002, "density": 2600, "friction": 0.5}}],
       "probes": [{{"name": "out", "type": "mass_flow", "object": "sand", "point": [0, 0, 0], "normal": [0, -1, 0], "quantity": "beyond"}}]}})",

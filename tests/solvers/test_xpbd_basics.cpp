@@ -46,6 +46,7 @@ TEST(XpbdBasics, SpringPeriodIsIndependentOfIterations) {
     m.particle_rest_position = {Vec3(0, 0, 0), Vec3(1.5, 0, 0)};
     m.particle_mass = {1, 1};
     m.particle_inv_mass = {0, 1};
+    m.particle_inv_inertia = {0, 0};
     m.particle_radius = {0.1, 0.1};
     m.particle_collider_gap = {0, 0};
     m.particle_object = {0, 0};

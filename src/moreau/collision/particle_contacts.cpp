@@ -15,23 +15,29 @@ void ColliderContacts::clear() {
   collider.clear();
   group_offsets.clear();
   lambda_normal.clear();
+  lambda_friction.clear();
+  lambda_rolling.clear();
   normal.clear();
   static_friction.clear();
   dynamic_friction.clear();
   restitution.clear();
   adhesion.clear();
+  rolling_resistance.clear();
 }
 
 void ParticleContacts::clear() {
   pair.clear();
   batches.offsets.assign(1, 0);
   lambda_normal.clear();
+  lambda_friction.clear();
+  lambda_rolling.clear();
   normal.clear();
   static_friction.clear();
   dynamic_friction.clear();
   restitution.clear();
   cohesion.clear();
   cohesion_distance.clear();
+  rolling_resistance.clear();
 }
 
 namespace {
@@ -43,6 +49,14 @@ Real combine(Real a, Real b) { return 0.5 * (a + b); }
 // object has cohesion 0 and cohesion_distance 0).
 Real bond_strength(const ObjectInfo& a, const ObjectInfo& b) {
   return a.kind == ObjectKind::granular && b.kind == ObjectKind::granular ? combine(a.cohesion, b.cohesion) : 0;
+}
+
+// Rolling resistance of a pair: the mean of two grains'; a grain's own against a particle that
+// does not turn (whose mu_r is 0).
+Real rolling_resistance(const ObjectInfo& a, const ObjectInfo& b) {
+  return a.kind == ObjectKind::granular && b.kind == ObjectKind::granular
+             ? combine(a.rolling_resistance, b.rolling_resistance)
+             : std::max(a.rolling_resistance, b.rolling_resistance);
 }
 
 // The gap within which two objects' particles pull on each other: 0 unless their bond has
@@ -70,8 +84,10 @@ void detect_collider_contacts(const Model& model, State& state) {
     if (model.particle_inv_mass[p] <= 0) continue;
     const ObjectInfo& obj = model.objects[model.particle_object[p]];
     const Index group_start = static_cast<Index>(c.particle.size());
+    const bool asleep = state.sleep.asleep(p);
     for (Index ci = 0; ci < colliders; ++ci) {
       const Collider& col = model.colliders[ci];
+      if (asleep && col.velocity.isZero()) continue;  // a sleeping grain rests on a fixed collider
       // Reach: what the particle can travel in the step, by its velocity and by gravity.
       const Real reach = model.particle_collider_gap[p] +
                          k * dt * ((state.velocity[p] - col.velocity).norm() + dt * model.settings.gravity.norm());
@@ -82,11 +98,14 @@ void detect_collider_contacts(const Model& model, State& state) {
       c.particle.push_back(p);
       c.collider.push_back(ci);
       c.lambda_normal.push_back(0);
+      c.lambda_friction.push_back(Vec3::Zero());
+      c.lambda_rolling.push_back(Vec3::Zero());
       c.normal.push_back(Vec3::Zero());
       c.static_friction.push_back(combine(obj.static_friction, col.static_friction));
       c.dynamic_friction.push_back(combine(obj.dynamic_friction, col.dynamic_friction));
       c.restitution.push_back(combine(obj.restitution, col.restitution));
       c.adhesion.push_back(std::max(obj.adhesion, col.adhesion));
+      c.rolling_resistance.push_back(obj.rolling_resistance);
     }
     if (static_cast<Index>(c.particle.size()) > group_start) c.group_offsets.push_back(group_start);
   }
@@ -97,6 +116,8 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
   ParticleContacts& c = state.particle_contacts;
   c.clear();
   if (!model.settings.particle_contacts || model.contact_particle.size() < 2) return;
+  // Every contact particle a sleeping grain: no pair can have an awake side.
+  if (state.sleep.asleep_count == static_cast<Index>(model.contact_particle.size())) return;
 
   // A pair is a candidate within reach r_i + r_j + g + min(k dt |v_i - v_j|, r_i + r_j), at most
   // 4 r_max + g_max (g the pair's bond distance, g_max <= r_max the largest). The grid's cells are
@@ -122,6 +143,7 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     if (object.cohesion > 0) max_bond = std::max(max_bond, object.cohesion_distance);
   const Real dt = model.settings.dt, k = model.settings.contact_margin_factor;
   const Real slow_speed = 0.25 * max_radius / (k * dt);
+  const Real fall = dt * model.settings.gravity.norm();  // what gravity adds to a speed over the step
   // The Morton-sorted grid of the fluids: the particles of a cell are contiguous in `order`, and
   // cells near in space are near in memory, so the pairs come out in a spatially coherent order.
   const CellGrid& grid = scratch.grid;
@@ -157,6 +179,7 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
       if (distance2 >= farthest * farthest) return;  // beyond any reach
       const Index i = scratch.sorted_particle[s], j = scratch.sorted_particle[t];
       if (model.particle_inv_mass[i] <= 0 && model.particle_inv_mass[j] <= 0) return;
+      if (state.sleep.asleep(i) && state.sleep.asleep(j)) return;  // two sleeping grains rest as they are
       const Index oi = model.particle_object[i], oj = model.particle_object[j];
       if (oi == oj) {
         const ObjectInfo& object = model.objects[oi];
@@ -168,7 +191,7 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
           return;
       }
       const Real reach = contact_distance + bond_distance(model.objects[oi], model.objects[oj]) +
-                         std::min(k * dt * (state.velocity[i] - state.velocity[j]).norm(), contact_distance);
+                         std::min(k * dt * ((state.velocity[i] - state.velocity[j]).norm() + fall), contact_distance);
       if (distance2 < reach * reach) pairs.push_back({std::min(i, j), std::max(i, j)});
     };
     // Static schedule: thread t gets the t-th contiguous run of cells, so concatenating the
@@ -240,12 +263,15 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     }
   }
   c.lambda_normal.assign(m, 0);
+  c.lambda_friction.assign(m, Vec3::Zero());
+  c.lambda_rolling.assign(m, Vec3::Zero());
   c.normal.assign(m, Vec3::Zero());
   c.static_friction.resize(m);
   c.dynamic_friction.resize(m);
   c.restitution.resize(m);
   c.cohesion.resize(m);
   c.cohesion_distance.resize(m);
+  c.rolling_resistance.resize(m);
   for (size_t q = 0; q < m; ++q) {
     const ObjectInfo& a = model.objects[model.particle_object[c.pair[q][0]]];
     const ObjectInfo& b = model.objects[model.particle_object[c.pair[q][1]]];
@@ -254,6 +280,7 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     c.restitution[q] = combine(a.restitution, b.restitution);
     c.cohesion[q] = bond_strength(a, b);
     c.cohesion_distance[q] = bond_distance(a, b);
+    c.rolling_resistance[q] = rolling_resistance(a, b);
   }
 }
 

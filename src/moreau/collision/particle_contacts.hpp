@@ -22,9 +22,12 @@ struct ColliderContacts {
   std::vector<Index> collider;
   std::vector<Index> group_offsets;   // contacts of one particle: [group_offsets[g], group_offsets[g+1])
   std::vector<Real> lambda_normal;    // kg m, accumulated over the substep
+  std::vector<Vec3> lambda_friction;  // kg m: a grain's friction impulse, accumulated over the substep
+  std::vector<Vec3> lambda_rolling;   // kg m^2: a grain's rolling-resistance impulse, likewise
   std::vector<Vec3> normal;           // outward normal at the last projection
   std::vector<Real> static_friction, dynamic_friction, restitution;  // combined coefficients
   std::vector<Real> adhesion;         // N: the larger of the two sides' (glue on either holds; nmd)
+  std::vector<Real> rolling_resistance;  // mu_r of the particle (grains; 0 for particles that do not turn)
 
   size_t size() const { return particle.size(); }
   void clear();
@@ -34,10 +37,13 @@ struct ParticleContacts {
   std::vector<std::array<Index, 2>> pair;
   ColorBatches batches;
   std::vector<Real> lambda_normal;
+  std::vector<Vec3> lambda_friction;  // kg m: friction impulse on the first particle when a side is a grain, this substep
+  std::vector<Vec3> lambda_rolling;   // kg m^2: rolling-resistance impulse on the first particle, likewise
   std::vector<Vec3> normal;           // (x_a - x_b)/|x_a - x_b| at the last projection
   std::vector<Real> static_friction, dynamic_friction, restitution;
   std::vector<Real> cohesion;           // N: the largest pull of the pair's bond (0: none)
   std::vector<Real> cohesion_distance;  // m: the gap within which the bond pulls
+  std::vector<Real> rolling_resistance;  // mu_r: the mean of two grains', a grain's against another particle
 
   size_t size() const { return pair.size(); }
   void clear();

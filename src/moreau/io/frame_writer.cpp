@@ -97,13 +97,24 @@ void FrameWriter::write(const State& state) {
                  {"radius", std::vector<Real>(x.size(), model_.fluid.particle_radius)}});
     } else if (obj.kind == ObjectKind::granular || obj.kind == ObjectKind::shape_matched) {
       // Grains or shape-matched particles: position, velocity, displacement and radius
-      // (ParaView: "Point Gaussian" by radius).
+      // (ParaView: "Point Gaussian" by radius); grains also their angular velocity and, with
+      // settings.sleep, whether each sleeps (1) or not (0).
       const Index b = obj.particle_begin, n = obj.particle_count();
       std::vector<Vec3> x(state.position.begin() + b, state.position.begin() + b + n);
       std::vector<Vec3> v(state.velocity.begin() + b, state.velocity.begin() + b + n), u(n);
       for (Index i = 0; i < n; ++i) u[i] = x[i] - model_.particle_rest_position[b + i];
-      write_vtp(path, x, {{"velocity", v}, {"displacement", u}},
-                {{"radius", std::vector<Real>(model_.particle_radius.begin() + b, model_.particle_radius.begin() + b + n)}});
+      std::vector<VtkScalarArray> scalars{
+          {"radius", std::vector<Real>(model_.particle_radius.begin() + b, model_.particle_radius.begin() + b + n)}};
+      if (model_.settings.sleep.enabled && obj.kind == ObjectKind::granular) {
+        std::vector<Real> asleep(n);
+        for (Index i = 0; i < n; ++i) asleep[i] = state.sleep.asleep(b + i) ? 1 : 0;
+        scalars.push_back({"asleep", std::move(asleep)});
+      }
+      std::vector<VtkPointArray> vectors{{"velocity", v}, {"displacement", u}};
+      if (obj.kind == ObjectKind::granular)
+        vectors.push_back({"angular_velocity", std::vector<Vec3>(state.angular_velocity.begin() + b,
+                                                                  state.angular_velocity.begin() + b + n)});
+      write_vtp(path, x, vectors, scalars);
     } else if (obj.kind == ObjectKind::rod) {
       write_rod_frame(path, model_, model_.rods[obj.rod], state);
     } else if (obj.kind == ObjectKind::rigid_body) {

@@ -144,6 +144,14 @@ void evaluate_probe(const Probe& probe, const Model& model, const State& state, 
       values.push_back(count);
       break;
     }
+    case ProbeType::asleep: {
+      Index count = 0;
+      const Index begin = probe.object >= 0 ? model.objects[probe.object].particle_begin : 0;
+      const Index end = probe.object >= 0 ? model.objects[probe.object].particle_end : model.particle_count();
+      for (Index p = begin; p < end; ++p) count += state.sleep.asleep(p);  // only grains sleep
+      values.push_back(count);
+      break;
+    }
     case ProbeType::momentum:
       push3(probe.quantity == "linear" ? linear_momentum(model, state, probe.object)
                                        : angular_momentum(model, state, probe.object, probe.about));

@@ -16,7 +16,8 @@ enum class ProbeType {
   joint_error, contact_count, max_displacement, penetration,
   suction,  // one suction cup: sealed (0/1), pressure difference (Pa), volume (m^3), sealed area (m^2)
   rod_point, rod_twist,  // a rod's centreline point ("point" on a rod); its twist (rad)
-  angle_of_repose, mass_flow  // a pile's surface slope (degrees); the mass through a plane (kg/s or kg)
+  angle_of_repose, mass_flow,  // a pile's surface slope (degrees); the mass through a plane (kg/s or kg)
+  asleep  // sleeping grains (settings.sleep)
 };
 
 struct Probe {

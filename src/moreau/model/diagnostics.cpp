@@ -22,6 +22,15 @@ void for_each_mass_point(const Model& model, const State& state, Index object, b
   });
 }
 
+// Visits (inverse inertia, angular velocity) of the turning grains of `object` (or of all, -1).
+template <class F>
+void for_each_turning_grain(const Model& model, const State& state, Index object, F&& f) {
+  const Index begin = object >= 0 ? model.objects[object].particle_begin : 0;
+  const Index end = object >= 0 ? model.objects[object].particle_end : model.particle_count();
+  for (Index p = begin; p < end; ++p)
+    if (model.particle_inv_inertia[p] > 0) f(model.particle_inv_inertia[p], state.angular_velocity[p]);
+}
+
 // Spin angular momentum I w of body b (world frame), kg m^2/s.
 Vec3 body_spin(const Model& model, const State& state, Index b) {
   const Quat& q = state.rigid.orientation[b];
@@ -34,6 +43,7 @@ Real kinetic_energy(const Model& model, const State& state, Index object) {
   for_each_mass_point(model, state, object, true, [&](Real m, const Vec3&, const Vec3& v) { e += 0.5 * m * v.squaredNorm(); });
   for_each_dynamic_body(model, object,
                         [&](Index b) { e += 0.5 * state.rigid.angular_velocity[b].dot(body_spin(model, state, b)); });
+  for_each_turning_grain(model, state, object, [&](Real inv_inertia, const Vec3& w) { e += 0.5 * w.squaredNorm() / inv_inertia; });
   return e;
 }
 
@@ -64,6 +74,7 @@ Vec3 angular_momentum(const Model& model, const State& state, Index object, cons
   for_each_mass_point(model, state, object, true,
                       [&](Real m, const Vec3& x, const Vec3& v) { L += m * (x - about).cross(v); });
   for_each_dynamic_body(model, object, [&](Index b) { L += body_spin(model, state, b); });
+  for_each_turning_grain(model, state, object, [&](Real inv_inertia, const Vec3& w) { L += w / inv_inertia; });
   return L;
 }
 

@@ -40,6 +40,7 @@ struct ObjectInfo {
   Real adhesion = 0;                          // N per contact point under nmd: rigid contacts, and cloth and soft-body particles on bodies and colliders
   Real cohesion = 0;                          // granular: N, the largest pull of a bond between two grains
   Real cohesion_distance = 0;                 // granular: m, the gap at which a bond lets go
+  Real rolling_resistance = 0;                // granular: mu_r, the rolling torque's bound in units of R* times the normal force
 
   Index particle_count() const { return particle_end - particle_begin; }
   bool has_particles() const { return particle_end > particle_begin; }
@@ -53,6 +54,14 @@ struct ObjectInfo {
 // 2018 (joint_tree.hpp) where the joint graph is a tree, or Gauss-Seidel over the joints.
 enum class JointSolver { direct, gauss_seidel };
 
+// Sleeping grains (sleeping/grain_sleep.hpp): an island of grains that has stayed slower than
+// `speed` for `time` rests until something reaches it.
+struct SleepSettings {
+  bool enabled = false;                     // settings.sleep present
+  Real speed = 0.01;                        // m/s
+  Real time = 0.5;                          // s
+};
+
 struct SolverSettings {
   Real dt = 1.0 / 60;                       // s, output-independent step
   int substeps = 20;
@@ -64,6 +73,7 @@ struct SolverSettings {
   Real max_speed = 1e3;                     // m/s; faster particles are reported as a numerical failure
   JointSolver joint_solver = JointSolver::direct;
   NmdSettings nmd;                          // the velocity-level formulation (settings.nmd)
+  SleepSettings sleep;                      // settings.sleep
 };
 
 struct Model {
@@ -71,6 +81,7 @@ struct Model {
   std::vector<Vec3> particle_rest_position;   // m
   std::vector<Real> particle_mass;            // kg (pinned particles keep their mass for probes)
   std::vector<Real> particle_inv_mass;        // 1/kg; 0 = pinned
+  std::vector<Real> particle_inv_inertia;     // 1/(kg m^2): grains turn as solid spheres, 5/(2 m r^2); 0: does not turn
   std::vector<Real> particle_radius;          // m, collision radius for particle-particle contacts
   std::vector<Real> particle_collider_gap;    // m, distance kept from colliders
   std::vector<Index> particle_object;         // owning object

@@ -7,6 +7,8 @@ State make_rest_state(const Model& model) {
   const size_t n = model.particle_count();
   s.position = model.particle_rest_position;
   s.velocity.assign(n, Vec3::Zero());
+  s.angular_velocity.assign(n, Vec3::Zero());
+  s.sleep.resize(s.position);
   for_each_family(model.constraints, s.constraint_lambda, [](const auto& family, auto& lambda, int) {
     lambda.assign(family.size(), zero_multiplier<typename std::decay_t<decltype(family)>::Multiplier>());
   });

@@ -8,6 +8,7 @@
 #include "moreau/model/model.hpp"
 #include "moreau/collision/particle_body_contacts.hpp"
 #include "moreau/collision/rigid_contacts.hpp"
+#include "moreau/sleeping/grain_sleep.hpp"
 
 namespace moreau {
 
@@ -17,6 +18,7 @@ struct State {
 
   std::vector<Vec3> position;           // m
   std::vector<Vec3> velocity;           // m/s
+  std::vector<Vec3> angular_velocity;   // rad/s: grains turn (Model::particle_inv_inertia > 0); others keep 0
 
   // Multipliers of the particle constraint families (one vector per family, in list order), reset
   // at every substep and accumulated over its iterations. lambda / h^2 is the constraint force.
@@ -32,6 +34,7 @@ struct State {
   ParticleBodyContacts particle_body_contacts;
   std::vector<JointMultipliers> joint_lambda;  // per joint, this substep (JointSlot)
   std::vector<SuctionCupState> suction;         // per Model::suction_cups
+  GrainSleepState sleep;                        // sleeping grains (settings.sleep)
 };
 
 /// A state at rest in the model's rest configuration, with all buffers sized.

@@ -123,6 +123,7 @@ void add_particles(SceneBuildContext& ctx, ObjectInfo& info, const std::vector<V
     m.particle_rest_position.push_back(positions[i]);
     m.particle_mass.push_back(masses[i]);
     m.particle_inv_mass.push_back(masses[i] > 0 ? 1.0 / masses[i] : 0.0);
+    m.particle_inv_inertia.push_back(0);
     m.particle_radius.push_back(radius);
     m.particle_collider_gap.push_back(collider_gap);
     m.particle_object.push_back(object_index);

@@ -29,6 +29,7 @@ GranularSpec read_granular(const JsonObject& object) {
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   spec.contact = read_contact_material(object);
   spec.cohesion = object.number("cohesion", spec.cohesion);
+  spec.rolling_resistance = object.number("rolling_resistance", spec.rolling_resistance);
   spec.cohesion_distance = read_optional_number(object, "cohesion_distance");
   return spec;
 }
@@ -79,6 +80,7 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     place.fail("blocks", fmt::format("the blocks hold {} grains; at most {} per scene", positions.size(), kMaxGrains));
   set_contact_material(spec.contact, place, info);
   info.cohesion = place.number("cohesion", spec.cohesion, Range::non_negative());
+  info.rolling_resistance = place.number("rolling_resistance", spec.rolling_resistance, Range::non_negative());
   info.cohesion_distance = spec.cohesion_distance
                                ? place.number("cohesion_distance", *spec.cohesion_distance, Range::non_negative())
                                : 0.1 * r_max;
@@ -93,6 +95,8 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
   add_particles(ctx, info, positions, masses, r_max, r_max, place.vector("velocity", spec.velocity));
   Model& m = ctx.model;
   for (Index p = info.particle_begin; p < info.particle_end; ++p) {
+    // A solid sphere: I = 2/5 m r^2.
+    m.particle_inv_inertia[p] = 2.5 * m.particle_inv_mass[p] / (radii[p - info.particle_begin] * radii[p - info.particle_begin]);
     m.particle_radius[p] = radii[p - info.particle_begin];
     m.particle_collider_gap[p] = radii[p - info.particle_begin];
     m.contact_particle.push_back(p);

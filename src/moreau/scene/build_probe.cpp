@@ -14,7 +14,7 @@ const std::vector<std::string> kProbeTypes{
     "point",    "energy",      "center_of_mass", "extent",           "momentum",    "constraint_error",
     "fluid_height", "density_error", "particle_count", "escaped",     "position",    "orientation",
     "velocity", "angular_velocity", "joint_error", "contact_count", "max_displacement",
-    "penetration", "suction", "twist", "angle_of_repose", "mass_flow"};
+    "penetration", "suction", "twist", "angle_of_repose", "mass_flow", "asleep"};
 
 // The types whose only key besides name and type is "object": one simulated object or "*".
 const std::map<std::string, ProbeType> kObjectOrEveryProbes{{"center_of_mass", ProbeType::center_of_mass},
@@ -183,6 +183,9 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
     p.type = ProbeType::density_error;
     p.object = object_index(spec, j, model, true, Accepts::fluids);
     p.quantity = quantity(spec, j, "mean", {"mean", "max"});
+  } else if (type == "asleep") {
+    p.type = ProbeType::asleep;
+    p.object = object_index(spec, j, model, true, Accepts::grains);
   } else if (type == "particle_count") {
     p.type = ProbeType::particle_count;
     p.object = object_index(spec, j, model, true, Accepts::particles);  // particles only

@@ -57,6 +57,10 @@ SceneSettings read_settings(const JsonObject& settings) {
     if (nmd->has("warm_start")) s.nmd.warm_start = nmd->boolean("warm_start", true);
     nmd->finish();
   }
+  if (auto sleep = settings.optional_object("sleep")) {
+    s.sleep = SleepSolverSettings{read_optional_number(*sleep, "speed"), read_optional_number(*sleep, "time")};
+    sleep->finish();
+  }
   read_output_settings(settings, s.output_every, s.write_vtk);
   settings.finish();
   return s;
@@ -109,6 +113,12 @@ void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& sc
   nmd.contact_compliance =
       nmd_place.number("contact_compliance", ns.contact_compliance.value_or(nmd.contact_compliance), Range::non_negative());
   nmd.warm_start = ns.warm_start.value_or(nmd.warm_start);
+  if (spec.sleep) {
+    const SpecPlace sleep = place.at("sleep");
+    s.sleep.enabled = true;
+    s.sleep.speed = sleep.number("speed", spec.sleep->speed.value_or(s.sleep.speed), Range::positive());
+    s.sleep.time = sleep.number("time", spec.sleep->time.value_or(s.sleep.time), Range::positive());
+  }
   scene.output.every = place.integer("output.every", spec.output_every, 1);
   scene.output.write_vtk = spec.write_vtk;
 }

@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "moreau/collision/particle_body_contacts.hpp"
+#include "moreau/collision/particle_candidates.hpp"
 #include "moreau/solvers/nmd/suction_rows.hpp"
 #include "moreau/errors.hpp"
 #include "moreau/model/state.hpp"
@@ -68,12 +69,8 @@ void NmdSolver::solve(const Model& model, const State& state, int threads) {
 void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int threads) {
   threads = std::max(1, threads);
   timer.start();
-  detect_collider_contacts(model, state);
-  detect_particle_contacts(model, state, contact_scratch_, threads);
-  if (!model.rigid.empty()) {
-    detect_rigid_contacts(model, state, threads);
-    detect_particle_body_contacts(model, state);
-  }
+  detect_particle_candidates(model, state, contact_scratch_, threads, !model.rigid.empty());
+  if (!model.rigid.empty()) detect_rigid_contacts(model, state, threads);
   timer.lap(NmdStage::detect_contacts);
 
   const NmdSettings& settings = model.settings.nmd;
@@ -114,6 +111,8 @@ void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int th
   state.step += 1;
   check_state(model, state);
   timer.lap(NmdStage::check_state);
+  update_grain_sleep(model, state);
+  timer.lap(NmdStage::sleep);
 }
 
 }  // namespace moreau

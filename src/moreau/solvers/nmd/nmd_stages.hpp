@@ -5,10 +5,10 @@
 
 namespace moreau {
 
-enum class NmdStage : int { detect_contacts, fluid_neighbors, assemble, solve, integrate, fluid_velocity, check_state, count };
+enum class NmdStage : int { detect_contacts, fluid_neighbors, assemble, solve, integrate, fluid_velocity, check_state, sleep, count };
 
 inline std::vector<std::string> nmd_stage_names() {
-  return {"detect_contacts", "fluid_neighbors", "assemble", "solve", "integrate", "fluid_velocity", "check_state"};
+  return {"detect_contacts", "fluid_neighbors", "assemble", "solve", "integrate", "fluid_velocity", "check_state", "sleep"};
 }
 
 }  // namespace moreau

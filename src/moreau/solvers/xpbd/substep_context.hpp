@@ -18,6 +18,8 @@ struct SubstepContext {
   Real h;                     // substep, s
   Real inv_h = 1 / h;         // 1/s
   Real inv_h2 = inv_h * inv_h;  // 1/s^2
+  Vec3* turn = nullptr;               // rad: grains' rotation vectors over the substep so far (h omega + corrections)
+  const Real* inv_inertia = nullptr;  // 1/(kg m^2) (0: the particle does not turn)
 };
 
 /// Scalar XPBD update. `w_grad_sq` = sum_i w_i |grad_i C|^2; `grad_dot_dx` = sum_i grad_i C . (x_i - x_start_i)

@@ -22,6 +22,7 @@ enum class XpbdStage : int {
   fluid_velocity,
   check_state,
   shape_matching,
+  sleep,
   count
 };
 
@@ -33,7 +34,7 @@ inline std::vector<std::string> xpbd_stage_names() {
   std::vector<std::string> names{"detect_contacts",   "predict",        "fluid_neighbors", "fluid_density",
                                  "particle_contacts", "collider_contacts", "joints",       "rigid_contacts",
                                  "update_velocity",   "velocity_pass",  "fluid_velocity",  "check_state",
-                                 "shape_matching"};
+                                 "shape_matching",    "sleep"};
   for (std::string_view family : particle_family_names()) names.emplace_back(family);
   return names;
 }

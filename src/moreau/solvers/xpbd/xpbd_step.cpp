@@ -13,6 +13,7 @@
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/collision/particle_body_contacts.hpp"
+#include "moreau/collision/particle_candidates.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
 #include "moreau/solvers/xpbd/joint_projection.hpp"
 #include "moreau/solvers/xpbd/particle_body_contact_projection.hpp"
@@ -31,18 +32,36 @@ int solver_thread_count(const Model& model) {
 
 namespace {
 
-// x_start = x; v += h g; x += h v (Mueller 2020, Algorithm 2). Also clears the multipliers.
-void predict(const Model& model, State& state, XpbdWorkspace& work, Real h) {
-  const Index n = model.particle_count();
-  const Vec3 dv = h * model.settings.gravity;
+// Visits, on this thread's share, the particles a substep moves: every particle, or with
+// settings.sleep those not asleep (a sleeping grain keeps its place and zero velocity, and takes
+// part in no contact; its substep start is set again in the first substep after it wakes).
+template <class F>
+void for_each_moving_particle(const Model& model, const State& state, F&& f) {
+  if (model.settings.sleep.enabled) {
+    const std::vector<Index>& awake = state.sleep.awake;
+    const Index m = static_cast<Index>(awake.size());
 #pragma omp for schedule(static) nowait
-  for (Index p = 0; p < n; ++p) {
+    for (Index k = 0; k < m; ++k) f(awake[k]);
+  } else {
+    const Index n = model.particle_count();
+#pragma omp for schedule(static) nowait
+    for (Index p = 0; p < n; ++p) f(p);
+  }
+}
+
+// x_start = x; v += h g; x += h v (Mueller 2020, Algorithm 2) for free particles; a grain's
+// rotation over the substep starts at h omega (no torque acts on a sphere between contacts).
+// Also clears the multipliers.
+void predict(const Model& model, State& state, XpbdWorkspace& work, Real h) {
+  const Vec3 dv = h * model.settings.gravity;
+  for_each_moving_particle(model, state, [&](Index p) {
     work.substep_start[p] = state.position[p];
-    if (model.particle_inv_mass[p] <= 0) continue;
+    if (model.particle_inv_inertia[p] > 0) work.substep_turn[p] = h * state.angular_velocity[p];
+    if (model.particle_inv_mass[p] <= 0) return;
     state.velocity[p] += dv;
     work.velocity_before[p] = state.velocity[p];
     state.position[p] += h * state.velocity[p];
-  }
+  });
   auto clear = [](auto& values, auto zero) {
     const Index m = static_cast<Index>(values.size());
 #pragma omp for schedule(static) nowait
@@ -53,16 +72,22 @@ void predict(const Model& model, State& state, XpbdWorkspace& work, Real h) {
   });
   clear(state.collider_contacts.lambda_normal, Real{0});
   clear(state.particle_contacts.lambda_normal, Real{0});
+  clear(state.collider_contacts.lambda_friction, Vec3::Zero());
+  clear(state.collider_contacts.lambda_rolling, Vec3::Zero());
+  clear(state.particle_contacts.lambda_friction, Vec3::Zero());
+  clear(state.particle_contacts.lambda_rolling, Vec3::Zero());
   clear(work.shape_match_lambda, Vec3::Zero());
 #pragma omp barrier
 }
 
-// v = (x - x_start) / h
-void update_velocity(const Model& model, State& state, const Vec3* x_start, Real h) {
-  const Index n = model.particle_count();
-#pragma omp for schedule(static)
-  for (Index p = 0; p < n; ++p)
-    if (model.particle_inv_mass[p] > 0) state.velocity[p] = (state.position[p] - x_start[p]) / h;
+// v = (x - x_start) / h; a grain's omega = theta / h, theta its rotation over the substep.
+void update_velocity(const Model& model, State& state, const XpbdWorkspace& work, Real h) {
+  for_each_moving_particle(model, state, [&](Index p) {
+    if (model.particle_inv_mass[p] <= 0) return;
+    state.velocity[p] = (state.position[p] - work.substep_start[p]) / h;
+    if (model.particle_inv_inertia[p] > 0) state.angular_velocity[p] = work.substep_turn[p] / h;
+  });
+#pragma omp barrier
 }
 
 }  // namespace
@@ -71,20 +96,21 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   threads = std::max(1, threads);
   timer.start();
   work.fit(model);
-  detect_collider_contacts(model, state);
-  detect_particle_contacts(model, state, work.contact_scratch, threads);
   // Rigid bodies, or joints alone (a joint may hold a particle to the world).
   const bool rigid = !model.rigid.empty() || !model.joints.empty();
-  if (rigid) {
-    detect_rigid_contacts(model, state, threads);
-    detect_particle_body_contacts(model, state);
-  }
+  detect_particle_candidates(model, state, work.contact_scratch, threads, rigid);
+  if (rigid) detect_rigid_contacts(model, state, threads);
   timer.lap(XpbdStage::detect_contacts);
 
   const Real dt = model.settings.dt;
   const int substeps = model.settings.substeps, iterations = model.settings.iterations;
   const Real h = dt / substeps;
-  const SubstepContext ctx{state.position.data(), work.substep_start.data(), model.particle_inv_mass.data(), h};
+  const SubstepContext ctx{.x = state.position.data(),
+                           .x_start = work.substep_start.data(),
+                           .inv_mass = model.particle_inv_mass.data(),
+                           .h = h,
+                           .turn = work.substep_turn.data(),
+                           .inv_inertia = model.particle_inv_inertia.data()};
   const SubstepStart start = work.substep_start_view();
   const Real start_time = state.time;
   const bool fluids = !model.fluid.empty(), coupled_solids = model.fluid.solid.size() > 0;
@@ -156,7 +182,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
           }
         }
       }
-      update_velocity(model, state, work.substep_start.data(), h);
+      update_velocity(model, state, work, h);
       if (rigid) update_rigid_body_velocities(model, state.rigid, work.bodies, h);
       if (fluids) update_fluid_velocity(fluid, work.fluid, h);
       lap(XpbdStage::update_velocity);
@@ -186,6 +212,8 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   state.step += 1;
   check_state(model, state);
   timer.lap(XpbdStage::check_state);
+  update_grain_sleep(model, state);
+  timer.lap(XpbdStage::sleep);
 }
 
 }  // namespace moreau

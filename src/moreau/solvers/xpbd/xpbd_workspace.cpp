@@ -8,6 +8,7 @@ void XpbdWorkspace::fit(const Model& model) {
   const size_t n = model.particle_count();
   if (substep_start.size() != n) substep_start.assign(n, Vec3::Zero());
   if (velocity_before.size() != n) velocity_before.assign(n, Vec3::Zero());
+  if (substep_turn.size() != n) substep_turn.assign(n, Vec3::Zero());
   shape_match_lambda.resize(model.shape_matching.particle.size(), Vec3::Zero());
   bodies.fit(model.rigid.count());
   fluid.fit(model.fluid);

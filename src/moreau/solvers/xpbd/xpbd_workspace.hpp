@@ -19,6 +19,7 @@ struct Model;
 struct XpbdWorkspace {
   std::vector<Vec3> substep_start;      // m, particle positions at the start of the current substep
   std::vector<Vec3> velocity_before;    // m/s, particle velocities after prediction (restitution)
+  std::vector<Vec3> substep_turn;       // rad, per particle: the substep's rotation vector (grains turn)
   std::vector<Vec3> shape_match_lambda;   // per cluster entry: the substep's multiplier (kg m), shape_matching.hpp
   RigidSubstepStart bodies;             // body poses at the substep start, velocities after prediction
   std::vector<Real> joint_drive_start;  // per joint: hinge angle (rad) or slide (m) at the substep start
