@@ -119,9 +119,11 @@ void update_grain_sleep(const Model& model, State& state) {
 
   // Islands: awake grains joined by the step's candidates. A grain keeps its island awake while it
   // has not been still long enough, or has a candidate that does not sleep.
-  std::vector<Index> parent(n);
+  std::vector<Index>& parent = sleep.parent;
+  parent.resize(n);
   std::iota(parent.begin(), parent.end(), Index{0});
-  std::vector<char> keeps_awake(n, 0);
+  std::vector<char>& keeps_awake = sleep.keeps_awake;
+  keeps_awake.assign(n, 0);
   for (const auto& [i, j] : state.particle_contacts.pair) {
     const bool grain_i = is_grain(model, i), grain_j = is_grain(model, j);
     if (grain_i && grain_j) {
@@ -140,7 +142,8 @@ void update_grain_sleep(const Model& model, State& state) {
     for (const JointEnd& end : joint.ends)
       if (end.kind == BodyEndKind::particle) keeps_awake[end.index] = 1;
 
-  std::vector<char> island_awake(n, 0);  // by root
+  std::vector<char>& island_awake = sleep.island_awake;  // by root
+  island_awake.assign(n, 0);
   for (Index p = 0; p < n; ++p) {
     if (sleep.asleep(p) || !is_grain(model, p)) continue;
     if (keeps_awake[p] || sleep.still_time[p] < settings.time) island_awake[find_root(parent, p)] = 1;

@@ -30,6 +30,9 @@ struct GrainSleepState {
   std::vector<Index> island;     // per particle: its sleeping island (the island's smallest particle), -1 awake
   Index asleep_count = 0;        // sleeping grains
   std::vector<Index> awake;      // the particles not asleep, in order: those a substep moves
+  // Buffers of the island search, kept between steps (no allocation per step).
+  std::vector<Index> parent;
+  std::vector<char> keeps_awake, island_awake;
 
   bool asleep(Index p) const { return island[p] >= 0; }
   /// Rebuilds `awake` from `island` (after grains fell asleep or woke).
