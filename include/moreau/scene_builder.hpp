@@ -348,6 +348,8 @@ struct GranularSpec {
   double cohesion = 0;                    // N, the largest pull of a bond between two touching grains
   std::optional<double> cohesion_distance;  // m, the gap at which a bond lets go (default r_max / 10)
   double rolling_resistance = 0.5;        // mu_r: a contact's rolling torque is at most mu_r R* times its normal force
+  double contact_compliance = 0;          // m/N, 1/k of a contact's spring (0: hard contacts)
+  double contact_damping = 0;             // N s/m, the dashpot beside the spring (only with contact_compliance)
 };
 
 /// "kind": "shape_matched": particles on a lattice filling boxes, held in their rest shape by

@@ -76,6 +76,7 @@ void detect_particle_body_contacts(const Model& model, State& state) {
   c.dynamic_friction.resize(n);
   c.restitution.resize(n);
   c.adhesion.resize(n);
+  c.spring.resize(n);
   for (size_t q = 0; q < n; ++q) {
     const auto [b, p] = c.pair[q];
     // Coefficients: the mean of the two sides (Mueller 2020), as for the other contacts.
@@ -84,6 +85,7 @@ void detect_particle_body_contacts(const Model& model, State& state) {
     c.dynamic_friction[q] = 0.5 * (particle_object.dynamic_friction + m.body_dynamic_friction[b]);
     c.restitution[q] = 0.5 * (particle_object.restitution + m.body_restitution[b]);
     c.adhesion[q] = std::max(particle_object.adhesion, m.body_adhesion[b]);
+    c.spring[q] = particle_object.contact_spring;  // a grain's; bodies have none
   }
 }
 

@@ -11,6 +11,7 @@
 #include <array>
 #include <vector>
 
+#include "moreau/constraints/compliant_contact.hpp"
 #include "moreau/math/types.hpp"
 
 namespace moreau {
@@ -25,6 +26,7 @@ struct ParticleBodyContacts {
   std::vector<Vec3> offset;            // world, body surface point minus body centre, at the last projection
   std::vector<Real> static_friction, dynamic_friction, restitution;  // combined (means)
   std::vector<Real> adhesion;          // N: the larger of the two sides' (glue on either holds; nmd)
+  std::vector<ContactSpring> spring;   // a grain's viscoelastic contact (compliance 0: hard)
   std::vector<Index> by_x;             // detection scratch: particles sorted by x
 
   size_t size() const { return pair.size(); }

@@ -23,6 +23,7 @@ void ColliderContacts::clear() {
   restitution.clear();
   adhesion.clear();
   rolling_resistance.clear();
+  spring.clear();
 }
 
 void ParticleContacts::clear() {
@@ -38,6 +39,7 @@ void ParticleContacts::clear() {
   cohesion.clear();
   cohesion_distance.clear();
   rolling_resistance.clear();
+  spring.clear();
 }
 
 namespace {
@@ -57,6 +59,13 @@ Real rolling_resistance(const ObjectInfo& a, const ObjectInfo& b) {
   return a.kind == ObjectKind::granular && b.kind == ObjectKind::granular
              ? combine(a.rolling_resistance, b.rolling_resistance)
              : std::max(a.rolling_resistance, b.rolling_resistance);
+}
+
+// The viscoelastic spring of a pair: the mean of two grains'; a grain's own against a particle
+// of another kind (which has none).
+ContactSpring pair_spring(const ObjectInfo& a, const ObjectInfo& b) {
+  if (a.kind == ObjectKind::granular && b.kind == ObjectKind::granular) return mean_spring(a.contact_spring, b.contact_spring);
+  return a.kind == ObjectKind::granular ? a.contact_spring : b.contact_spring;
 }
 
 // The gap within which two objects' particles pull on each other: 0 unless their bond has
@@ -106,6 +115,7 @@ void detect_collider_contacts(const Model& model, State& state) {
       c.restitution.push_back(combine(obj.restitution, col.restitution));
       c.adhesion.push_back(std::max(obj.adhesion, col.adhesion));
       c.rolling_resistance.push_back(obj.rolling_resistance);
+      c.spring.push_back(obj.contact_spring);
     }
     if (static_cast<Index>(c.particle.size()) > group_start) c.group_offsets.push_back(group_start);
   }
@@ -272,6 +282,7 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
   c.cohesion.resize(m);
   c.cohesion_distance.resize(m);
   c.rolling_resistance.resize(m);
+  c.spring.resize(m);
   for (size_t q = 0; q < m; ++q) {
     const ObjectInfo& a = model.objects[model.particle_object[c.pair[q][0]]];
     const ObjectInfo& b = model.objects[model.particle_object[c.pair[q][1]]];
@@ -281,6 +292,7 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     c.cohesion[q] = bond_strength(a, b);
     c.cohesion_distance[q] = bond_distance(a, b);
     c.rolling_resistance[q] = rolling_resistance(a, b);
+    c.spring[q] = pair_spring(a, b);
   }
 }
 

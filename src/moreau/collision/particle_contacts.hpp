@@ -9,6 +9,7 @@
 // r_i + r_j + g + min(k dt |v_i - v_j|, r_i + r_j), g the reach of a bond between cohesive grains.
 #include <vector>
 
+#include "moreau/constraints/compliant_contact.hpp"
 #include "moreau/constraints/constraint_batches.hpp"
 #include "moreau/geometry/cell_grid.hpp"
 
@@ -28,6 +29,7 @@ struct ColliderContacts {
   std::vector<Real> static_friction, dynamic_friction, restitution;  // combined coefficients
   std::vector<Real> adhesion;         // N: the larger of the two sides' (glue on either holds; nmd)
   std::vector<Real> rolling_resistance;  // mu_r of the particle (grains; 0 for particles that do not turn)
+  std::vector<ContactSpring> spring;     // a grain's viscoelastic contact (compliance 0: hard)
 
   size_t size() const { return particle.size(); }
   void clear();
@@ -44,6 +46,7 @@ struct ParticleContacts {
   std::vector<Real> cohesion;           // N: the largest pull of the pair's bond (0: none)
   std::vector<Real> cohesion_distance;  // m: the gap within which the bond pulls
   std::vector<Real> rolling_resistance;  // mu_r: the mean of two grains', a grain's against another particle
+  std::vector<ContactSpring> spring;     // the mean of two grains', a grain's against another particle
 
   size_t size() const { return pair.size(); }
   void clear();

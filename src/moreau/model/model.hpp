@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "moreau/collision/collider.hpp"
+#include "moreau/constraints/compliant_contact.hpp"
 #include "moreau/constraints/particle_families.hpp"
 #include "moreau/constraints/suction_cavity.hpp"
 #include "moreau/fluids/fluid_model.hpp"
@@ -41,6 +42,7 @@ struct ObjectInfo {
   Real cohesion = 0;                          // granular: N, the largest pull of a bond between two grains
   Real cohesion_distance = 0;                 // granular: m, the gap at which a bond lets go
   Real rolling_resistance = 0;                // granular: mu_r, the rolling torque's bound in units of R* times the normal force
+  ContactSpring contact_spring;               // granular: a viscoelastic contact's spring and dashpot (0: hard)
 
   Index particle_count() const { return particle_end - particle_begin; }
   bool has_particles() const { return particle_end > particle_begin; }

@@ -31,6 +31,8 @@ GranularSpec read_granular(const JsonObject& object) {
   spec.cohesion = object.number("cohesion", spec.cohesion);
   spec.rolling_resistance = object.number("rolling_resistance", spec.rolling_resistance);
   spec.cohesion_distance = read_optional_number(object, "cohesion_distance");
+  spec.contact_compliance = object.number("contact_compliance", spec.contact_compliance);
+  spec.contact_damping = object.number("contact_damping", spec.contact_damping);
   return spec;
 }
 
@@ -89,6 +91,10 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
   if (spec.cohesion_distance && info.cohesion == 0)
     place.fail("cohesion_distance", "a bond's reach needs a bond: give \"cohesion\" (N) too");
   if (info.cohesion == 0) info.cohesion_distance = 0;  // dry grains reach no further than they touch
+  info.contact_spring = {place.number("contact_compliance", spec.contact_compliance, Range::non_negative()),
+                         place.number("contact_damping", spec.contact_damping, Range::non_negative())};
+  if (info.contact_spring.damping > 0 && !info.contact_spring.soft())
+    place.fail("contact_damping", "a dashpot needs a spring: give \"contact_compliance\" (m/N) too");
   info.kind = ObjectKind::granular;
   info.self_collision = true;
   info.fluid_coupling = false;

@@ -139,9 +139,11 @@ Real adhesive_bound(Real adhesion, Real gap, Real compliance) {
 }
 
 // Makes the sized input a contact block (row 0 normal, rows 1 and 2 friction) with the pair's
-// coefficients; `memory` holds the normal impulse, or all three rows' impulses.
+// coefficients; `memory` holds the normal impulse, or all three rows' impulses. A soft contact
+// (a grain's spring, compliant_contact.hpp) is a row of its own compliance and relaxation time
+// that bounces by itself (no restitution); a hard one takes settings.contact_compliance.
 void set_contact(NmdBlockInput& in, const NmdSettings& settings, Real static_friction, Real dynamic_friction,
-                 Real restitution, Real* memory, int memory_rows, Real adhesion) {
+                 Real restitution, Real* memory, int memory_rows, Real adhesion, const ContactSpring& spring = {}) {
   in.kind = NmdBlockKind::contact;
   in.level[1] = in.level[2] = RowLevel::friction;
   in.C[1] = in.C[2] = 0;  // friction rows act on velocities only
@@ -149,19 +151,20 @@ void set_contact(NmdBlockInput& in, const NmdSettings& settings, Real static_fri
   in.upper.setConstant(std::numeric_limits<Real>::infinity());
   in.lower[0] = -adhesion;
   in.compliance.setZero();
-  in.compliance(0, 0) = settings.contact_compliance;
+  in.compliance(0, 0) = spring.soft() ? spring.compliance : settings.contact_compliance;
+  in.damping_time = spring.relaxation_time();
   in.static_friction = static_friction;
   in.dynamic_friction = dynamic_friction;
-  in.restitution = restitution;
+  in.restitution = spring.soft() ? 0 : restitution;
   in.memory = memory;
   in.memory_rows = memory_rows;
 }
 
 // The same, added to the system.
 void add_contact(Assembly& a, Real static_friction, Real dynamic_friction, Real restitution, Real* memory,
-                 int memory_rows, Real adhesion = 0) {
+                 int memory_rows, Real adhesion, const ContactSpring& spring) {
   set_contact(a.input, a.model.settings.nmd, static_friction, dynamic_friction, restitution, memory, memory_rows,
-              adhesion);
+              adhesion, spring);
   a.add();
 }
 
@@ -177,7 +180,7 @@ void add_collider_contacts(Assembly& a, Real end_time) {
     set_particle_rows(a.input, rows, a.space);
     for (int r = 0; r < 3; ++r) a.input.known[r] = -rows.gradient[0].row(r).dot(col.velocity);  // dC/dt = grad . (v_p - v_c)
     add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1,
-                adhesive_bound(c.adhesion[q], a.input.C[0], a.model.settings.nmd.contact_compliance));
+                adhesive_bound(c.adhesion[q], a.input.C[0], a.model.settings.nmd.contact_compliance), c.spring[q]);
   }
 }
 
@@ -194,7 +197,7 @@ void add_particle_contacts(Assembly& a) {
     // that bounds the friction.
     const Real cohesion = rows.C[0] < c.cohesion_distance[q] ? c.cohesion[q] : 0;
     set_contact(a.input, a.model.settings.nmd, c.static_friction[q], c.dynamic_friction[q], c.restitution[q],
-                &c.lambda_normal[q], 1, cohesion);
+                &c.lambda_normal[q], 1, cohesion, c.spring[q]);
     a.input.cohesion = cohesion;
     a.add();
   }
@@ -259,7 +262,7 @@ void add_particle_body_contacts(Assembly& a) {
         particle_body_rows(a.model, a.state, now, b, p, c.static_friction[q], ContactPoints::all);
     set_body_rows(a.input, contact.rows, a.space);
     add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1,
-                adhesive_bound(c.adhesion[q], a.input.C[0], a.model.settings.nmd.contact_compliance));
+                adhesive_bound(c.adhesion[q], a.input.C[0], a.model.settings.nmd.contact_compliance), c.spring[q]);
   }
 }
 

@@ -21,8 +21,9 @@ struct RigidSubstepStart;
 /// Clears the multipliers at the start of a substep.
 void reset_particle_body_contacts(State& state);
 
-/// Projection of all contacts in order; one thread; the friction slip measured from `start`.
-void project_particle_body_contacts(const Model& model, State& state, const SubstepStart& start);
+/// Projection of all contacts in order; one thread; the friction slip measured from `start`, h the
+/// substep (of a soft contact's spring).
+void project_particle_body_contacts(const Model& model, State& state, const SubstepStart& start, Real h);
 
 /// Velocity pass (dynamic friction, restitution) of the contacts that pushed this substep; one
 /// thread. `velocity_before` and `bodies_before`: the particles' and bodies' velocities after prediction.

@@ -66,12 +66,13 @@ StickImpulses friction_impulses(const TurningContact& t, const Vec3& n, const Ve
 }
 
 // The velocity pass of one contact between sides of inverse masses w_i and w_j (j a collider
-// when v_j is null; its velocity is in v_rel): restitution along n when the contact pushed;
-// dynamic friction (Mueller et al. 2020) unless a side is a grain (`turns`), whose friction is
-// all at the position level.
-void contact_velocity_pass(Real wi, Real wj, bool turns, const Vec3& n, Vec3& v_i, Vec3* v_j, const Vec3& v_rel,
-                           const Vec3& v_rel_before, Real normal_multiplier, bool pushed, Real mu_k, Real e, Real h,
-                           Real g) {
+// when v_j is null; its velocity is in v_rel): restitution along n when a hard contact pushed (a
+// spring's bounce is its own); dynamic friction (Mueller et al. 2020) unless a side is a grain
+// (`turns`), whose friction is all at the position level.
+void contact_velocity_pass(Real wi, Real wj, bool turns, bool soft, const Vec3& n, Vec3& v_i, Vec3* v_j,
+                           const Vec3& v_rel, const Vec3& v_rel_before, Real normal_multiplier, bool pushed, Real mu_k,
+                           Real e, Real h, Real g) {
+  if (soft) pushed = false;
   const Real w = wi + wj;
   const Vec3 dv = turns    ? (pushed ? restitution_velocity_change(v_rel, v_rel_before, n, e, h, g) : Vec3::Zero())
                   : pushed ? contact_velocity_change(v_rel, v_rel_before, n, normal_multiplier, w, mu_k, e, h, g)
@@ -96,8 +97,12 @@ void project_collider_contacts(const Model& model, State& state, const SubstepCo
       const Vec3& n = d.normal;
       c.normal[q] = n;
       const Real C = d.distance - model.particle_collider_gap[p];  // the normal row
-      if (C >= 0) continue;
-      const Real dl = -C / w;
+      const ContactSpring& spring = c.spring[q];
+      // A hard contact acts while it overlaps; a spring also while its push lasts, to let go of it.
+      if (C >= 0 && (!spring.soft() || c.lambda_normal[q] <= 0)) continue;
+      const Real dl = spring.soft() ? compliant_normal_increment(spring, C, n.dot((s.x[p] - s.x_start[p]) - s.h * col.velocity),
+                                                                 c.lambda_normal[q], w, 0, s.h)
+                                    : -C / w;
       c.lambda_normal[q] += dl;
       s.x[p] += w * dl * n;
       // Static friction and rolling resistance against the collider, which moves by h v_c.
@@ -124,13 +129,19 @@ void project_particle_contacts(const Model& model, State& state, const SubstepCo
     const auto [C, n] = pair_contact_normal(s.x[i], s.x[j], ri + rj);
     if (n.isZero()) return;  // coincident centres: no direction to push along
     c.normal[q] = n;
-    // Apart beyond the bond's reach (0 without cohesion): no contact.
-    if (C >= c.cohesion_distance[q]) return;
+    // Apart beyond the bond's reach (0 without cohesion): no contact, unless a spring's push is
+    // to be let go of.
+    const ContactSpring& spring = c.spring[q];
+    if (C >= c.cohesion_distance[q] && (!spring.soft() || c.lambda_normal[q] <= 0)) return;
     // Cohesion: within its reach the bond pulls the pair together, with a force of at most F
     // (the substep's multiplier, a force times h^2, bounded below by -F h^2), and adds F h^2 to
     // the normal multiplier that bounds the friction.
     const Real bond = c.cohesion[q] * s.h * s.h;
-    const Real dl = std::max(-C / w, -bond - c.lambda_normal[q]);
+    const Real dl =
+        spring.soft()
+            ? compliant_normal_increment(spring, C, n.dot((s.x[i] - s.x_start[i]) - (s.x[j] - s.x_start[j])),
+                                         c.lambda_normal[q], w, -bond, s.h)
+            : std::max(-C / w, -bond - c.lambda_normal[q]);
     c.lambda_normal[q] += dl;
     s.x[i] += wi * dl * n;
     s.x[j] -= wj * dl * n;
@@ -185,7 +196,7 @@ void collider_contact_velocities(const Model& model, State& state, const Vec3* v
       if (c.lambda_normal[q] <= 0) continue;
       const Index p = c.particle[q];
       const Vec3& vc = model.colliders[c.collider[q]].velocity;
-      contact_velocity_pass(model.particle_inv_mass[p], 0, model.particle_inv_inertia[p] > 0, c.normal[q],
+      contact_velocity_pass(model.particle_inv_mass[p], 0, model.particle_inv_inertia[p] > 0, c.spring[q].soft(), c.normal[q],
                             state.velocity[p], nullptr, state.velocity[p] - vc,
                             velocity_before[p] - vc, c.lambda_normal[q], true, c.dynamic_friction[q], c.restitution[q],
                             h, g);
@@ -208,7 +219,7 @@ void particle_contact_velocities(const Model& model, State& state, const Vec3* v
     }
     if (c.lambda_normal[q] + bond <= 0) return;
     const bool turns = model.particle_inv_inertia[i] > 0 || model.particle_inv_inertia[j] > 0;
-    contact_velocity_pass(model.particle_inv_mass[i], model.particle_inv_mass[j], turns, c.normal[q],
+    contact_velocity_pass(model.particle_inv_mass[i], model.particle_inv_mass[j], turns, c.spring[q].soft(), c.normal[q],
                           state.velocity[i], &state.velocity[j],
                           state.velocity[i] - state.velocity[j], velocity_before[i] - velocity_before[j],
                           c.lambda_normal[q] + bond, c.lambda_normal[q] > 0, c.dynamic_friction[q], c.restitution[q], h, g);

@@ -177,7 +177,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
             project_joints(model, state, work.joint_drive_start.data(), start, h);
             timer.lap(XpbdStage::joints);
             project_rigid_contacts(model, state, start);
-            project_particle_body_contacts(model, state, start);
+            project_particle_body_contacts(model, state, start, h);
             timer.lap(XpbdStage::rigid_contacts);
           }
         }
