@@ -138,5 +138,22 @@ TEST(ViscoelasticContact, AGrainBouncesWithTheRestitutionOfItsSpringAndDashpot) 
   }
 }
 
+// A dashpot without a spring, and a negative compliance, are refused with their paths.
+TEST(ViscoelasticContact, ADashpotWithoutASpringIsRefused) {
+  for (const char* keys : {R"("contact_damping": 0.3)", R"("contact_compliance": -0.01)"}) {
+    try {
+      World::from_json(fmt::format(R"({{"name": "bad", "settings": {{"dt": 0.001, "duration": 1}},
+          "objects": [{{"name": "sand", "kind": "granular", "blocks": [{{"min": [0, 0, 0], "max": [0.1, 0.1, 0.1]}}],
+                       "radius": 0.01, {}}}]}})",
+                                   keys));
+      ADD_FAILURE() << "no error for " << keys;
+    } catch (const std::exception& e) {
+      const std::string key = std::string(keys).substr(1, std::string(keys).find('"', 1) - 1);
+      std::printf("%s\n", e.what());
+      EXPECT_NE(std::string(e.what()).find("objects[0]." + key), std::string::npos) << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace moreau
