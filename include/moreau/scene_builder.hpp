@@ -146,6 +146,7 @@ struct ColliderSpec {
   Vector3 velocity{};                // m/s, a constant translation
   bool inside = false;               // a container: things stay inside the shape
   bool fluid_walls = true;           // sampled as a wall of the particle fluids
+  std::optional<double> until;       // s: the collider is removed at this time (a gate opened)
   ContactMaterial contact;
 };
 
@@ -336,9 +337,17 @@ struct RodSpec {
 /// "kind": "granular": grains (spheres) on a lattice filling boxes, each a particle that touches
 /// the others, the colliders, rigid bodies and rods with friction and restitution
 /// (docs/scene-format.md, "Granular media").
+/// A vertical cylinder (its axis along y) of grains, e.g. a column released on the ground.
+struct GranularCylinder {
+  Vector3 base{};      // m, the centre of its bottom face
+  double radius = 0;   // m
+  double height = 0;   // m
+};
+
 struct GranularSpec {
   std::string name;
   std::vector<FluidBlock> blocks;         // m, boxes the grains fill
+  std::vector<GranularCylinder> cylinders;  // m, vertical cylinders the grains fill
   std::optional<double> radius;           // m, one radius; or
   std::optional<Vector2> radius_range;    // m, radii drawn uniformly from [min, max] (polydisperse)
   int seed = 1;                           // of the radius draws
@@ -424,6 +433,8 @@ struct ProbeSpec {
   std::optional<Vector3> center;     // angle_of_repose: a point on the pile's axis, m
   std::optional<double> bin;         // angle_of_repose: width of the rings the surface is binned in, m
   std::optional<double> resting_speed;  // angle_of_repose: only particles slower than this count, m/s
+  std::optional<Vector3> direction;  // runout: measure along this horizontal direction from `center` (else radially)
+  std::optional<double> fraction;    // runout: the share of the particles within the runout (default 0.99)
   std::optional<Vector3> point;      // mass_flow: a point on the plane, m
   std::optional<Vector3> normal;     // mass_flow: the plane's normal (the positive direction)
 };

@@ -15,10 +15,10 @@
 namespace moreau {
 namespace {
 
-// A silo of 6 x 6 cm filled to `fill` with grains of r = 2 mm (mu = 0.5), an orifice of 24 mm
-// (6 grain diameters) in its floor; the collider boxes are its four walls and four floor pieces.
+// A silo of 6 x 6 cm filled to `fill` with grains of r = 2 mm (mu = 0.5), an orifice of 32 mm
+// (8 grain diameters, clear of the clogging below about 5) in its floor; the collider boxes are its four walls and four floor pieces.
 std::string silo_scene(Real fill) {
-  const Real w = 0.03, d = 0.012, t = 0.01, h = fill + 0.05;
+  const Real w = 0.03, d = 0.016, t = 0.01, h = fill + 0.05;
   auto box = [](const std::string& name, Vec3 lo, Vec3 hi) {
     const Vec3 c = 0.5 * (lo + hi), e = 0.5 * (hi - lo);
     return fmt::format(R"({{"name": "{}", "kind": "collider", "shape": {{"type": "box", "center": [{}, {}, {}], "half_extents": [{}, {}, {}]}}, "friction": 0.5}},)",
@@ -35,8 +35,9 @@ std::string silo_scene(Real fill) {
                      walls, -w, -w, w, fill, w);
 }
 
-// Least-squares slope of the discharged mass over [0.2, 0.5] s (the flow has started and the
-// silo is still more than half full), kg/s; also the mean absolute deviation from that line.
+// Least-squares slope of the discharged mass over [0.4, 0.9] s (the lattice the grains start on
+// has settled into a random packing, and the silo is still more than half full), kg/s; also the
+// mean absolute deviation from that line.
 struct Discharge {
   Real rate, scatter;
 };
@@ -44,9 +45,9 @@ struct Discharge {
 Discharge discharge(Real fill) {
   World w = World::from_json(silo_scene(fill));
   std::vector<Real> t, m;
-  while (w.time() < 0.5 - 1e-9) {
+  while (w.time() < 0.9 - 1e-9) {
     w.step();
-    if (w.time() > 0.2 - 1e-9) t.push_back(w.time()), m.push_back(w.probe_values()[0]);
+    if (w.time() > 0.4 - 1e-9) t.push_back(w.time()), m.push_back(w.probe_values()[0]);
   }
   Real st = 0, sm = 0, stt = 0, stm = 0;
   const Real n = static_cast<Real>(t.size());
@@ -57,21 +58,21 @@ Discharge discharge(Real fill) {
   return {slope, scatter};
 }
 
-// Filled to 8 and to 16 cm, the silo drains at rates within 10 % of each other (a liquid's would
+// Filled to 10 and to 20 cm, the silo drains at rates within 10 % of each other (a liquid's would
 // differ by sqrt(2), 41 %); each discharge follows its line within 5 % of the mass it passes in
-// the 0.3 s measured (the grains leave in bursts as arches form and fail over the orifice). The
+// the 0.5 s measured (the grains leave in bursts as arches form and fail over the orifice). The
 // silo runs 4 iterations per substep: the walls carry the weight above the orifice by friction
-// (Janssen), and with 1 iteration that friction is resolved too loosely, the silo drains 1.6x as
-// fast, and the rate grows with the fill (ratio 1.12).
+// (Janssen), resolved loosely by fewer. Ratios measured: 1.003 with 2 iterations, 0.989 with 4,
+// 0.801 with 8 (the deeper fill drains slower; an open question, docs/validation.md).
 TEST(SiloDischarge, TheFlowRateDoesNotDependOnTheFillHeight) {
-  const Discharge low = discharge(0.08), high = discharge(0.16);
-  std::printf("silo 6 x 6 cm, orifice 24 mm, grains of 4 mm: %.4f kg/s filled to 8 cm, %.4f kg/s to 16 cm (ratio %.3f; "
-              "Torricelli's for a liquid 1.414); scatter about the line %.2f %% and %.2f %% of 0.3 s of flow\n",
-              low.rate, high.rate, high.rate / low.rate, 100 * low.scatter / (0.3 * low.rate),
-              100 * high.scatter / (0.3 * high.rate));
+  const Discharge low = discharge(0.10), high = discharge(0.20);
+  std::printf("silo 6 x 6 cm, orifice 32 mm, grains of 4 mm: %.4f kg/s filled to 10 cm, %.4f kg/s to 20 cm (ratio %.3f; "
+              "Torricelli's for a liquid 1.414); scatter about the line %.2f %% and %.2f %% of 0.5 s of flow\n",
+              low.rate, high.rate, high.rate / low.rate, 100 * low.scatter / (0.5 * low.rate),
+              100 * high.scatter / (0.5 * high.rate));
   EXPECT_NEAR(high.rate / low.rate, 1, 0.1);
-  EXPECT_LT(low.scatter, 0.05 * 0.3 * low.rate);
-  EXPECT_LT(high.scatter, 0.05 * 0.3 * high.rate);
+  EXPECT_LT(low.scatter, 0.05 * 0.5 * low.rate);
+  EXPECT_LT(high.scatter, 0.05 * 0.5 * high.rate);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // capsule of the one shape type rigid bodies use (shape.hpp), so a collider joins the rigid
 // contacts as a body of infinite mass. For particles each shape answers one question: the signed
 // distance from a point to its surface and the outward normal there.
+#include <limits>
 #include <string>
 
 #include "moreau/collision/shape.hpp"
@@ -22,8 +23,13 @@ struct Collider {
   Real adhesion = 0;                  // N per contact point with a rigid body or a particle (nmd)
   bool inside = false;                // a container: the solid is outside the shape (a tank keeps particles in)
   bool fluid_walls = true;            // sampled with wall particles for the fluid density
+  Real until = std::numeric_limits<Real>::infinity();  // s: removed at this time (particles only)
 
   Vec3 position_at(Real time) const { return position + time * velocity; }
+  /// Still there at `time` (a collider with `until` is gone from then on).
+  bool present_at(Real time) const { return time < until; }
+  /// Moves or disappears: the grains on it may not sleep.
+  bool changes() const { return !velocity.isZero() || until < std::numeric_limits<Real>::infinity(); }
 };
 
 /// The four shapes above are the ones a collider takes (the scene builder makes no other); a

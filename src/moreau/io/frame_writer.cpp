@@ -133,7 +133,10 @@ void FrameWriter::write(const State& state) {
       for (const auto& t : m.triangles) conn.insert(conn.end(), t.begin(), t.end());
       write_vtu(path, points, conn, 3, VtkCell::triangle, {{"velocity", velocity}});
     } else if (obj.kind == ObjectKind::collider) {
-      const TriangleMesh m = collider_surface(model_.colliders[obj.collider], state.time, plane_half_size_);
+      const Collider& collider = model_.colliders[obj.collider];
+      // A removed collider (`until`) is written without a surface, so the series keeps its files.
+      const TriangleMesh m = collider.present_at(state.time) ? collider_surface(collider, state.time, plane_half_size_)
+                                                             : TriangleMesh{};
       std::vector<Index> conn;
       for (const auto& t : m.triangles) conn.insert(conn.end(), t.begin(), t.end());
       const Vec3 v = model_.colliders[obj.collider].velocity;

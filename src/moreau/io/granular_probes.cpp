@@ -81,6 +81,28 @@ Real angle_of_repose(const Model& model, const State& state, Index object, const
   return std::atan(-slope) * 180 / kPi;
 }
 
+Real runout(const Model& model, const State& state, Index object, const std::optional<Vec3>& axis_point,
+            const std::optional<Vec3>& direction, Real fraction) {
+  const Vec3 up = up_direction(model);
+  Vec3 axis = Vec3::Zero();
+  Real mass = 0;
+  for_each_particle(model, state, object, [&](Real m, const Vec3& x, const Vec3&, Real) {
+    axis += m * x;
+    mass += m;
+  });
+  if (!(mass > 0)) return std::numeric_limits<Real>::quiet_NaN();
+  axis = axis_point.value_or(axis / mass);
+  std::vector<Real> reach;
+  for_each_particle(model, state, object, [&](Real, const Vec3& x, const Vec3&, Real r) {
+    const Vec3 d = x - axis;
+    reach.push_back((direction ? d.dot(*direction) : (d - d.dot(up) * up).norm()) + r);
+  });
+  // The k-th smallest with k = ceil(fraction n): the share `fraction` lies within it.
+  const size_t k = std::max<size_t>(1, static_cast<size_t>(std::ceil(fraction * reach.size() - 1e-9))) - 1;
+  std::nth_element(reach.begin(), reach.begin() + k, reach.end());
+  return reach[k];
+}
+
 Real mass_flow_rate(const Model& model, const State& state, Index object, const Vec3& point, const Vec3& n) {
   Real delta = 0;
   for_each_particle(model, state, object, [&](Real, const Vec3&, const Vec3&, Real r) { delta = std::max(delta, r); });

@@ -25,6 +25,15 @@ Real angle_of_repose(const Model& model, const State& state, Index object, const
                      Real bin, const std::optional<std::pair<Vec3, Vec3>>& region = std::nullopt,
                      Real resting_speed = 0);
 
+/// How far a pile reaches, m: the distance within which the share `fraction` of `object`'s
+/// particles lie, each counted by its outer edge (centre distance + r). Measured horizontally
+/// (across g) from the vertical axis through `axis_point` (default: the particles' centre of
+/// mass), or, with `direction` (a horizontal unit vector), along it from `axis_point`. A
+/// fraction below 1 leaves out the few grains that bounce or roll away from a deposit.
+/// NaN without particles.
+Real runout(const Model& model, const State& state, Index object, const std::optional<Vec3>& axis_point,
+            const std::optional<Vec3>& direction, Real fraction);
+
 /// Mass flow through the plane through `point` with unit normal n, kg/s, positive along n:
 /// sum of m_i (v_i . n) over the particles within delta of the plane, divided by 2 delta (the flux
 /// of the mass density rho v across the plane, averaged over a slab of thickness 2 delta). delta is

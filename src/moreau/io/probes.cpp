@@ -79,6 +79,9 @@ void evaluate_probe(const Probe& probe, const Model& model, const State& state, 
       values.push_back(angle_of_repose(model, state, probe.object, probe.pile_axis, probe.ring_width, probe.pile_region,
                                         probe.resting_speed));
       break;
+    case ProbeType::runout:
+      values.push_back(runout(model, state, probe.object, probe.pile_axis, probe.runout_direction, probe.runout_fraction));
+      break;
     case ProbeType::mass_flow:
       values.push_back(probe.quantity == "beyond"
                            ? mass_beyond(model, state, probe.object, probe.plane_point, probe.plane_normal)

@@ -17,7 +17,8 @@ enum class ProbeType {
   suction,  // one suction cup: sealed (0/1), pressure difference (Pa), volume (m^3), sealed area (m^2)
   rod_point, rod_twist,  // a rod's centreline point ("point" on a rod); its twist (rad)
   angle_of_repose, mass_flow,  // a pile's surface slope (degrees); the mass through a plane (kg/s or kg)
-  asleep  // sleeping grains (settings.sleep)
+  asleep,  // sleeping grains (settings.sleep)
+  runout   // how far a pile reaches from its axis (m)
 };
 
 struct Probe {
@@ -39,6 +40,8 @@ struct Probe {
   Real ring_width = 0;               // angle_of_repose: the rings' width, m
   std::optional<std::pair<Vec3, Vec3>> pile_region;  // angle_of_repose: only particles in this box (min, max), m
   Real resting_speed = 0;            // angle_of_repose: only particles slower than this (m/s; 0: all)
+  std::optional<Vec3> runout_direction;  // runout: a horizontal unit vector to measure along (else radially)
+  Real runout_fraction = 0.99;       // runout: the share of the particles within the runout
   Vec3 plane_point = Vec3::Zero(), plane_normal = Vec3::UnitY();  // mass_flow; quantity rate|beyond
 
   bool is_vector() const;

@@ -43,6 +43,7 @@ ColliderSpec read_collider(const JsonObject& object) {
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   spec.inside = object.boolean("inside", spec.inside);
   spec.fluid_walls = object.boolean("fluid_walls", spec.fluid_walls);
+  spec.until = read_optional_number(object, "until");
   spec.contact = read_contact_material(object);
   return spec;
 }
@@ -84,6 +85,7 @@ void add_collider(const ColliderSpec& spec, const SpecPlace& place, ObjectInfo& 
   if (c.inside && c.shape.type == ShapeType::plane)
     place.fail("inside", "a plane has no inside; use a box, sphere or capsule as a container");
   c.fluid_walls = spec.fluid_walls;
+  if (spec.until) c.until = place.number("until", *spec.until, Range::non_negative());
   set_contact_material(spec.contact, place, info);
   c.static_friction = info.static_friction;
   c.dynamic_friction = info.dynamic_friction;

@@ -17,11 +17,55 @@ namespace {
 // unlike the standard distributions).
 Real unit_draw(std::mt19937_64& generator) { return static_cast<Real>(generator() >> 11) * 0x1.0p-53; }
 
+constexpr Index kMaxGrains = 50'000'000;
+
+// Grains on a cubic lattice of spacing 2 r_max (1 + 2 %), each moved by up to 1 % of r_max in
+// each direction so that no column stands balanced on an exact stack; grains never overlap at
+// rest. Fills the box [lo, hi] where `keep` accepts a lattice point (before its move).
+class GrainLattice {
+ public:
+  GrainLattice(Real r_min, Real r_max, Real density, std::uint64_t seed)
+      : r_min_(r_min), r_max_(r_max), density_(density), generator_(seed) {}
+
+  template <class Keep>
+  void fill(const SpecPlace& place, const std::string& field, const Vec3& lo, const Vec3& hi, Keep keep) {
+    const Real spacing = 2 * r_max_ * 1.02;
+    Eigen::Array3d count = ((hi - lo).array() - 2 * r_max_) / spacing + 1;
+    count = (count + 1e-9).floor();  // a box exactly n grains across holds n
+    if (count.prod() > kMaxGrains)
+      place.fail(field, fmt::format("it holds {:.3g} grains; at most {} per scene", count.prod(), kMaxGrains));
+    for (int i = 0; i < count.x(); ++i)
+      for (int j = 0; j < count.y(); ++j)
+        for (int k = 0; k < count.z(); ++k) {
+          Vec3 p = lo + Vec3::Constant(r_max_) + spacing * Vec3(i, j, k);
+          if (!keep(p)) continue;
+          for (int c = 0; c < 3; ++c) p[c] += 0.01 * r_max_ * (2 * unit_draw(generator_) - 1);
+          const Real r = r_min_ + (r_max_ - r_min_) * unit_draw(generator_);
+          positions.push_back(p);
+          radii.push_back(r);
+          masses.push_back(density_ * 4 * kPi / 3 * r * r * r);
+        }
+    if (static_cast<Index>(positions.size()) > kMaxGrains)
+      place.fail(field, fmt::format("the grains number {}; at most {} per scene", positions.size(), kMaxGrains));
+  }
+
+  std::vector<Vec3> positions;
+  std::vector<Real> masses, radii;
+
+ private:
+  Real r_min_, r_max_, density_;
+  std::mt19937_64 generator_;
+};
+
 }  // namespace
 
 GranularSpec read_granular(const JsonObject& object) {
   GranularSpec spec;
   for (const JsonObject& block : object.object_list("blocks")) spec.blocks.push_back(read_block(block));
+  for (const JsonObject& cylinder : object.object_list("cylinders")) {
+    spec.cylinders.push_back({to_vector3(cylinder.vec3("base")), cylinder.number("radius"), cylinder.number("height")});
+    cylinder.finish();
+  }
   spec.radius = read_optional_number(object, "radius");
   spec.radius_range = read_optional_pair(object, "radius_range");
   if (object.has("seed")) spec.seed = read_integer(object, "seed");
@@ -49,37 +93,35 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     r_max = r.y();
   }
   const Real density = place.number("density", spec.density, Range::positive());
-  if (spec.blocks.empty()) place.fail("blocks", "a granular object needs at least one block {\"min\", \"max\"} to fill");
+  if (spec.blocks.empty() && spec.cylinders.empty())
+    place.fail("blocks", "a granular object needs at least one block {\"min\", \"max\"} or cylinder {\"base\", \"radius\", \"height\"} to fill");
 
-  // A cubic lattice of spacing 2 r_max (1 + 2 %), each grain moved by up to 1 % of r_max in each
-  // direction so that no column stands balanced on an exact stack; grains never overlap at rest.
-  const Real spacing = 2 * r_max * 1.02;
-  std::mt19937_64 generator(static_cast<std::uint64_t>(spec.seed));
-  std::vector<Vec3> positions;
-  std::vector<Real> masses, radii;
-  constexpr Index kMaxGrains = 50'000'000;
+  GrainLattice lattice(r_min, r_max, density, static_cast<std::uint64_t>(spec.seed));
+  const Real diameter = 2 * r_max;
   for (size_t b = 0; b < spec.blocks.size(); ++b) {
     const SpecPlace block = place.at(fmt::format("blocks[{}]", b));
     const Vec3 lo = block.vector("min", spec.blocks[b].min), hi = block.vector("max", spec.blocks[b].max);
-    if ((hi.array() - lo.array() < 2 * r_max * (1 - 1e-9)).any())
-      block.fail("max", fmt::format("the block must be at least one grain diameter ({} m) across in every direction", 2 * r_max));
-    Eigen::Array3d count = ((hi - lo).array() - 2 * r_max) / spacing + 1;
-    count = (count + 1e-9).floor();  // a block exactly n grains across holds n
-    if (count.prod() > kMaxGrains)
-      block.fail("max", fmt::format("the block holds {:.3g} grains; at most {} per scene", count.prod(), kMaxGrains));
-    for (int i = 0; i < count.x(); ++i)
-      for (int j = 0; j < count.y(); ++j)
-        for (int k = 0; k < count.z(); ++k) {
-          Vec3 p = lo + Vec3::Constant(r_max) + spacing * Vec3(i, j, k);
-          for (int c = 0; c < 3; ++c) p[c] += 0.01 * r_max * (2 * unit_draw(generator) - 1);
-          const Real r = r_min + (r_max - r_min) * unit_draw(generator);
-          positions.push_back(p);
-          radii.push_back(r);
-          masses.push_back(density * 4 * kPi / 3 * r * r * r);
-        }
+    if ((hi.array() - lo.array() < diameter * (1 - 1e-9)).any())
+      block.fail("max", fmt::format("the block must be at least one grain diameter ({} m) across in every direction", diameter));
+    lattice.fill(block, "max", lo, hi, [](const Vec3&) { return true; });
   }
-  if (static_cast<Index>(positions.size()) > kMaxGrains)
-    place.fail("blocks", fmt::format("the blocks hold {} grains; at most {} per scene", positions.size(), kMaxGrains));
+  // A cylinder keeps the lattice points of its bounding box whose grains lie inside it.
+  for (size_t c = 0; c < spec.cylinders.size(); ++c) {
+    const SpecPlace cylinder = place.at(fmt::format("cylinders[{}]", c));
+    const Vec3 base = cylinder.vector("base", spec.cylinders[c].base);
+    const Real radius = cylinder.number("radius", spec.cylinders[c].radius, Range::positive());
+    const Real height = cylinder.number("height", spec.cylinders[c].height, Range::positive());
+    if (radius < r_max * (1 - 1e-9) || height < diameter * (1 - 1e-9))
+      cylinder.fail("radius", fmt::format("the cylinder must be at least one grain diameter ({} m) wide and tall", diameter));
+    const Vec3 lo = base - Vec3(radius, 0, radius), hi = base + Vec3(radius, height, radius);
+    const Real reach = radius - r_max;  // of a grain centre from the axis
+    lattice.fill(cylinder, "radius", lo, hi, [&](const Vec3& p) {
+      return Vec2(p.x() - base.x(), p.z() - base.z()).squaredNorm() <= reach * reach * (1 + 1e-12);
+    });
+  }
+  const std::vector<Vec3>& positions = lattice.positions;
+  const std::vector<Real>& masses = lattice.masses;
+  const std::vector<Real>& radii = lattice.radii;
   set_contact_material(spec.contact, place, info);
   info.cohesion = place.number("cohesion", spec.cohesion, Range::non_negative());
   info.rolling_resistance = place.number("rolling_resistance", spec.rolling_resistance, Range::non_negative());

@@ -14,7 +14,7 @@ const std::vector<std::string> kProbeTypes{
     "point",    "energy",      "center_of_mass", "extent",           "momentum",    "constraint_error",
     "fluid_height", "density_error", "particle_count", "escaped",     "position",    "orientation",
     "velocity", "angular_velocity", "joint_error", "contact_count", "max_displacement",
-    "penetration", "suction", "twist", "angle_of_repose", "mass_flow", "asleep"};
+    "penetration", "suction", "twist", "angle_of_repose", "mass_flow", "asleep", "runout"};
 
 // The types whose only key besides name and type is "object": one simulated object or "*".
 const std::map<std::string, ProbeType> kObjectOrEveryProbes{{"center_of_mass", ProbeType::center_of_mass},
@@ -37,6 +37,7 @@ std::vector<std::string> probe_keys(const std::string& type) {
   if (type == "constraint_error") add({"family"});
   if (type == "angle_of_repose") add({"center", "bin", "box", "resting_speed"});
   if (type == "mass_flow") add({"point", "normal", "quantity"});
+  if (type == "runout") add({"center", "direction", "fraction"});
   return keys;
 }
 
@@ -115,6 +116,11 @@ ProbeSpec read_probe(const JsonObject& j) {
     p.center = read_optional_vector(j, "center");
     p.bin = read_optional_number(j, "bin");
     p.resting_speed = read_optional_number(j, "resting_speed");
+  }
+  if (p.type == "runout") {
+    p.center = read_optional_vector(j, "center");
+    p.direction = read_optional_vector(j, "direction");
+    p.fraction = read_optional_number(j, "fraction");
   }
   if (p.type == "mass_flow") {
     p.point = read_optional_vector(j, "point");
@@ -228,6 +234,20 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
     p.ring_width = spec.bin ? j.number("bin", *spec.bin, Range::positive()) : 2 * largest_radius;
     if (spec.box) p.pile_region = std::make_pair(j.vector("box.min", spec.box->min), j.vector("box.max", spec.box->max));
     if (spec.resting_speed) p.resting_speed = j.number("resting_speed", *spec.resting_speed, Range::positive());
+  } else if (type == "runout") {
+    p.type = ProbeType::runout;
+    p.object = object_index(spec, j, model, false, Accepts::particles);
+    if (spec.center) p.pile_axis = j.vector("center", *spec.center);
+    if (spec.direction) {
+      if (!spec.center) j.fail("direction", "a runout along a direction is measured from a point: give \"center\" (m) too");
+      const Vec3 d = j.vector("direction", *spec.direction);
+      const Vec3 g = model.settings.gravity;
+      const Vec3 horizontal = g.norm() > 0 ? Vec3(d - d.dot(g.normalized()) * g.normalized()) : d;
+      if (!(horizontal.norm() > 1e-9 * d.norm()) || !(d.norm() > 0))
+        j.fail("direction", "the direction must have a horizontal part (across gravity)");
+      p.runout_direction = horizontal.normalized();
+    }
+    if (spec.fraction) p.runout_fraction = j.number("fraction", *spec.fraction, Range{0, 1, true, false});
   } else if (type == "mass_flow") {
     p.type = ProbeType::mass_flow;
     p.object = object_index(spec, j, model, true, Accepts::particles);  // particles only

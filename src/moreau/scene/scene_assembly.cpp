@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <limits>
+
 #include "moreau/scene/spec_builders.hpp"
 #include "moreau/solvers/solver_registry.hpp"
 
@@ -11,6 +13,24 @@ namespace {
 
 const std::string& object_name(const ObjectSpec& object) {
   return std::visit([](const auto& spec) -> const std::string& { return spec.name; }, object);
+}
+
+// A collider removed at a time (`until`) is dropped from the particle contacts only: a scene
+// whose fluids, rigid bodies, rods or suction cups would also meet it is refused.
+template <class Entry>
+void check_removed_colliders(const Model& model, const Entry& entry) {
+  std::string others;
+  for (const ObjectInfo& o : model.objects)
+    if (o.kind == ObjectKind::fluid || o.has_bodies() || (o.kind == ObjectKind::soft_body && !model.suction_cups.empty()))
+      others += fmt::format("{}'{}'", others.empty() ? "" : ", ", o.name);
+  if (others.empty()) return;
+  for (size_t k = 0; k < model.objects.size(); ++k) {
+    const ObjectInfo& o = model.objects[k];
+    if (o.kind == ObjectKind::collider && model.colliders[o.collider].until < std::numeric_limits<Real>::infinity())
+      entry("objects", k).fail("until", fmt::format("a collider that is removed meets only cloth, soft bodies, grains and "
+                                                    "shape-matched particles; this scene also has {} (fluids, rigid "
+                                                    "bodies, rods or suction cups)", others));
+  }
 }
 
 void add_object(const ObjectSpec& object, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx) {
@@ -54,6 +74,7 @@ Scene assemble_scene(const SceneSpec& spec, const std::string& source, const std
     add_object(spec.objects[k], place, info, ctx);
     scene.model.objects.push_back(std::move(info));
   }
+  check_removed_colliders(scene.model, entry);
   scene.model.color_constraints();
   finish_fluids(scene.model);
   for (size_t k = 0; k < spec.joints.size(); ++k) add_joint(spec.joints[k], entry("joints", k), scene.model);

@@ -134,7 +134,7 @@ void update_grain_sleep(const Model& model, State& state) {
     }
   }
   for (size_t q = 0; q < state.collider_contacts.size(); ++q)
-    if (!model.colliders[state.collider_contacts.collider[q]].velocity.isZero())
+    if (model.colliders[state.collider_contacts.collider[q]].changes())
       keeps_awake[state.collider_contacts.particle[q]] = 1;
   for (const auto& [b, p] : state.particle_body_contacts.pair)
     if (body_wakes_grains(model, state, b)) keeps_awake[p] = 1;
