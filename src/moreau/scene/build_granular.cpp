@@ -111,8 +111,10 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     const Vec3 base = cylinder.vector("base", spec.cylinders[c].base);
     const Real radius = cylinder.number("radius", spec.cylinders[c].radius, Range::positive());
     const Real height = cylinder.number("height", spec.cylinders[c].height, Range::positive());
-    if (radius < r_max * (1 - 1e-9) || height < diameter * (1 - 1e-9))
-      cylinder.fail("radius", fmt::format("the cylinder must be at least one grain diameter ({} m) wide and tall", diameter));
+    if (radius < r_max * (1 - 1e-9))
+      cylinder.fail("radius", fmt::format("the cylinder must be at least one grain diameter ({} m) wide", diameter));
+    if (height < diameter * (1 - 1e-9))
+      cylinder.fail("height", fmt::format("the cylinder must be at least one grain diameter ({} m) tall", diameter));
     const Vec3 lo = base - Vec3(radius, 0, radius), hi = base + Vec3(radius, height, radius);
     const Real reach = radius - r_max;  // of a grain centre from the axis
     lattice.fill(cylinder, "radius", lo, hi, [&](const Vec3& p) {

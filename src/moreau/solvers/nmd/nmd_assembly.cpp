@@ -138,6 +138,11 @@ Real adhesive_bound(Real adhesion, Real gap, Real compliance) {
   return adhesion > 0 && gap <= compliance * adhesion ? adhesion : 0;
 }
 
+// The compliance of a contact's normal row: a grain's spring, else the settings' (hard contacts).
+Real contact_compliance(const NmdSettings& settings, const ContactSpring& spring) {
+  return spring.soft() ? spring.compliance : settings.contact_compliance;
+}
+
 // Makes the sized input a contact block (row 0 normal, rows 1 and 2 friction) with the pair's
 // coefficients; `memory` holds the normal impulse, or all three rows' impulses. A soft contact
 // (a grain's spring, compliant_contact.hpp) is a row of its own compliance and relaxation time
@@ -151,7 +156,7 @@ void set_contact(NmdBlockInput& in, const NmdSettings& settings, Real static_fri
   in.upper.setConstant(std::numeric_limits<Real>::infinity());
   in.lower[0] = -adhesion;
   in.compliance.setZero();
-  in.compliance(0, 0) = spring.soft() ? spring.compliance : settings.contact_compliance;
+  in.compliance(0, 0) = contact_compliance(settings, spring);
   in.damping_time = spring.relaxation_time();
   in.static_friction = static_friction;
   in.dynamic_friction = dynamic_friction;
@@ -180,7 +185,8 @@ void add_collider_contacts(Assembly& a, Real end_time) {
     set_particle_rows(a.input, rows, a.space);
     for (int r = 0; r < 3; ++r) a.input.known[r] = -rows.gradient[0].row(r).dot(col.velocity);  // dC/dt = grad . (v_p - v_c)
     add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1,
-                adhesive_bound(c.adhesion[q], a.input.C[0], a.model.settings.nmd.contact_compliance), c.spring[q]);
+                adhesive_bound(c.adhesion[q], a.input.C[0], contact_compliance(a.model.settings.nmd, c.spring[q])),
+                c.spring[q]);
   }
 }
 
@@ -262,7 +268,8 @@ void add_particle_body_contacts(Assembly& a) {
         particle_body_rows(a.model, a.state, now, b, p, c.static_friction[q], ContactPoints::all);
     set_body_rows(a.input, contact.rows, a.space);
     add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1,
-                adhesive_bound(c.adhesion[q], a.input.C[0], a.model.settings.nmd.contact_compliance), c.spring[q]);
+                adhesive_bound(c.adhesion[q], a.input.C[0], contact_compliance(a.model.settings.nmd, c.spring[q])),
+                c.spring[q]);
   }
 }
 

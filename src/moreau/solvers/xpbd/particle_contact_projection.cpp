@@ -166,38 +166,6 @@ void project_particle_contacts(const Model& model, State& state, const SubstepCo
   });
 }
 
-void stabilize_grain_contacts(const Model& model, State& state, Vec3* x_start, const SubstepContext& s,
-                              Real substep_start_time) {
-  ParticleContacts& pairs = state.particle_contacts;
-  for_each_by_color(pairs.batches, [&](Index q) {
-    const auto [i, j] = pairs.pair[q];
-    if (pairs.spring[q].soft() || (s.inv_inertia[i] <= 0 && s.inv_inertia[j] <= 0)) return;
-    const Real wi = s.inv_mass[i], wj = s.inv_mass[j], w = wi + wj;
-    const auto [C, n] = pair_contact_normal(s.x_start[i], s.x_start[j], model.particle_radius[i] + model.particle_radius[j]);
-    if (C >= 0 || n.isZero() || w <= 0) return;
-    const Vec3 di = (wi * -C / w) * n, dj = (wj * C / w) * n;
-    x_start[i] += di;
-    s.x[i] += di;
-    x_start[j] += dj;
-    s.x[j] += dj;
-  });
-  ColliderContacts& c = state.collider_contacts;
-  const Index groups = static_cast<Index>(c.group_offsets.size()) - 1;
-#pragma omp for schedule(static)
-  for (Index g = 0; g < groups; ++g) {
-    for (Index q = c.group_offsets[g]; q < c.group_offsets[g + 1]; ++q) {
-      const Index p = c.particle[q];
-      if (c.spring[q].soft() || s.inv_inertia[p] <= 0 || s.inv_mass[p] <= 0) continue;
-      const Collider& col = model.colliders[c.collider[q]];
-      const ColliderDistance d = collider_distance(col, col.position_at(substep_start_time), s.x_start[p]);
-      const Real C = d.distance - model.particle_collider_gap[p];
-      if (C >= 0) continue;
-      x_start[p] -= C * d.normal;
-      s.x[p] -= C * d.normal;
-    }
-  }
-}
-
 Vec3 friction_velocity_change(const Vec3& v_rel, const Vec3& n, Real lambda_n, Real w, Real mu_k, Real h) {
   const Vec3 vt = v_rel - n.dot(v_rel) * n;
   const Real vt_norm = vt.norm();

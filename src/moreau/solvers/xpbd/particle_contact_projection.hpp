@@ -42,18 +42,6 @@ struct State;
 void project_collider_contacts(const Model& model, State& state, const SubstepContext& s, Real substep_end_time);
 void project_particle_contacts(const Model& model, State& state, const SubstepContext& s);
 
-/// Pre-stabilization of the grains' hard contacts (Macklin et al. 2014, sec. 4.4): a
-/// Gauss-Seidel pass of the normal rows evaluated at the substep's start positions x_start, each
-/// correction applied to x_start and to the predicted x alike. The overlap the previous substeps
-/// left (a deep stack is resolved loosely by a few iterations; `x_start` is s.x_start, writable) is removed without becoming
-/// velocity, where the main projection would turn it into v = overlap / h: a tall column at 20
-/// iterations otherwise throws its top grains up at metres per second as its compressed layers
-/// are pushed apart in one substep. Contacts without a grain, and springs (contact_compliance,
-/// whose overlap is their load), are left to the main projection. Call after prediction, inside
-/// an OpenMP parallel region; `substep_start_time` places kinematic colliders.
-void stabilize_grain_contacts(const Model& model, State& state, Vec3* x_start, const SubstepContext& s,
-                              Real substep_start_time);
-
 /// Relative-velocity change dv of one contact that pushed this substep (the two laws above): v_rel
 /// and v_rel_before now and after prediction, n the normal, lambda_n the substep's normal
 /// multiplier, w the summed inverse masses along n, g = |gravity| (the resting-speed cut-off).

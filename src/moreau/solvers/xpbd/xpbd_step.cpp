@@ -114,7 +114,6 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   const SubstepStart start = work.substep_start_view();
   const Real start_time = state.time;
   const bool fluids = !model.fluid.empty(), coupled_solids = model.fluid.solid.size() > 0;
-  const bool granular = model.has_grains();
   FluidState& fluid = state.fluid;
   if (!model.fluid.emitters.empty()) emit_fluid(model, fluid, start_time);
 
@@ -135,11 +134,6 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
         }
       }
       predict(model, state, work, h);
-      // Pre-stabilization: as many passes as the solve has iterations, so that the overlap a deep
-      // stack keeps is removed as fully as the solve would remove it, without becoming velocity.
-      if (granular)
-        for (int it = 0; it < iterations; ++it)
-          stabilize_grain_contacts(model, state, work.substep_start.data(), ctx, start_time + sub * h);
       if (rigid) predict_rigid_bodies(model, state.rigid, work.bodies, h);
       if (fluids) predict_fluid(model, fluid, work.fluid, h);
       lap(XpbdStage::predict);
