@@ -55,6 +55,26 @@ TEST(ViscoelasticContact, AGrainAtRestSinksByItsComplianceTimesItsWeight) {
   }
 }
 
+// The same grain resting on a fixed rigid box instead of the ground (the particle-body contact
+// of the grain's spring): it sinks by alpha m g too, under both solvers.
+TEST(ViscoelasticContact, AGrainOnARigidBodySinksByItsComplianceTimesItsWeight) {
+  const Real sink = 0.01 * kMass * kG;
+  for (const char* solver : {"xpbd", "nmd"}) {
+    World w = World::from_json(fmt::format(
+        R"({{"name": "on_a_box", "settings": {{"solver": "{}", "dt": 0.005, "substeps": 10, "duration": 1}},
+        "objects": [{{"name": "table", "kind": "rigid_body", "fixed": true,
+                      "shape": {{"type": "box", "half_extents": [0.1, 0.05, 0.1]}}, "position": [0, -0.05, 0]}},
+                    {{"name": "grain", "kind": "granular", "blocks": [{{"min": [0, 0, 0], "max": [0.01, 0.01, 0.01]}}],
+                      "radius": {}, "density": {}, "contact_compliance": 0.01, "contact_damping": 0.3}}],
+        "probes": [{{"name": "y", "type": "point", "object": "grain", "vertex": 0, "quantity": "position"}}]}})",
+        solver, kRadius, kDensity));
+    while (w.time() < 1 - 1e-9) w.step();
+    const Real y = w.probe_values()[1];
+    std::printf("%s: rests %.6e m deep in the rigid box (alpha m g = %.6e m)\n", solver, kRadius - y, sink);
+    EXPECT_NEAR(kRadius - y, sink, 1e-12) << solver;
+  }
+}
+
 // Two grains stacked on the ground: the lower spring carries both weights, the upper one the top
 // grain's, along the line of centres (the lattice's jitter tilts it by up to 0.4 degrees; friction
 // and rolling resistance hold the tilted stack and carry the rest). The settled stack holds both
