@@ -88,8 +88,11 @@ class World {
   RunResult run(const RunOptions& options);
 
   /// The arrays of the current state. By engine:
-  ///   constraint engine  particle.position (m), particle.velocity (m/s): cloth and soft-body
-  ///                      particles in object order (WorldObject::first/count);
+  ///   constraint engine  particle.position (m), particle.velocity (m/s): cloth, soft-body,
+  ///                      granular and shape-matched particles in object order
+  ///                      (WorldObject::first/count); particle.angular_velocity (rad/s, world
+  ///                      frame): a grain's spin (xpbd turns grains; 0 for particles that do
+  ///                      not turn, which ignore what is written there);
   ///                      body.position (m), body.orientation (unit quaternion x y z w),
   ///                      body.velocity (m/s), body.angular_velocity (rad/s, world frame);
   ///                      fluid.position (m, read only: the neighbour lists are kept across

@@ -146,6 +146,7 @@ std::vector<StateArray> ConstraintEngine::state_arrays() {
   // stay within their skin, which a moved particle would leave unnoticed.
   return {state_array("particle.position", "m", state_.position, particles, true),
           state_array("particle.velocity", "m/s", state_.velocity, particles, true),
+          state_array("particle.angular_velocity", "rad/s", state_.angular_velocity, particles, true),
           state_array("body.position", "m", rb.position, bodies, true),
           state_array("body.orientation", "", rb.orientation, bodies, true),
           state_array("body.velocity", "m/s", rb.velocity, bodies, true),
