@@ -334,9 +334,6 @@ struct RodSpec {
   bool self_collision = true;
 };
 
-/// "kind": "granular": grains (spheres) on a lattice filling boxes, each a particle that touches
-/// the others, the colliders, rigid bodies and rods with friction and restitution
-/// (docs/scene-format.md, "Granular media").
 /// A vertical cylinder (its axis along y) of grains, e.g. a column released on the ground.
 struct GranularCylinder {
   Vector3 base{};      // m, the centre of its bottom face
@@ -344,6 +341,9 @@ struct GranularCylinder {
   double height = 0;   // m
 };
 
+/// "kind": "granular": grains (spheres) on a lattice filling boxes or cylinders, each a particle
+/// that touches the others, the colliders, rigid bodies and rods with friction and restitution
+/// (docs/scene-format.md, "Granular media").
 struct GranularSpec {
   std::string name;
   std::vector<FluidBlock> blocks;         // m, boxes the grains fill

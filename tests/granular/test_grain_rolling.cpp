@@ -113,7 +113,8 @@ TEST(GrainRolling, GrainsMeetingOffCentreKeepMomentumAndAngularMomentum) {
 // friction turns the spin into rolling, and it ends rolling at v = 2/7 omega_0 r, since friction
 // acts at the contact point and keeps the angular momentum about it, (2/5) m r^2 omega_0 =
 // (7/5) m r^2 omega (no rolling resistance). Sliding ends within 0.1 s; the position-level
-// friction then holds the rolling exactly: 1e-9 of the speed.
+// friction then holds the rolling exactly: 1e-9 of the speed; the spin, solved with the slip in
+// the same closed form, equals -v / r to 1e-6 rad/s (2e-7 of it).
 TEST(GrainRolling, ASpinningGrainSetOnTheGroundRollsAwayAtTwoSeventhsOfItsSpin) {
   World w = World::from_json(
       R"({"name": "spin", "settings": {"dt": 0.005, "substeps": 10, "duration": 1},

@@ -4,6 +4,7 @@
 // capsule of the one shape type rigid bodies use (shape.hpp), so a collider joins the rigid
 // contacts as a body of infinite mass. For particles each shape answers one question: the signed
 // distance from a point to its surface and the outward normal there.
+#include <cmath>
 #include <limits>
 #include <string>
 
@@ -29,8 +30,10 @@ struct Collider {
   /// Still there for a step starting at `time`: a collider with `until` is gone from the first step
   /// that starts at it or later (to a nanosecond, as step times are sums of dt).
   bool present_at(Real time) const { return time < until - 1e-9; }
+  /// Is removed at some time (`until`).
+  bool removable() const { return std::isfinite(until); }
   /// Moves or disappears: the grains on it may not sleep.
-  bool changes() const { return !velocity.isZero() || until < std::numeric_limits<Real>::infinity(); }
+  bool changes() const { return !velocity.isZero() || removable(); }
 };
 
 /// The four shapes above are the ones a collider takes (the scene builder makes no other); a

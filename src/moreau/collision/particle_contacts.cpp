@@ -82,14 +82,12 @@ void detect_collider_contacts(const Model& model, State& state) {
   const Real dt = model.settings.dt, k = model.settings.contact_margin_factor;
   // A solid collider's surface lies within its bounding sphere: a particle farther from its centre
   // than that sphere plus its reach needs no distance query (a silo's walls and floor pieces
-  // against thousands of grains). Planes and containers have no such bound (-1); a collider
-  // removed by now (`until`) is marked -2.
+  // against thousands of grains). Planes and containers have no such bound (-1).
   const Index colliders = static_cast<Index>(model.colliders.size());
   std::vector<Real> bound(colliders, -1);
   for (Index ci = 0; ci < colliders; ++ci) {
     const Collider& col = model.colliders[ci];
-    if (!col.present_at(state.time)) bound[ci] = -2;  // removed: no contacts
-    else if (!col.inside && col.shape.type != ShapeType::plane) bound[ci] = col.shape.bounding_radius();
+    if (!col.inside && col.shape.type != ShapeType::plane) bound[ci] = col.shape.bounding_radius();
   }
   for (Index p = 0; p < model.particle_count(); ++p) {
     if (model.particle_inv_mass[p] <= 0) continue;
@@ -98,8 +96,8 @@ void detect_collider_contacts(const Model& model, State& state) {
     const bool asleep = state.sleep.asleep(p);
     for (Index ci = 0; ci < colliders; ++ci) {
       const Collider& col = model.colliders[ci];
-      if (bound[ci] == -2) continue;                  // removed
-      if (asleep && !col.changes()) continue;         // a sleeping grain rests on a fixed collider
+      if (!col.present_at(state.time)) continue;  // removed (`until`)
+      if (asleep && !col.changes()) continue;     // a sleeping grain rests on a fixed collider
       // Reach: what the particle can travel in the step, by its velocity and by gravity.
       const Real reach = model.particle_collider_gap[p] +
                          k * dt * ((state.velocity[p] - col.velocity).norm() + dt * model.settings.gravity.norm());

@@ -5,13 +5,10 @@
 // contact's gap C < 0. Grains at rest sink into each other by alpha times the load they carry.
 //
 // At the position level it is XPBD's damped compliant row (Macklin, Mueller, Chentanez 2016,
-// eq. 26): with alpha~ = alpha / h^2 and gamma = alpha c / h (the relaxation time c alpha in
-// substeps), dl = (-C - alpha~ l - gamma J dx) / ((1 + gamma) w + alpha~), J dx the normal motion
-// of the sides over the substep, and the accumulated l kept at least its lower bound (0: the
-// spring only pushes). At the velocity level it is SPOOK's row of compliance alpha and relaxation
-// time c alpha (nmd_system.hpp). Hard contacts (alpha = 0) keep the plain projection dl = -C / w.
-#include <algorithm>
-
+// eq. 26) with the relaxation time c alpha, its accumulated multiplier kept at least 0 (the spring
+// only pushes): compliant_normal_increment in solvers/xpbd/substep_context.hpp. At the velocity
+// level it is SPOOK's row of compliance alpha and relaxation time c alpha (nmd_system.hpp). Hard
+// contacts (alpha = 0) keep the plain projection dl = -C / w.
 #include "moreau/math/types.hpp"
 
 namespace moreau {
@@ -24,17 +21,6 @@ struct ContactSpring {
   /// c alpha, s: the time in which the dashpot relaxes the spring.
   Real relaxation_time() const { return compliance * damping; }
 };
-
-/// The increment of a soft contact's normal multiplier l (kg m, a force times h^2) at gap C (m),
-/// with w the sides' summed inverse mass along the normal and `normal_motion` J dx (m) the
-/// growth of the gap over the substep so far; l + dl stays at least `lower` (0, or minus a bond).
-inline Real compliant_normal_increment(const ContactSpring& spring, Real C, Real normal_motion, Real lambda, Real w,
-                                       Real lower, Real h) {
-  const Real alpha_tilde = spring.compliance / (h * h);
-  const Real gamma = spring.relaxation_time() / h;
-  const Real dl = (-C - alpha_tilde * lambda - gamma * normal_motion) / ((1 + gamma) * w + alpha_tilde);
-  return std::max(dl, lower - lambda);
-}
 
 /// The spring of a contact between two grains: the mean of the two objects' (as friction).
 inline ContactSpring mean_spring(const ContactSpring& a, const ContactSpring& b) {

@@ -25,12 +25,12 @@ void for_each_particle(const Model& model, const State& state, Index object, F&&
   });
 }
 
+}  // namespace
+
 Vec3 up_direction(const Model& model) {
   const Vec3& g = model.settings.gravity;
   return g.norm() > 0 ? Vec3(-g.normalized()) : Vec3::UnitY();
 }
-
-}  // namespace
 
 Real angle_of_repose(const Model& model, const State& state, Index object, const std::optional<Vec3>& axis_point,
                      Real bin, const std::optional<std::pair<Vec3, Vec3>>& region, Real resting_speed) {
@@ -84,19 +84,13 @@ Real angle_of_repose(const Model& model, const State& state, Index object, const
 Real runout(const Model& model, const State& state, Index object, const std::optional<Vec3>& axis_point,
             const std::optional<Vec3>& direction, Real fraction) {
   const Vec3 up = up_direction(model);
-  Vec3 axis = Vec3::Zero();
-  Real mass = 0;
-  for_each_particle(model, state, object, [&](Real m, const Vec3& x, const Vec3&, Real) {
-    axis += m * x;
-    mass += m;
-  });
-  if (!(mass > 0)) return std::numeric_limits<Real>::quiet_NaN();
-  axis = axis_point.value_or(axis / mass);
+  const Vec3 axis = axis_point ? *axis_point : center_of_mass(model, state, object);
   std::vector<Real> reach;
   for_each_particle(model, state, object, [&](Real, const Vec3& x, const Vec3&, Real r) {
     const Vec3 d = x - axis;
     reach.push_back((direction ? d.dot(*direction) : (d - d.dot(up) * up).norm()) + r);
   });
+  if (reach.empty()) return std::numeric_limits<Real>::quiet_NaN();
   // The k-th smallest with k = ceil(fraction n): the share `fraction` lies within it.
   const size_t k = std::max<size_t>(1, static_cast<size_t>(std::ceil(fraction * reach.size() - 1e-9))) - 1;
   std::nth_element(reach.begin(), reach.begin() + k, reach.end());

@@ -8,6 +8,10 @@
 
 namespace moreau {
 
+/// Up: against gravity (+y without gravity). The piles' probes measure heights along it and
+/// distances across it.
+Vec3 up_direction(const Model& model);
+
 /// The angle of repose of the pile of `object`'s particles, in degrees: the slope of its free
 /// surface, fitted by least squares over the flank.
 ///

@@ -3,6 +3,7 @@
 
 #include <map>
 
+#include "moreau/io/granular_probes.hpp"
 #include "moreau/io/probes.hpp"
 #include "moreau/scene/spec_builders.hpp"
 
@@ -241,8 +242,7 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
     if (spec.direction) {
       if (!spec.center) j.fail("direction", "a runout along a direction is measured from a point: give \"center\" (m) too");
       const Vec3 d = j.vector("direction", *spec.direction);
-      const Vec3& g = model.settings.gravity;
-      const Vec3 up = g.norm() > 0 ? Vec3(-g.normalized()) : Vec3::UnitY();  // as the probe's (granular_probes.cpp)
+      const Vec3 up = up_direction(model);
       const Vec3 horizontal = d - d.dot(up) * up;
       if (!(horizontal.norm() > 1e-9 * d.norm()) || !(d.norm() > 0))
         j.fail("direction", "the direction must have a horizontal part (across gravity)");

@@ -2,8 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <limits>
-
 #include "moreau/scene/spec_builders.hpp"
 #include "moreau/solvers/solver_registry.hpp"
 
@@ -26,7 +24,7 @@ void check_removed_colliders(const Model& model, const Entry& entry) {
   if (others.empty()) return;
   for (size_t k = 0; k < model.objects.size(); ++k) {
     const ObjectInfo& o = model.objects[k];
-    if (o.kind == ObjectKind::collider && model.colliders[o.collider].until < std::numeric_limits<Real>::infinity())
+    if (o.kind == ObjectKind::collider && model.colliders[o.collider].removable())
       entry("objects", k).fail("until", fmt::format("a collider that is removed meets only cloth, soft bodies, grains and "
                                                     "shape-matched particles; this scene also has {} (fluids, rigid "
                                                     "bodies, rods or suction cups)", others));

@@ -66,16 +66,15 @@ StickImpulses friction_impulses(const TurningContact& t, const Vec3& n, const Ve
 }
 
 // The velocity pass of one contact between sides of inverse masses w_i and w_j (j a collider
-// when v_j is null; its velocity is in v_rel): restitution along n when a hard contact pushed (a
-// spring's bounce is its own); dynamic friction (Mueller et al. 2020) unless a side is a grain
-// (`turns`), whose friction is all at the position level.
-void contact_velocity_pass(Real wi, Real wj, bool turns, bool soft, const Vec3& n, Vec3& v_i, Vec3* v_j,
-                           const Vec3& v_rel, const Vec3& v_rel_before, Real normal_multiplier, bool pushed, Real mu_k,
-                           Real e, Real h, Real g) {
-  if (soft) pushed = false;
+// when v_j is null; its velocity is in v_rel): restitution along n when the contact `bounces`
+// (a hard contact that pushed; a spring's bounce is its own); dynamic friction (Mueller et al.
+// 2020) unless a side is a grain (`turns`), whose friction is all at the position level.
+void contact_velocity_pass(Real wi, Real wj, bool turns, const Vec3& n, Vec3& v_i, Vec3* v_j, const Vec3& v_rel,
+                           const Vec3& v_rel_before, Real normal_multiplier, bool bounces, Real mu_k, Real e, Real h,
+                           Real g) {
   const Real w = wi + wj;
-  const Vec3 dv = turns    ? (pushed ? restitution_velocity_change(v_rel, v_rel_before, n, e, h, g) : Vec3::Zero())
-                  : pushed ? contact_velocity_change(v_rel, v_rel_before, n, normal_multiplier, w, mu_k, e, h, g)
+  const Vec3 dv = turns     ? (bounces ? restitution_velocity_change(v_rel, v_rel_before, n, e, h, g) : Vec3::Zero())
+                  : bounces ? contact_velocity_change(v_rel, v_rel_before, n, normal_multiplier, w, mu_k, e, h, g)
                            : friction_velocity_change(v_rel, n, normal_multiplier, w, mu_k, h);
   // Impulse dv / w: side i gains w_i of it per unit, side j loses w_j.
   v_i += (wi / w) * dv;
@@ -196,10 +195,9 @@ void collider_contact_velocities(const Model& model, State& state, const Vec3* v
       if (c.lambda_normal[q] <= 0) continue;
       const Index p = c.particle[q];
       const Vec3& vc = model.colliders[c.collider[q]].velocity;
-      contact_velocity_pass(model.particle_inv_mass[p], 0, model.particle_inv_inertia[p] > 0, c.spring[q].soft(), c.normal[q],
-                            state.velocity[p], nullptr, state.velocity[p] - vc,
-                            velocity_before[p] - vc, c.lambda_normal[q], true, c.dynamic_friction[q], c.restitution[q],
-                            h, g);
+      contact_velocity_pass(model.particle_inv_mass[p], 0, model.particle_inv_inertia[p] > 0, c.normal[q],
+                            state.velocity[p], nullptr, state.velocity[p] - vc, velocity_before[p] - vc,
+                            c.lambda_normal[q], !c.spring[q].soft(), c.dynamic_friction[q], c.restitution[q], h, g);
     }
   }
 }
@@ -219,10 +217,11 @@ void particle_contact_velocities(const Model& model, State& state, const Vec3* v
     }
     if (c.lambda_normal[q] + bond <= 0) return;
     const bool turns = model.particle_inv_inertia[i] > 0 || model.particle_inv_inertia[j] > 0;
-    contact_velocity_pass(model.particle_inv_mass[i], model.particle_inv_mass[j], turns, c.spring[q].soft(), c.normal[q],
+    contact_velocity_pass(model.particle_inv_mass[i], model.particle_inv_mass[j], turns, c.normal[q],
                           state.velocity[i], &state.velocity[j],
                           state.velocity[i] - state.velocity[j], velocity_before[i] - velocity_before[j],
-                          c.lambda_normal[q] + bond, c.lambda_normal[q] > 0, c.dynamic_friction[q], c.restitution[q], h, g);
+                          c.lambda_normal[q] + bond, c.lambda_normal[q] > 0 && !c.spring[q].soft(), c.dynamic_friction[q],
+                          c.restitution[q], h, g);
   });
 }
 
