@@ -172,6 +172,33 @@ TEST(NarrowPhase, CylinderStandingOnPlaneTouchesOnItsRim) {
   for (Real s : separations(side, lying, ground)) EXPECT_NEAR(s, -0.01, 1e-12);
 }
 
+TEST(NarrowPhase, CylinderLyingOnALongSlabTouchesItsTopAnywhereAndAtAnyTurn) {
+  // A wheel (R = 0.1 m) lying across a 20 m slab, 1 mm deep, at 21 places along it and 32 turns
+  // about its own axis, with the 0.7 m margin a wheel rolling at 5 m/s gets (the margin inflates
+  // both shapes for MPR). The contact is the slab's top face, two points on the wheel's axis with
+  // the radius, at the hand separation. MPR alone, from the centres' ray, took the slab's end face
+  // 4.7 m away for some of these poses.
+  const Shape wheel = make_cylinder(0.1, 0.15), slab = make_box(Vec3(10, 0.5, 2));
+  const Pose ground{Vec3::Zero(), Quat::Identity()};
+  int checked = 0;
+  for (int i = 0; i <= 20; ++i) {
+    for (int k = 0; k < 32; ++k) {
+      const Real x = -9.5 + 0.95 * i, turn = 2 * kPi * k / 32;
+      const Pose lying{Vec3(x, 0.599, 0), Quat(Eigen::AngleAxisd(turn, Vec3::UnitZ())) *
+                                                Quat(Eigen::AngleAxisd(kPi / 2, Vec3::UnitX()))};
+      const ContactManifold m = collide_shapes(wheel, lying, slab, ground, 0.7);
+      ASSERT_EQ(m.count, 2) << "x " << x << " turn " << turn;
+      for (Real sep : separations(m, lying, ground)) EXPECT_NEAR(sep, -0.001, 1e-12) << "x " << x << " turn " << turn;
+      for (int p = 0; p < 2; ++p) {
+        EXPECT_NEAR(contact_normal(m.frame, m.points[p], lying, ground).y(), 1, 1e-12);
+        EXPECT_EQ(m.points[p].radius_a, 0.1);  // the axis with the radius: the contact stays under it as it turns
+      }
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 21 * 32);
+}
+
 TEST(NarrowPhase, SeparatedBeyondTheMarginGivesNothing) {
   const Shape box = make_box(Vec3(0.5, 0.5, 0.5));
   const Pose a{Vec3(0, 1.2, 0), Quat::Identity()}, b{Vec3::Zero(), Quat::Identity()};

@@ -18,6 +18,13 @@ namespace {
 constexpr Real kFaceAlignment = 0.9;
 // Cylinder caps are represented by this many rim points in a manifold.
 constexpr int kCapPoints = 8;
+// |cosine| between a direction and the axis of a capsule or cylinder below which its side (the
+// whole core) is the feature (about 3 degrees from square).
+constexpr Real kSideAlignment = 0.05;
+// Share of the radii the cores must stay apart for their line to be the normal.
+constexpr Real kRoundNormalGap = 0.01;
+// m: how much deeper than MPR's direction a polyhedron's face axis may be and still be taken.
+constexpr Real kFaceAxisSlack = 1e-9;
 
 }  // namespace
 
@@ -32,7 +39,7 @@ Feature support_feature(const Shape& s, const Pose& pose, const Vec3& direction)
       break;
     case ShapeType::capsule:
       f.radius = s.radius;
-      if (std::abs(d.y()) < 0.05) {
+      if (std::abs(d.y()) < kSideAlignment) {
         add(Vec3(0, -s.half_height, 0));
         add(Vec3(0, s.half_height, 0));
       } else {
@@ -51,14 +58,17 @@ Feature support_feature(const Shape& s, const Pose& pose, const Vec3& direction)
         }
         f.is_face = true;
         f.face_normal = pose.orientation * Vec3(0, cap_y > 0 ? 1 : -1, 0);
+      } else if (std::abs(d.y()) < kSideAlignment) {
+        // The side: the axis swept by the radius, as a capsule's core. A contact anchored on the
+        // axis stays under the surface while the cylinder turns about it; one anchored on the rim
+        // would be carried round with the material and lift off (a rolling wheel sank and sped up).
+        add(Vec3(0, -s.half_height, 0));
+        add(Vec3(0, s.half_height, 0));
+        f.radius = s.radius;
       } else {
+        // The rim where side and cap meet: an edge.
         const Vec2 rim = s.radius * radial / rn;
-        if (std::abs(d.y()) < 0.05) {
-          add(Vec3(rim.x(), -s.half_height, rim.y()));
-          add(Vec3(rim.x(), s.half_height, rim.y()));
-        } else {
-          add(Vec3(rim.x(), cap_y, rim.y()));
-        }
+        add(Vec3(rim.x(), cap_y, rim.y()));
       }
       break;
     }
@@ -129,7 +139,14 @@ void contacts_from_features(const Feature& fa, const Feature& fb, const Vec3& n,
                                on_b);
     out.normal = n;
     out.frame = NormalFrame::body_b;
-    const Real s = (on_a - on_b).dot(n) - fa.radius - fb.radius;
+    // A rounded feature (a capsule's or a cylinder's side, a sphere) touches along the line of
+    // the closest points: that normal follows both bodies as they turn or roll.
+    const Real gap = (on_a - on_b).norm();
+    if ((fa.radius > 0 || fb.radius > 0) && gap > kRoundNormalGap * (fa.radius + fb.radius)) {
+      out.normal = (on_a - on_b) / gap;
+      out.frame = NormalFrame::cores;
+    }
+    const Real s = (on_a - on_b).dot(out.normal) - fa.radius - fb.radius;
     if (s <= margin) out.add({on_a, on_b, fa.radius, fb.radius, s});
     return;
   }
@@ -206,6 +223,16 @@ void collide_convex_mpr(const Shape& a, const Pose& pa, const Shape& b, const Po
   Vec3 n(-dir.v[0], -dir.v[1], -dir.v[2]);
   if (n.squaredNorm() <= 0) return;
   n.normalize();
+  // MPR's portal lies where the ray between the centres leaves the Minkowski difference, which
+  // need not be the shallowest direction: a cylinder rolling near the end of a 20 m slab got the
+  // slab's end face and was pushed 4 m. Against a polyhedron its face axes are tested as well
+  // (a separating-axis test through the other shape's support function); the face wins when it
+  // needs no deeper push than MPR's direction (libccd's depth includes the two inflations).
+  if (b.is_polyhedron()) {
+    const FaceAxis face = best_face_axis(b, pb, a, pa);
+    if (face.separation > margin) return;
+    if (-face.separation <= depth - margin + kFaceAxisSlack) n = pb.orientation * b.polyhedron.face_normals[face.face];
+  }
   const Feature fa = support_feature(a, pa, -n);
   const Feature fb = support_feature(b, pb, n);
   contacts_from_features(fa, fb, n, margin, out);

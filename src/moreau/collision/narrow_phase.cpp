@@ -165,7 +165,7 @@ void collide_plane(const Shape& a, const Pose& pa, const Pose& plane, Real margi
       break;
     case ShapeType::cylinder: {
       const narrow::Feature f = support_feature(a, pa, -n);
-      for (int k = 0; k < f.count; ++k) add_point(f.points[k], 0);
+      for (int k = 0; k < f.count; ++k) add_point(f.points[k], f.radius);
       break;
     }
     case ShapeType::plane:

@@ -63,6 +63,10 @@ struct FaceAxis {
   Index face = -1;
 };
 
+/// The face plane of polyhedron `self` from which convex `other` (any shape, through its support
+/// function) is separated the most: the shallowest of `self`'s face axes.
+FaceAxis best_face_axis(const Shape& self, const Pose& pose_self, const Shape& other, const Pose& pose_other);
+
 /// What a separating-axis test of two overlapping polyhedra found: the best face axis of each
 /// and the best edge-edge axis (oriented from A to B, with the two edge directions crossed).
 struct SeparatingAxes {

@@ -11,10 +11,11 @@ namespace moreau::narrow {
 namespace {
 
 Vec3 world_support(const Shape& s, const Pose& p, const Vec3& direction) {
-  return p.to_world(s.polyhedron.vertices[s.polyhedron.support_vertex(p.orientation.conjugate() * direction)]);
+  return p.to_world(s.support(p.orientation.conjugate() * direction));
 }
 
-// Deepest separation of `other` from each face plane of `self` (both posed).
+}  // namespace
+
 FaceAxis best_face_axis(const Shape& self, const Pose& ps, const Shape& other, const Pose& po) {
   FaceAxis best;
   const ConvexPolyhedron& poly = self.polyhedron;
@@ -26,6 +27,8 @@ FaceAxis best_face_axis(const Shape& self, const Pose& ps, const Shape& other, c
   }
   return best;
 }
+
+namespace {
 
 Feature face_feature(const Shape& s, const Pose& p, Index f) {
   Feature out;

@@ -13,6 +13,15 @@ Quat rotate_by_angular_velocity(const Quat& q, const Vec3& w, Real h) {
   return (Quat(Eigen::AngleAxisd(angle, w.normalized())) * q).normalized();
 }
 
+Vec3 turn_between(const Quat& from, const Quat& to) {
+  Quat dq = to * from.conjugate();
+  if (dq.w() < 0) dq.coeffs() = -dq.coeffs();  // the shorter way round
+  // dq = (cos(a/2), sin(a/2) u): the rotation vector a u is 2 atan2(|v|, w) v / |v|.
+  const Real s = dq.vec().norm();
+  const Real scale = s > 1e-12 ? 2 * std::atan2(s, dq.w()) / s : 2 / dq.w();
+  return scale * dq.vec();
+}
+
 Vec3 gyroscopic_velocity_change(const Quat& q, const Vec3& w_world, const Vec3& inertia, const Vec3& inv_inertia,
                                 Real h) {
   const Vec3 w = q.conjugate() * w_world;
@@ -47,10 +56,7 @@ void predict_rigid_bodies(const Model& model, RigidBodyState& s, RigidSubstepSta
         s.angular_velocity[b] += gyroscopic_velocity_change(s.orientation[b], s.angular_velocity[b], m.body_inertia[b],
                                                             m.body_inv_inertia[b], h);
         s.position[b] += h * s.velocity[b];
-        const Vec3& wn = s.angular_velocity[b];
-        Quat& qn = s.orientation[b];
-        qn.coeffs() += 0.5 * h * (Quat(0, wn.x(), wn.y(), wn.z()) * qn).coeffs();
-        qn.normalize();
+        s.orientation[b] = rotate_by_angular_velocity(s.orientation[b], s.angular_velocity[b], h);
         break;
       }
     }
@@ -66,9 +72,7 @@ void update_rigid_body_velocities(const Model& model, RigidBodyState& s, const R
   for (Index b = 0; b < m.count(); ++b) {
     if (!m.is_dynamic(b)) continue;
     s.velocity[b] = (s.position[b] - start.position[b]) / h;
-    const Quat dq = s.orientation[b] * start.orientation[b].conjugate();
-    const Vec3 w = 2.0 / h * dq.vec();
-    s.angular_velocity[b] = dq.w() >= 0 ? w : Vec3(-w);
+    s.angular_velocity[b] = turn_between(start.orientation[b], s.orientation[b]) / h;
   }
 }
 
