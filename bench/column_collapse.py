@@ -17,14 +17,14 @@ text was not read).
 Usage: bench/column_collapse.py [--moreau build/moreau] [--out DIR] [--threads N]
                                 [--rolling-resistance MU_R] [--friction MU] [--iterations N]
 """
-import argparse
 import csv
 import json
 import math
 import os
 import subprocess
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from collapse_options import ROOT, collapse_options
+
 R_I, GRAIN, SETTLE = 0.05, 0.0025, 0.5
 
 
@@ -60,14 +60,7 @@ def run(args, a):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--moreau", default=os.path.join(ROOT, "build", "moreau"))
-    p.add_argument("--out", default=os.path.join(ROOT, "out", "column_collapse"))
-    p.add_argument("--threads", type=int, default=2)
-    p.add_argument("--rolling-resistance", type=float, default=0.2)
-    p.add_argument("--friction", type=float, default=0.7)
-    p.add_argument("--iterations", type=int, default=4)
-    args = p.parse_args()
+    args = collapse_options(__doc__, "column_collapse").parse_args()
     print(f"mu = {args.friction}, mu_r = {args.rolling_resistance}, {args.iterations} iterations")
     print("a (settled) | (r_inf - r_i)/r_i: 99 %, 99.9 %, all | Lube 2004 | 99 % vs Lube | H_inf/r_i | run s")
     for a in (0.5, 1, 2, 3):

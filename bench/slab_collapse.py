@@ -19,13 +19,13 @@ material and the exponents on the channel's width.
 Usage: bench/slab_collapse.py [--moreau build/moreau] [--out DIR] [--threads N] [--width W]
                               [--rolling-resistance MU_R] [--friction MU] [--iterations N]
 """
-import argparse
 import csv
 import json
 import os
 import subprocess
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+from collapse_options import collapse_options
+
 L_I, GRAIN, SETTLE, DURATION = 0.05, 0.0025, 0.5, 2.5
 
 
@@ -70,14 +70,8 @@ def run(args, a):
 
 
 def main():
-    p = argparse.ArgumentParser(description=__doc__.split("\n")[0])
-    p.add_argument("--moreau", default=os.path.join(ROOT, "build", "moreau"))
-    p.add_argument("--out", default=os.path.join(ROOT, "out", "slab_collapse"))
-    p.add_argument("--threads", type=int, default=2)
+    p = collapse_options(__doc__, "slab_collapse")
     p.add_argument("--width", type=float, default=0.05)
-    p.add_argument("--rolling-resistance", type=float, default=0.2)
-    p.add_argument("--friction", type=float, default=0.7)
-    p.add_argument("--iterations", type=int, default=4)
     args = p.parse_args()
     print(f"mu = {args.friction}, mu_r = {args.rolling_resistance}, W = {args.width} m, {args.iterations} iterations")
     print("a    | (L_inf - L_i)/L_i | Lube 2005 | error    | H_inf/L_i | run s")
