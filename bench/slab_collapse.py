@@ -11,9 +11,9 @@ measured:
 against a = H_i / L_i, with H_i the block's height as built (a tall lattice block can throw its top
 grains up while it settles, so the height at 0.5 s is not used).
 Lube et al. (2005), Phys. Rev. E 72, 041301: (L_inf - L_i)/L_i = 1.2 a at small a and 1.9 a^(2/3)
-at large a (the crossover is quoted as 2.3 by some and as a band from 1.8 to 2.8 by others; the
-laws here switch where they cross, a = 2.44). These constants are quoted from secondary sources:
-the paper's text was not read. Balmforth & Kerswell (2005) find the prefactors depend on the
+at large a, switching at a = 2.3 as most later papers quote it (others give a band from 1.8 to
+2.8). The two branches do not meet there (2.76 against 3.31), so near the switch the comparison is
+loose. These constants are quoted from secondary sources: the paper's text was not read. Balmforth & Kerswell (2005) find the prefactors depend on the
 material and the exponents on the channel's width.
 
 Usage: bench/slab_collapse.py [--moreau build/moreau] [--out DIR] [--threads N] [--width W]
@@ -30,7 +30,7 @@ L_I, GRAIN, SETTLE, DURATION = 0.05, 0.0025, 0.5, 2.5
 
 
 def lube_runout(a):
-    return min(1.2 * a, 1.9 * a ** (2 / 3))
+    return 1.2 * a if a < 2.3 else 1.9 * a ** (2 / 3)
 
 
 def slab_scene(args, a):

@@ -199,6 +199,25 @@ TEST(NarrowPhase, CylinderLyingOnALongSlabTouchesItsTopAnywhereAndAtAnyTurn) {
   EXPECT_EQ(checked, 21 * 32);
 }
 
+TEST(NarrowPhase, SphereOnACylindersSideKeepsItsNormalWhileTheCylinderTurns) {
+  // A ball (r = 0.05 m) touching a lying cylinder (R = 0.1 m, axis along z) 60 degrees round from
+  // the top, 1 mm deep. The normal is the line from the axis to the ball's centre, taken from the
+  // two cores, so it stays that line when the cylinder turns about its axis within the step (a
+  // normal fixed in the cylinder would turn with it, 0.3 rad here).
+  const Shape ball = make_sphere(0.05), drum = make_cylinder(0.1, 0.3);
+  const Vec3 radial(std::sin(kPi / 3), std::cos(kPi / 3), 0);
+  const Pose sphere{0.149 * radial, Quat::Identity()};
+  const Quat lying(Eigen::AngleAxisd(kPi / 2, Vec3::UnitX()));
+  const Pose still{Vec3::Zero(), lying};
+  const ContactManifold m = collide_shapes(ball, sphere, drum, still, 0.02);
+  ASSERT_EQ(m.count, 1);
+  EXPECT_NEAR(separations(m, sphere, still)[0], -0.001, 1e-12);
+  EXPECT_NEAR(contact_normal(m.frame, m.points[0], sphere, still).dot(radial), 1, 1e-12);
+  const Pose turned{Vec3::Zero(), Quat(Eigen::AngleAxisd(0.3, Vec3::UnitZ())) * lying};
+  EXPECT_NEAR(contact_normal(m.frame, m.points[0], sphere, turned).dot(radial), 1, 1e-12);
+  EXPECT_NEAR(separations(m, sphere, turned)[0], -0.001, 1e-12);
+}
+
 TEST(NarrowPhase, SeparatedBeyondTheMarginGivesNothing) {
   const Shape box = make_box(Vec3(0.5, 0.5, 0.5));
   const Pose a{Vec3(0, 1.2, 0), Quat::Identity()}, b{Vec3::Zero(), Quat::Identity()};
