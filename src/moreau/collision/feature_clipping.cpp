@@ -147,7 +147,9 @@ void contacts_from_features(const Feature& fa, const Feature& fb, const Vec3& n,
       out.frame = NormalFrame::cores;
     }
     const Real s = (on_a - on_b).dot(out.normal) - fa.radius - fb.radius;
-    if (s <= margin) out.add({on_a, on_b, fa.radius, fb.radius, s});
+    if (s <= margin)
+      out.add(Candidate{on_a, on_b, fa.radius, fb.radius, s}.along(fa.points[0], fa.points[fa.count - 1], fb.points[0],
+                                                                    fb.points[fb.count - 1]));
     return;
   }
   const bool a_is_reference = reference == Reference::a;

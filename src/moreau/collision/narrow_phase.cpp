@@ -97,6 +97,13 @@ ContactManifold reduce_to_manifold(const Candidates& c, const Pose& pa, const Po
     g.radius_a = cand.radius_a;
     g.radius_b = cand.radius_b;
     g.normal = n_local;
+    g.on_lines = cand.on_lines && c.frame == NormalFrame::cores;
+    if (g.on_lines) {
+      for (int e = 0; e < 2; ++e) {
+        g.line_a[e] = pa.to_local(cand.line_a[e]);
+        g.line_b[e] = pb.to_local(cand.line_b[e]);
+      }
+    }
   }
   return m;
 }
@@ -125,18 +132,18 @@ void collide_round(const Shape& a, const Pose& pa, const Shape& b, const Pose& p
   if (separation > margin) return;
   out.normal = dist > 1e-12 ? Vec3(d / dist) : Vec3(pa.orientation * Vec3::UnitY());
   out.frame = NormalFrame::cores;
-  out.add({on_a, on_b, ca.radius, cb.radius, separation});
+  out.add(Candidate{on_a, on_b, ca.radius, cb.radius, separation}.along(ca.p0, ca.p1, cb.p0, cb.p1));
   // Two parallel capsules lie along each other: add the other end of the overlap so they do not
   // pivot about one point.
   const Vec3 da = ca.p1 - ca.p0, db = cb.p1 - cb.p0;
-  if (da.squaredNorm() > 0 && db.squaredNorm() > 0 && std::abs(da.normalized().dot(db.normalized())) > 0.995) {
+  if (da.squaredNorm() > 0 && db.squaredNorm() > 0 && std::abs(da.normalized().dot(db.normalized())) > kParallelCores) {
     for (const Vec3& end : {ca.p0, ca.p1}) {
       Vec3 e_a, e_b;
       closest_points_of_segments(end, end, cb.p0, cb.p1, e_a, e_b);
       if ((e_a - on_a).norm() < 1e-6 * (1 + da.norm())) continue;
       const Real s = (e_a - e_b).dot(out.normal) - ca.radius - cb.radius;
       if (s <= margin && ((e_a - e_b) - (e_a - e_b).dot(out.normal) * out.normal).norm() < 1e-6 + 1e-3 * da.norm())
-        out.add({e_a, e_b, ca.radius, cb.radius, s});
+        out.add(Candidate{e_a, e_b, ca.radius, cb.radius, s}.along(ca.p0, ca.p1, cb.p0, cb.p1));
     }
   }
 }
@@ -181,6 +188,7 @@ void swap_sides(ContactManifold& m) {
     ContactGeometry& g = m.points[k];
     std::swap(g.core_a, g.core_b);
     std::swap(g.radius_a, g.radius_b);
+    std::swap(g.line_a, g.line_b);
     g.normal = -g.normal;
   }
   if (m.frame == NormalFrame::body_a) m.frame = NormalFrame::body_b;
@@ -272,12 +280,32 @@ void collide_with_mesh(const Shape& convex, const Pose& pose, const Shape& mesh,
   for (const narrow::Candidates& g : groups) out.push_back(narrow::reduce_to_manifold(g, pose, mesh_pose));
 }
 
-Vec3 contact_normal(NormalFrame frame, const ContactGeometry& c, const Pose& pa, const Pose& pb) {
+CorePoints contact_cores(NormalFrame frame, const ContactGeometry& c, const Pose& pa, const Pose& pb) {
+  CorePoints cores{pa.to_world(c.core_a), pb.to_world(c.core_b)};
+  if (frame != NormalFrame::cores || !c.on_lines) return cores;
+  const Vec3 a0 = pa.to_world(c.line_a[0]), a1 = pa.to_world(c.line_a[1]);
+  const Vec3 b0 = pb.to_world(c.line_b[0]), b1 = pb.to_world(c.line_b[1]);
+  const Vec3 da = a1 - a0, db = b1 - b0;
+  const bool parallel = da.squaredNorm() > 0 && db.squaredNorm() > 0 &&
+                        std::abs(da.normalized().dot(db.normalized())) > narrow::kParallelCores;
+  if (!parallel) {
+    narrow::closest_points_of_segments(a0, a1, b0, b1, cores.a, cores.b);
+  } else {
+    // Segments along each other have no single closest pair: each point of the manifold keeps its
+    // place on A and finds the point of B opposite it.
+    Vec3 unused;
+    narrow::closest_points_of_segments(cores.a, cores.a, b0, b1, unused, cores.b);
+  }
+  return cores;
+}
+
+Vec3 contact_normal(NormalFrame frame, const ContactGeometry& c, const Pose& pa, const Pose& pb,
+                    const CorePoints& cores) {
   switch (frame) {
     case NormalFrame::body_a: return pa.orientation * c.normal;
     case NormalFrame::body_b: return pb.orientation * c.normal;
     case NormalFrame::cores: {
-      const Vec3 d = pa.to_world(c.core_a) - pb.to_world(c.core_b);
+      const Vec3 d = cores.a - cores.b;
       const Real len = d.norm();
       return len > 1e-12 ? Vec3(d / len) : c.normal;
     }

@@ -35,6 +35,13 @@ struct ContactGeometry {
   Vec3 core_a = Vec3::Zero(), core_b = Vec3::Zero();  // body frames
   Real radius_a = 0, radius_b = 0;                    // m
   Vec3 normal = Vec3::UnitY();                        // unit, in the frame `frame` names (B to A)
+  // In the cores frame, the segments the cores lie on (body frames; a segment may be a point: a
+  // sphere's centre, a cylinder's rim point): a capsule's or a cylinder side's axis, an edge. The
+  // cores then slide along them to their closest points at the current poses, so a rope segment
+  // sliding along a drum keeps its normal square to the drum's axis (with fixed cores the normal
+  // tilted towards the detected point and pushed the rope further along: it slid off).
+  bool on_lines = false;
+  std::array<Vec3, 2> line_a{Vec3::Zero(), Vec3::Zero()}, line_b{Vec3::Zero(), Vec3::Zero()};
 };
 
 struct ContactManifold {
@@ -55,7 +62,19 @@ void swap_sides(ContactManifold& m);
 void collide_with_mesh(const Shape& convex, const Pose& pose, const Shape& mesh, const Pose& mesh_pose,
                        Real margin, std::vector<ContactManifold>& out);
 
-/// World-space unit normal (B to A) of a contact in the current poses.
-Vec3 contact_normal(NormalFrame frame, const ContactGeometry& c, const Pose& pose_a, const Pose& pose_b);
+/// World-space core points of a contact in the current poses (slid along their lines in the cores
+/// frame).
+struct CorePoints {
+  Vec3 a, b;
+};
+CorePoints contact_cores(NormalFrame frame, const ContactGeometry& c, const Pose& pose_a, const Pose& pose_b);
+
+/// World-space unit normal (B to A) of a contact in the current poses, given its cores there.
+Vec3 contact_normal(NormalFrame frame, const ContactGeometry& c, const Pose& pose_a, const Pose& pose_b,
+                    const CorePoints& cores);
+/// The same, finding the cores.
+inline Vec3 contact_normal(NormalFrame frame, const ContactGeometry& c, const Pose& pose_a, const Pose& pose_b) {
+  return contact_normal(frame, c, pose_a, pose_b, contact_cores(frame, c, pose_a, pose_b));
+}
 
 }  // namespace moreau

@@ -7,12 +7,27 @@
 
 namespace moreau::narrow {
 
-/// A candidate contact in world space: cores, radii and the separation along the manifold normal.
+/// A candidate contact in world space: cores, radii and the separation along the manifold normal;
+/// for a normal that follows the cores, the segments the cores lie on (ContactGeometry::on_lines).
 struct Candidate {
   Vec3 core_a, core_b;
   Real radius_a = 0, radius_b = 0;
   Real separation = 0;
+  bool on_lines = false;
+  std::array<Vec3, 2> line_a{Vec3::Zero(), Vec3::Zero()}, line_b{Vec3::Zero(), Vec3::Zero()};
+
+  /// The same candidate with its cores on segments [a0, a1] and [b0, b1] (a segment may be a point).
+  Candidate along(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1) const {
+    Candidate c = *this;
+    c.on_lines = true;
+    c.line_a = {a0, a1};
+    c.line_b = {b0, b1};
+    return c;
+  }
 };
+
+/// |cosine| between two core segments above which they lie along each other (parallel capsules).
+inline constexpr Real kParallelCores = 0.995;
 
 /// Up to 64 candidates with one world normal (B to A), reduced to four at the end.
 struct Candidates {

@@ -33,6 +33,7 @@ struct State;
 struct RigidContactPoint {
   ContactGeometry geometry;
   Real lambda_normal = 0;                // kg m, this substep
+  Vec2 lambda_tangent = Vec2::Zero();    // kg m, this substep: static friction held by the direct solve
   Vec3 normal = Vec3::UnitY();           // world, at the last projection
   Vec3 offset_a = Vec3::Zero(), offset_b = Vec3::Zero();  // world, contact points minus centres
   Vec3 material_a = Vec3::Zero(), material_b = Vec3::Zero();  // body frames, the points at the last projection
@@ -49,6 +50,7 @@ struct RigidManifold {
   Real static_friction = 0, dynamic_friction = 0, restitution = 0;
   Real adhesion = 0;                     // N per point: the larger of the two bodies' (either glue holds)
   // Per substep.
+  bool with_joints = false;              // xpbd: solved in the joints' direct solve (tree_contacts.hpp)
   bool touching = false;                 // a point pushed this substep
   bool sliding = false;                  // friction rows dropped at the last projection
 };

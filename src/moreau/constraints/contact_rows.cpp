@@ -6,9 +6,10 @@
 namespace moreau {
 
 ContactPointAtPoses contact_point_at_poses(NormalFrame frame, const ContactGeometry& c, const Pose& pa, const Pose& pb) {
-  const Vec3 n = contact_normal(frame, c, pa, pb);
-  const Vec3 p_a = pa.to_world(c.core_a) - c.radius_a * n;
-  const Vec3 p_b = pb.to_world(c.core_b) + c.radius_b * n;
+  const CorePoints cores = contact_cores(frame, c, pa, pb);
+  const Vec3 n = contact_normal(frame, c, pa, pb, cores);
+  const Vec3 p_a = cores.a - c.radius_a * n;
+  const Vec3 p_b = cores.b + c.radius_b * n;
   return {n, p_a, p_b, (p_a - p_b).dot(n)};
 }
 

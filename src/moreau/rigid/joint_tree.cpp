@@ -1,19 +1,19 @@
 #include "moreau/rigid/joint_tree.hpp"
 
-#include <Eigen/Cholesky>
 #include <numeric>
 
 #include "moreau/model/model.hpp"
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/body_handle.hpp"
+#include "moreau/rigid/tree_contacts.hpp"
+#include "moreau/rigid/tree_factorization.hpp"
 
 namespace moreau {
 
 namespace {
 
-// Small blocks of at most 6 x 6, stored inline (no heap allocation per node).
-using Block = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
-using Column = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, 6, 1>;
+using Block = TreeBlock;
+using Column = TreeColumn;
 using RowJacobian = Eigen::Matrix<Real, Eigen::Dynamic, 6, 0, 6, 6>;
 
 bool is_tree_body(const RigidBodyModel& bodies, const JointEnd& e) {
@@ -168,27 +168,48 @@ JointForest build_joint_forest(const RigidBodyModel& bodies, const std::vector<J
   }
   const Index n = static_cast<Index>(order.size());
   forest.nodes.resize(n);
+  forest.body_node.assign(bodies.count(), -1);
   for (Index i = 0; i < n; ++i) {
     JointTreeNode node = order[n - 1 - i];
     if (node.parent >= 0) node.parent = n - 1 - node.parent;
     forest.nodes[i] = node;
+    if (node.is_body) forest.body_node[node.index] = i;
+  }
+  // Roots come last: each node's tree is its parent's.
+  std::vector<Index> tree(n);
+  for (Index i = n; i-- > 0;) tree[i] = forest.nodes[i].parent < 0 ? i : tree[forest.nodes[i].parent];
+  forest.body_tree.assign(bodies.count(), -1);
+  for (Index b = 0; b < bodies.count(); ++b)
+    if (forest.body_node[b] >= 0) forest.body_tree[b] = tree[forest.body_node[b]];
+  forest.tree_has_loose_joints.assign(n, 0);
+  for (size_t k = 0; k < joints.size(); ++k) {
+    if (forest.joint_in_tree[k]) continue;
+    for (const JointEnd& e : joints[k].ends)
+      if (e.kind == BodyEndKind::body && forest.tree_of_body(e.index) >= 0)
+        forest.tree_has_loose_joints[forest.tree_of_body(e.index)] = 1;
   }
   return forest;
 }
 
 namespace {
 
-// One linearised solve (a Newton step on every tree joint's equality rows), skipped when the largest
-// |C + alpha~ lambda| is already below the tolerance; returns whether it solved.
+// The active set of the tree contacts changes at most this many times per linearisation; a set
+// still changing after that is taken as it stands and the next pass goes on from there.
+constexpr int kMaxActiveSetSolves = 16;
+
+// One linearised solve (a Newton step on every tree joint's equality rows and the tree contacts'
+// active rows), skipped when the largest |C + alpha~ lambda| is already below the tolerance;
+// returns whether it solved.
 bool direct_pass(const Model& model, State& state, const SubstepStart& start, Real h) {
   const JointForest& forest = model.joint_forest;
   const size_t n = forest.nodes.size();
-  Real residual = 0;
+  TreeContacts contacts(model, state, start);
+  Real residual = contacts.residual();
 
   // Diagonal blocks H_ii (M for a body, -alpha~ for a joint) and right-hand sides b_i.
   std::vector<JointRows> rows(n);
-  std::vector<Block> diagonal(n), to_parent(n);
-  std::vector<Column> s(n);
+  std::vector<Block> diagonal(n);
+  std::vector<Column> rhs(n);
   for (size_t i = 0; i < n; ++i) {
     const JointTreeNode& node = forest.nodes[i];
     if (node.is_body) {
@@ -197,43 +218,39 @@ bool direct_pass(const Model& model, State& state, const SubstepStart& start, Re
       diagonal[i].setZero(6, 6);
       diagonal[i].topLeftCorner<3, 3>() = model.rigid.body_mass[b] * Mat3::Identity();
       diagonal[i].bottomRightCorner<3, 3>() = R * model.rigid.body_inertia[b].asDiagonal() * R.transpose();
-      s[i].setZero(6);
+      rhs[i].setZero(6);
     } else {
       const Joint& j = model.joints[node.index];
       rows[i] = joint_rows_now(j, state.joint_lambda[node.index], state, start, h);
       diagonal[i] = -Block(rows[i].alpha_tilde.asDiagonal());
-      s[i] = rows[i].c + rows[i].alpha_tilde.cwiseProduct(rows[i].lambda);
-      residual = std::max(residual, s[i].cwiseAbs().maxCoeff());
+      rhs[i] = rows[i].c + rows[i].alpha_tilde.cwiseProduct(rows[i].lambda);
+      residual = std::max(residual, rhs[i].cwiseAbs().maxCoeff());
     }
   }
   if (residual <= kDirectTolerance) return false;
   // Off-diagonal H_i,parent = -J (rows x 6) below a body, -J^T (6 x rows) below a joint.
-  auto coupling = [&](size_t i) -> Block {
+  std::vector<Block> coupling(n);
+  for (size_t i = 0; i < n; ++i) {
     const JointTreeNode& node = forest.nodes[i];
+    if (node.parent < 0) continue;
     const size_t joint_node = node.is_body ? node.parent : i;
     const Index body = node.is_body ? node.index : forest.nodes[node.parent].index;
     const Joint& j = model.joints[forest.nodes[joint_node].index];
     const int slot = j.ends[0].kind == BodyEndKind::body && j.ends[0].index == body ? 0 : 1;
     const RowJacobian& jac = rows[joint_node].jacobian[slot];
-    return node.is_body ? Block(-jac.transpose()) : Block(-jac);
-  };
-
-  // Factor, leaves first: D_i -> LDL^T, J_i = D_i^-1 H_i,parent, D_parent -= H_i,parent^T J_i.
-  std::vector<Eigen::LDLT<Block>> factor(n);
-  for (size_t i = 0; i < n; ++i) {
-    factor[i].compute(diagonal[i]);
-    const Index p = forest.nodes[i].parent;
-    if (p < 0) continue;
-    const Block h_ip = coupling(i);
-    to_parent[i] = factor[i].solve(h_ip);
-    diagonal[p] -= h_ip.transpose() * to_parent[i];
+    coupling[i] = node.is_body ? Block(-jac.transpose()) : Block(-jac);
   }
-  // Forward (leaves to roots), then backward (roots to leaves).
-  for (size_t i = 0; i < n; ++i)
-    if (const Index p = forest.nodes[i].parent; p >= 0) s[p] -= to_parent[i].transpose() * s[i];
-  for (size_t i = n; i-- > 0;) {
-    s[i] = factor[i].solve(s[i]);
-    if (const Index p = forest.nodes[i].parent; p >= 0) s[i] -= to_parent[i] * s[p];
+
+  // The contacts join the solve (tree_contacts.hpp); solved again while their active set changes.
+  std::vector<Column> s;
+  for (int attempt = 1;; ++attempt) {
+    std::vector<Block> with_contacts = diagonal;
+    s = rhs;
+    contacts.add_to(with_contacts, s);
+    const TreeFactorization factorization(forest, std::move(with_contacts), coupling);
+    factorization.solve(s);
+    contacts.solve_links(factorization, s);
+    if (contacts.empty() || attempt == kMaxActiveSetSolves || contacts.holds(s)) break;
   }
 
   for (size_t i = 0; i < n; ++i) {
@@ -246,6 +263,7 @@ bool direct_pass(const Model& model, State& state, const SubstepStart& start, Re
       add_to_lambdas(rows[i], s[i], state.joint_lambda[node.index]);
     }
   }
+  if (!contacts.empty()) contacts.accept(s, state);
   return true;
 }
 

@@ -46,9 +46,14 @@ struct JointTreeNode {
 struct JointForest {
   std::vector<JointTreeNode> nodes;   // every node precedes its parent (leaves first)
   std::vector<char> joint_in_tree;    // per joint: its equality rows are solved here
+  std::vector<Index> body_node;       // per rigid body: its node, or -1
+  std::vector<Index> body_tree;       // per rigid body: its tree (the root's node), or -1
+  std::vector<char> tree_has_loose_joints;  // per root node: a joint left to Gauss-Seidel acts on the tree
 
   bool empty() const { return nodes.empty(); }
   bool in_tree(size_t joint) const { return joint < joint_in_tree.size() && joint_in_tree[joint]; }
+  Index node_of_body(Index b) const { return b >= 0 && static_cast<size_t>(b) < body_node.size() ? body_node[b] : -1; }
+  Index tree_of_body(Index b) const { return b >= 0 && static_cast<size_t>(b) < body_tree.size() ? body_tree[b] : -1; }
 };
 
 /// Builds the forest from the joints in scene order (see the file comment for loops).

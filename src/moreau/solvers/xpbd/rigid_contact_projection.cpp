@@ -69,6 +69,7 @@ void reset_rigid_contacts(State& state) {
   for (RigidManifold& mf : state.rigid_contacts.manifolds) mf.touching = false;
   for (RigidContactPoint& c : state.rigid_contacts.points) {
     c.lambda_normal = 0;
+    c.lambda_tangent = Vec2::Zero();
     c.touching = false;
   }
 }
@@ -78,6 +79,7 @@ void project_rigid_contacts(const Model& model, State& state, const SubstepStart
   RigidBodyState& s = state.rigid;
   RigidContacts& contacts = state.rigid_contacts;
   for (RigidManifold& mf : contacts.manifolds) {
+    if (mf.with_joints) continue;  // solved with the joints (tree_contacts.hpp)
     const BodyHandle ha = rigid_body_handle(m, s, mf.body_a), hb = rigid_body_handle(m, s, mf.body_b);
     RigidContactPoint* points = contacts.points.data() + mf.first;
     project_manifold(mf, points, ha, hb, s, start);

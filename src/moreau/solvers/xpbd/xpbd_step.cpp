@@ -15,6 +15,7 @@
 #include "moreau/collision/particle_body_contacts.hpp"
 #include "moreau/collision/particle_candidates.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
+#include "moreau/rigid/tree_contacts.hpp"
 #include "moreau/solvers/xpbd/joint_projection.hpp"
 #include "moreau/solvers/xpbd/particle_body_contact_projection.hpp"
 #include "moreau/solvers/xpbd/particle_contact_projection.hpp"
@@ -131,6 +132,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
           reset_joints(model, state, work.joint_drive_start.data());
           reset_rigid_contacts(state);
           reset_particle_body_contacts(state);
+          choose_tree_contacts(model, state);
         }
       }
       predict(model, state, work, h);
