@@ -326,6 +326,7 @@ struct RodSpec {
   std::optional<double> youngs_modulus;   // Pa, E (required)
   std::optional<double> shear_modulus;    // Pa, G; or
   std::optional<double> poisson_ratio;    // G = E / (2 (1 + nu)), default nu = 0.3
+  std::optional<double> bending_modulus;  // Pa, the E of bending (default: youngs_modulus)
   double density = 1000;                  // kg/m^3
   std::string start = "free", end = "free";  // "free", "clamped" or "pinned" to the world where it is
   double damping_time = 0;                // s, Kelvin-Voigt: the strain rates' stress is damping_time times the stiffness

@@ -141,6 +141,7 @@ Quat junction_frame() {
 
 struct RodMaterial {
   Real E = 0, G = 0;
+  Real E_bending = 0;  // a stranded rope or cable bends far more easily than a solid rod of its section
 };
 
 // The compliances of a junction standing for `length` of the rod (rod_joint.cpp).
@@ -148,7 +149,7 @@ void set_junction_compliance(Joint& joint, Real length, const Section& s, const 
   joint.rod_compliance = length * Vec3(1 / (m.E * s.area), 1 / (m.G * s.area), 1 / (m.G * s.area));
   // Joint y is the body's z and joint z the body's x.
   joint.rod_angular_compliance =
-      length * Vec3(1 / (m.G * s.torsion), 1 / (m.E * s.inertia_about_z), 1 / (m.E * s.inertia_about_x));
+      length * Vec3(1 / (m.G * s.torsion), 1 / (m.E_bending * s.inertia_about_z), 1 / (m.E_bending * s.inertia_about_x));
 }
 
 }  // namespace
@@ -174,6 +175,7 @@ RodSpec read_rod(const JsonObject& object) {
   spec.youngs_modulus = read_optional_number(object, "youngs_modulus");
   spec.shear_modulus = read_optional_number(object, "shear_modulus");
   spec.poisson_ratio = read_optional_number(object, "poisson_ratio");
+  spec.bending_modulus = read_optional_number(object, "bending_modulus");
   spec.density = object.number("density", spec.density);
   if (object.has("start")) spec.start = object.string("start");
   if (object.has("end")) spec.end = object.string("end");
@@ -196,6 +198,8 @@ void add_rod(const RodSpec& spec, const SpecPlace& place, ObjectInfo& info, Scen
                    ? place.number("shear_modulus", *spec.shear_modulus, Range::positive())
                    : material.E / (2 * (1 + place.number("poisson_ratio", spec.poisson_ratio.value_or(0.3),
                                                          Range::open(-1, 0.5))));
+  material.E_bending = spec.bending_modulus ? place.number("bending_modulus", *spec.bending_modulus, Range::positive())
+                                            : material.E;
   const Real density = place.number("density", spec.density, Range::positive());
   const Real damping = place.number("damping_time", spec.damping_time, Range::non_negative());
   const std::string& start = place.choice("start", spec.start, kRodEnds);
