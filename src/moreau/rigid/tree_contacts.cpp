@@ -96,6 +96,7 @@ TreeContacts::TreeContacts(const Model& model, State& state, const SubstepStart&
     const bool may_stick = mf.static_friction > 0 && !(mf.touching && mf.sliding);
     for (int j = 0; j < rows.points; ++j) {
       const RigidContactPoint& c = points[rows.point[j]];
+      if (rows.C[3 * j] >= 0 && c.lambda_normal <= 0) continue;  // apart and not pushing: no rows
       TreeContactPoint p;
       p.manifold = static_cast<Index>(m);
       p.point = rows.point[j];
@@ -115,8 +116,8 @@ TreeContacts::TreeContacts(const Model& model, State& state, const SubstepStart&
         p.C[r] = rows.C[row];
         p.alpha_tilde[r] = kContactRegularization * weight;
       }
-      p.active = p.C[0] < 0 || p.lambda[0] > 0;
-      p.sticking = p.active && may_stick;
+      p.active = true;
+      p.sticking = may_stick;
       points_.push_back(p);
     }
   }

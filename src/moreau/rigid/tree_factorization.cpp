@@ -4,9 +4,11 @@
 
 namespace moreau {
 
-TreeFactorization::TreeFactorization(const JointForest& forest, std::vector<TreeBlock> diagonal,
-                                     const std::vector<TreeBlock>& coupling)
-    : forest_(forest), factor_(forest.nodes.size()), to_parent_(forest.nodes.size()) {
+void TreeFactorization::factor(const JointForest& forest, std::vector<TreeBlock>& diagonal,
+                               const std::vector<TreeBlock>& coupling) {
+  forest_ = &forest;
+  factor_.resize(forest.nodes.size());
+  to_parent_.resize(forest.nodes.size());
   // Leaves first: D_i -> LDL^T, J_i = D_i^-1 H_i,parent, D_parent -= H_i,parent^T J_i.
   for (size_t i = 0; i < forest.nodes.size(); ++i) {
     factor_[i].compute(diagonal[i]);
@@ -18,12 +20,13 @@ TreeFactorization::TreeFactorization(const JointForest& forest, std::vector<Tree
 }
 
 void TreeFactorization::solve(std::vector<TreeColumn>& s) const {
-  const size_t n = forest_.nodes.size();
+  const JointForest& forest = *forest_;
+  const size_t n = forest.nodes.size();
   for (size_t i = 0; i < n; ++i)
-    if (const Index p = forest_.nodes[i].parent; p >= 0) s[p] -= to_parent_[i].transpose() * s[i];
+    if (const Index p = forest.nodes[i].parent; p >= 0) s[p] -= to_parent_[i].transpose() * s[i];
   for (size_t i = n; i-- > 0;) {
     s[i] = factor_[i].solve(s[i]);
-    if (const Index p = forest_.nodes[i].parent; p >= 0) s[i] -= to_parent_[i] * s[p];
+    if (const Index p = forest.nodes[i].parent; p >= 0) s[i] -= to_parent_[i] * s[p];
   }
 }
 

@@ -23,13 +23,14 @@ using TreeColumn = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, 6, 1>;
 
 class TreeFactorization {
  public:
-  /// `diagonal` holds H_ii per node, `coupling` H_i,parent for every node with a parent.
-  TreeFactorization(const JointForest& forest, std::vector<TreeBlock> diagonal, const std::vector<TreeBlock>& coupling);
+  /// Factors H: `diagonal` holds H_ii per node (overwritten: the pivots' blocks), `coupling`
+  /// H_i,parent for every node with a parent. The storage is kept for the next factorisation.
+  void factor(const JointForest& forest, std::vector<TreeBlock>& diagonal, const std::vector<TreeBlock>& coupling);
   /// Solves H s = b in place (`s` holds b, node-indexed, on entry).
   void solve(std::vector<TreeColumn>& s) const;
 
  private:
-  const JointForest& forest_;
+  const JointForest* forest_ = nullptr;
   std::vector<Eigen::LDLT<TreeBlock>> factor_;
   std::vector<TreeBlock> to_parent_;
 };
