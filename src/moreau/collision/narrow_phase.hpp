@@ -10,7 +10,8 @@
 //
 // Pairs and methods:
 //   sphere/capsule with sphere/capsule  closest points of the cores (points or segments); the
-//                                       normal follows the cores every substep
+//                                       normal follows the cores every substep, the points
+//                                       sliding along the segments
 //   anything with a plane               the shape's points below the plane (vertices, segment ends,
 //                                       the rim of a cylinder)
 //   box/hull with box/hull              separating axes (face normals and edge-edge cross

@@ -19,6 +19,8 @@
 //   backward s_i = D_i^-1 s_i - J_i s_parent                (roots to leaves)
 // after which s holds dx on body nodes and dlambda on joint nodes.
 //
+// The trees' rigid contacts join the same solve (tree_contacts.hpp).
+//
 // Rows per joint: spherical 3 (anchors), fixed 6 (anchors, orientation), hinge 5 (anchors, axis
 // alignment), distance with min = max 1. Limits, drives and the other joint types stay in the
 // Gauss-Seidel pass (solvers/xpbd/joint_projection.cpp). Only dynamic bodies are nodes; the world, fixed and kinematic
@@ -67,8 +69,9 @@ JointForest build_joint_forest(const RigidBodyModel& bodies, const std::vector<J
 inline constexpr Real kDirectTolerance = 1e-9;
 inline constexpr int kMaxDirectPasses = 8;
 
-/// Solves every tree joint's equality rows, re-linearising up to kMaxDirectPasses times until they
-/// hold; accumulates their multipliers. Returns the number of linear solves done.
+/// Solves every tree joint's equality rows and the trees' contacts, re-linearising up to
+/// kMaxDirectPasses times until they hold; accumulates their multipliers. Returns the number of
+/// linear solves done.
 /// `start` holds the poses at the substep start (for damped rows, body_rows.hpp).
 int solve_joint_forest(const Model& model, State& state, const SubstepStart& start, Real h);
 
