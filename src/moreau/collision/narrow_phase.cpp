@@ -103,6 +103,11 @@ ContactManifold reduce_to_manifold(const Candidates& c, const Pose& pa, const Po
         g.line_a[e] = pa.to_local(cand.line_a[e]);
         g.line_b[e] = pb.to_local(cand.line_b[e]);
       }
+      // Judged once, here: judged again at every pose, segments turning out of line within a step
+      // would send a manifold's points to one closest pair.
+      const Vec3 da = cand.line_a[1] - cand.line_a[0], db = cand.line_b[1] - cand.line_b[0];
+      g.parallel_lines = da.squaredNorm() > 0 && db.squaredNorm() > 0 &&
+                         std::abs(da.normalized().dot(db.normalized())) > narrow::kParallelCores;
     }
   }
   return m;
@@ -285,10 +290,7 @@ CorePoints contact_cores(NormalFrame frame, const ContactGeometry& c, const Pose
   if (frame != NormalFrame::cores || !c.on_lines) return cores;
   const Vec3 a0 = pa.to_world(c.line_a[0]), a1 = pa.to_world(c.line_a[1]);
   const Vec3 b0 = pb.to_world(c.line_b[0]), b1 = pb.to_world(c.line_b[1]);
-  const Vec3 da = a1 - a0, db = b1 - b0;
-  const bool parallel = da.squaredNorm() > 0 && db.squaredNorm() > 0 &&
-                        std::abs(da.normalized().dot(db.normalized())) > narrow::kParallelCores;
-  if (!parallel) {
+  if (!c.parallel_lines) {
     narrow::closest_points_of_segments(a0, a1, b0, b1, cores.a, cores.b);
   } else {
     // Segments along each other have no single closest pair: each point of the manifold keeps its

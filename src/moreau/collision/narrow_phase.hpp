@@ -42,6 +42,7 @@ struct ContactGeometry {
   // sliding along a drum keeps its normal square to the drum's axis (with fixed cores the normal
   // tilted towards the detected point and pushed the rope further along: it slid off).
   bool on_lines = false;
+  bool parallel_lines = false;  // the segments lay along each other at detection (each point keeps its place on A)
   std::array<Vec3, 2> line_a{Vec3::Zero(), Vec3::Zero()}, line_b{Vec3::Zero(), Vec3::Zero()};
 };
 

@@ -183,7 +183,7 @@ JointForest build_joint_forest(const RigidBodyModel& bodies, const std::vector<J
     if (forest.body_node[b] >= 0) forest.body_tree[b] = tree[forest.body_node[b]];
   forest.tree_has_loose_joints.assign(n, 0);
   for (size_t k = 0; k < joints.size(); ++k) {
-    if (forest.joint_in_tree[k]) continue;
+    if (forest.joint_in_tree[k] && !has_other_rows(joints[k])) continue;  // limits and drives: Gauss-Seidel
     for (const JointEnd& e : joints[k].ends)
       if (e.kind == BodyEndKind::body && forest.tree_of_body(e.index) >= 0)
         forest.tree_has_loose_joints[forest.tree_of_body(e.index)] = 1;

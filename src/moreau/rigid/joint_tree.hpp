@@ -50,7 +50,7 @@ struct JointForest {
   std::vector<char> joint_in_tree;    // per joint: its equality rows are solved here
   std::vector<Index> body_node;       // per rigid body: its node, or -1
   std::vector<Index> body_tree;       // per rigid body: its tree (the root's node), or -1
-  std::vector<char> tree_has_loose_joints;  // per root node: a joint left to Gauss-Seidel acts on the tree
+  std::vector<char> tree_has_loose_joints;  // per root node: Gauss-Seidel projects some joint's rows on the tree
 
   bool empty() const { return nodes.empty(); }
   bool in_tree(size_t joint) const { return joint < joint_in_tree.size() && joint_in_tree[joint]; }

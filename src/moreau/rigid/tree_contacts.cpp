@@ -228,6 +228,10 @@ bool TreeContacts::holds(const std::vector<TreeColumn>& solution) {
 
 void TreeContacts::accept(const std::vector<TreeColumn>& solution, State& state) const {
   RigidContacts& contacts = state.rigid_contacts;
+  // A manifold slides once a pushing point has lost its static friction, and keeps sliding for
+  // the rest of the substep (TreeContacts' constructor): re-judged at every pass, a sliding point
+  // would start each pass stuck and be released again, and the passes would not settle. (Gauss-Seidel
+  // judges a manifold as a whole, sliding when every pushing point is on its cone.)
   for (const TreeContactPoint& p : points_) {
     contacts.manifolds[p.manifold].touching = false;
     contacts.manifolds[p.manifold].sliding = false;
@@ -236,7 +240,11 @@ void TreeContacts::accept(const std::vector<TreeColumn>& solution, State& state)
     const TreeContactPoint& p = points_[k];
     RigidManifold& mf = contacts.manifolds[p.manifold];
     RigidContactPoint& c = contacts.points[mf.first + p.point];
-    const Vec3 total = p.lambda + dlambda(k, solution);
+    Vec3 total = p.lambda + dlambda(k, solution);
+    // Left outside its set when the active set ran out of solves: kept to a push inside its cone.
+    total[0] = std::max(total[0], Real(0));
+    if (const Real t = total.tail<2>().norm(); t > p.static_friction * total[0])
+      total.tail<2>() *= t > 0 ? p.static_friction * total[0] / t : 0;
     c.lambda_normal = total[0];
     c.lambda_tangent = total.tail<2>();
     c.touching = total[0] > 0;

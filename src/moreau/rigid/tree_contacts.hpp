@@ -37,7 +37,8 @@
 //
 // Only a tree that nothing else moves in the iterations takes its contacts into the direct solve:
 // one that touches a dynamic body outside the forest (closer than kSharingGap at the substep's
-// start), has a particle contact this step, or that a joint left to Gauss-Seidel acts on, keeps
+// start), has a particle contact this step, or on which Gauss-Seidel projects a joint's rows (a
+// loop's, a limit's or a drive's), keeps
 // all its contacts with Gauss-Seidel for the substep, and so does a tree touching such a tree.
 // Mixed, the two projections ratchet: a rod lying on the ground under a crossing rod, whose
 // Gauss-Seidel contact pushed a segment down while the direct solve only pushed penetrating points
