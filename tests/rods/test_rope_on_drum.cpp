@@ -35,7 +35,9 @@ double rope_length(double x, double y, double t) {
 //   bouncing on the rope at omega_n = sqrt(E A / (m L)) = 106 rad/s): the peak stays below their
 //   sum. At 1 s the hanging part is stretched by the weight, and the wound part by no more (friction
 //   holds the turns, whose tension falls towards the anchor as the capstan's): the stretch lies
-//   between m g L_hanging / (E A) and m g L / (E A), within 10 % (what is left of the bounce);
+//   between m g L_hanging / (E A) and m g L / (E A), within 10 % (what is left of the bounce).
+//   A taut rope is never shorter than at rest: the length may dip below its start by no more than
+//   a tenth of the stretch (the same bounce);
 // - the box rises at (R + r) omega = 0.104 m/s once the start's transient has passed (measured
 //   from 0.5 s to 1 s): within 1 % (what the bounce's amplitude v / omega_n = 1 mm leaves after
 //   0.5 s, and the wound polygon's excess length, dtheta^2 / 24 = 0.16 %).

@@ -106,8 +106,7 @@ ContactManifold reduce_to_manifold(const Candidates& c, const Pose& pa, const Po
       // Judged once, here: judged again at every pose, segments turning out of line within a step
       // would send a manifold's points to one closest pair.
       const Vec3 da = cand.line_a[1] - cand.line_a[0], db = cand.line_b[1] - cand.line_b[0];
-      g.parallel_lines = da.squaredNorm() > 0 && db.squaredNorm() > 0 &&
-                         std::abs(da.normalized().dot(db.normalized())) > narrow::kParallelCores;
+      g.parallel_lines = narrow::lie_along(da, db);
     }
   }
   return m;
@@ -141,7 +140,7 @@ void collide_round(const Shape& a, const Pose& pa, const Shape& b, const Pose& p
   // Two parallel capsules lie along each other: add the other end of the overlap so they do not
   // pivot about one point.
   const Vec3 da = ca.p1 - ca.p0, db = cb.p1 - cb.p0;
-  if (da.squaredNorm() > 0 && db.squaredNorm() > 0 && std::abs(da.normalized().dot(db.normalized())) > kParallelCores) {
+  if (lie_along(da, db)) {
     for (const Vec3& end : {ca.p0, ca.p1}) {
       Vec3 e_a, e_b;
       closest_points_of_segments(end, end, cb.p0, cb.p1, e_a, e_b);

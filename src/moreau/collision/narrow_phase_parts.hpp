@@ -1,6 +1,7 @@
 #pragma once
 // Internal pieces of the narrow phase, shared by its source files (not part of the engine's API).
 #include <array>
+#include <cmath>
 #include <limits>
 
 #include "moreau/collision/narrow_phase.hpp"
@@ -26,8 +27,11 @@ struct Candidate {
   }
 };
 
-/// |cosine| between two core segments above which they lie along each other (parallel capsules).
-inline constexpr Real kParallelCores = 0.995;
+/// Whether two core segments (directions da, db; a point has none) lie along each other
+/// (parallel capsules): |cosine| above 0.995.
+inline bool lie_along(const Vec3& da, const Vec3& db) {
+  return da.squaredNorm() > 0 && db.squaredNorm() > 0 && std::abs(da.normalized().dot(db.normalized())) > 0.995;
+}
 
 /// Up to 64 candidates with one world normal (B to A), reduced to four at the end.
 struct Candidates {

@@ -27,10 +27,7 @@ bool comes_within(const RigidManifold& mf, const RigidContacts& contacts, const 
 void choose_tree_contacts(const Model& model, State& state) {
   const JointForest& forest = model.joint_forest;
   RigidContacts& contacts = state.rigid_contacts;
-  if (forest.empty()) {
-    for (RigidManifold& mf : contacts.manifolds) mf.with_joints = false;
-    return;
-  }
+  if (forest.empty()) return;  // no manifold is ever marked
   std::vector<char> shared = forest.tree_has_loose_joints;  // per root node
   auto share = [&](Index body) {
     if (const Index tree = forest.tree_of_body(body); tree >= 0) shared[tree] = 1;
@@ -82,16 +79,10 @@ TreeContacts::TreeContacts(const Model& model, State& state, const SubstepStart&
     if (!mf.with_joints) continue;
     RigidContactPoint* points = contacts.points.data() + mf.first;
     const ContactRows rows = manifold_rows(mf, points, state.rigid, start, ContactPoints::all);
-    const std::array<Index, 2> body{mf.body_a, mf.body_b};
-    std::array<Index, 2> node{};
-    std::array<Real, 2> inv_mass{};
-    std::array<Mat3, 2> inv_inertia;
-    for (int e = 0; e < 2; ++e) {
-      node[e] = forest.node_of_body(body[e]);
-      inv_mass[e] = node[e] >= 0 ? model.rigid.body_inv_mass[body[e]] : 0;
-      inv_inertia[e] = node[e] >= 0 ? world_inverse_inertia(state.rigid.orientation[body[e]], model.rigid.body_inv_inertia[body[e]])
-                                    : Mat3::Zero();
-    }
+    const std::array<Index, 2> node{forest.node_of_body(mf.body_a), forest.node_of_body(mf.body_b)};
+    // Zero weight for a body that is not dynamic (the only other kind a tree manifold has).
+    const BodyHandle ha = rigid_body_handle(model.rigid, state.rigid, mf.body_a);
+    const BodyHandle hb = rigid_body_handle(model.rigid, state.rigid, mf.body_b);
     // Judged sliding earlier in this substep (touching is cleared at its start): it stays so.
     const bool may_stick = mf.static_friction > 0 && !(mf.touching && mf.sliding);
     for (int j = 0; j < rows.points; ++j) {
@@ -103,19 +94,16 @@ TreeContacts::TreeContacts(const Model& model, State& state, const SubstepStart&
       p.node = node;
       p.static_friction = mf.static_friction;
       p.lambda = Vec3(c.lambda_normal, c.lambda_tangent.x(), c.lambda_tangent.y());
+      BodyRows point_rows = BodyRows::zero(rows.end, 3, 0);
       for (int r = 0; r < 3; ++r) {
         const int row = 3 * j + r;
         const Vec3& d = rows.direction[row];
-        Real weight = 0;
-        for (int e = 0; e < 2; ++e) {
-          const Real sign = e == 0 ? 1 : -1;  // C = (p_a - p_b) . d
-          const Vec3 u = (e == 0 ? rows.offset_a[row] : rows.offset_b[row]).cross(d);
-          p.G[e].row(r) << sign * d.transpose(), sign * u.transpose();
-          weight += inv_mass[e] + u.dot(inv_inertia[e] * u);
-        }
+        point_rows.set_point_row(r, d, rows.offset_a[row], rows.offset_b[row]);
         p.C[r] = rows.C[row];
-        p.alpha_tilde[r] = kContactRegularization * weight;
+        p.alpha_tilde[r] = kContactRegularization * (ha.positional_weight(rows.offset_a[row], d) +
+                                                     hb.positional_weight(rows.offset_b[row], d));
       }
+      p.G = point_rows.jacobian;
       p.active = true;
       p.sticking = may_stick;
       points_.push_back(p);

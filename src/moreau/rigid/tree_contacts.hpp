@@ -11,7 +11,7 @@
 // Rows: each contact point has rows G (3 x 6 per tree body: the normal and the two tangents of
 // contact_rows.hpp, as dC/d(dx, dtheta) of that body), values C and multipliers lambda. A rigid row
 // has no compliance; each gets the tiny compliance
-//   alpha~_r = kContactRegularization w_r,   w_r = sum over the tree bodies of 1/m + (o x d_r) . I^-1 (o x d_r)
+//   alpha~_r = kContactRegularization w_r,   w_r = sum over the bodies of 1/m + (o x d_r) . I^-1 (o x d_r)
 // (alpha~ = alpha/h^2 is an inverse mass): the point then gives way by kContactRegularization
 // of what the bodies alone would move, 4e-12 m under the rope's 7 N per segment, and a leaf row
 // can be eliminated.
@@ -38,8 +38,8 @@
 // Only a tree that nothing else moves in the iterations takes its contacts into the direct solve:
 // one that touches a dynamic body outside the forest (closer than kSharingGap at the substep's
 // start), has a particle contact this step, or on which Gauss-Seidel projects a joint's rows (a
-// loop's, a limit's or a drive's), keeps
-// all its contacts with Gauss-Seidel for the substep, and so does a tree touching such a tree.
+// loop's, a limit's or a drive's), keeps all its contacts with Gauss-Seidel for the substep, and so
+// does a tree touching such a tree.
 // Mixed, the two projections ratchet: a rod lying on the ground under a crossing rod, whose
 // Gauss-Seidel contact pushed a segment down while the direct solve only pushed penetrating points
 // up, arched 0.37 mm off the ground.
@@ -48,6 +48,7 @@
 
 #include <Eigen/Core>
 
+#include "moreau/constraints/body_rows.hpp"
 #include "moreau/constraints/substep_start.hpp"
 #include "moreau/math/types.hpp"
 #include "moreau/rigid/tree_factorization.hpp"
@@ -70,7 +71,7 @@ struct TreeContactPoint {
   Index manifold = -1, point = -1;      // state.rigid_contacts: the manifold and its point in it
   std::array<Index, 2> node{-1, -1};    // the bodies' nodes in the forest (-1: not a tree body)
   Real static_friction = 0;
-  std::array<Eigen::Matrix<Real, 3, 6>, 2> G;  // per body; rows: normal, tangent 1, tangent 2
+  std::array<BodyRows::Jacobian, 2> G;  // point rows (body_rows.hpp) per body: normal, tangent 1, tangent 2
   Vec3 C, alpha_tilde, lambda;          // m; 1/kg; kg m (accumulated this substep)
   bool active = false, sticking = false;
 
