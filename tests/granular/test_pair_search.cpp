@@ -1,6 +1,7 @@
 // The particle-contact pair search on the Morton-sorted cell grid (collision/particle_contacts.cpp)
 // against every pair checked one by one: the same pairs, each once, for any thread count, with
-// polydisperse radii, bonds of two reaches, and particles moving fast apart from the mean.
+// polydisperse radii, bonds of two reaches, and particles moving fast apart from the mean; and the
+// tiles the pairs are solved in.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -17,8 +18,9 @@ namespace moreau {
 namespace {
 
 // Two granular objects (radii 2-5 mm; one cohesive with a 0.5 mm reach, the other with 1 mm), and
-// a third dry one, scattered at random in a 6 cm box; a quarter of them thrown at up to 20 m/s.
-Scene scattered_grains(std::uint64_t seed) {
+// a third dry one, scattered at random in a box 6 cm high and deep and `length` long; a quarter of
+// them thrown at up to 20 m/s.
+Scene scattered_grains(std::uint64_t seed, Real length = 0.06) {
   Scene scene = load_scene_text(R"({"name": "pairs", "settings": {"dt": 0.002, "duration": 1},
       "objects": [{"name": "a", "kind": "granular", "blocks": [{"min": [0, 0, 0], "max": [0.06, 0.06, 0.03]}],
                    "radius_range": [0.002, 0.005], "cohesion": 0.01, "cohesion_distance": 0.0005},
@@ -30,7 +32,7 @@ Scene scattered_grains(std::uint64_t seed) {
   std::mt19937_64 draw(seed);
   auto unit = [&] { return static_cast<Real>(draw() >> 11) * 0x1.0p-53; };
   for (Index p = 0; p < scene.model.particle_count(); ++p) {
-    scene.state.position[p] = 0.06 * Vec3(unit(), unit(), unit());
+    scene.state.position[p] = Vec3(length * unit(), 0.06 * unit(), 0.06 * unit());
     scene.state.velocity[p] = unit() < 0.25 ? Vec3(20 * (2 * unit() - 1), 20 * (2 * unit() - 1), 20 * (2 * unit() - 1))
                                             : Vec3(0.1 * unit(), 0, 0);
   }
@@ -72,6 +74,37 @@ TEST(PairSearch, FindsEveryPairWithinReachOnceForAnyThreadCount) {
       if (threads == 1) serial = found;
       else EXPECT_TRUE(found == serial) << "the order depends on the thread count";
     }
+  }
+}
+
+// The tile batches (constraints/tile_batches.hpp) cover every pair once, and no moving particle
+// is touched from two tiles of one colour (which run in parallel), with fast particles and bonds
+// reaching farthest.
+TEST(PairSearch, TilesOfOneColorTouchDisjointParticles) {
+  for (std::uint64_t seed : {1, 2, 3}) {
+    Scene scene = scattered_grains(seed, 0.3);  // about 6 tiles long, 1 to 2 high and deep
+    ContactScratch scratch;
+    detect_particle_contacts(scene.model, scene.state, scratch, 1);
+    const ParticleContacts& c = scene.state.particle_contacts;
+    const TileBatches& batches = c.batches;
+    ASSERT_EQ(batches.color_count(), kTileColors);
+    EXPECT_EQ(batches.tile_offsets.back(), static_cast<Index>(c.size())) << "the tiles do not cover the pairs";
+    Index shared = 0, tiles = 0;
+    for (Index color = 0; color < batches.color_count(); ++color) {
+      std::vector<Index> owner(scene.model.particle_count(), -1);  // the tile of this colour that moves the particle
+      for (Index t = batches.color_tiles[color]; t < batches.color_tiles[color + 1]; ++t, ++tiles)
+        for (Index q = batches.tile_offsets[t]; q < batches.tile_offsets[t + 1]; ++q)
+          for (Index p : c.pair[q]) {
+            if (scene.model.particle_inv_mass[p] <= 0) continue;
+            if (owner[p] >= 0 && owner[p] != t) ++shared;
+            owner[p] = t;
+          }
+    }
+    std::printf("seed %d: %zu pairs in %d tiles of %d colours; %d particles moved from two tiles of one colour\n",
+                static_cast<int>(seed), c.size(), static_cast<int>(tiles), kTileColors, static_cast<int>(shared));
+    EXPECT_GT(tiles, kTileColors) << "too few tiles to test their separation";
+    EXPECT_GT(c.size(), 0u);
+    EXPECT_EQ(shared, 0);
   }
 }
 

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 
@@ -28,7 +29,7 @@ void ColliderContacts::clear() {
 
 void ParticleContacts::clear() {
   pair.clear();
-  batches.offsets.assign(1, 0);
+  batches.clear();
   lambda_normal.clear();
   lambda_friction.clear();
   lambda_rolling.clear();
@@ -72,6 +73,82 @@ ContactSpring pair_spring(const ObjectInfo& a, const ObjectInfo& b) {
 // strength; at most the largest cohesion_distance of a cohesive object.
 Real bond_distance(const ObjectInfo& a, const ObjectInfo& b) {
   return bond_strength(a, b) > 0 ? combine(a.cohesion_distance, b.cohesion_distance) : 0;
+}
+
+// Reorders the pairs (found cell by cell, in the grid's Morton order) tile by tile, the tiles by
+// colour (constraints/tile_batches.hpp). A tile is the cells whose Morton keys agree but for the
+// lowest two bits of each axis (cell coordinates taken from the grid's corner), so its cells are
+// contiguous in the sort; the lowest three bits of the remaining key are the parities of the
+// tile's coordinates, its colour.
+void sort_pairs_into_tiles(const CellGrid& grid, ContactScratch& scratch, ParticleContacts& c) {
+  constexpr int kTileKeyShift = 3 * std::countr_zero(static_cast<unsigned>(kTileCells));
+  struct Tile {
+    Index first_pair, end_pair;
+  };
+  std::array<std::vector<Tile>, kTileColors> tiles;
+  const Index cells = grid.cell_count();
+  for (Index first = 0; first < cells;) {
+    const std::uint64_t tile_key = grid.cell_key(first) >> kTileKeyShift;
+    Index last = first + 1;
+    while (last < cells && grid.cell_key(last) >> kTileKeyShift == tile_key) ++last;
+    const Tile tile{scratch.cell_pair_begin[first], scratch.cell_pair_begin[last]};
+    if (tile.end_pair > tile.first_pair) tiles[tile_key % kTileColors].push_back(tile);
+    first = last;
+  }
+  TileBatches& batches = c.batches;
+  batches.clear();
+  scratch.tiled_pairs.clear();
+  for (const std::vector<Tile>& color : tiles) {
+    for (const Tile& tile : color) {
+      scratch.tiled_pairs.insert(scratch.tiled_pairs.end(), c.pair.begin() + tile.first_pair,
+                                 c.pair.begin() + tile.end_pair);
+      batches.tile_offsets.push_back(static_cast<Index>(scratch.tiled_pairs.size()));
+    }
+    batches.color_tiles.push_back(static_cast<Index>(batches.tile_offsets.size()) - 1);
+  }
+  c.pair.swap(scratch.tiled_pairs);
+}
+
+// The coefficients of every pair from its two objects, and zero multipliers. Pairs of the same two
+// objects follow one another in long runs (a pile is one object), so the last pair's are reused.
+void set_pair_materials(const Model& model, ParticleContacts& c) {
+  const size_t m = c.pair.size();
+  c.lambda_normal.assign(m, 0);
+  c.lambda_friction.assign(m, Vec3::Zero());
+  c.lambda_rolling.assign(m, Vec3::Zero());
+  c.normal.assign(m, Vec3::Zero());
+  c.static_friction.resize(m);
+  c.dynamic_friction.resize(m);
+  c.restitution.resize(m);
+  c.cohesion.resize(m);
+  c.cohesion_distance.resize(m);
+  c.rolling_resistance.resize(m);
+  c.spring.resize(m);
+  Index last_a = -1, last_b = -1;
+  for (size_t q = 0; q < m; ++q) {
+    const Index oa = model.particle_object[c.pair[q][0]], ob = model.particle_object[c.pair[q][1]];
+    if (q > 0 && oa == last_a && ob == last_b) {
+      c.static_friction[q] = c.static_friction[q - 1];
+      c.dynamic_friction[q] = c.dynamic_friction[q - 1];
+      c.restitution[q] = c.restitution[q - 1];
+      c.cohesion[q] = c.cohesion[q - 1];
+      c.cohesion_distance[q] = c.cohesion_distance[q - 1];
+      c.rolling_resistance[q] = c.rolling_resistance[q - 1];
+      c.spring[q] = c.spring[q - 1];
+      continue;
+    }
+    last_a = oa;
+    last_b = ob;
+    const ObjectInfo& a = model.objects[oa];
+    const ObjectInfo& b = model.objects[ob];
+    c.static_friction[q] = combine(a.static_friction, b.static_friction);
+    c.dynamic_friction[q] = combine(a.dynamic_friction, b.dynamic_friction);
+    c.restitution[q] = combine(a.restitution, b.restitution);
+    c.cohesion[q] = bond_strength(a, b);
+    c.cohesion_distance[q] = bond_distance(a, b);
+    c.rolling_resistance[q] = rolling_resistance(a, b);
+    c.spring[q] = pair_spring(a, b);
+  }
 }
 }  // namespace
 
@@ -161,24 +238,32 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
   scratch.grid.build(scratch.contact_position.data(), n, GridFrame{Vec3::Zero(), 2.5 * max_radius + max_bond});
   const std::vector<Index>& order = grid.order();
   const Index cells = grid.cell_count();
-  // Positions, radii, particle ids and speed classes in the sorted order, so the scans below read
-  // memory in sequence.
+  // Positions, radii, velocities, particle ids, objects and flags in the sorted order, so the scan
+  // below reads memory in sequence.
   scratch.sorted_position.resize(n);
   scratch.sorted_radius.resize(n);
   scratch.sorted_particle.resize(n);
+  scratch.sorted_velocity.resize(n);
+  scratch.sorted_object.resize(n);
   scratch.sorted_fast.resize(n);
+  scratch.sorted_moves.resize(n);
+  scratch.sorted_asleep.resize(n);
   for (Index s = 0; s < n; ++s) {
-    const Index a = order[s];
+    const Index a = order[s], p = model.contact_particle[a];
     scratch.sorted_position[s] = scratch.contact_position[a];
-    scratch.sorted_particle[s] = model.contact_particle[a];
-    scratch.sorted_radius[s] = model.particle_radius[model.contact_particle[a]];
-    scratch.sorted_fast[s] =
-        (state.velocity[scratch.sorted_particle[s]] - mean_velocity).squaredNorm() > slow_speed * slow_speed;
+    scratch.sorted_particle[s] = p;
+    scratch.sorted_radius[s] = model.particle_radius[p];
+    scratch.sorted_velocity[s] = state.velocity[p];
+    scratch.sorted_object[s] = model.particle_object[p];
+    scratch.sorted_fast[s] = (state.velocity[p] - mean_velocity).squaredNorm() > slow_speed * slow_speed;
+    scratch.sorted_moves[s] = model.particle_inv_mass[p] > 0;
+    scratch.sorted_asleep[s] = state.sleep.asleep(p);
   }
 
   threads = std::max(1, threads);
   scratch.thread_pairs.resize(threads);
   for (auto& list : scratch.thread_pairs) list.clear();  // OpenMP may run fewer threads than asked
+  scratch.cell_pair_begin.resize(cells + 1);
 #pragma omp parallel num_threads(threads)
   {
     auto& pairs = scratch.thread_pairs[omp_get_thread_num()];
@@ -188,10 +273,10 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
       const Real distance2 = (scratch.sorted_position[s] - scratch.sorted_position[t]).squaredNorm();
       const Real farthest = 2 * contact_distance + max_bond;
       if (distance2 >= farthest * farthest) return;  // beyond any reach
+      if (!scratch.sorted_moves[s] && !scratch.sorted_moves[t]) return;
+      if (scratch.sorted_asleep[s] && scratch.sorted_asleep[t]) return;  // two sleeping grains rest as they are
       const Index i = scratch.sorted_particle[s], j = scratch.sorted_particle[t];
-      if (model.particle_inv_mass[i] <= 0 && model.particle_inv_mass[j] <= 0) return;
-      if (state.sleep.asleep(i) && state.sleep.asleep(j)) return;  // two sleeping grains rest as they are
-      const Index oi = model.particle_object[i], oj = model.particle_object[j];
+      const Index oi = scratch.sorted_object[s], oj = scratch.sorted_object[t];
       if (oi == oj) {
         const ObjectInfo& object = model.objects[oi];
         if (!object.self_collision) return;
@@ -201,17 +286,21 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
             (model.particle_rest_position[i] - model.particle_rest_position[j]).norm() < contact_distance)
           return;
       }
-      const Real reach = contact_distance + bond_distance(model.objects[oi], model.objects[oj]) +
-                         std::min(k * dt * ((state.velocity[i] - state.velocity[j]).norm() + fall), contact_distance);
+      const Real reach =
+          contact_distance + bond_distance(model.objects[oi], model.objects[oj]) +
+          std::min(k * dt * ((scratch.sorted_velocity[s] - scratch.sorted_velocity[t]).norm() + fall), contact_distance);
       if (distance2 < reach * reach) pairs.push_back({std::min(i, j), std::max(i, j)});
     };
     // Static schedule: thread t gets the t-th contiguous run of cells, so concatenating the
     // per-thread lists in thread order reproduces the serial order for any thread count.
     // Each pair is visited once: two slow particles from the earlier one in the sort (its own
     // cell's later particles and the 13 cells ahead of it), a pair with a fast particle from the
-    // fast one, two fast particles from the earlier one.
+    // fast one, two fast particles from the earlier one. Every pair is found from a particle of
+    // the cell it is counted in, and lies within 4 r_max + g_max of that particle (the tiles'
+    // separation rests on it: constraints/tile_batches.hpp).
 #pragma omp for schedule(static)
     for (Index c = 0; c < cells; ++c) {
+      const size_t found_before = pairs.size();
       CellRange ahead[13], wide[125];
       const int ahead_count = grid.ranges_ahead(grid.cell_coord(c), ahead);
       const Index end = grid.cell_begin(c + 1);
@@ -230,71 +319,16 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
               if (t != s && (!scratch.sorted_fast[t] || t > s)) consider(s, t);
         }
       }
+      scratch.cell_pair_begin[c + 1] = static_cast<Index>(pairs.size() - found_before);  // a count, summed below
     }
   }
   for (const auto& pairs : scratch.thread_pairs) c.pair.insert(c.pair.end(), pairs.begin(), pairs.end());
   if (c.pair.empty()) return;
+  scratch.cell_pair_begin[0] = 0;
+  for (Index cell = 0; cell < cells; ++cell) scratch.cell_pair_begin[cell + 1] += scratch.cell_pair_begin[cell];
 
-  // Greedy colouring with 64 colours per particle (a 64-bit mask); pairs that find none go to
-  // single-pair batches at the end.
-  const size_t m = c.pair.size();
-  scratch.particle_colors.assign(model.particle_count(), 0);
-  scratch.pair_color.resize(m);
-  int colors = 0;
-  for (size_t q = 0; q < m; ++q) {
-    const auto [i, j] = c.pair[q];
-    std::uint64_t taken = 0;
-    if (model.particle_inv_mass[i] > 0) taken |= scratch.particle_colors[i];
-    if (model.particle_inv_mass[j] > 0) taken |= scratch.particle_colors[j];
-    const int color = taken == ~std::uint64_t{0} ? 64 : std::countr_one(taken);
-    if (color < 64) {
-      if (model.particle_inv_mass[i] > 0) scratch.particle_colors[i] |= std::uint64_t{1} << color;
-      if (model.particle_inv_mass[j] > 0) scratch.particle_colors[j] |= std::uint64_t{1} << color;
-    }
-    scratch.pair_color[q] = color;
-    colors = std::max(colors, color + 1);
-  }
-  scratch.color_count.assign(colors + 1, 0);
-  for (size_t q = 0; q < m; ++q) ++scratch.color_count[scratch.pair_color[q] + 1];
-  for (int col = 0; col < colors; ++col) scratch.color_count[col + 1] += scratch.color_count[col];
-  scratch.order.resize(m);
-  for (size_t q = 0; q < m; ++q) scratch.order[scratch.color_count[scratch.pair_color[q]]++] = static_cast<Index>(q);
-  // color_count[c] is now the end of colour c.
-  auto& sorted = scratch.thread_pairs[0];
-  sorted.clear();
-  for (Index q : scratch.order) sorted.push_back(c.pair[q]);
-  c.pair.swap(sorted);
-  c.batches.offsets.assign(1, 0);
-  for (int col = 0; col < colors; ++col) {
-    const Index end = scratch.color_count[col];
-    if (col == 64) {  // overflow: one pair per batch
-      for (Index q = c.batches.offsets.back() + 1; q <= end; ++q) c.batches.offsets.push_back(q);
-    } else if (end > c.batches.offsets.back()) {
-      c.batches.offsets.push_back(end);
-    }
-  }
-  c.lambda_normal.assign(m, 0);
-  c.lambda_friction.assign(m, Vec3::Zero());
-  c.lambda_rolling.assign(m, Vec3::Zero());
-  c.normal.assign(m, Vec3::Zero());
-  c.static_friction.resize(m);
-  c.dynamic_friction.resize(m);
-  c.restitution.resize(m);
-  c.cohesion.resize(m);
-  c.cohesion_distance.resize(m);
-  c.rolling_resistance.resize(m);
-  c.spring.resize(m);
-  for (size_t q = 0; q < m; ++q) {
-    const ObjectInfo& a = model.objects[model.particle_object[c.pair[q][0]]];
-    const ObjectInfo& b = model.objects[model.particle_object[c.pair[q][1]]];
-    c.static_friction[q] = combine(a.static_friction, b.static_friction);
-    c.dynamic_friction[q] = combine(a.dynamic_friction, b.dynamic_friction);
-    c.restitution[q] = combine(a.restitution, b.restitution);
-    c.cohesion[q] = bond_strength(a, b);
-    c.cohesion_distance[q] = bond_distance(a, b);
-    c.rolling_resistance[q] = rolling_resistance(a, b);
-    c.spring[q] = pair_spring(a, b);
-  }
+  sort_pairs_into_tiles(grid, scratch, c);
+  set_pair_materials(model, c);
 }
 
 }  // namespace moreau

@@ -7,10 +7,11 @@
 // r + k dt (|v - v_c| + dt |g|) (k = 2; Mueller et al. 2020, sec. 3.5, uses k dt |v|; we add the
 // fall under gravity so resting contacts are never missed); two particles within
 // r_i + r_j + g + min(k dt |v_i - v_j|, r_i + r_j), g the reach of a bond between cohesive grains.
+#include <array>
 #include <vector>
 
 #include "moreau/constraints/compliant_contact.hpp"
-#include "moreau/constraints/constraint_batches.hpp"
+#include "moreau/constraints/tile_batches.hpp"
 #include "moreau/geometry/cell_grid.hpp"
 
 namespace moreau {
@@ -37,7 +38,7 @@ struct ColliderContacts {
 
 struct ParticleContacts {
   std::vector<std::array<Index, 2>> pair;
-  ColorBatches batches;
+  TileBatches batches;  // the pairs by tile of the pair search's grid (constraints/tile_batches.hpp)
   std::vector<Real> lambda_normal;
   std::vector<Vec3> lambda_friction;  // kg m: friction impulse on the first particle when a side is a grain, this substep
   std::vector<Vec3> lambda_rolling;   // kg m^2: rolling-resistance impulse on the first particle, likewise
@@ -59,18 +60,20 @@ struct ContactScratch {
   std::vector<Vec3> sorted_position;   // the same, and the particles' radii and ids, in the grid's order
   std::vector<Real> sorted_radius;
   std::vector<Index> sorted_particle;
+  std::vector<Vec3> sorted_velocity;
+  std::vector<Index> sorted_object;
   std::vector<char> sorted_fast;       // moves fast apart from the mean: searches its whole reach
+  std::vector<char> sorted_moves;      // inverse mass > 0
+  std::vector<char> sorted_asleep;
   std::vector<std::vector<std::array<Index, 2>>> thread_pairs;
-  std::vector<std::uint64_t> particle_colors;
-  std::vector<int> pair_color;
-  std::vector<Index> order;
-  std::vector<Index> color_count;
+  std::vector<Index> cell_pair_begin;  // the pairs found from cell c: [cell_pair_begin[c], cell_pair_begin[c+1])
+  std::vector<std::array<Index, 2>> tiled_pairs;
 };
 
 /// Gathers (particle, collider) candidates for the coming step.
 void detect_collider_contacts(const Model& model, State& state);
 
-/// Gathers particle pairs for the coming step (on `threads` threads) and sorts them into colour batches.
+/// Gathers particle pairs for the coming step (on `threads` threads) and sorts them into tile batches.
 void detect_particle_contacts(const Model& model, State& state, ContactScratch& scratch, int threads);
 
 }  // namespace moreau

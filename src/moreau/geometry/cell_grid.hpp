@@ -48,6 +48,9 @@ class CellGrid {
   /// Cell c holds the sorted positions [cell_begin(c), cell_begin(c + 1)).
   Index cell_begin(Index c) const { return cell_begin_[c]; }
   const CellCoord& cell_coord(Index c) const { return cell_coord_[c]; }
+  /// The Morton key of cell c (its coordinates taken from the occupied cells' lowest corner);
+  /// cells are sorted by it.
+  std::uint64_t cell_key(Index c) const { return cell_key_[c]; }
 
   /// The cell at integer coordinates c, or -1 if it holds no point.
   Index find_cell(const CellCoord& c) const;
