@@ -260,6 +260,12 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     scratch.sorted_asleep[s] = state.sleep.asleep(p);
   }
 
+  // The reach of the bond between two objects' particles, looked up per candidate.
+  const Index objects = static_cast<Index>(model.objects.size());
+  scratch.bond_reach.resize(objects * objects);
+  for (Index a = 0; a < objects; ++a)
+    for (Index b = 0; b < objects; ++b) scratch.bond_reach[a * objects + b] = bond_distance(model.objects[a], model.objects[b]);
+
   threads = std::max(1, threads);
   scratch.thread_pairs.resize(threads);
   for (auto& list : scratch.thread_pairs) list.clear();  // OpenMP may run fewer threads than asked
@@ -287,7 +293,7 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
           return;
       }
       const Real reach =
-          contact_distance + bond_distance(model.objects[oi], model.objects[oj]) +
+          contact_distance + scratch.bond_reach[oi * objects + oj] +
           std::min(k * dt * ((scratch.sorted_velocity[s] - scratch.sorted_velocity[t]).norm() + fall), contact_distance);
       if (distance2 < reach * reach) pairs.push_back({std::min(i, j), std::max(i, j)});
     };

@@ -65,6 +65,7 @@ struct ContactScratch {
   std::vector<char> sorted_fast;       // moves fast apart from the mean: searches its whole reach
   std::vector<char> sorted_moves;      // inverse mass > 0
   std::vector<char> sorted_asleep;
+  std::vector<Real> bond_reach;        // m: bond_distance of objects a and b at [a * objects + b]
   std::vector<std::vector<std::array<Index, 2>>> thread_pairs;
   std::vector<Index> cell_pair_begin;  // the pairs found from cell c: [cell_pair_begin[c], cell_pair_begin[c+1])
   std::vector<std::array<Index, 2>> tiled_pairs;
