@@ -82,26 +82,23 @@ Real bond_distance(const ObjectInfo& a, const ObjectInfo& b) {
 // tile's coordinates, its colour.
 void sort_pairs_into_tiles(const CellGrid& grid, ContactScratch& scratch, ParticleContacts& c) {
   constexpr int kTileKeyShift = 3 * std::countr_zero(static_cast<unsigned>(kTileCells));
-  struct Tile {
-    Index first_pair, end_pair;
-  };
-  std::array<std::vector<Tile>, kTileColors> tiles;
+  auto& tiles = scratch.color_tile_pairs;  // per colour, the pair ranges of its tiles
+  for (auto& color : tiles) color.clear();
   const Index cells = grid.cell_count();
   for (Index first = 0; first < cells;) {
     const std::uint64_t tile_key = grid.cell_key(first) >> kTileKeyShift;
     Index last = first + 1;
     while (last < cells && grid.cell_key(last) >> kTileKeyShift == tile_key) ++last;
-    const Tile tile{scratch.cell_pair_begin[first], scratch.cell_pair_begin[last]};
-    if (tile.end_pair > tile.first_pair) tiles[tile_key % kTileColors].push_back(tile);
+    const std::array<Index, 2> pairs{scratch.cell_pair_begin[first], scratch.cell_pair_begin[last]};
+    if (pairs[1] > pairs[0]) tiles[tile_key % kTileColors].push_back(pairs);
     first = last;
   }
   TileBatches& batches = c.batches;
   batches.clear();
   scratch.tiled_pairs.clear();
-  for (const std::vector<Tile>& color : tiles) {
-    for (const Tile& tile : color) {
-      scratch.tiled_pairs.insert(scratch.tiled_pairs.end(), c.pair.begin() + tile.first_pair,
-                                 c.pair.begin() + tile.end_pair);
+  for (const auto& color : tiles) {
+    for (const auto& [first_pair, end_pair] : color) {
+      scratch.tiled_pairs.insert(scratch.tiled_pairs.end(), c.pair.begin() + first_pair, c.pair.begin() + end_pair);
       batches.tile_offsets.push_back(static_cast<Index>(scratch.tiled_pairs.size()));
     }
     batches.color_tiles.push_back(static_cast<Index>(batches.tile_offsets.size()) - 1);
@@ -269,6 +266,7 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
   threads = std::max(1, threads);
   scratch.thread_pairs.resize(threads);
   for (auto& list : scratch.thread_pairs) list.clear();  // OpenMP may run fewer threads than asked
+  scratch.thread_first_cell.assign(threads, cells);       // cells: the thread got none
   scratch.cell_pair_begin.resize(cells + 1);
 #pragma omp parallel num_threads(threads)
   {
@@ -297,8 +295,8 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
           std::min(k * dt * ((scratch.sorted_velocity[s] - scratch.sorted_velocity[t]).norm() + fall), contact_distance);
       if (distance2 < reach * reach) pairs.push_back({std::min(i, j), std::max(i, j)});
     };
-    // Static schedule: thread t gets the t-th contiguous run of cells, so concatenating the
-    // per-thread lists in thread order reproduces the serial order for any thread count.
+    // Static schedule: each thread gets one contiguous run of cells, so joining the per-thread
+    // lists in the order of their runs reproduces the serial order for any thread count.
     // Each pair is visited once: two slow particles from the earlier one in the sort (its own
     // cell's later particles and the 13 cells ahead of it), a pair with a fast particle from the
     // fast one, two fast particles from the earlier one. Every pair is found from a particle of
@@ -306,6 +304,8 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
     // separation rests on it: constraints/tile_batches.hpp).
 #pragma omp for schedule(static)
     for (Index c = 0; c < cells; ++c) {
+      Index& first_cell = scratch.thread_first_cell[omp_get_thread_num()];
+      first_cell = std::min(first_cell, c);
       const size_t found_before = pairs.size();
       CellRange ahead[13], wide[125];
       const int ahead_count = grid.ranges_ahead(grid.cell_coord(c), ahead);
@@ -328,7 +328,14 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
       scratch.cell_pair_begin[c + 1] = static_cast<Index>(pairs.size() - found_before);  // a count, summed below
     }
   }
-  for (const auto& pairs : scratch.thread_pairs) c.pair.insert(c.pair.end(), pairs.begin(), pairs.end());
+  // The threads' lists joined in the order of their cells (a static schedule hands out contiguous
+  // runs of cells, though OpenMP does not promise them in thread order): the pairs in cell order.
+  scratch.thread_order.resize(threads);
+  for (int t = 0; t < threads; ++t) scratch.thread_order[t] = t;
+  std::sort(scratch.thread_order.begin(), scratch.thread_order.end(),
+            [&](int a, int b) { return scratch.thread_first_cell[a] < scratch.thread_first_cell[b]; });
+  for (int t : scratch.thread_order)
+    c.pair.insert(c.pair.end(), scratch.thread_pairs[t].begin(), scratch.thread_pairs[t].end());
   if (c.pair.empty()) return;
   scratch.cell_pair_begin[0] = 0;
   for (Index cell = 0; cell < cells; ++cell) scratch.cell_pair_begin[cell + 1] += scratch.cell_pair_begin[cell];

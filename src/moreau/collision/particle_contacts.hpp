@@ -67,6 +67,9 @@ struct ContactScratch {
   std::vector<char> sorted_asleep;
   std::vector<Real> bond_reach;        // m: bond_distance of objects a and b at [a * objects + b]
   std::vector<std::vector<std::array<Index, 2>>> thread_pairs;
+  std::vector<Index> thread_first_cell;  // the first cell each thread searched from
+  std::vector<int> thread_order;         // the threads by their first cell
+  std::array<std::vector<std::array<Index, 2>>, kTileColors> color_tile_pairs;  // per colour, its tiles' pair ranges
   std::vector<Index> cell_pair_begin;  // the pairs found from cell c: [cell_pair_begin[c], cell_pair_begin[c+1])
   std::vector<std::array<Index, 2>> tiled_pairs;
 };

@@ -22,6 +22,8 @@ namespace moreau {
 /// Cells per tile along each axis, and the tile's colour count (2^3: the parity of its coordinates).
 inline constexpr int kTileCells = 4;
 inline constexpr int kTileColors = 8;
+static_assert(kTileCells == 4, "the separation argument above needs tiles of 4 cells of 2.5 r_max + g_max");
+static_assert(kTileColors == 8, "a tile's colour is the parity of its three coordinates");
 
 struct TileBatches {
   std::vector<Index> color_tiles{0};  // colour c holds the tiles [color_tiles[c], color_tiles[c+1])
