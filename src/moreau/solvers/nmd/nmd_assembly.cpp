@@ -2,6 +2,7 @@
 
 #include <omp.h>
 
+#include "moreau/constraints/constraint_batches.hpp"
 #include "moreau/constraints/contact_rows.hpp"
 #include "moreau/constraints/joints/joint_row_blocks.hpp"
 #include "moreau/constraints/neo_hookean_green_strain.hpp"
@@ -190,10 +191,18 @@ void add_collider_contacts(Assembly& a, Real end_time) {
   }
 }
 
+// The pairs in colour order (a greedy colouring of the pairs by the particles they move): the
+// sweep schedule (sweep_schedule.hpp) puts a pair one level above the last earlier pair that
+// shares a particle, so pairs listed tile by tile, neighbours after neighbours, would make as many
+// levels as a tile has pairs, where a colour order makes about as many as there are colours.
 void add_particle_contacts(Assembly& a) {
   ParticleContacts& c = a.state.particle_contacts;
   const Vec3* x = a.state.position.data();
-  for (size_t q = 0; q < c.size(); ++q) {
+  std::vector<std::array<Index, 4>> stencils(c.size());
+  for (size_t q = 0; q < c.size(); ++q) stencils[q] = {c.pair[q][0], c.pair[q][1], -1, -1};
+  ColorBatches colors;
+  const std::vector<Index> order = color_constraints(stencils, a.model.particle_inv_mass, colors);
+  for (const Index q : order) {
     const auto [i, j] = c.pair[q];
     const ParticleContactRows<2> rows = pair_contact_rows(
         i, j, a.model.particle_radius[i] + a.model.particle_radius[j], c.static_friction[q], x, x);
