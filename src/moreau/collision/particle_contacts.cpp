@@ -106,8 +106,24 @@ void sort_pairs_into_tiles(const CellGrid& grid, ContactScratch& scratch, Partic
   c.pair.swap(scratch.tiled_pairs);
 }
 
+// The coefficients of a pair of two objects' particles.
+struct PairMaterial {
+  Real static_friction, dynamic_friction, restitution, cohesion, cohesion_distance, rolling_resistance;
+  ContactSpring spring;
+};
+
+PairMaterial pair_material(const ObjectInfo& a, const ObjectInfo& b) {
+  return {combine(a.static_friction, b.static_friction),
+          combine(a.dynamic_friction, b.dynamic_friction),
+          combine(a.restitution, b.restitution),
+          bond_strength(a, b),
+          bond_distance(a, b),
+          rolling_resistance(a, b),
+          pair_spring(a, b)};
+}
+
 // The coefficients of every pair from its two objects, and zero multipliers. Pairs of the same two
-// objects follow one another in long runs (a pile is one object), so the last pair's are reused.
+// objects follow one another in long runs (a pile is one object), so each run's are found once.
 void set_pair_materials(const Model& model, ParticleContacts& c) {
   const size_t m = c.pair.size();
   c.lambda_normal.assign(m, 0);
@@ -122,29 +138,21 @@ void set_pair_materials(const Model& model, ParticleContacts& c) {
   c.rolling_resistance.resize(m);
   c.spring.resize(m);
   Index last_a = -1, last_b = -1;
+  PairMaterial material{};
   for (size_t q = 0; q < m; ++q) {
     const Index oa = model.particle_object[c.pair[q][0]], ob = model.particle_object[c.pair[q][1]];
-    if (q > 0 && oa == last_a && ob == last_b) {
-      c.static_friction[q] = c.static_friction[q - 1];
-      c.dynamic_friction[q] = c.dynamic_friction[q - 1];
-      c.restitution[q] = c.restitution[q - 1];
-      c.cohesion[q] = c.cohesion[q - 1];
-      c.cohesion_distance[q] = c.cohesion_distance[q - 1];
-      c.rolling_resistance[q] = c.rolling_resistance[q - 1];
-      c.spring[q] = c.spring[q - 1];
-      continue;
+    if (oa != last_a || ob != last_b) {
+      material = pair_material(model.objects[oa], model.objects[ob]);
+      last_a = oa;
+      last_b = ob;
     }
-    last_a = oa;
-    last_b = ob;
-    const ObjectInfo& a = model.objects[oa];
-    const ObjectInfo& b = model.objects[ob];
-    c.static_friction[q] = combine(a.static_friction, b.static_friction);
-    c.dynamic_friction[q] = combine(a.dynamic_friction, b.dynamic_friction);
-    c.restitution[q] = combine(a.restitution, b.restitution);
-    c.cohesion[q] = bond_strength(a, b);
-    c.cohesion_distance[q] = bond_distance(a, b);
-    c.rolling_resistance[q] = rolling_resistance(a, b);
-    c.spring[q] = pair_spring(a, b);
+    c.static_friction[q] = material.static_friction;
+    c.dynamic_friction[q] = material.dynamic_friction;
+    c.restitution[q] = material.restitution;
+    c.cohesion[q] = material.cohesion;
+    c.cohesion_distance[q] = material.cohesion_distance;
+    c.rolling_resistance[q] = material.rolling_resistance;
+    c.spring[q] = material.spring;
   }
 }
 }  // namespace
