@@ -38,28 +38,27 @@ struct FrictionBounds {
 // to it (the sides turn against that much), the slip then cancelled given it; a P beyond mu_s N
 // slides, cut back to mu_k N, the turn then cancelled within its bound. Returns the increments.
 // The position level holds all of a grain's friction (the velocity pass adds none).
-[[gnu::always_inline]] inline StickImpulses friction_impulses(const TurningContact& t, const Vec3& n, const Vec3& slip,
-                                                             const Vec3& roll, const FrictionBounds& bound, Vec3& total_p,
-                                                             Vec3& total_L) {
-  // v cut back to length `most` (the caller has found it longer, |v|^2 > most^2 >= 0).
-  auto cut_back = [](const Vec3& v, Real most) { return Vec3(v * (most / v.norm())); };
+StickImpulses friction_impulses(const TurningContact& t, const Vec3& n, const Vec3& slip, const Vec3& roll,
+                                const FrictionBounds& bound, Vec3& total_p, Vec3& total_L) {
+  auto clamp = [](const Vec3& v, Real most) {
+    const Real length = v.norm();
+    return length > most ? Vec3(v * (most / length)) : v;
+  };
   if (t.k <= 0) {
     const Vec3 p = -slip / t.w_t;
-    if (p.squaredNorm() < bound.static_friction * bound.static_friction) return {p, Vec3::Zero()};
+    if (p.norm() < bound.static_friction) return {p, Vec3::Zero()};
     return {Vec3::Zero(), Vec3::Zero()};
   }
   StickImpulses d = stick_impulses(t, n, slip, roll);
-  const Real rolling2 = bound.rolling * bound.rolling;
-  if (const Vec3 L = total_L + d.L; L.squaredNorm() > rolling2) {
-    d.L = cut_back(L, bound.rolling) - total_L;
+  if ((total_L + d.L).norm() > bound.rolling) {
+    d.L = clamp(total_L + d.L, bound.rolling) - total_L;
     d.p = (-slip - t.c * n.cross(d.L)) / t.w_t;
   }
   const Vec3 P = total_p + d.p;
-  const Real P2 = P.squaredNorm();
-  if (P2 >= bound.static_friction * bound.static_friction && P2 > 0) {
-    d.p = P * std::min(1.0, bound.kinetic_friction / std::sqrt(P2)) - total_p;  // never past sticking (mu_k > mu_s)
-    const Vec3 L = total_L + (-roll + t.c * n.cross(d.p)) / t.k;
-    d.L = (L.squaredNorm() > rolling2 ? cut_back(L, bound.rolling) : L) - total_L;
+  const Real P_norm = P.norm();
+  if (P_norm >= bound.static_friction && P_norm > 0) {
+    d.p = P * std::min(1.0, bound.kinetic_friction / P_norm) - total_p;  // never past sticking (mu_k > mu_s)
+    d.L = clamp(total_L + (-roll + t.c * n.cross(d.p)) / t.k, bound.rolling) - total_L;
   }
   total_p += d.p;
   total_L += d.L;
