@@ -254,7 +254,9 @@ struct FluidBlock {
   Vector3 min{}, max{};  // m
 };
 
-struct FluidEmitterSpec {
+/// An "emitter" of a fluid or a granular object: an opening (a disc or a rectangle of lattice
+/// points) that releases a layer of particles each time the flow has advanced one spacing.
+struct EmitterSpec {
   std::string shape = "disc";        // "disc" (radius) or "rectangle" (size, tangent)
   Vector3 center{};                  // m
   Vector3 direction{};               // the flow direction
@@ -262,10 +264,12 @@ struct FluidEmitterSpec {
   Vector2 size{};                    // m (rectangle)
   Vector3 tangent{};                 // the rectangle's first side; zero: any
   std::optional<double> speed;       // m/s; or
-  std::optional<double> flow_rate;   // m^3/s
+  std::optional<double> flow_rate;   // m^3/s (fluids); or
   double start = 0;                  // s
   std::optional<double> stop;        // s; default the scene's duration
+  std::optional<double> mass_rate;   // kg/s (grains), instead of speed
 };
+using FluidEmitterSpec = EmitterSpec;
 
 /// "kind": "fluid": particles on a lattice of spacing 2 r filling a block, blocks or a closed OBJ
 /// surface, and/or released by an emitter.
@@ -349,6 +353,7 @@ struct GranularSpec {
   std::string name;
   std::vector<FluidBlock> blocks;         // m, boxes the grains fill
   std::vector<GranularCylinder> cylinders;  // m, vertical cylinders the grains fill
+  std::string mesh;                       // a closed OBJ surface whose inside the grains fill
   std::optional<double> radius;           // m, one radius; or
   std::optional<Vector2> radius_range;    // m, radii drawn uniformly from [min, max] (polydisperse)
   int seed = 1;                           // of the radius draws
@@ -360,6 +365,7 @@ struct GranularSpec {
   double rolling_resistance = 0.5;        // mu_r: a contact's rolling torque is at most mu_r R* times its normal force
   double contact_compliance = 0;          // m/N, 1/k of a contact's spring (0: hard contacts)
   double contact_damping = 0;             // N s/m, the dashpot beside the spring (only with contact_compliance)
+  std::optional<EmitterSpec> emitter;     // grains released through an opening during the run
 };
 
 /// "kind": "shape_matched": particles on a lattice filling boxes, held in their rest shape by

@@ -57,6 +57,7 @@ void detect_particle_body_contacts(const Model& model, State& state) {
       const Vec3& x = state.position[p];
       if (x.y() < lo.y() || x.y() > hi.y() || x.z() < lo.z() || x.z() > hi.z()) continue;
       if (model.particle_inv_mass[p] <= 0 && m.body_inv_mass[b] <= 0) continue;
+      if (!state.live(p)) continue;  // a grain its emitter has not released
       if (state.sleep.asleep(p) && !body_wakes_grains(model, state, b)) continue;  // resting on a fixed body
       // A particle joined to the body (a cloth vertex holding a rod's end) does not push it away.
       if (std::binary_search(m.particle_pairs_without_contact.begin(), m.particle_pairs_without_contact.end(),

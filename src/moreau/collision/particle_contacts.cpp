@@ -172,7 +172,7 @@ void detect_collider_contacts(const Model& model, State& state) {
     if (!col.inside && col.shape.type != ShapeType::plane) bound[ci] = col.shape.bounding_radius();
   }
   for (Index p = 0; p < model.particle_count(); ++p) {
-    if (model.particle_inv_mass[p] <= 0) continue;
+    if (model.particle_inv_mass[p] <= 0 || !state.live(p)) continue;
     const ObjectInfo& obj = model.objects[model.particle_object[p]];
     const Index group_start = static_cast<Index>(c.particle.size());
     const bool asleep = state.sleep.asleep(p);
@@ -208,9 +208,10 @@ void detect_collider_contacts(const Model& model, State& state) {
 void detect_particle_contacts(const Model& model, State& state, ContactScratch& scratch, int threads) {
   ParticleContacts& c = state.particle_contacts;
   c.clear();
-  if (!model.settings.particle_contacts || model.contact_particle.size() < 2) return;
+  const std::vector<Index>& contact_particle = state.live_contact_particles(model);
+  if (!model.settings.particle_contacts || contact_particle.size() < 2) return;
   // Every contact particle a sleeping grain: no pair can have an awake side.
-  if (state.sleep.asleep_count == static_cast<Index>(model.contact_particle.size())) return;
+  if (state.sleep.asleep_count == static_cast<Index>(contact_particle.size())) return;
 
   // A pair is a candidate within reach r_i + r_j + g + min(k dt |v_i - v_j|, r_i + r_j), at most
   // 4 r_max + g_max (g the pair's bond distance, g_max <= r_max the largest). The grid's cells are
@@ -220,12 +221,12 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
   // cell. The others are "fast" and search the cells (two each way at most) within 4 r_max + g_max
   // of them. A block falling as one is slow everywhere; a few rattlers in a pile do not coarsen
   // the grid for all.
-  const Index n = static_cast<Index>(model.contact_particle.size());
+  const Index n = static_cast<Index>(contact_particle.size());
   Real max_radius = 0;
   Vec3 mean_velocity = Vec3::Zero();
   scratch.contact_position.resize(n);
   for (Index a = 0; a < n; ++a) {
-    const Index p = model.contact_particle[a];
+    const Index p = contact_particle[a];
     max_radius = std::max(max_radius, model.particle_radius[p]);
     mean_velocity += state.velocity[p];
     scratch.contact_position[a] = state.position[p];
@@ -254,7 +255,7 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
   scratch.sorted_moves.resize(n);
   scratch.sorted_asleep.resize(n);
   for (Index s = 0; s < n; ++s) {
-    const Index a = order[s], p = model.contact_particle[a];
+    const Index a = order[s], p = contact_particle[a];
     scratch.sorted_position[s] = scratch.contact_position[a];
     scratch.sorted_particle[s] = p;
     scratch.sorted_radius[s] = model.particle_radius[p];

@@ -12,6 +12,7 @@
 // would receive overlapping particles (the density constraint then pushes them apart violently).
 #include <vector>
 
+#include "moreau/geometry/lattice_openings.hpp"
 #include "moreau/math/types.hpp"
 
 namespace moreau {
@@ -29,12 +30,6 @@ struct FluidEmitter {
   /// Birth time of layer k, s.
   Real birth(Index k, Real spacing) const { return start + k * spacing / speed; }
 };
-
-/// Lattice points (spacing d) of an opening in the plane through the origin normal to n: a disc
-/// of radius R (points (i d, j d) with |.| <= R, one on the axis), or a rectangle a x b along t1
-/// (`tangent` made normal to n) and n x t1 (floor(a / d) x floor(b / d) points, centred).
-std::vector<Vec3> disc_opening(const Vec3& normal, Real radius, Real d);
-std::vector<Vec3> rectangle_opening(const Vec3& normal, const Vec3& tangent, Real a, Real b, Real d);
 
 struct Model;
 struct FluidState;

@@ -98,8 +98,11 @@ void FrameWriter::write(const State& state) {
     } else if (obj.kind == ObjectKind::granular || obj.kind == ObjectKind::shape_matched) {
       // Grains or shape-matched particles: position, velocity, displacement and radius
       // (ParaView: "Point Gaussian" by radius); grains also their angular velocity and, with
-      // settings.sleep, whether each sleeps (1) or not (0).
-      const Index b = obj.particle_begin, n = obj.particle_count();
+      // settings.sleep, whether each sleeps (1) or not (0). The grains an emitter has not
+      // released (the object's last, grain_emitter.hpp) are left out.
+      const Index b = obj.particle_begin;
+      Index n = obj.particle_count();
+      while (n > 0 && !state.live(b + n - 1)) --n;
       std::vector<Vec3> x(state.position.begin() + b, state.position.begin() + b + n);
       std::vector<Vec3> v(state.velocity.begin() + b, state.velocity.begin() + b + n), u(n);
       for (Index i = 0; i < n; ++i) u[i] = x[i] - model_.particle_rest_position[b + i];

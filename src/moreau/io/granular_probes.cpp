@@ -15,10 +15,9 @@ namespace {
 // -1), fluid particles included.
 template <class F>
 void for_each_particle(const Model& model, const State& state, Index object, F&& f) {
-  const Index begin = object >= 0 ? model.objects[object].particle_begin : 0;
-  const Index end = object >= 0 ? model.objects[object].particle_end : model.particle_count();
-  for (Index p = begin; p < end; ++p)
+  for_each_live_particle(model, state, object, [&](Index p) {
     f(model.particle_mass[p], state.position[p], state.velocity[p], model.particle_radius[p]);
+  });
   const FluidState& fluid = state.fluid;
   for_each_fluid_particle(model, state, object, [&](Index i) {
     f(fluid.mass[i], fluid.position[i], fluid.velocity[i], model.fluid.particle_radius);

@@ -47,9 +47,7 @@ namespace {
 // Positions of the object's particles (fluid or not), or of every simulated particle (-1).
 template <class F>
 void for_each_position(const Model& model, const State& state, Index object, F&& f) {
-  const Index begin = object >= 0 ? model.objects[object].particle_begin : 0;
-  const Index end = object >= 0 ? model.objects[object].particle_end : model.particle_count();
-  for (Index p = begin; p < end; ++p) f(state.position[p]);
+  for_each_live_particle(model, state, object, [&](Index p) { f(state.position[p]); });
   for_each_fluid_particle(model, state, object, [&](Index i) { f(state.fluid.position[i]); });
 }
 
@@ -149,9 +147,7 @@ void evaluate_probe(const Probe& probe, const Model& model, const State& state, 
     }
     case ProbeType::asleep: {
       Index count = 0;
-      const Index begin = probe.object >= 0 ? model.objects[probe.object].particle_begin : 0;
-      const Index end = probe.object >= 0 ? model.objects[probe.object].particle_end : model.particle_count();
-      for (Index p = begin; p < end; ++p) count += state.sleep.asleep(p);  // only grains sleep
+      for_each_live_particle(model, state, probe.object, [&](Index p) { count += state.sleep.asleep(p); });  // only grains sleep
       values.push_back(count);
       break;
     }
@@ -208,10 +204,9 @@ void evaluate_probe(const Probe& probe, const Model& model, const State& state, 
       for_each_dynamic_body(model, probe.object, [&](Index b) {
         worst = std::max(worst, (state.rigid.position[b] - model.rigid.initial_position[b]).norm());
       });
-      const Index begin = probe.object >= 0 ? model.objects[probe.object].particle_begin : 0;
-      const Index end = probe.object >= 0 ? model.objects[probe.object].particle_end : model.particle_count();
-      for (Index p = begin; p < end; ++p)
+      for_each_live_particle(model, state, probe.object, [&](Index p) {
         worst = std::max(worst, (state.position[p] - model.particle_rest_position[p]).norm());
+      });
       values.push_back(worst);
       break;
     }

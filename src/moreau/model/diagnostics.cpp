@@ -11,10 +11,9 @@ namespace {
 // including fluid particles. With moving_only, pinned particles (no momentum) are skipped.
 template <class F>
 void for_each_mass_point(const Model& model, const State& state, Index object, bool moving_only, F&& f) {
-  const Index begin = object >= 0 ? model.objects[object].particle_begin : 0;
-  const Index end = object >= 0 ? model.objects[object].particle_end : model.particle_count();
-  for (Index p = begin; p < end; ++p)
+  for_each_live_particle(model, state, object, [&](Index p) {
     if (!moving_only || model.particle_inv_mass[p] > 0) f(model.particle_mass[p], state.position[p], state.velocity[p]);
+  });
   const FluidState& fluid = state.fluid;
   for_each_fluid_particle(model, state, object, [&](Index i) { f(fluid.mass[i], fluid.position[i], fluid.velocity[i]); });
   for_each_dynamic_body(model, object, [&](Index b) {
@@ -25,10 +24,9 @@ void for_each_mass_point(const Model& model, const State& state, Index object, b
 // Visits (inverse inertia, angular velocity) of the turning grains of `object` (or of all, -1).
 template <class F>
 void for_each_turning_grain(const Model& model, const State& state, Index object, F&& f) {
-  const Index begin = object >= 0 ? model.objects[object].particle_begin : 0;
-  const Index end = object >= 0 ? model.objects[object].particle_end : model.particle_count();
-  for (Index p = begin; p < end; ++p)
+  for_each_live_particle(model, state, object, [&](Index p) {
     if (model.particle_inv_inertia[p] > 0) f(model.particle_inv_inertia[p], state.angular_velocity[p]);
+  });
 }
 
 // Spin angular momentum I w of body b (world frame), kg m^2/s.

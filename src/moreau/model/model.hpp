@@ -10,6 +10,7 @@
 #include "moreau/constraints/particle_families.hpp"
 #include "moreau/constraints/suction_cavity.hpp"
 #include "moreau/fluids/fluid_model.hpp"
+#include "moreau/granular/grain_emitter.hpp"
 #include "moreau/rigid/joint_tree.hpp"
 #include "moreau/constraints/joints/joint.hpp"
 #include "moreau/rigid/rigid_bodies.hpp"
@@ -101,6 +102,7 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<RodModel> rods;                 // rods: their segments are bodies of `rigid`, their junctions joints
   ShapeMatchClusters shape_matching;          // the clusters of shape-matched objects
+  std::vector<GrainEmitter> grain_emitters;   // granular objects' emitters: their grains are particles from the start
   std::vector<SuctionCup> suction_cups;       // soft bodies with a sealed cavity (nmd only)
   JointForest joint_forest;                   // joints solved directly (empty for Gauss-Seidel)
 

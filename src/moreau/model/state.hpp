@@ -5,6 +5,7 @@
 
 #include "moreau/collision/particle_contacts.hpp"
 #include "moreau/fluids/fluid_state.hpp"
+#include "moreau/granular/grain_emitter.hpp"
 #include "moreau/model/model.hpp"
 #include "moreau/collision/particle_body_contacts.hpp"
 #include "moreau/collision/rigid_contacts.hpp"
@@ -35,7 +36,26 @@ struct State {
   std::vector<JointMultipliers> joint_lambda;  // per joint, this substep (JointSlot)
   std::vector<SuctionCupState> suction;         // per Model::suction_cups
   GrainSleepState sleep;                        // sleeping grains (settings.sleep)
+  GrainEmitterState emitters;                   // what the grain emitters have released
+
+  /// Whether particle p takes part in the run: every particle but a grain its emitter has not
+  /// released (grain_emitter.hpp).
+  bool live(Index p) const { return emitters.unborn.empty() || !emitters.unborn[p]; }
+  /// The particles of the particle contacts that are live.
+  const std::vector<Index>& live_contact_particles(const Model& model) const {
+    return emitters.unborn.empty() ? model.contact_particle : emitters.live_contact_particle;
+  }
 };
+
+/// Visits the live particles (State::live) of `object`, or of every object (-1), in the model's
+/// particle arrays (fluid particles and bodies are elsewhere).
+template <class F>
+void for_each_live_particle(const Model& model, const State& state, Index object, F&& f) {
+  const Index begin = object >= 0 ? model.objects[object].particle_begin : 0;
+  const Index end = object >= 0 ? model.objects[object].particle_end : model.particle_count();
+  for (Index p = begin; p < end; ++p)
+    if (state.live(p)) f(p);
+}
 
 /// A state at rest in the model's rest configuration, with all buffers sized.
 State make_rest_state(const Model& model);

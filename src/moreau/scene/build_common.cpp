@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "moreau/errors.hpp"
+#include "moreau/geometry/mesh_readers.hpp"
 #include "moreau/scene/spec_builders.hpp"
 
 namespace moreau {
@@ -197,6 +198,19 @@ std::string resolve_path(const SceneBuildContext& ctx, const std::string& path) 
   if (std::filesystem::is_directory(resolved, ec))
     throw InputError(fmt::format("{}: is a directory; give the path of a mesh file", resolved));
   return resolved;
+}
+
+TriangleMesh read_closed_surface(const SceneBuildContext& ctx, const SpecPlace& place, const std::string& field,
+                                 const std::string& file) {
+  const std::string path = resolve_path(ctx, file);
+  TriangleMesh mesh;
+  try {
+    mesh = read_obj_triangles(path);
+  } catch (const std::exception& e) {
+    place.fail(field, e.what());
+  }
+  if (mesh.vertices.empty()) place.fail(field, fmt::format("'{}' has no vertices", path));
+  return mesh;
 }
 
 void place_vertices(const MeshFile& file, const SpecPlace& place, std::vector<Vec3>& vertices) {

@@ -8,7 +8,6 @@
 #include "moreau/fluids/boundary_sampling.hpp"
 #include "moreau/fluids/density_constraint.hpp"
 #include "moreau/fluids/solid_sampling.hpp"
-#include "moreau/geometry/mesh_readers.hpp"
 #include "moreau/geometry/point_in_mesh.hpp"
 #include "moreau/scene/memory_estimate.hpp"
 #include "moreau/scene/spec_builders.hpp"
@@ -43,63 +42,23 @@ void add_block(const FluidBlock& block, const SpecPlace& place, Real d, std::vec
   fill_block(lo, hi, d, out);
 }
 
-FluidEmitterSpec read_emitter(const JsonObject& e) {
-  FluidEmitterSpec spec;
-  spec.center = to_vector3(e.vec3("center"));
-  spec.direction = to_vector3(e.vec3("direction"));
-  spec.shape = e.choice("shape", {"disc", "rectangle"});
-  if (spec.shape == "disc") {
-    spec.radius = e.number("radius");
-  } else {
-    const Vec2 size = e.vec2("size", Range::any());
-    spec.size = {size.x(), size.y()};
-    spec.tangent = read_vector(e, "tangent", spec.tangent);
-  }
-  spec.speed = read_optional_number(e, "speed");
-  spec.flow_rate = read_optional_number(e, "flow_rate");
-  spec.start = e.number("start", spec.start);
-  spec.stop = read_optional_number(e, "stop");
-  e.finish();
-  return spec;
-}
-
 // "emitter": a disc or rectangle of lattice points releasing a layer of particles each time the
 // flow has advanced one spacing d, from start to stop.
 FluidEmitter make_emitter(const FluidEmitterSpec& spec, const SpecPlace& e, Real d, Index phase, Real scene_duration) {
+  const EmitterOpening opening = place_emitter_opening(spec, e, d, "particle spacing 2r", scene_duration);
   FluidEmitter emitter;
   emitter.phase = phase;
-  emitter.center = e.vector("center", spec.center);
-  const Vec3 direction = e.vector("direction", spec.direction);
-  if (!(direction.norm() > 0)) e.fail("direction", "the flow direction must be a non-zero vector");
-  emitter.normal = direction.normalized();
-  if (e.choice("shape", spec.shape, {"disc", "rectangle"}) == "disc") {
-    if (spec.size != Vector2{0, 0} || spec.tangent != Vector3{0, 0, 0})
-      e.fail(spec.size != Vector2{0, 0} ? "size" : "tangent", "a disc takes a \"radius\"; size and tangent are a rectangle's");
-    const Real radius = e.number("radius", spec.radius, Range::positive());
-    if (radius < 0.5 * d) e.fail("radius", fmt::format("the disc must be at least r = {} m wide to hold a particle", 0.5 * d));
-    emitter.opening = disc_opening(emitter.normal, radius, d);
-  } else {
-    if (spec.radius != 0) e.fail("radius", "a rectangle takes a \"size\" (and a \"tangent\"); the radius is a disc's");
-    const Vec2 size = e.pair("size", spec.size, Range::positive());
-    if (size.minCoeff() < d) e.fail("size", fmt::format("each side must be at least one particle spacing 2r = {} m", d));
-    emitter.opening = rectangle_opening(emitter.normal, e.vector("tangent", spec.tangent), size.x(), size.y(), d);
-  }
+  emitter.center = opening.center;
+  emitter.normal = opening.normal;
+  emitter.opening = opening.points;
   const Real area = emitter.opening.size() * d * d;  // what the lattice opening carries
   if (spec.speed.has_value() == spec.flow_rate.has_value())
     e.fail("speed", "give exactly one of \"speed\" (m/s) or \"flow_rate\" (m^3/s)");
   emitter.speed = spec.speed ? e.number("speed", *spec.speed, Range::positive())
                              : e.number("flow_rate", *spec.flow_rate, Range::positive()) / area;
-  emitter.start = e.number("start", spec.start, Range::non_negative());
-  emitter.stop = e.number("stop", spec.stop.value_or(scene_duration), Range::non_negative());
-  if (emitter.stop < emitter.start) e.fail("stop", fmt::format("stop must not precede start ({} s)", emitter.start));
-  // Checked as a real number before the cast to Index (32 bits).
-  const Real layers = std::floor((emitter.stop - emitter.start) * emitter.speed / d + 1e-9) + 1;
-  constexpr Real kMaxEmitted = 5e7;
-  if (layers * emitter.opening.size() > kMaxEmitted)
-    e.fail("stop", fmt::format("the emitter would release {:.3g} particles by t = {} s (limit {:.0g}); lower the rate "
-                               "or the stop time", layers * emitter.opening.size(),
-                               emitter.stop, kMaxEmitted));
-  emitter.layers = static_cast<Index>(layers);
+  emitter.start = opening.start;
+  emitter.stop = opening.stop;
+  emitter.layers = emitter_layers(opening, e, emitter.speed, d);
   return emitter;
 }
 
@@ -122,7 +81,7 @@ FluidSpec read_fluid(const JsonObject& object) {
   if (object.has("mesh")) spec.mesh = object.string("mesh");
   if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");
   spec.velocity = read_vector(object, "velocity", spec.velocity);
-  if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"));
+  if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"), "flow_rate");
   return spec;
 }
 
@@ -177,14 +136,7 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   for (size_t k = 0; k < spec.blocks.size(); ++k) add_block(spec.blocks[k], place.at(fmt::format("blocks[{}]", k)), d, points);
   if (!spec.mesh.empty()) {
     // Lattice points inside a closed OBJ surface.
-    const std::string path = resolve_path(ctx, spec.mesh);
-    TriangleMesh mesh;
-    try {
-      mesh = read_obj_triangles(path);
-    } catch (const std::exception& e) {
-      place.fail("mesh", e.what());
-    }
-    if (mesh.vertices.empty()) place.fail("mesh", fmt::format("'{}' has no vertices", path));
+    const TriangleMesh mesh = read_closed_surface(ctx, place, "mesh", spec.mesh);
     Vec3 lo = mesh.vertices.front(), hi = lo;
     for (const Vec3& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
     std::vector<Vec3> lattice;

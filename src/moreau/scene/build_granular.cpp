@@ -1,12 +1,14 @@
-// "kind": "granular" objects: grains as particles on a lattice filling boxes, each touching the
-// others, colliders, rigid bodies and rods through the particle contacts (with friction,
-// restitution and cohesion); polydisperse radii drawn from a seeded generator.
+// "kind": "granular" objects: grains as particles on a lattice filling boxes, cylinders or a
+// closed mesh, or poured by an emitter, each touching the others, colliders, rigid bodies and rods
+// through the particle contacts (with friction, restitution and cohesion); polydisperse radii
+// drawn from a seeded generator.
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <random>
 
+#include "moreau/geometry/point_in_mesh.hpp"
 #include "moreau/scene/spec_builders.hpp"
 
 namespace moreau {
@@ -29,7 +31,7 @@ class GrainLattice {
 
   template <class Keep>
   void fill(const SpecPlace& place, const std::string& field, const Vec3& lo, const Vec3& hi, Keep keep) {
-    const Real spacing = 2 * r_max_ * 1.02;
+    const Real spacing = this->spacing();
     Eigen::Array3d count = ((hi - lo).array() - 2 * r_max_) / spacing + 1;
     count = (count + 1e-9).floor();  // a box exactly n grains across holds n
     if (count.prod() > kMaxGrains)
@@ -38,15 +40,28 @@ class GrainLattice {
       for (int j = 0; j < count.y(); ++j)
         for (int k = 0; k < count.z(); ++k) {
           Vec3 p = lo + Vec3::Constant(r_max_) + spacing * Vec3(i, j, k);
-          if (!keep(p)) continue;
-          for (int c = 0; c < 3; ++c) p[c] += 0.01 * r_max_ * (2 * unit_draw(generator_) - 1);
-          const Real r = r_min_ + (r_max_ - r_min_) * unit_draw(generator_);
-          positions.push_back(p);
-          radii.push_back(r);
-          masses.push_back(density_ * 4 * kPi / 3 * r * r * r);
+          if (keep(p)) add(p);
         }
     if (static_cast<Index>(positions.size()) > kMaxGrains)
       place.fail(field, fmt::format("the grains number {}; at most {} per scene", positions.size(), kMaxGrains));
+  }
+
+  /// A grain at lattice point p, moved and sized by the next draws.
+  void add(Vec3 p) {
+    for (int c = 0; c < 3; ++c) p[c] += 0.01 * r_max_ * (2 * unit_draw(generator_) - 1);
+    const Real r = r_min_ + (r_max_ - r_min_) * unit_draw(generator_);
+    positions.push_back(p);
+    radii.push_back(r);
+    masses.push_back(density_ * 4 * kPi / 3 * r * r * r);
+  }
+
+  /// The lattice spacing, 2 r_max (1 + 2 %).
+  Real spacing() const { return 2 * r_max_ * 1.02; }
+  /// A grain's mean mass: rho 4/3 pi E[r^3], r uniform in [r_min, r_max], E[r^3] = (b^4 - a^4) / (4 (b - a)).
+  Real mean_mass() const {
+    const Real mean_cube = r_max_ > r_min_ ? (std::pow(r_max_, 4) - std::pow(r_min_, 4)) / (4 * (r_max_ - r_min_))
+                                           : r_max_ * r_max_ * r_max_;
+    return density_ * 4 * kPi / 3 * mean_cube;
   }
 
   std::vector<Vec3> positions;
@@ -57,6 +72,39 @@ class GrainLattice {
   std::mt19937_64 generator_;
 };
 
+// "emitter": the grains of every layer it will release, drawn now (after the filled grains) on
+// the opening's lattice; layer k holds the opening's points in order (grain_emitter.hpp).
+GrainEmitter pour_grains(const EmitterSpec& spec, const SpecPlace& e, GrainLattice& lattice, Real r_max,
+                         Real scene_duration) {
+  const Real d = lattice.spacing();
+  const EmitterOpening opening = place_emitter_opening(spec, e, d, "grain spacing 2.04 r_max", scene_duration);
+  GrainEmitter emitter;
+  emitter.center = opening.center;
+  emitter.normal = opening.normal;
+  emitter.spacing = d;
+  emitter.per_layer = static_cast<Index>(opening.points.size());
+  emitter.start = opening.start;
+  emitter.max_radius = r_max;
+  for (const Vec3& point : opening.points) emitter.reach = std::max(emitter.reach, point.norm());
+  emitter.reach += r_max;
+  if (spec.flow_rate) e.fail("flow_rate", "grains are poured at a \"mass_rate\" (kg/s) or a \"speed\" (m/s)");
+  if (spec.speed.has_value() == spec.mass_rate.has_value())
+    e.fail("speed", "give exactly one of \"speed\" (m/s) or \"mass_rate\" (kg/s)");
+  // A layer of N grains every d / v: the mass rate is N m v / d for grains of mean mass m.
+  emitter.speed = spec.speed ? e.number("speed", *spec.speed, Range::positive())
+                             : e.number("mass_rate", *spec.mass_rate, Range::positive()) * d /
+                                   (emitter.per_layer * lattice.mean_mass());
+  emitter.layers = emitter_layers(opening, e, emitter.speed, d);
+  if (static_cast<double>(lattice.positions.size()) + static_cast<double>(emitter.layers) * emitter.per_layer > kMaxGrains)
+    e.fail("stop", fmt::format("the grains would number {:.3g} with the emitted ones; at most {} per scene",
+                               static_cast<double>(lattice.positions.size()) +
+                                   static_cast<double>(emitter.layers) * emitter.per_layer,
+                               kMaxGrains));
+  for (Index k = 0; k < emitter.layers; ++k)
+    for (const Vec3& point : opening.points) lattice.add(opening.center + point);
+  return emitter;
+}
+
 }  // namespace
 
 GranularSpec read_granular(const JsonObject& object) {
@@ -66,6 +114,9 @@ GranularSpec read_granular(const JsonObject& object) {
     spec.cylinders.push_back({to_vector3(cylinder.vec3("base")), cylinder.number("radius"), cylinder.number("height")});
     cylinder.finish();
   }
+  if (object.has("mesh")) spec.mesh = object.string("mesh");
+  if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");
+  if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"), "mass_rate");
   spec.radius = read_optional_number(object, "radius");
   spec.radius_range = read_optional_pair(object, "radius_range");
   if (object.has("seed")) spec.seed = read_integer(object, "seed");
@@ -93,8 +144,9 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     r_max = r.y();
   }
   const Real density = place.number("density", spec.density, Range::positive());
-  if (spec.blocks.empty() && spec.cylinders.empty())
-    place.fail("blocks", "a granular object needs at least one block {\"min\", \"max\"} or cylinder {\"base\", \"radius\", \"height\"} to fill");
+  if (spec.blocks.empty() && spec.cylinders.empty() && spec.mesh.empty() && !spec.emitter)
+    place.fail("blocks", "a granular object needs a block {\"min\", \"max\"} or cylinder {\"base\", \"radius\", \"height\"} "
+                         "to fill, a closed \"mesh\" to fill, or an \"emitter\" to pour its grains");
 
   GrainLattice lattice(r_min, r_max, density, static_cast<std::uint64_t>(spec.seed));
   const Real diameter = 2 * r_max;
@@ -121,6 +173,19 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
       return Vec2(p.x() - base.x(), p.z() - base.z()).squaredNorm() <= reach * reach * (1 + 1e-12);
     });
   }
+  // A closed OBJ surface keeps the lattice points of its bounding box that lie inside it.
+  if (!spec.mesh.empty()) {
+    const TriangleMesh mesh = read_closed_surface(ctx, place, "mesh", spec.mesh);
+    Vec3 lo = mesh.vertices.front(), hi = lo;
+    for (const Vec3& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const std::size_t before = lattice.positions.size();
+    lattice.fill(place, "mesh", lo, hi, [&](const Vec3& p) { return point_in_closed_mesh(mesh, p); });
+    if (lattice.positions.size() == before)
+      place.fail("mesh", fmt::format("the surface holds no grain of diameter {} m on the lattice", diameter));
+  }
+  const Index filled = static_cast<Index>(lattice.positions.size());
+  GrainEmitter emitter;
+  if (spec.emitter) emitter = pour_grains(*spec.emitter, place.at("emitter"), lattice, r_max, ctx.duration);
   const std::vector<Vec3>& positions = lattice.positions;
   const std::vector<Real>& masses = lattice.masses;
   const std::vector<Real>& radii = lattice.radii;
@@ -150,6 +215,12 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     m.particle_radius[p] = radii[p - info.particle_begin];
     m.particle_collider_gap[p] = radii[p - info.particle_begin];
     m.contact_particle.push_back(p);
+  }
+  if (spec.emitter) {
+    emitter.object = static_cast<Index>(m.objects.size());  // the object being added
+    emitter.first = info.particle_begin + filled;
+    for (Index p = emitter.first; p < info.particle_end; ++p) ctx.initial_velocity[p] = Vec3::Zero();  // set when released
+    m.grain_emitters.push_back(emitter);
   }
 }
 

@@ -75,6 +75,21 @@ Vector3 read_vector(const JsonObject& object, const std::string& key, const Vect
 std::optional<Vector3> read_optional_vector(const JsonObject& object, const std::string& key);
 std::optional<double> read_optional_number(const JsonObject& object, const std::string& key);
 std::optional<Vector2> read_optional_pair(const JsonObject& object, const std::string& key);
+/// An "emitter" {"shape", "center", "direction", ...} of a fluid (rate_key "flow_rate", m^3/s)
+/// or a granular object ("mass_rate", kg/s).
+EmitterSpec read_emitter(const JsonObject& e, const std::string& rate_key);
+/// An emitter's opening (lattice points of spacing d about its centre) and window, checked.
+struct EmitterOpening {
+  Vec3 center = Vec3::Zero(), normal = Vec3::UnitY();  // m; the unit flow direction
+  std::vector<Vec3> points;                             // m, relative to the centre
+  Real start = 0, stop = 0;                             // s
+};
+/// `spacing_name` names d in messages ("particle spacing 2r"); stop defaults to the scene's duration.
+EmitterOpening place_emitter_opening(const EmitterSpec& spec, const SpecPlace& e, Real d, const std::string& spacing_name,
+                                     Real scene_duration);
+/// The layers released from start to stop at `speed` (m/s), each d further on; at most 5e7
+/// particles in all.
+Index emitter_layers(const EmitterOpening& opening, const SpecPlace& e, Real speed, Real d);
 /// A box {"min": [x, y, z], "max": [x, y, z]} in m (fluid, granular and shape-matched blocks).
 FluidBlock read_block(const JsonObject& block);
 /// An integer of any value an int holds (the adder checks its range).
@@ -130,6 +145,9 @@ void add_pins(const std::vector<PinSpec>& pins, const SpecPlace& place, const Ob
 /// Resolves a mesh path relative to the scene file.
 std::string resolve_path(const SceneBuildContext& ctx, const std::string& path);
 /// A mesh file's vertices, scaled then translated.
+/// A closed OBJ surface whose inside is filled (fluids, grains); read errors fail at `field`.
+TriangleMesh read_closed_surface(const SceneBuildContext& ctx, const SpecPlace& place, const std::string& field,
+                                 const std::string& file);
 void place_vertices(const MeshFile& file, const SpecPlace& place, std::vector<Vec3>& vertices);
 
 }  // namespace moreau

@@ -25,8 +25,9 @@ void GrainSleepState::list_awake() {
 
 namespace {
 
-bool is_grain(const Model& model, Index p) {
-  return model.objects[model.particle_object[p]].kind == ObjectKind::granular;
+// A grain that can sleep: a live particle of a granular object (not one its emitter holds back).
+bool is_grain(const Model& model, const State& state, Index p) {
+  return model.objects[model.particle_object[p]].kind == ObjectKind::granular && state.live(p);
 }
 
 // Union-find over particles; the root of a set is its smallest particle, whatever the order of
@@ -106,7 +107,7 @@ void update_grain_sleep(const Model& model, State& state) {
   const Real dt = model.settings.dt, drift2 = std::pow(settings.speed * settings.time, 2);
   bool ready = false;  // some awake grain has been still for the sleep time
   for (Index p = 0; p < n; ++p) {
-    if (sleep.asleep(p) || !is_grain(model, p)) continue;
+    if (sleep.asleep(p) || !is_grain(model, state, p)) continue;
     if ((state.position[p] - sleep.still_from[p]).squaredNorm() <= drift2) {
       sleep.still_time[p] += dt;
       ready |= sleep.still_time[p] >= settings.time;
@@ -125,7 +126,7 @@ void update_grain_sleep(const Model& model, State& state) {
   std::vector<char>& keeps_awake = sleep.keeps_awake;
   keeps_awake.assign(n, 0);
   for (const auto& [i, j] : state.particle_contacts.pair) {
-    const bool grain_i = is_grain(model, i), grain_j = is_grain(model, j);
+    const bool grain_i = is_grain(model, state, i), grain_j = is_grain(model, state, j);
     if (grain_i && grain_j) {
       join(parent, i, j);
     } else {
@@ -145,12 +146,12 @@ void update_grain_sleep(const Model& model, State& state) {
   std::vector<char>& island_awake = sleep.island_awake;  // by root
   island_awake.assign(n, 0);
   for (Index p = 0; p < n; ++p) {
-    if (sleep.asleep(p) || !is_grain(model, p)) continue;
+    if (sleep.asleep(p) || !is_grain(model, state, p)) continue;
     if (keeps_awake[p] || sleep.still_time[p] < settings.time) island_awake[find_root(parent, p)] = 1;
   }
   const Index asleep_before = sleep.asleep_count;
   for (Index p = 0; p < n; ++p) {
-    if (sleep.asleep(p) || !is_grain(model, p)) continue;
+    if (sleep.asleep(p) || !is_grain(model, state, p)) continue;
     const Index root = find_root(parent, p);
     if (island_awake[root]) continue;
     sleep.island[p] = root;

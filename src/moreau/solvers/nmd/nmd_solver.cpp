@@ -23,7 +23,7 @@ namespace {
 // x+ = x + h v+ for free particles and every moving body; q+ = exp(h w+) q.
 void integrate_positions(const Model& model, State& state, Real h) {
   for (Index p = 0; p < model.particle_count(); ++p)
-    if (model.particle_inv_mass[p] > 0) state.position[p] += h * state.velocity[p];
+    if (model.particle_inv_mass[p] > 0 && state.live(p)) state.position[p] += h * state.velocity[p];
   RigidBodyState& s = state.rigid;
   for (Index b = 0; b < model.rigid.count(); ++b) {
     if (model.rigid.body_motion[b] == BodyMotion::fixed) continue;
@@ -69,6 +69,7 @@ void NmdSolver::solve(const Model& model, const State& state, int threads) {
 void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int threads) {
   threads = std::max(1, threads);
   timer.start();
+  if (!model.grain_emitters.empty()) emit_grains(model, state);
   detect_particle_candidates(model, state, contact_scratch_, threads, !model.rigid.empty());
   if (!model.rigid.empty()) detect_rigid_contacts(model, state, threads);
   timer.lap(NmdStage::detect_contacts);

@@ -36,9 +36,9 @@ void VelocitySpace::gather(const Model& model, const State& state) {
   for (Index i = 0; i < fluids; ++i)
     for (int c = 0; c < 3; ++c) v[fluid_dof(i) + c] = state.fluid.velocity[i][c];
   particle_inv_mass.assign(model.particle_inv_mass.begin(), model.particle_inv_mass.end());
-  if (state.sleep.asleep_count > 0)  // sleeping grains keep still: no forces, no rows
+  if (state.sleep.asleep_count > 0 || !state.emitters.unborn.empty())  // sleeping and unborn grains keep still
     for (Index p = 0; p < particles; ++p)
-      if (state.sleep.asleep(p)) particle_inv_mass[p] = 0;
+      if (state.sleep.asleep(p) || !state.live(p)) particle_inv_mass[p] = 0;
   body_inv_mass.resize(bodies);
   body_inv_inertia.resize(bodies);
   for (Index p = 0; p < particles; ++p)

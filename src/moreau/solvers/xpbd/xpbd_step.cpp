@@ -12,6 +12,7 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
+#include "moreau/granular/grain_emitter.hpp"
 #include "moreau/collision/particle_body_contacts.hpp"
 #include "moreau/collision/particle_candidates.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
@@ -33,20 +34,23 @@ int solver_thread_count(const Model& model) {
 
 namespace {
 
-// Visits, on this thread's share, the particles a substep moves: every particle, or with
+// Visits, on this thread's share, the particles a substep moves: every live particle, or with
 // settings.sleep those not asleep (a sleeping grain keeps its place and zero velocity, and takes
-// part in no contact; its substep start is set again in the first substep after it wakes).
+// part in no contact; its substep start is set again in the first substep after it wakes). A
+// grain its emitter has not released is not live (grain_emitter.hpp).
 template <class F>
 void for_each_moving_particle(const Model& model, const State& state, F&& f) {
   if (model.settings.sleep.enabled) {
     const std::vector<Index>& awake = state.sleep.awake;
     const Index m = static_cast<Index>(awake.size());
 #pragma omp for schedule(static) nowait
-    for (Index k = 0; k < m; ++k) f(awake[k]);
+    for (Index k = 0; k < m; ++k)
+      if (state.live(awake[k])) f(awake[k]);
   } else {
     const Index n = model.particle_count();
 #pragma omp for schedule(static) nowait
-    for (Index p = 0; p < n; ++p) f(p);
+    for (Index p = 0; p < n; ++p)
+      if (state.live(p)) f(p);
   }
 }
 
@@ -97,6 +101,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   threads = std::max(1, threads);
   timer.start();
   work.fit(model);
+  if (!model.grain_emitters.empty()) emit_grains(model, state);
   // Rigid bodies, or joints alone (a joint may hold a particle to the world).
   const bool rigid = !model.rigid.empty() || !model.joints.empty();
   detect_particle_candidates(model, state, work.contact_scratch, threads, rigid);

@@ -1,0 +1,75 @@
+// Where a granular object's grains come from: a closed mesh fills as the block it bounds, and
+// an emitter's scene keys are checked with their paths.
+#include <gtest/gtest.h>
+
+#include <fmt/format.h>
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "moreau/world.hpp"
+#include "test_helpers.hpp"
+
+namespace moreau {
+namespace {
+
+// The cube [0, 0.1]^3 as a closed OBJ surface of 12 outward triangles.
+std::string write_cube(const std::string& dir) {
+  const std::string path = dir + "/cube.obj";
+  std::ofstream out(path);
+  for (int i = 0; i < 8; ++i) out << fmt::format("v {} {} {}\n", 0.1 * (i & 1), 0.1 * ((i >> 1) & 1), 0.1 * ((i >> 2) & 1));
+  // Vertex i + 1 sits at (i & 1, i & 2, i & 4); two triangles per face.
+  out << "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\nf 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
+  return path;
+}
+
+std::vector<double> grain_positions(const std::string& source) {
+  World w = World::from_json(fmt::format(R"({{"name": "fill", "settings": {{"dt": 0.001, "duration": 1}},
+      "objects": [{{"name": "sand", "kind": "granular", {}, "radius_range": [0.004, 0.005]}}]}})", source));
+  const StateArray x = w.array("particle.position");
+  return {x.values.begin(), x.values.end()};
+}
+
+// Every lattice point of the cube's bounding box lies inside it, so the mesh holds the grains of
+// the block [0, 0.1]^3, with the same draws: the same positions, bit for bit (9^3 = 729 grains).
+TEST(GranularSources, AClosedMeshFillsLikeTheBlockItBounds) {
+  const std::string cube = write_cube(test::temp_dir("granular-mesh"));
+  const std::vector<double> from_mesh = grain_positions(fmt::format(R"("mesh": "{}")", cube));
+  const std::vector<double> from_block = grain_positions(R"("blocks": [{"min": [0, 0, 0], "max": [0.1, 0.1, 0.1]}])");
+  EXPECT_EQ(from_mesh.size(), 3u * 729);
+  EXPECT_EQ(from_mesh, from_block);
+}
+
+// Bad emitter keys fail with the key's path and what is allowed.
+TEST(GranularSources, EmitterKeysAreChecked) {
+  struct Case {
+    std::string emitter, path, message;
+  };
+  const std::vector<Case> cases{
+      {R"("shape": "disc", "center": [0, 1, 0], "direction": [0, -1, 0], "radius": 0.03, "speed": 1, "mass_rate": 1)",
+       "objects[0].emitter.speed", "exactly one of"},
+      {R"("shape": "disc", "center": [0, 1, 0], "direction": [0, -1, 0], "radius": 0.03, "flow_rate": 1)",
+       "objects[0].emitter.flow_rate", "unknown key"},
+      {R"("shape": "disc", "center": [0, 1, 0], "direction": [0, 0, 0], "radius": 0.03, "speed": 1)",
+       "objects[0].emitter.direction", "non-zero"},
+      {R"("shape": "disc", "center": [0, 1, 0], "direction": [0, -1, 0], "radius": 0.001, "speed": 1)",
+       "objects[0].emitter.radius", "grain spacing"},
+      {R"("shape": "disc", "center": [0, 1, 0], "direction": [0, -1, 0], "radius": 0.03, "speed": 1e6)",
+       "objects[0].emitter.stop", "limit"},
+  };
+  for (const Case& c : cases) {
+    try {
+      World::from_json(fmt::format(R"({{"name": "bad", "settings": {{"dt": 0.001, "duration": 10}},
+          "objects": [{{"name": "sand", "kind": "granular", "radius": 0.005, "emitter": {{{}}}}}]}})", c.emitter));
+      ADD_FAILURE() << "no error for " << c.emitter;
+    } catch (const std::exception& e) {
+      const std::string what = e.what();
+      EXPECT_NE(what.find(c.path), std::string::npos) << what;
+      EXPECT_NE(what.find(c.message), std::string::npos) << what;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace moreau
