@@ -1,5 +1,7 @@
 #include "moreau/solvers/solver_registry.hpp"
 
+#include <fmt/format.h>
+
 #include <functional>
 
 #include "moreau/solvers/nmd/nmd_solver.hpp"
@@ -21,9 +23,18 @@ std::string xpbd_refusal(const Model& model) {
   return {};
 }
 
+// A shape-matching cluster of n particles has n^2 Jacobian blocks under nmd (shape_match_rows.hpp).
+constexpr Index kMaxNmdClusterSize = 512;
+
 std::string nmd_refusal(const Model& model) {
-  if (!model.shape_matching.empty())
-    return "the 'nmd' formulation does not simulate shape-matched objects (\"kind\": \"shape_matched\"); run with \"solver\": \"xpbd\"";
+  const ShapeMatchClusters& clusters = model.shape_matching;
+  for (Index k = 0; k < clusters.size(); ++k) {
+    const Index size = clusters.offsets[k + 1] - clusters.offsets[k];
+    if (size > kMaxNmdClusterSize)
+      return fmt::format("under 'nmd' a shape-matching cluster may hold at most {} particles (its rows grow with the "
+                         "square of its size); '{}' has one of {}: split it with \"clusters\": {{\"radius\": ...}}",
+                         kMaxNmdClusterSize, model.objects[clusters.object[k]].name, size);
+  }
   return {};
 }
 

@@ -8,6 +8,7 @@
 #include "moreau/constraints/neo_hookean_green_strain.hpp"
 #include "moreau/constraints/particle_body_contact_rows.hpp"
 #include "moreau/constraints/particle_contact_rows.hpp"
+#include "moreau/solvers/nmd/shape_match_rows.hpp"
 
 namespace moreau {
 
@@ -290,6 +291,7 @@ void assemble_nmd_system(const Model& model, State& state, const VelocitySpace& 
   Assembly a{model, state, space, h, system, memory, {}};
   for_each_family(model.constraints, state.constraint_lambda,
                   [&](const auto& family, auto& lambda, int) { add_family(a, family, lambda); });
+  if (!model.shape_matching.empty()) add_shape_match_rows(model, state, space, h, a.input, system, memory.shape_match);
   JointBlocks joints(a);
   for (size_t k = 0; k < model.joints.size(); ++k) {
     joints.set_memory(state.joint_lambda[k]);

@@ -1,7 +1,7 @@
 #pragma once
 // Gathers every row of the constraint engine into an NMD system (nmd_system.hpp): the particle
 // families' rows (constraints/particle_families.hpp), the joints' row blocks
-// (constraints/joints/joint.hpp), and one contact block per contact point: particle-collider,
+// (constraints/joints/joint.hpp), shape matching's rows (shape_match_rows.hpp), and one contact block per contact point: particle-collider,
 // particle-particle, rigid body-rigid body (every point of each manifold, separated ones as
 // speculative contacts) and particle-rigid body (constraints/*contact_rows.hpp). The rows are
 // the ones the position-level solver projects; here their Jacobians act on velocities. The one
@@ -18,6 +18,7 @@ namespace moreau {
 /// tetrahedron's six Green-strain rows (the state keeps the two of its XPBD pair).
 struct NmdRowMemory {
   std::vector<Eigen::Matrix<Real, 6, 1>> neo_hookean;
+  std::vector<Vec3> shape_match;  // per shape-matching cluster entry (shape_match_rows.hpp)
 };
 
 /// Adds every block at the state's positions and velocities (`space` gathered from the state)

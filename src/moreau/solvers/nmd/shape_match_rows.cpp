@@ -1,0 +1,65 @@
+#include "moreau/solvers/nmd/shape_match_rows.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+
+namespace moreau {
+
+void add_shape_match_rows(const Model& model, const State& state, const VelocitySpace& space, Real h, NmdBlockInput& in,
+                          NmdSystem& system, std::vector<Vec3>& memory) {
+  const ShapeMatchClusters& clusters = model.shape_matching;
+  memory.resize(clusters.particle.size(), Vec3::Zero());
+  std::vector<Vec3> p;       // R q_j of each member
+  std::vector<Mat3> turn;    // m_j K^-1 [p_j]x: how member j's velocity turns the fit
+  for (Index k = 0; k < clusters.size(); ++k) {
+    const Index begin = clusters.offsets[k], end = clusters.offsets[k + 1];
+    const int n = static_cast<int>(end - begin);
+    Real total = 0;
+    Vec3 center = Vec3::Zero();
+    for (Index e = begin; e < end; ++e) {
+      total += clusters.mass[e];
+      center += clusters.mass[e] * state.position[clusters.particle[e]];
+    }
+    center /= total;
+    Mat3 A = Mat3::Zero();
+    for (Index e = begin; e < end; ++e)
+      A += clusters.mass[e] * (state.position[clusters.particle[e]] - center) * clusters.rest_offset[e].transpose();
+    const Mat3 R = polar_rotation(A);
+    Mat3 S = A * R.transpose();
+    S = 0.5 * (S + S.transpose());  // symmetric up to rounding
+    const Mat3 K = S.trace() * Mat3::Identity() - S;
+    // K is positive definite unless the fit is degenerate (a cluster squashed onto a line, or
+    // turned inside out): then its velocity does not turn the fit in the rows.
+    const Eigen::LDLT<Mat3> K_factor(K);
+    const bool turns = K_factor.info() == Eigen::Success && K_factor.isPositive() && K.determinant() > 1e-12 * std::pow(K.trace(), 3);
+    p.resize(n);
+    turn.resize(n);
+    for (int j = 0; j < n; ++j) {
+      p[j] = R * clusters.rest_offset[begin + j];
+      turn[j] = turns ? Mat3(clusters.mass[begin + j] * K_factor.solve(cross_matrix(p[j]))) : Mat3::Zero();
+    }
+    const Real omega2 = clusters.omega[k] * clusters.omega[k];
+    for (int i = 0; i < n; ++i) {
+      const Index entry = begin + i, particle = clusters.particle[entry];
+      if (model.particle_inv_mass[particle] <= 0) continue;
+      in.resize(3, n);
+      const Mat3 arm = cross_matrix(state.position[particle] - center);
+      for (int j = 0; j < n; ++j) {
+        in.end[j] = space.particle_end(clusters.particle[begin + j]);
+        Mat3 J = arm * turn[j];
+        J.diagonal().array() -= clusters.mass[begin + j] / total;
+        if (j == i) J.diagonal().array() += 1;
+        for (int r = 0; r < 3; ++r)
+          for (int c = 0; c < 3; ++c) in.at(r, j)[c] = J(r, c);
+      }
+      in.C = state.position[particle] - center - p[i];
+      if (omega2 > 0) in.compliance.diagonal().setConstant(1 / (clusters.mass[entry] * omega2));
+      in.kind = NmdBlockKind::equality;
+      in.memory = memory[entry].data();
+      in.memory_rows = 3;
+      system.add(in, space, h, model.settings.nmd);
+    }
+  }
+}
+
+}  // namespace moreau
