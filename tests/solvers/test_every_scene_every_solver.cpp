@@ -73,8 +73,7 @@ std::vector<ScenePair> every_pair() {
 struct ExpectedRefusal {
   std::string solver, reason, key;
 };
-const std::vector<ExpectedRefusal> kRefusals = {{"xpbd", "does not simulate suction cups", "suction"},
-                                                {"nmd", "does not simulate shape-matched objects", "kind=shape_matched"}};
+const std::vector<ExpectedRefusal> kRefusals = {{"xpbd", "does not simulate suction cups", "suction"}};
 
 bool holds_key(const std::string& scene, const std::string& key) {
   const nlohmann::json json = nlohmann::json::parse(std::ifstream(fs::path(MOREAU_SOURCE_DIR) / scene));

@@ -56,7 +56,7 @@ struct ParticleContacts {
 /// Reused buffers of contact detection (no allocation once their capacity suffices).
 struct ContactScratch {
   CellGrid grid;
-  std::vector<Vec3> contact_position;  // positions of Model::contact_particle, in its order
+  std::vector<Vec3> contact_position;  // positions of the live contact particles (State::live_contact_particles), in order
   std::vector<Vec3> sorted_position;   // the same, and the particles' radii and ids, in the grid's order
   std::vector<Real> sorted_radius;
   std::vector<Index> sorted_particle;

@@ -8,6 +8,12 @@ Index Model::find_object(const std::string& name) const {
   return -1;
 }
 
+Index Model::initial_particle_end(Index object) const {
+  for (const GrainEmitter& e : grain_emitters)
+    if (e.object == object) return e.first;
+  return objects[object].particle_end;
+}
+
 void Model::color_constraints() {
   for_each_family(constraints, [&](auto& family, int) { family.color(particle_inv_mass); });
 }

@@ -111,6 +111,9 @@ struct Model {
   Index particle_count() const { return static_cast<Index>(particle_inv_mass.size()); }
   /// Object index by name, or -1.
   Index find_object(const std::string& name) const;
+  /// The end of the object's particles that exist from the start: the grains its emitter
+  /// releases during the run come after (grain_emitter.hpp); joints and probes take only these.
+  Index initial_particle_end(Index object) const;
   /// One family of `constraints`, e.g. family<DistanceConstraints>().
   template <class Family>
   Family& family() { return std::get<Family>(constraints); }

@@ -41,7 +41,7 @@ EmitterOpening place_emitter_opening(const EmitterSpec& spec, const SpecPlace& e
       e.fail(spec.size != Vector2{0, 0} ? "size" : "tangent", "a disc takes a \"radius\"; size and tangent are a rectangle's");
     const Real radius = e.number("radius", spec.radius, Range::positive());
     if (radius < 0.5 * d)
-      e.fail("radius", fmt::format("the disc must be at least half the {} = {} m wide to hold a particle", spacing_name, d));
+      e.fail("radius", fmt::format("the disc's radius must be at least half the {} ({} m) to hold a particle", spacing_name, d));
     o.points = disc_opening(o.normal, radius, d);
   } else {
     if (spec.radius != 0) e.fail("radius", "a rectangle takes a \"size\" (and a \"tangent\"); the radius is a disc's");

@@ -52,6 +52,7 @@ FluidEmitter make_emitter(const FluidEmitterSpec& spec, const SpecPlace& e, Real
   emitter.normal = opening.normal;
   emitter.opening = opening.points;
   const Real area = emitter.opening.size() * d * d;  // what the lattice opening carries
+  if (spec.mass_rate) e.fail("mass_rate", "a fluid is poured at a \"flow_rate\" (m^3/s) or a \"speed\" (m/s)");
   if (spec.speed.has_value() == spec.flow_rate.has_value())
     e.fail("speed", "give exactly one of \"speed\" (m/s) or \"flow_rate\" (m^3/s)");
   emitter.speed = spec.speed ? e.number("speed", *spec.speed, Range::positive())

@@ -74,14 +74,17 @@ JointEnd resolve_end(const JointEndSpec& spec, const SpecPlace& joint, int slot,
   if (o < 0 || !model.objects[o].has_particles())
     ref.fail("object", fmt::format("'{}' is not a cloth, soft body or rod of this scene", spec.object));
   const ObjectInfo& info = model.objects[o];
+  const Index initial_end = model.initial_particle_end(o);  // an emitter's grains cannot hold a joint
+  if (initial_end == info.particle_begin)
+    ref.fail("object", fmt::format("'{}' has no particle at the start (its grains come from an emitter)", spec.object));
   end.kind = BodyEndKind::particle;
   if (spec.vertex && spec.nearest) ref.fail("vertex", "give exactly one of \"vertex\" or \"nearest\"");
   if (spec.vertex) {
-    end.index = info.particle_begin + ref.integer("vertex", *spec.vertex, 0, info.particle_count() - 1);
+    end.index = info.particle_begin + ref.integer("vertex", *spec.vertex, 0, initial_end - info.particle_begin - 1);
   } else {
     const Vec3 p = ref.vector("nearest", *spec.nearest);
     Index best = info.particle_begin;
-    for (Index i = info.particle_begin; i < info.particle_end; ++i)
+    for (Index i = info.particle_begin; i < initial_end; ++i)
       if ((model.particle_rest_position[i] - p).squaredNorm() < (model.particle_rest_position[best] - p).squaredNorm())
         best = i;
     end.index = best;

@@ -152,14 +152,20 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
       } else {
         p.rod_point = rod.nearest_rest_point(j.vector("nearest", *spec.nearest));
       }
-    } else if (spec.vertex) {
-      p.particle = o.particle_begin + j.integer("vertex", *spec.vertex, 0, o.particle_count() - 1);
     } else {
-      const Vec3 target = j.vector("nearest", *spec.nearest);
-      Real best = 1e300;
-      for (Index q = o.particle_begin; q < o.particle_end; ++q) {
-        const Real d = (model.particle_rest_position[q] - target).squaredNorm();
-        if (d < best) best = d, p.particle = q;
+      // Only the particles there from the start: an emitter's grains are not there until released.
+      const Index initial_end = model.initial_particle_end(p.object);
+      if (initial_end == o.particle_begin)
+        j.fail("object", fmt::format("'{}' has no particle at the start (its grains come from an emitter)", o.name));
+      if (spec.vertex) {
+        p.particle = o.particle_begin + j.integer("vertex", *spec.vertex, 0, initial_end - o.particle_begin - 1);
+      } else {
+        const Vec3 target = j.vector("nearest", *spec.nearest);
+        Real best = 1e300;
+        for (Index q = o.particle_begin; q < initial_end; ++q) {
+          const Real d = (model.particle_rest_position[q] - target).squaredNorm();
+          if (d < best) best = d, p.particle = q;
+        }
       }
     }
     p.quantity = quantity(spec, j, "position", {"position", "displacement", "velocity"});

@@ -144,10 +144,10 @@ void add_particles(SceneBuildContext& ctx, ObjectInfo& info, const std::vector<V
 void add_pins(const std::vector<PinSpec>& pins, const SpecPlace& place, const ObjectInfo& info, SceneBuildContext& ctx);
 /// Resolves a mesh path relative to the scene file.
 std::string resolve_path(const SceneBuildContext& ctx, const std::string& path);
-/// A mesh file's vertices, scaled then translated.
 /// A closed OBJ surface whose inside is filled (fluids, grains); read errors fail at `field`.
 TriangleMesh read_closed_surface(const SceneBuildContext& ctx, const SpecPlace& place, const std::string& field,
                                  const std::string& file);
+/// A mesh file's vertices, scaled then translated.
 void place_vertices(const MeshFile& file, const SpecPlace& place, std::vector<Vec3>& vertices);
 
 }  // namespace moreau

@@ -43,6 +43,7 @@ void check_state(const Model& model, const State& state) {
         limit));
   }
   for (Index p = 0; p < model.particle_count(); ++p) {
+    if (!state.live(p)) continue;  // a grain its emitter has not released takes no part
     const bool finite = state.position[p].allFinite() && state.velocity[p].allFinite();
     if (finite && state.velocity[p].norm() <= limit) continue;
     const ObjectInfo& obj = model.objects[model.particle_object[p]];
