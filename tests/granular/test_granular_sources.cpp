@@ -71,5 +71,32 @@ TEST(GranularSources, EmitterKeysAreChecked) {
   }
 }
 
+// A joint or a point probe cannot take a grain an emitter has yet to release: an object whose
+// grains all come from an emitter is refused at the end's or probe's "object", and `nearest`
+// picks among the grains there from the start.
+TEST(GranularSources, EmittedGrainsHoldNoJointOrProbe) {
+  const std::string emitter = R"("emitter": {"shape": "disc", "center": [0, 1, 0], "direction": [0, -1, 0], "radius": 0.03, "speed": 1})";
+  auto error = [&](const std::string& source, const std::string& extra) {
+    try {
+      World::from_json(fmt::format(R"({{"name": "bad", "settings": {{"dt": 0.001, "duration": 1}},
+          "objects": [{{"name": "sand", "kind": "granular", "radius": 0.005, {}}}], {}}})", source, extra));
+    } catch (const std::exception& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string probe = R"("probes": [{"name": "p", "type": "point", "object": "sand", "nearest": [0, 1, 0]}])";
+  const std::string joint = R"("joints": [{"name": "j", "type": "spherical", "bodies": ["world", {"object": "sand", "nearest": [0, 1, 0]}], "anchor": [0, 1, 0]}])";
+  EXPECT_NE(error(emitter, probe).find("probes[0].object"), std::string::npos) << error(emitter, probe);
+  EXPECT_NE(error(emitter, joint).find("joints[0]"), std::string::npos) << error(emitter, joint);
+  // With a block too, `nearest` [0, 1, 0] (the opening) picks a block grain; the last block grain is the highest vertex.
+  const std::string both = R"("blocks": [{"min": [0, 0, 0], "max": [0.0102, 0.0204, 0.0102]}], )" + emitter;
+  World w = World::from_json(fmt::format(R"({{"name": "ok", "settings": {{"dt": 0.001, "duration": 1}},
+      "objects": [{{"name": "sand", "kind": "granular", "radius": 0.005, {}}}], {}}})", both, probe));
+  EXPECT_NEAR(w.probe_values().at(1), 0.015, 1e-3);  // the upper block grain's height, not the opening's 1 m
+  EXPECT_NE(error(both, R"("probes": [{"name": "p", "type": "point", "object": "sand", "vertex": 2}])").find("probes[0].vertex"),
+            std::string::npos);
+}
+
 }  // namespace
 }  // namespace moreau
