@@ -346,6 +346,12 @@ struct GranularCylinder {
   double height = 0;   // m
 };
 
+/// A granular object's clumps: each grain a rigid cluster of overlapping spheres of its radius.
+struct GranularClump {
+  int spheres = 2;        // 2 (a pair), 3 (a triangle) or 4 (a tetrahedron)
+  double spacing = 1.0;   // the spheres' centre distance in radii, in (0, 2)
+};
+
 /// "kind": "granular": grains (spheres) on a lattice filling boxes or cylinders, each a particle
 /// that touches the others, the colliders, rigid bodies and rods with friction and restitution
 /// (docs/scene-format.md, "Granular media").
@@ -366,6 +372,7 @@ struct GranularSpec {
   double contact_compliance = 0;          // m/N, 1/k of a contact's spring (0: hard contacts)
   double contact_damping = 0;             // N s/m, the dashpot beside the spring (only with contact_compliance)
   std::optional<EmitterSpec> emitter;     // grains released through an opening during the run
+  std::optional<GranularClump> clump;     // grains as rigid clumps of spheres (shape matching)
 };
 
 /// "kind": "shape_matched": particles on a lattice filling boxes, held in their rest shape by

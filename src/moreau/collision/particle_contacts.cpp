@@ -294,8 +294,8 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
         const ObjectInfo& object = model.objects[oi];
         if (!object.self_collision) return;
         // Neighbours that are closer than the contact distance at rest never collide (grains
-        // have no neighbours: each touches every other).
-        if (object.kind != ObjectKind::granular &&
+        // have no neighbours: each touches every other; the spheres of a clump overlap at rest).
+        if ((object.kind != ObjectKind::granular || object.clumped) &&
             (model.particle_rest_position[i] - model.particle_rest_position[j]).norm() < contact_distance)
           return;
       }

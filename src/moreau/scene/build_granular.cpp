@@ -21,42 +21,75 @@ Real unit_draw(std::mt19937_64& generator) { return static_cast<Real>(generator(
 
 constexpr Index kMaxGrains = 50'000'000;
 
-// Grains on a cubic lattice of spacing 2 r_max (1 + 2 %), each moved by up to 1 % of r_max in
+// The centres of a clump's spheres about its centre, in units of their radius r, for spheres s r
+// apart: a pair along x, an equilateral triangle in the xy plane, a regular tetrahedron.
+std::vector<Vec3> clump_offsets(int spheres, Real s) {
+  switch (spheres) {
+    case 2: return {Vec3(-s / 2, 0, 0), Vec3(s / 2, 0, 0)};
+    case 3: {
+      const Real R = s / std::sqrt(3.0);  // circumradius of the triangle of side s
+      return {R * Vec3(1, 0, 0), R * Vec3(-0.5, std::sqrt(0.75), 0), R * Vec3(-0.5, -std::sqrt(0.75), 0)};
+    }
+    default: {
+      const Real a = s / (2 * std::sqrt(2.0));  // the corners (+-a, +-a, +-a) with an even number of minus signs
+      return {Vec3(a, a, a), Vec3(a, -a, -a), Vec3(-a, a, -a), Vec3(-a, -a, a)};
+    }
+  }
+}
+
+// A rotation drawn uniformly from three draws (Shoemake 1992, "Uniform random rotations").
+Mat3 uniform_rotation(Real u1, Real u2, Real u3) {
+  const Real a = std::sqrt(1 - u1), b = std::sqrt(u1);
+  return Quat(b * std::cos(2 * kPi * u3), a * std::sin(2 * kPi * u2), a * std::cos(2 * kPi * u2), b * std::sin(2 * kPi * u3))
+      .normalized()
+      .toRotationMatrix();
+}
+
+// Grains on a cubic lattice of spacing 2 R_max (1 + 2 %), each moved by up to 1 % of r_max in
 // each direction so that no column stands balanced on an exact stack; grains never overlap at
-// rest. Fills the box [lo, hi] where `keep` accepts a lattice point (before its move).
+// rest. R_max is r_max for spheres, and a clump's bounding radius (r_max plus its farthest
+// sphere centre) for clumps, each turned by a drawn rotation. Fills the box [lo, hi] where `keep`
+// accepts a lattice point (before its move).
 class GrainLattice {
  public:
-  GrainLattice(Real r_min, Real r_max, Real density, std::uint64_t seed)
-      : r_min_(r_min), r_max_(r_max), density_(density), generator_(seed) {}
+  GrainLattice(Real r_min, Real r_max, Real density, std::uint64_t seed, std::vector<Vec3> clump = {})
+      : r_min_(r_min), r_max_(r_max), density_(density), generator_(seed), clump_(std::move(clump)) {
+    for (const Vec3& o : clump_) bound_ = std::max(bound_, 1 + o.norm());
+  }
 
   template <class Keep>
   void fill(const SpecPlace& place, const std::string& field, const Vec3& lo, const Vec3& hi, Keep keep) {
     const Real spacing = this->spacing();
-    Eigen::Array3d count = ((hi - lo).array() - 2 * r_max_) / spacing + 1;
+    Eigen::Array3d count = ((hi - lo).array() - 2 * r_max_ * bound_) / spacing + 1;
     count = (count + 1e-9).floor();  // a box exactly n grains across holds n
     if (count.prod() > kMaxGrains)
       place.fail(field, fmt::format("it holds {:.3g} grains; at most {} per scene", count.prod(), kMaxGrains));
     for (int i = 0; i < count.x(); ++i)
       for (int j = 0; j < count.y(); ++j)
         for (int k = 0; k < count.z(); ++k) {
-          Vec3 p = lo + Vec3::Constant(r_max_) + spacing * Vec3(i, j, k);
+          Vec3 p = lo + Vec3::Constant(r_max_ * bound_) + spacing * Vec3(i, j, k);
           if (keep(p)) add(p);
         }
     if (static_cast<Index>(positions.size()) > kMaxGrains)
       place.fail(field, fmt::format("the grains number {}; at most {} per scene", positions.size(), kMaxGrains));
   }
 
-  /// A grain at lattice point p, moved and sized by the next draws.
+  /// A grain at lattice point p, moved and sized by the next draws (a clump also turned by them).
   void add(Vec3 p) {
     for (int c = 0; c < 3; ++c) p[c] += 0.01 * r_max_ * (2 * unit_draw(generator_) - 1);
     const Real r = r_min_ + (r_max_ - r_min_) * unit_draw(generator_);
-    positions.push_back(p);
-    radii.push_back(r);
-    masses.push_back(density_ * 4 * kPi / 3 * r * r * r);
+    if (clump_.empty()) {
+      add_sphere(p, r);
+      return;
+    }
+    const Real u1 = unit_draw(generator_), u2 = unit_draw(generator_), u3 = unit_draw(generator_);
+    const Mat3 R = uniform_rotation(u1, u2, u3);
+    clump_first.push_back(static_cast<Index>(positions.size()));
+    for (const Vec3& o : clump_) add_sphere(p + r * (R * o), r);
   }
 
-  /// The lattice spacing, 2 r_max (1 + 2 %).
-  Real spacing() const { return 2 * r_max_ * 1.02; }
+  /// The lattice spacing, 2 R_max (1 + 2 %).
+  Real spacing() const { return 2 * r_max_ * bound_ * 1.02; }
   /// A grain's mean mass: rho 4/3 pi E[r^3], r uniform in [r_min, r_max], E[r^3] = (b^4 - a^4) / (4 (b - a)).
   Real mean_mass() const {
     const Real mean_cube = r_max_ > r_min_ ? (std::pow(r_max_, 4) - std::pow(r_min_, 4)) / (4 * (r_max_ - r_min_))
@@ -66,10 +99,19 @@ class GrainLattice {
 
   std::vector<Vec3> positions;
   std::vector<Real> masses, radii;
+  std::vector<Index> clump_first;  // clumps: the first sphere of each (its spheres follow)
 
  private:
+  void add_sphere(const Vec3& p, Real r) {
+    positions.push_back(p);
+    radii.push_back(r);
+    masses.push_back(density_ * 4 * kPi / 3 * r * r * r);
+  }
+
   Real r_min_, r_max_, density_;
   std::mt19937_64 generator_;
+  std::vector<Vec3> clump_;  // sphere centres about a clump's centre, in radii (empty: spheres)
+  Real bound_ = 1;           // R_max / r_max
 };
 
 // "emitter": the grains of every layer it will release, drawn now (after the filled grains) on
@@ -117,6 +159,13 @@ GranularSpec read_granular(const JsonObject& object) {
   if (object.has("mesh")) spec.mesh = object.string("mesh");
   if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");
   if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"), "mass_rate");
+  if (object.has("clump")) {
+    const JsonObject clump = object.object("clump");
+    spec.clump = GranularClump{};
+    spec.clump->spheres = read_integer(clump, "spheres");
+    spec.clump->spacing = clump.number("spacing", spec.clump->spacing);
+    clump.finish();
+  }
   spec.radius = read_optional_number(object, "radius");
   spec.radius_range = read_optional_pair(object, "radius_range");
   if (object.has("seed")) spec.seed = read_integer(object, "seed");
@@ -148,8 +197,17 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     place.fail("blocks", "a granular object needs a block {\"min\", \"max\"} or cylinder {\"base\", \"radius\", \"height\"} "
                          "to fill, a closed \"mesh\" to fill, or an \"emitter\" to pour its grains");
 
-  GrainLattice lattice(r_min, r_max, density, static_cast<std::uint64_t>(spec.seed));
-  const Real diameter = 2 * r_max;
+  std::vector<Vec3> clump;
+  if (spec.clump) {
+    const SpecPlace c = place.at("clump");
+    const int spheres = c.integer("spheres", spec.clump->spheres, 2, 4);
+    const Real spacing = c.number("spacing", spec.clump->spacing, Range::positive());
+    if (spacing >= 2) c.fail("spacing", "the spheres of a clump must overlap: their centre distance is below 2 radii");
+    if (spec.emitter) place.fail("emitter", "an emitter pours single grains; clumps fill blocks, cylinders or meshes");
+    clump = clump_offsets(spheres, spacing);
+  }
+  GrainLattice lattice(r_min, r_max, density, static_cast<std::uint64_t>(spec.seed), clump);
+  const Real diameter = lattice.spacing() / 1.02;  // of a grain or a clump's bounding sphere
   for (size_t b = 0; b < spec.blocks.size(); ++b) {
     const SpecPlace block = place.at(fmt::format("blocks[{}]", b));
     const Vec3 lo = block.vector("min", spec.blocks[b].min), hi = block.vector("max", spec.blocks[b].max);
@@ -163,12 +221,12 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     const Vec3 base = cylinder.vector("base", spec.cylinders[c].base);
     const Real radius = cylinder.number("radius", spec.cylinders[c].radius, Range::positive());
     const Real height = cylinder.number("height", spec.cylinders[c].height, Range::positive());
-    if (radius < r_max * (1 - 1e-9))
+    if (radius < diameter / 2 * (1 - 1e-9))
       cylinder.fail("radius", fmt::format("the cylinder must be at least one grain diameter ({} m) wide", diameter));
     if (height < diameter * (1 - 1e-9))
       cylinder.fail("height", fmt::format("the cylinder must be at least one grain diameter ({} m) tall", diameter));
     const Vec3 lo = base - Vec3(radius, 0, radius), hi = base + Vec3(radius, height, radius);
-    const Real reach = radius - r_max;  // of a grain centre from the axis
+    const Real reach = radius - diameter / 2;  // of a grain (or clump) centre from the axis
     lattice.fill(cylinder, "radius", lo, hi, [&](const Vec3& p) {
       return Vec2(p.x() - base.x(), p.z() - base.z()).squaredNorm() <= reach * reach * (1 + 1e-12);
     });
@@ -210,11 +268,23 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
   add_particles(ctx, info, positions, masses, r_max, r_max, place.vector("velocity", spec.velocity));
   Model& m = ctx.model;
   for (Index p = info.particle_begin; p < info.particle_end; ++p) {
-    // A solid sphere: I = 2/5 m r^2.
-    m.particle_inv_inertia[p] = 2.5 * m.particle_inv_mass[p] / (radii[p - info.particle_begin] * radii[p - info.particle_begin]);
+    // A solid sphere: I = 2/5 m r^2. A clump's spheres do not turn on their own: the clump turns
+    // as its cluster's fit.
+    if (!spec.clump)
+      m.particle_inv_inertia[p] = 2.5 * m.particle_inv_mass[p] / (radii[p - info.particle_begin] * radii[p - info.particle_begin]);
     m.particle_radius[p] = radii[p - info.particle_begin];
     m.particle_collider_gap[p] = radii[p - info.particle_begin];
     m.contact_particle.push_back(p);
+  }
+  if (spec.clump) {  // each clump a rigid shape-matching cluster
+    info.clumped = true;
+    const Index object = static_cast<Index>(m.objects.size());
+    const Index size = static_cast<Index>(clump.size());
+    std::vector<Index> members(size);
+    for (Index first : lattice.clump_first) {
+      for (Index k = 0; k < size; ++k) members[k] = info.particle_begin + first + k;
+      m.shape_matching.add(members, m.particle_rest_position, m.particle_mass, 0, object);
+    }
   }
   if (spec.emitter) {
     emitter.object = static_cast<Index>(m.objects.size());  // the object being added

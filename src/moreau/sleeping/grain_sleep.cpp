@@ -134,6 +134,11 @@ void update_grain_sleep(const Model& model, State& state) {
       keeps_awake[j] |= grain_j;
     }
   }
+  const ShapeMatchClusters& clusters = model.shape_matching;  // a clump's spheres sleep and wake together
+  for (Index k = 0; k < clusters.size(); ++k)
+    if (model.objects[clusters.object[k]].kind == ObjectKind::granular)
+      for (Index e = clusters.offsets[k] + 1; e < clusters.offsets[k + 1]; ++e)
+        join(parent, clusters.particle[clusters.offsets[k]], clusters.particle[e]);
   for (size_t q = 0; q < state.collider_contacts.size(); ++q)
     if (model.colliders[state.collider_contacts.collider[q]].changes())
       keeps_awake[state.collider_contacts.particle[q]] = 1;

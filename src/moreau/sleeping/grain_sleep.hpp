@@ -4,7 +4,7 @@
 // A grain (a particle of a granular object) is still while it stays within settings.sleep.speed
 // times settings.sleep.time of where its stillness began: over the sleep time its mean speed is
 // below the sleep speed, however its velocity jitters from step to step (a resting pile solved
-// with few iterations keeps velocities of the order of g h in its upper grains). Grains joined by contact candidates form an island; an island whose every
+// with few iterations keeps velocities of the order of g h in its upper grains). Grains joined by contact candidates (and the spheres of a clump) form an island; an island whose every
 // grain has been still for settings.sleep.time falls asleep: its velocities become zero, it is
 // no longer integrated, and no contacts are sought between two sleeping grains, nor between a
 // sleeping grain and a fixed collider or body. An island stays awake while it touches what does
