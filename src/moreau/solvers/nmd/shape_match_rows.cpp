@@ -1,6 +1,6 @@
 #include "moreau/solvers/nmd/shape_match_rows.hpp"
 
-#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 
 namespace moreau {
@@ -27,16 +27,19 @@ void add_shape_match_rows(const Model& model, const State& state, const Velocity
     const Mat3 R = polar_rotation(A);
     Mat3 S = A * R.transpose();
     S = 0.5 * (S + S.transpose());  // symmetric up to rounding
-    const Mat3 K = S.trace() * Mat3::Identity() - S;
-    // K is positive definite unless the fit is degenerate (a cluster squashed onto a line, or
-    // turned inside out): then its velocity does not turn the fit in the rows.
-    const Eigen::LDLT<Mat3> K_factor(K);
-    const bool turns = K_factor.info() == Eigen::Success && K_factor.isPositive() && K.determinant() > 1e-12 * std::pow(K.trace(), 3);
+    // K's pseudo-inverse: a cluster on a line (a clump's pair) has no inertia about that line, and
+    // turning about it moves nothing; a fit turned inside out (K not positive) keeps its positive part.
+    const Eigen::SelfAdjointEigenSolver<Mat3> eigen(S.trace() * Mat3::Identity() - S);
+    const Real largest = eigen.eigenvalues().cwiseAbs().maxCoeff();
+    Mat3 K_inverse = Mat3::Zero();
+    for (int a = 0; a < 3; ++a)
+      if (eigen.eigenvalues()[a] > 1e-9 * largest)
+        K_inverse += eigen.eigenvectors().col(a) * eigen.eigenvectors().col(a).transpose() / eigen.eigenvalues()[a];
     p.resize(n);
     turn.resize(n);
     for (int j = 0; j < n; ++j) {
       p[j] = R * clusters.rest_offset[begin + j];
-      turn[j] = turns ? Mat3(clusters.mass[begin + j] * K_factor.solve(cross_matrix(p[j]))) : Mat3::Zero();
+      turn[j] = clusters.mass[begin + j] * K_inverse * cross_matrix(p[j]);
     }
     const Real omega2 = clusters.omega[k] * clusters.omega[k];
     for (int i = 0; i < n; ++i) {

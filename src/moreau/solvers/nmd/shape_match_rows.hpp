@@ -10,7 +10,8 @@
 // A = R S0 (S0 symmetric), the skew part of R^T dA is 1/2 [(tr S0 I - S0) R^T dtheta]x, and that
 // of R^T dA = sum m_j R^T dx_j q_j^T is 1/2 [sum m_j q_j x R^T dx_j]x, so
 // (tr S I - S) dtheta = sum m_j p_j x dx_j. For a rigid placement K is the cluster's inertia
-// tensor and w its angular velocity.
+// tensor and w its angular velocity. A cluster on a line (a clump's pair) has none about that
+// line, where turning moves nothing: K^-1 is then K's pseudo-inverse.
 //
 // The rows are the offsets measured in the turning fit's frame, C_i = R (R^T d_i - q_i), whose
 // rate is v_i - v_c - w x d_i: the exact rate of x_i - g_i less w x C_i, the offset turning with
