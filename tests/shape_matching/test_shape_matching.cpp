@@ -54,6 +54,31 @@ void scramble(World& w, Real amount, std::uint64_t seed) {
   for (double& v : x.values) v += amount * (2 * static_cast<Real>(draw() >> 11) * 0x1.0p-53 - 1);
 }
 
+// Sets every particle moving with `drift` and spinning at `omega` about the cube's centre.
+void set_drift_and_spin(World& w, const Vec3& drift, const Vec3& omega) {
+  const std::vector<Vec3> x = positions(w);
+  Vec3 c = Vec3::Zero();
+  for (const Vec3& p : x) c += p;
+  c /= x.size();
+  StateArray v = w.array("particle.velocity");
+  for (size_t i = 0; i < x.size(); ++i) {
+    const Vec3 u = drift + omega.cross(x[i] - c);
+    for (int k = 0; k < 3; ++k) v.values[3 * i + k] = u[k];
+  }
+}
+
+// Angular momentum about the centre of particles of equal mass, per unit particle mass.
+Vec3 angular_momentum_per_mass(World& w) {
+  const std::vector<Vec3> x = positions(w);
+  const StateArray v = w.array("particle.velocity");
+  Vec3 center = Vec3::Zero(), L = Vec3::Zero();
+  for (const Vec3& p : x) center += p;
+  center /= x.size();
+  for (size_t i = 0; i < x.size(); ++i)
+    L += (x[i] - center).cross(Vec3(v.values[3 * i], v.values[3 * i + 1], v.values[3 * i + 2]));
+  return L;
+}
+
 TEST(ShapeMatching, PolarRotationIsTheRotationOfAStretchedTurn) {
   const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   Mat3 S;
@@ -136,26 +161,9 @@ TEST(ShapeMatching, ACompliantObjectOscillatesAboutItsRestShapeAtItsFrequency) {
 // sin D_1010 / sin D_10, which the measured one matches to 1e-4 (0.4 % of the loss; it is 2.3e-5).
 TEST(ShapeMatching, MomentumIsConserved) {
   World w = World::from_json(cube_scene(""));
-  const std::vector<Vec3> x0 = positions(w);
-  Vec3 c = Vec3::Zero();
-  for (const Vec3& x : x0) c += x;
-  c /= x0.size();
   const Real spin = 5, h = 0.001;
-  const Vec3 omega = spin * Vec3(1, 2, 0.5).normalized(), drift(1, 0, 0);
-  StateArray v = w.array("particle.velocity");
-  for (size_t i = 0; i < x0.size(); ++i) {
-    const Vec3 u = drift + omega.cross(x0[i] - c);
-    for (int k = 0; k < 3; ++k) v.values[3 * i + k] = u[k];
-  }
-  auto angular = [&]() {
-    const std::vector<Vec3> x = positions(w);
-    Vec3 center = Vec3::Zero(), L = Vec3::Zero();
-    for (const Vec3& p : x) center += p;
-    center /= x.size();
-    for (size_t i = 0; i < x.size(); ++i)
-      L += (x[i] - center).cross(Vec3(v.values[3 * i], v.values[3 * i + 1], v.values[3 * i + 2]));
-    return L;  // per unit particle mass
-  };
+  set_drift_and_spin(w, Vec3(1, 0, 0), spin * Vec3(1, 2, 0.5).normalized());
+  auto angular = [&]() { return angular_momentum_per_mass(w); };
   auto linear = [&]() { return Vec3(w.probe_values()[0], w.probe_values()[1], w.probe_values()[2]); };
   w.step();
   const Vec3 p0 = linear(), L0 = angular();
@@ -275,24 +283,8 @@ TEST(ShapeMatching, UnderNmdMomentumIsConserved) {
   World w = World::from_json(cube_scene("", method == "pgs" ? 0.12 : 0.08),
                              {"settings.solver=nmd", "settings.dt=0.005", "settings.nmd.method=" + method});
   const std::vector<Vec3> x0 = positions(w);
-  Vec3 c = Vec3::Zero();
-  for (const Vec3& x : x0) c += x;
-  c /= x0.size();
-  const Vec3 omega = 5 * Vec3(1, 2, 0.5).normalized(), drift(1, 0, 0);
-  StateArray v = w.array("particle.velocity");
-  for (size_t i = 0; i < x0.size(); ++i) {
-    const Vec3 u = drift + omega.cross(x0[i] - c);
-    for (int k = 0; k < 3; ++k) v.values[3 * i + k] = u[k];
-  }
-  auto angular = [&]() {
-    const std::vector<Vec3> x = positions(w);
-    Vec3 center = Vec3::Zero(), L = Vec3::Zero();
-    for (const Vec3& p : x) center += p;
-    center /= x.size();
-    for (size_t i = 0; i < x.size(); ++i)
-      L += (x[i] - center).cross(Vec3(v.values[3 * i], v.values[3 * i + 1], v.values[3 * i + 2]));
-    return L;
-  };
+  set_drift_and_spin(w, Vec3(1, 0, 0), 5 * Vec3(1, 2, 0.5).normalized());
+  auto angular = [&]() { return angular_momentum_per_mass(w); };
   auto linear = [&]() { return Vec3(w.probe_values()[0], w.probe_values()[1], w.probe_values()[2]); };
   w.step();
   const Vec3 p0 = linear(), L0 = angular();
