@@ -294,10 +294,13 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
         const ObjectInfo& object = model.objects[oi];
         if (!object.self_collision) return;
         // Neighbours that are closer than the contact distance at rest never collide (grains
-        // have no neighbours: each touches every other; the spheres of a clump overlap at rest).
-        if ((object.kind != ObjectKind::granular || object.clumped) &&
-            (model.particle_rest_position[i] - model.particle_rest_position[j]).norm() < contact_distance)
+        // have no neighbours: each touches every other but the spheres of its own clump).
+        if (object.clump_size > 0) {
+          if ((i - object.particle_begin) / object.clump_size == (j - object.particle_begin) / object.clump_size) return;
+        } else if (object.kind != ObjectKind::granular &&
+                   (model.particle_rest_position[i] - model.particle_rest_position[j]).norm() < contact_distance) {
           return;
+        }
       }
       const Real reach =
           contact_distance + scratch.bond_reach[oi * objects + oj] +

@@ -44,7 +44,7 @@ struct ObjectInfo {
   Real cohesion_distance = 0;                 // granular: m, the gap at which a bond lets go
   Real rolling_resistance = 0;                // granular: mu_r, the rolling torque's bound in units of R* times the normal force
   ContactSpring contact_spring;               // granular: a viscoelastic contact's spring and dashpot (0: hard)
-  bool clumped = false;                       // granular: grains are rigid clumps of spheres (shape-matching clusters)
+  Index clump_size = 0;                       // granular: spheres per clump (rigid shape-matching clusters, contiguous); 0: spheres
 
   Index particle_count() const { return particle_end - particle_begin; }
   bool has_particles() const { return particle_end > particle_begin; }

@@ -62,8 +62,9 @@ class GrainLattice {
     const Real spacing = this->spacing();
     Eigen::Array3d count = ((hi - lo).array() - 2 * r_max_ * bound_) / spacing + 1;
     count = (count + 1e-9).floor();  // a box exactly n grains across holds n
-    if (count.prod() > kMaxGrains)
-      place.fail(field, fmt::format("it holds {:.3g} grains; at most {} per scene", count.prod(), kMaxGrains));
+    const Real spheres = count.prod() * std::max<std::size_t>(1, clump_.size());
+    if (spheres > kMaxGrains)
+      place.fail(field, fmt::format("it holds {:.3g} spheres; at most {} per scene", spheres, kMaxGrains));
     for (int i = 0; i < count.x(); ++i)
       for (int j = 0; j < count.y(); ++j)
         for (int k = 0; k < count.z(); ++k) {
@@ -277,7 +278,7 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     m.contact_particle.push_back(p);
   }
   if (spec.clump) {  // each clump a rigid shape-matching cluster
-    info.clumped = true;
+    info.clump_size = static_cast<Index>(clump.size());
     const Index object = static_cast<Index>(m.objects.size());
     const Index size = static_cast<Index>(clump.size());
     std::vector<Index> members(size);

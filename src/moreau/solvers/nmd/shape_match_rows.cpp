@@ -13,6 +13,7 @@ void add_shape_match_rows(const Model& model, const State& state, const Velocity
   std::vector<Mat3> turn;    // m_j K^-1 [p_j]x: how member j's velocity turns the fit
   for (Index k = 0; k < clusters.size(); ++k) {
     const Index begin = clusters.offsets[k], end = clusters.offsets[k + 1];
+    if (state.sleep.asleep_count > 0 && state.sleep.asleep(clusters.particle[begin])) continue;  // a sleeping clump
     const int n = static_cast<int>(end - begin);
     Real total = 0;
     Vec3 center = Vec3::Zero();

@@ -3,14 +3,16 @@
 #include <vector>
 
 #include "moreau/model/model.hpp"
+#include "moreau/sleeping/grain_sleep.hpp"
 
 namespace moreau {
 
-void project_shape_matching(const Model& model, const SubstepContext& s, Vec3* lambda) {
+void project_shape_matching(const Model& model, const GrainSleepState& sleep, const SubstepContext& s, Vec3* lambda) {
   const ShapeMatchClusters& clusters = model.shape_matching;
   thread_local std::vector<Vec3> goals;
   for (Index k = 0; k < clusters.size(); ++k) {
     const Index begin = clusters.offsets[k], end = clusters.offsets[k + 1];
+    if (sleep.asleep_count > 0 && sleep.asleep(clusters.particle[begin])) continue;
     goals.resize(end - begin);
     shape_match_goals(clusters, k, s.x, goals.data());
     const Real omega2 = clusters.omega[k] * clusters.omega[k];

@@ -158,7 +158,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
         });
         if (!model.shape_matching.empty()) {
 #pragma omp single
-          project_shape_matching(model, ctx, work.shape_match_lambda.data());
+          project_shape_matching(model, state.sleep, ctx, work.shape_match_lambda.data());
           lap(XpbdStage::shape_matching);
         }
         // The fluid before the contacts: what it pushes into a collider, the contacts push out.
