@@ -12,6 +12,9 @@ void ShapeMatchClusters::add(const std::vector<Index>& members, const std::vecto
   for (Index p : members) total += masses[p], center += masses[p] * rest[p];
   center /= total;
   for (Index p : members) {
+    if (static_cast<Index>(member.size()) <= p) member.resize(p + 1, 0);
+    disjoint = disjoint && !member[p];
+    member[p] = 1;
     particle.push_back(p);
     rest_offset.push_back(rest[p] - center);
     mass.push_back(masses[p]);

@@ -31,6 +31,8 @@ struct ShapeMatchClusters {
   std::vector<Real> mass;         // per entry: m_i, kg
   std::vector<Real> omega;        // per cluster: 2 pi f, rad/s; 0 for a rigid cluster
   std::vector<Index> object;      // per cluster: the owning object
+  bool disjoint = true;           // no particle is in two clusters (clumps; objects of one cluster or apart ones)
+  std::vector<char> member;       // per particle: in some cluster (to keep `disjoint`)
 
   Index size() const { return static_cast<Index>(offsets.size()) - 1; }
   bool empty() const { return size() == 0; }

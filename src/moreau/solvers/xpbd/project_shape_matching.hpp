@@ -15,9 +15,11 @@ namespace moreau {
 struct Model;
 struct GrainSleepState;
 
-/// One pass over every cluster; call from one thread (clusters overlap). `lambda` holds one
-/// multiplier per cluster entry, zeroed at the start of the substep. A sleeping clump (its first
-/// sphere asleep: a clump sleeps whole) is skipped: it keeps the place it fell asleep in.
+/// One pass over every cluster; call from every thread of the parallel region. Clusters that
+/// share no particle (clumps, separate objects) are spread over the threads; overlapping ones are
+/// projected in order on one thread. `lambda` holds one multiplier per cluster entry, zeroed at
+/// the start of the substep. A sleeping clump (its first sphere asleep: a clump sleeps whole) is
+/// skipped: it keeps the place it fell asleep in.
 void project_shape_matching(const Model& model, const GrainSleepState& sleep, const SubstepContext& s, Vec3* lambda);
 
 }  // namespace moreau

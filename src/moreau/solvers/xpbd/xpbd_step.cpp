@@ -157,7 +157,6 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
           lap(xpbd_family_stage(index));
         });
         if (!model.shape_matching.empty()) {
-#pragma omp single
           project_shape_matching(model, state.sleep, ctx, work.shape_match_lambda.data());
           lap(XpbdStage::shape_matching);
         }
