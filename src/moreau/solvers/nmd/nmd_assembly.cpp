@@ -8,7 +8,9 @@
 #include "moreau/constraints/neo_hookean_green_strain.hpp"
 #include "moreau/constraints/particle_body_contact_rows.hpp"
 #include "moreau/constraints/particle_contact_rows.hpp"
+#include "moreau/constraints/turning_contact.hpp"
 #include "moreau/solvers/nmd/shape_match_rows.hpp"
+#include "moreau/solvers/nmd/turning_contact_rows.hpp"
 
 namespace moreau {
 
@@ -167,14 +169,6 @@ void set_contact(NmdBlockInput& in, const NmdSettings& settings, Real static_fri
   in.memory_rows = memory_rows;
 }
 
-// The same, added to the system.
-void add_contact(Assembly& a, Real static_friction, Real dynamic_friction, Real restitution, Real* memory,
-                 int memory_rows, Real adhesion, const ContactSpring& spring) {
-  set_contact(a.input, a.model.settings.nmd, static_friction, dynamic_friction, restitution, memory, memory_rows,
-              adhesion, spring);
-  a.add();
-}
-
 void add_collider_contacts(Assembly& a, Real end_time) {
   ColliderContacts& c = a.state.collider_contacts;
   const Vec3* x = a.state.position.data();
@@ -186,9 +180,14 @@ void add_collider_contacts(Assembly& a, Real end_time) {
                                                               c.static_friction[q], Vec3::Zero(), x, x);
     set_particle_rows(a.input, rows, a.space);
     for (int r = 0; r < 3; ++r) a.input.known[r] = -rows.gradient[0].row(r).dot(col.velocity);  // dC/dt = grad . (v_p - v_c)
-    add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1,
+    set_contact(a.input, a.model.settings.nmd, c.static_friction[q], c.dynamic_friction[q], c.restitution[q],
+                &c.lambda_normal[q], 1,
                 adhesive_bound(c.adhesion[q], a.input.C[0], contact_compliance(a.model.settings.nmd, c.spring[q])),
                 c.spring[q]);
+    const Real r = a.model.particle_radius[p];
+    add_turning_rows(a.input, a.space, {TurningSide{a.space.turns(p) ? p : -1, r}, TurningSide{}}, d.normal,
+                     rows.gradient[0].row(1), rows.gradient[0].row(2), c.rolling_resistance[q] * r);
+    a.add();
   }
 }
 
@@ -205,16 +204,42 @@ void add_particle_contacts(Assembly& a) {
   const std::vector<Index> order = color_constraints(stencils, a.model.particle_inv_mass, colors);
   for (const Index q : order) {
     const auto [i, j] = c.pair[q];
-    const ParticleContactRows<2> rows = pair_contact_rows(
-        i, j, a.model.particle_radius[i] + a.model.particle_radius[j], c.static_friction[q], x, x);
+    const Real ri = a.model.particle_radius[i], rj = a.model.particle_radius[j];
+    const ParticleContactRows<2> rows = pair_contact_rows(i, j, ri + rj, c.static_friction[q], x, x);
     if (rows.gradient[0].isZero()) continue;  // coincident centres: no direction
-    set_particle_rows(a.input, rows, a.space);
+    NmdBlockInput& in = a.input;
+    const bool grain_pair = a.space.turns(i) && a.space.turns(j);
+    if (grain_pair) {  // the rows in closed form (GrainPairRows)
+      in.resize(6, 4, false);
+      in.end = {a.space.particle_end(i), a.space.particle_end(j), a.space.spin_end(i), a.space.spin_end(j)};
+      in.C[0] = rows.C[0];
+    } else {
+      set_particle_rows(in, rows, a.space);
+    }
     // Cohesion: within its reach a bond pulls with at most F (N), and adds F to the normal force
     // that bounds the friction.
     const Real cohesion = rows.C[0] < c.cohesion_distance[q] ? c.cohesion[q] : 0;
-    set_contact(a.input, a.model.settings.nmd, c.static_friction[q], c.dynamic_friction[q], c.restitution[q],
+    set_contact(in, a.model.settings.nmd, c.static_friction[q], c.dynamic_friction[q], c.restitution[q],
                 &c.lambda_normal[q], 1, cohesion, c.spring[q]);
-    a.input.cohesion = cohesion;
+    in.cohesion = cohesion;
+    // Grains touch at the point that splits the centre distance by their radii.
+    const Real share = (ri + rj + rows.C[0]) / (ri + rj);
+    const Real rolling = c.rolling_resistance[q] * effective_radius(ri, rj);
+    const Vec3 n = rows.gradient[0].row(0), t1 = rows.gradient[0].row(1), t2 = rows.gradient[0].row(2);
+    if (grain_pair) {
+      in.kind = NmdBlockKind::grain_pair;
+      for (int r = 3; r < 6; ++r) in.level[r] = RowLevel::friction;
+      in.rolling = rolling;
+      in.grain_pair.n = n;
+      in.grain_pair.t1 = t1;
+      in.grain_pair.t2 = t2;
+      in.grain_pair.arm[0] = share * ri;
+      in.grain_pair.arm[1] = share * rj;
+    } else {
+      add_turning_rows(in, a.space,
+                       {TurningSide{a.space.turns(i) ? i : -1, share * ri}, TurningSide{a.space.turns(j) ? j : -1, share * rj}},
+                       n, t1, t2, rolling);
+    }
     a.add();
   }
 }
@@ -277,9 +302,18 @@ void add_particle_body_contacts(Assembly& a) {
     const ParticleBodyContactRows contact =
         particle_body_rows(a.model, a.state, now, b, p, c.static_friction[q], ContactPoints::all);
     set_body_rows(a.input, contact.rows, a.space);
-    add_contact(a, c.static_friction[q], c.dynamic_friction[q], c.restitution[q], &c.lambda_normal[q], 1,
+    set_contact(a.input, a.model.settings.nmd, c.static_friction[q], c.dynamic_friction[q], c.restitution[q],
+                &c.lambda_normal[q], 1,
                 adhesive_bound(c.adhesion[q], a.input.C[0], contact_compliance(a.model.settings.nmd, c.spring[q])),
                 c.spring[q]);
+    if (a.space.turns(p)) {  // a grain turns against the body, both sides' turning resisted
+      const Real r = a.model.particle_radius[p];
+      const Real rolling = a.model.objects[a.model.particle_object[p]].rolling_resistance * r;
+      const auto direction = [&](int row) { return Vec3(contact.rows.jacobian[0].row(row).head<3>()); };
+      add_turning_rows(a.input, a.space, {TurningSide{p, r}, TurningSide{-1, 0, 1}}, direction(0), direction(1),
+                       direction(2), rolling);
+    }
+    a.add();
   }
 }
 

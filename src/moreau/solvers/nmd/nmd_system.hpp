@@ -41,8 +41,31 @@ enum class RowLevel : std::uint8_t { position, velocity, friction };
 
 /// How a block's rows are projected: an equality block is solved whole (its R x R matrix
 /// inverted once); a bounded block row by row with fixed bounds; a contact block is a normal row
-/// (rows 0) and two friction rows bounded by mu times its impulse.
-enum class NmdBlockKind : std::uint8_t { equality, bounded, contact };
+/// (rows 0) and two friction rows bounded by mu times its impulse, and where a side turns as a
+/// grain three turning rows (turning_contact_rows.hpp) bounded by mu_r R* times it. A grain pair
+/// is the contact block of two grains that both turn, its six rows kept in closed form
+/// (GrainPairRows) instead of entry by entry: a pile's solve is mostly these, and reading 15
+/// numbers a contact instead of 144 Jacobian and W J^T entries is what makes its sweeps fast.
+enum class NmdBlockKind : std::uint8_t { equality, bounded, contact, grain_pair };
+
+/// The rows of a contact between grains i and j that both turn (turning_contact_rows.hpp), over
+/// the ends (v_i, v_j, w_i, w_j). With the arms' lever u = r_i' w_i + r_j' w_j their rates are
+///   row 0      n . (v_i - v_j)                  (a_s x n = 0)
+///   rows 1, 2  t1 . (v_i - v_j) - t2 . u,  t2 . (v_i - v_j) + t1 . u
+///                                               (-r (n x t1) = -r t2, -r (n x t2) = r t1 on both sides)
+///   rows 3-5   (t1, t2, n) . (w_i - w_j),
+/// and an impulse l on the rows changes them by W G^T l:
+///   v_i += m_i^-1 P,  v_j -= m_j^-1 P,           P = l_0 n + l_1 t1 + l_2 t2
+///   w_i += I_i^-1 (r_i' T + L),  w_j += I_j^-1 (r_j' T - L),   T = -l_1 t2 + l_2 t1,  L = l_3 t1 + l_4 t2 + l_5 n.
+/// G W G^T is diagonal but for the friction-turning coupling (r_i' I_i^-1 - r_j' I_j^-1), zero
+/// between equal grains: D_0 = m_i^-1 + m_j^-1, D_1 = D_2 = D_0 + r_i'^2 I_i^-1 + r_j'^2 I_j^-1,
+/// D_3 = D_4 = D_5 = I_i^-1 + I_j^-1.
+struct GrainPairRows {
+  Vec3 n = Vec3::Zero(), t1 = Vec3::Zero(), t2 = Vec3::Zero();
+  Real arm[2] = {0, 0};          // m: r_i', r_j'
+  Real inv_mass[2] = {0, 0};     // 1/kg (set by NmdSystem::fill from the velocity space)
+  Real inv_inertia[2] = {0, 0};  // 1/(kg m^2), likewise
+};
 
 /// One block as an assembler hands it over: R rows over any number of ends (a joint has two, a
 /// fluid particle's density row one per neighbour).
@@ -61,13 +84,19 @@ struct NmdBlockInput {
   Real damper_rate = 0;               // 1/s: a damper block (see NmdSystem::add), 0 otherwise
   Real static_friction = 0, dynamic_friction = 0, restitution = 0;  // contact blocks
   Real cohesion = 0;                  // N, contact blocks: a bond's strength, added to the normal force in the friction bound
+  Real rolling = 0;                   // m, contact blocks with turning rows: mu_r R*, their bound per unit normal force
+  GrainPairRows grain_pair;           // grain pairs: n, t1, t2 and the arms (the ends are v_i, v_j, w_i, w_j; no Jacobian)
   Real* memory = nullptr;             // l h of the rows (kg m for positional rows): warm start in, result out
   int memory_rows = 0;
 
-  /// Sizes an input of `rows` rows over `ends` ends and clears everything else: zero Jacobian, C,
-  /// known and target; no compliance, damping, friction, restitution or memory; an equality
-  /// block of unbounded position rows. The buffers keep their capacity from block to block.
-  void resize(int rows, int end_count);
+  /// Sizes an input of `rows` rows over `ends` ends (without Jacobian entries unless `entries`:
+  /// a grain pair keeps none) and clears everything else: zero Jacobian, C, known and target;
+  /// no compliance, damping, friction, restitution or memory; an equality block of unbounded
+  /// position rows. The buffers keep their capacity from block to block.
+  void resize(int rows, int end_count, bool entries = true);
+  /// Grows the input to `rows` rows over `end_count` ends, keeping what is set: the new rows are
+  /// unbounded position rows of zero C, the new ends and entries zero.
+  void extend(int rows, int end_count);
   int rows() const { return static_cast<int>(C.size()); }
   int ends() const { return static_cast<int>(end.size()); }
   /// The six Jacobian entries of row r at end e (linear, then angular; particles use three).
@@ -83,6 +112,8 @@ struct NmdBlock {
   Index matrix = -1;                  // equality blocks: offset of the R x R inverse of G W G^T + S
   Real friction = 0;                  // contact blocks: mu of this solve (static or kinetic)
   Real cohesion = 0;                  // contact blocks: F h of a bond (the friction bound is mu (l_n + F h))
+  Real rolling = 0;                   // contact blocks of six rows: mu_r R* (m), the turning rows' bound per unit of l_n + F h
+  Index grain_pair = -1;              // grain pairs: their rows in NmdSystem::grain_pairs
   Real* memory = nullptr;
   int memory_rows = 0;
 };
@@ -91,6 +122,7 @@ struct NmdBlock {
 struct NmdSlot {
   Index block = 0, first_row = 0, first_end = 0, first_entry = 0;
   Index matrix = -1;  // equality blocks: the offset of their R x R matrices
+  Index grain_pair = -1;  // grain pairs: their place in NmdSystem::grain_pairs
 };
 
 struct NmdSystem {
@@ -110,11 +142,12 @@ struct NmdSystem {
   std::vector<Real> inverse_diagonal;
   std::vector<Real> sigma_block;      // equality blocks: S, R x R (row-major), at NmdBlock::matrix
   std::vector<Real> inverse;          // equality blocks: (G W G^T + S)^-1, R x R
+  std::vector<GrainPairRows> grain_pairs;  // grain pairs' rows, from NmdBlock::grain_pair
 
   void clear();
   Index row_count() const { return static_cast<Index>(rhs.size()); }
   const VelocityEnd* ends_of(const NmdBlock& b) const { return block_ends.data() + b.first_end; }
-  /// G_i v for row i of block b over its ends.
+  /// G_i v for row i of block b over its ends (a block with Jacobian entries: not a grain pair).
   Real rate(const NmdBlock& b, Index row, const std::vector<Real>& v) const {
     const Real* J = jacobian.data() + jacobian_offset[row];
     const VelocityEnd* end = ends_of(b);

@@ -75,6 +75,113 @@ void solve_bounded_row(const RowAccess& a, const NmdBlock& b, Index row, Real om
   l = next;
 }
 
+// A grain contact's three turning rows (rows 3 to 5, turning_contact_rows.hpp) after its normal
+// and friction rows, at the velocities those left: one Jacobi update of the three with the
+// largest of their diagonals (exact for two grains, whose block is k I), projected onto the ball
+// |l| <= mu_r R* (l_n + F h) of the rolling resistance. The rates are read in one pass over the
+// ends and the impulse changes applied in one, as in solve_contact.
+void solve_turning(const RowAccess& a, const NmdBlock& b, Real omega) {
+  NmdSystem& s = a.s;
+  const Index first = b.first_row + 3;
+  const Real inverse_D = s.inverse_diagonal[first];
+  if (inverse_D <= 0) return;
+  const VelocityEnd* end = s.ends_of(b);
+  const Index stride = s.jacobian_offset[first + 1] - s.jacobian_offset[first];
+  const Real* J = s.jacobian.data() + s.jacobian_offset[first];
+  Real rate[3] = {0, 0, 0};
+  for (int e = 0, c0 = 0; e < b.ends; c0 += end[e].size, ++e) {
+    if (end[e].size == 0) continue;  // the world
+    const Real* v = a.v.data() + end[e].dof;
+    for (int k = 0; k < 3; ++k) rate[k] += NmdSystem::end_rate(J + k * stride + c0, v, end[e].size);
+  }
+  Real l[3], length2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const Index row = first + k;
+    l[k] = s.impulse[row] - omega * (rate[k] + s.sigma[row] * s.impulse[row] - s.rhs[row]) * inverse_D;
+    length2 += l[k] * l[k];
+  }
+  const Real limit = b.rolling * std::max(s.impulse[b.first_row] + b.cohesion, Real(0));
+  const Real factor = length2 > limit * limit ? limit / std::sqrt(length2) : 1;
+  Real d[3];
+  for (int k = 0; k < 3; ++k) {
+    d[k] = factor * l[k] - s.impulse[first + k];
+    s.impulse[first + k] += d[k];
+  }
+  if (d[0] == 0 && d[1] == 0 && d[2] == 0) return;
+  const Real* W = s.weighted.data() + s.jacobian_offset[first];
+  for (int e = 0, c0 = 0; e < b.ends; c0 += end[e].size, ++e) {
+    if (!end[e].moves) continue;  // an immovable end's W is 0: skipping it leaves it untouched for other threads
+    Real* v = a.v.data() + end[e].dof;
+    for (int c = 0; c < end[e].size; ++c)
+      v[c] += W[c0 + c] * d[0] + W[stride + c0 + c] * d[1] + W[2 * stride + c0 + c] * d[2];
+  }
+}
+
+// A grain pair's velocities, ends (v_i, v_j, w_i, w_j).
+struct GrainPairVelocities {
+  Eigen::Map<Vec3> vi, vj, wi, wj;
+  GrainPairVelocities(std::vector<Real>& v, const VelocityEnd* end)
+      : vi(v.data() + end[0].dof), vj(v.data() + end[1].dof), wi(v.data() + end[2].dof), wj(v.data() + end[3].dof) {}
+};
+
+// Impulse changes d on a grain pair's six rows: v += W G^T d (GrainPairRows).
+void apply_grain_pair(const GrainPairRows& g, GrainPairVelocities& u, const Real* d) {
+  const Vec3 P = d[0] * g.n + d[1] * g.t1 + d[2] * g.t2;
+  const Vec3 T = d[2] * g.t1 - d[1] * g.t2;
+  const Vec3 L = d[3] * g.t1 + d[4] * g.t2 + d[5] * g.n;
+  u.vi += g.inv_mass[0] * P;
+  u.vj -= g.inv_mass[1] * P;
+  u.wi += g.inv_inertia[0] * (g.arm[0] * T + L);
+  u.wj += g.inv_inertia[1] * (g.arm[1] * T - L);
+}
+
+// A grain pair: the same Gauss-Seidel update as solve_contact and solve_turning, with the rows in
+// closed form. The normal row's change leaves the friction rates alone (t . n = 0: no coupling);
+// the turning rows are solved at the velocities the friction left.
+void solve_grain_pair(const RowAccess& a, const NmdBlock& b, Real omega, FrictionBound bound) {
+  NmdSystem& s = a.s;
+  const GrainPairRows& g = s.grain_pairs[b.grain_pair];
+  GrainPairVelocities u(a.v, s.ends_of(b));
+  const Index n = b.first_row;
+  Real* l = s.impulse.data() + n;
+  Real d[6] = {0, 0, 0, 0, 0, 0};
+  const Vec3 dv = u.vi - u.vj, lever = g.arm[0] * u.wi + g.arm[1] * u.wj;
+  if (s.inverse_diagonal[n] > 0) {
+    const Real rate = g.n.dot(dv);
+    const Real next =
+        std::clamp(l[0] - omega * (rate + s.sigma[n] * l[0] - s.rhs[n]) * s.inverse_diagonal[n], s.lower[n], s.upper[n]);
+    d[0] = next - l[0];
+    l[0] = next;
+  }
+  const Real inverse_friction = s.inverse_diagonal[n + 1];
+  if (inverse_friction > 0) {
+    const Real r1 = g.t1.dot(dv) - g.t2.dot(lever) + s.sigma[n + 1] * l[1] - s.rhs[n + 1];
+    const Real r2 = g.t2.dot(dv) + g.t1.dot(lever) + s.sigma[n + 2] * l[2] - s.rhs[n + 2];
+    Real l1 = l[1] - omega * r1 * inverse_friction, l2 = l[2] - omega * r2 * inverse_friction;
+    project_friction(l1, l2, l[0], b, bound);
+    d[1] = l1 - l[1];
+    d[2] = l2 - l[2];
+    l[1] = l1;
+    l[2] = l2;
+  }
+  apply_grain_pair(g, u, d);
+  const Real inverse_turning = s.inverse_diagonal[n + 3];
+  if (inverse_turning <= 0) return;
+  const Vec3 turn = u.wi - u.wj;
+  const Vec3 next = Vec3(l[3], l[4], l[5]) - omega * inverse_turning *
+                                                 (Vec3(g.t1.dot(turn), g.t2.dot(turn), g.n.dot(turn)) +
+                                                  Vec3(s.sigma[n + 3] * l[3] - s.rhs[n + 3], s.sigma[n + 4] * l[4] - s.rhs[n + 4],
+                                                       s.sigma[n + 5] * l[5] - s.rhs[n + 5]));
+  const Real limit = b.rolling * std::max(l[0] + b.cohesion, Real(0));
+  const Real length2 = next.squaredNorm();
+  const Vec3 bounded = length2 > limit * limit ? Vec3(next * (limit / std::sqrt(length2))) : next;
+  const Real turning[6] = {0, 0, 0, bounded[0] - l[3], bounded[1] - l[4], bounded[2] - l[5]};
+  l[3] = bounded[0];
+  l[4] = bounded[1];
+  l[5] = bounded[2];
+  apply_grain_pair(g, u, turning);
+}
+
 // A contact point: the normal row, then its two friction rows bounded by mu times the new normal
 // impulse (solved together, by Jacobi between them, with the larger of their diagonals). It is
 // the Gauss-Seidel update of the rows one after the other, fused: the three rates are read in one
@@ -116,14 +223,16 @@ void solve_contact(const RowAccess& a, const NmdBlock& b, Real omega, FrictionBo
     s.impulse[t1] = l1;
     s.impulse[t2] = l2;
   }
-  if (dn == 0 && d1 == 0 && d2 == 0) return;
-  const Real* W = s.weighted.data() + s.jacobian_offset[n];
-  for (int e = 0, c0 = 0; e < b.ends; c0 += end[e].size, ++e) {
-    if (!end[e].moves) continue;  // an immovable end's W is 0: skipping it leaves it untouched for other threads
-    Real* v = a.v.data() + end[e].dof;
-    for (int c = 0; c < end[e].size; ++c)
-      v[c] += W[c0 + c] * dn + W[stride + c0 + c] * d1 + W[2 * stride + c0 + c] * d2;
+  if (dn != 0 || d1 != 0 || d2 != 0) {
+    const Real* W = s.weighted.data() + s.jacobian_offset[n];
+    for (int e = 0, c0 = 0; e < b.ends; c0 += end[e].size, ++e) {
+      if (!end[e].moves) continue;  // an immovable end's W is 0: skipping it leaves it untouched for other threads
+      Real* v = a.v.data() + end[e].dof;
+      for (int c = 0; c < end[e].size; ++c)
+        v[c] += W[c0 + c] * dn + W[stride + c0 + c] * d1 + W[2 * stride + c0 + c] * d2;
+    }
   }
+  if (b.rows == 6) solve_turning(a, b, omega);
 }
 
 }  // namespace
@@ -139,6 +248,13 @@ void warm_start(NmdSystem& system, VelocitySpace& space, const NmdSettings& sett
     if (b.kind == NmdBlockKind::contact && b.memory_rows == 3)
       project_friction(system.impulse[b.first_row + 1], system.impulse[b.first_row + 2], system.impulse[b.first_row], b,
                        settings.friction);
+    if (b.kind == NmdBlockKind::grain_pair) {
+      GrainPairVelocities u(space.v, system.ends_of(b));
+      Real d[6] = {0, 0, 0, 0, 0, 0};
+      for (int i = 0; i < b.memory_rows; ++i) d[i] = system.impulse[b.first_row + i];
+      apply_grain_pair(system.grain_pairs[b.grain_pair], u, d);
+      continue;
+    }
     for (int i = 0; i < b.memory_rows; ++i) a.apply(b, b.first_row + i, system.impulse[b.first_row + i]);
   }
 }
@@ -153,6 +269,7 @@ void solve_block(const RowAccess& a, const NmdBlock& b, const NmdSettings& setti
       for (int i = 0; i < b.rows; ++i) solve_bounded_row(a, b, b.first_row + i, omega);
       break;
     case NmdBlockKind::contact: solve_contact(a, b, omega, settings.friction); break;
+    case NmdBlockKind::grain_pair: solve_grain_pair(a, b, omega, settings.friction); break;
   }
 }
 

@@ -11,7 +11,10 @@
 //              one scale for both rows (D_max the larger diagonal: with two scales the fixed
 //              point's friction would not oppose the slip), projected onto |l_t| <= mu l_n (the
 //              disc for a cone bound, per row for a box bound; mu static or kinetic,
-//              nmd_system.hpp)
+//              nmd_system.hpp); where a side is a grain, then its three turning rows
+//              together, at the velocities the friction left, projected onto the ball
+//              |l_roll| <= mu_r R* l_n (turning_contact_rows.hpp; a grain pair's six rows in
+//              closed form, GrainPairRows)
 //   then v += W G^T dl for the change actually taken.
 // Warm start: l from the blocks' memory (the last solve's impulses), clamped to the bounds.
 // Threads share a sweep level by level (sweep_schedule.hpp): every velocity and impulse sees the

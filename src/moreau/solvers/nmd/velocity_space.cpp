@@ -1,5 +1,7 @@
 #include "moreau/solvers/nmd/velocity_space.hpp"
 
+#include <algorithm>
+
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/body_handle.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
@@ -8,14 +10,14 @@ namespace moreau {
 
 bool VelocitySpace::moves(const VelocityEnd& e) const {
   if (e.size == 0) return false;
-  if (e.size == 3) return (e.dof < 3 * particles ? particle_inv_mass[e.dof / 3] : fluid_inv_mass[(e.dof - fluid_dof(0)) / 3]) > 0;
+  if (e.size == 3) return point_inverse_mass(e.dof) > 0;
   const Index b = (e.dof - 3 * particles) / 6;
   return body_inv_mass[b] > 0 || !body_inv_inertia[b].isZero(0);
 }
 
 void VelocitySpace::apply_inverse_mass(const VelocityEnd& e, const Real* jacobian, Real* out) const {
   if (e.size == 3) {
-    const Real w = e.dof < 3 * particles ? particle_inv_mass[e.dof / 3] : fluid_inv_mass[(e.dof - fluid_dof(0)) / 3];
+    const Real w = point_inverse_mass(e.dof);
     for (int c = 0; c < 3; ++c) out[c] = w * jacobian[c];
     for (int c = 3; c < 6; ++c) out[c] = 0;
     return;
@@ -31,7 +33,10 @@ void VelocitySpace::gather(const Model& model, const State& state) {
   particles = model.particle_count();
   bodies = model.rigid.count();
   fluids = state.fluid.count;
-  v.resize(3 * (particles + fluids) + 6 * bodies);
+  const bool grains = std::any_of(model.particle_inv_inertia.begin(), model.particle_inv_inertia.end(),
+                                  [](Real w) { return w > 0; });
+  spins = grains ? particles : 0;
+  v.resize(3 * (particles + fluids + spins) + 6 * bodies);
   fluid_inv_mass.assign(state.fluid.inv_mass.begin(), state.fluid.inv_mass.begin() + fluids);
   for (Index i = 0; i < fluids; ++i)
     for (int c = 0; c < 3; ++c) v[fluid_dof(i) + c] = state.fluid.velocity[i][c];
@@ -43,6 +48,11 @@ void VelocitySpace::gather(const Model& model, const State& state) {
   body_inv_inertia.resize(bodies);
   for (Index p = 0; p < particles; ++p)
     for (int c = 0; c < 3; ++c) v[3 * p + c] = state.velocity[p][c];
+  spin_inv_inertia.assign(spins, 0);
+  for (Index p = 0; p < spins; ++p) {
+    if (particle_inv_mass[p] > 0) spin_inv_inertia[p] = model.particle_inv_inertia[p];
+    for (int c = 0; c < 3; ++c) v[spin_dof(p) + c] = state.angular_velocity[p][c];
+  }
   const RigidBodyModel& m = model.rigid;
   const RigidBodyState& s = state.rigid;
   for (Index b = 0; b < bodies; ++b) {
@@ -81,6 +91,8 @@ void VelocitySpace::apply_forces(const Model& model, const State& state, Real h)
 void VelocitySpace::scatter(const Model& model, State& state) const {
   for (Index p = 0; p < particles; ++p)
     if (particle_inv_mass[p] > 0) state.velocity[p] = Vec3(v[3 * p], v[3 * p + 1], v[3 * p + 2]);
+  for (Index p = 0; p < spins; ++p)
+    if (spin_inv_inertia[p] > 0) state.angular_velocity[p] = Vec3(v[spin_dof(p)], v[spin_dof(p) + 1], v[spin_dof(p) + 2]);
   for (Index i = 0; i < fluids; ++i) {
     const Index d = fluid_dof(i);
     state.fluid.velocity[i] = Vec3(v[d], v[d + 1], v[d + 2]);
