@@ -103,8 +103,9 @@ TEST(GranularContacts, GrainsSpreadFlatWithoutFrictionOrRollingResistanceAndPile
 }
 
 // The same column under nmd (one velocity solve of 50 sweeps per 5 ms step), where grains turn
-// against the ground and each other as under xpbd: without friction or without rolling
-// resistance it spreads into one layer, and with both the pile's angle grows with mu and mu_r
+// against the ground and each other as under xpbd: without friction it spreads into one layer,
+// without rolling resistance into a layer still spreading after 2 s with a grain or two resting in
+// its pockets (top 13.0 mm), and with both the pile's angle grows with mu and mu_r
 // (measured after 2 s: 3.3 degrees at mu 0.2; 13.6, 24.2, 32.5 degrees at mu_r 0.2, 0.5, 1.0).
 TEST(GranularContacts, UnderNmdGrainsSpreadFlatWithoutFrictionOrRollingResistanceAndPileUpWithBoth) {
   constexpr const char* nmd = R"("solver": "nmd")";
@@ -117,8 +118,8 @@ TEST(GranularContacts, UnderNmdGrainsSpreadFlatWithoutFrictionOrRollingResistanc
               "1.0\n",
               frictionless.top, rolling.top, low_friction.angle, by_rolling[0].angle, by_rolling[1].angle,
               by_rolling[2].angle);
-  EXPECT_LT(frictionless.top, 0.015);  // one layer: tops at r = 5 mm, within a diameter
-  EXPECT_LT(rolling.top, 0.015);
+  EXPECT_LT(frictionless.top, 0.0075);  // one layer: tops at r = 5 mm
+  EXPECT_LT(rolling.top, 0.015);        // at most a grain on the first layer
   EXPECT_LT(low_friction.angle, by_rolling[1].angle);
   EXPECT_LT(by_rolling[0].angle, by_rolling[1].angle);
   EXPECT_LT(by_rolling[1].angle, by_rolling[2].angle);

@@ -307,11 +307,16 @@ void add_particle_body_contacts(Assembly& a) {
                 adhesive_bound(c.adhesion[q], a.input.C[0], contact_compliance(a.model.settings.nmd, c.spring[q])),
                 c.spring[q]);
     if (a.space.turns(p)) {  // a grain turns against the body, both sides' turning resisted
+      // The grain's lever is its distance d from the body's surface point, along -n, where the
+      // body's rows act: the pair's impulses then act at one point and exert no net torque, also
+      // in a speculative row that closes a gap within the step (d > r) and when pressed in (d < r).
       const Real r = a.model.particle_radius[p];
+      const Real arm = std::max(contact.rows.C[0] + a.model.particle_collider_gap[p], Real(0));  // C = d - r
       const Real rolling = a.model.objects[a.model.particle_object[p]].rolling_resistance * r;
       const auto direction = [&](int row) { return Vec3(contact.rows.jacobian[0].row(row).head<3>()); };
-      add_turning_rows(a.input, a.space, {TurningSide{p, r}, TurningSide{-1, 0, 1}}, direction(0), direction(1),
-                       direction(2), rolling);
+      const int body_end = contact.rows.end[0].kind == BodyEndKind::body ? 0 : 1;  // (particle, body) today
+      add_turning_rows(a.input, a.space, {TurningSide{p, arm}, TurningSide{-1, 0, body_end}}, direction(0),
+                       direction(1), direction(2), rolling);
     }
     a.add();
   }

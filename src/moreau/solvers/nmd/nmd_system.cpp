@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cassert>
+#include <cstring>
 #include <cmath>
 
 namespace moreau {
@@ -18,16 +20,12 @@ void grain_pair_system(const GrainPairRows& g, const VelocityEnd* end, const std
   const Real linear = g.inv_mass[0] + g.inv_mass[1];
   const Real lever = g.arm[0] * g.arm[0] * g.inv_inertia[0] + g.arm[1] * g.arm[1] * g.inv_inertia[1];
   const Real turning = g.inv_inertia[0] + g.inv_inertia[1];
-  const Real coupling = g.arm[0] * g.inv_inertia[0] - g.arm[1] * g.inv_inertia[1];
+  // fill() reads A's diagonal and its normal column alone: the normal row is uncoupled from the
+  // others (t . n = 0, no spin columns), so the rest of the column is zero.
   A(0, 0) = linear;
   A(1, 1) = A(2, 2) = linear + lever;
   A(3, 3) = A(4, 4) = A(5, 5) = turning;
-  // Friction row 1's spin columns -r t2 against the turning rows' +-e, row 2's +r t1.
   const std::array<Vec3, 3> turning_direction{g.t1, g.t2, g.n};
-  for (int k = 0; k < 3; ++k) {
-    A(1, 3 + k) = A(3 + k, 1) = -coupling * g.t2.dot(turning_direction[k]);
-    A(2, 3 + k) = A(3 + k, 2) = coupling * g.t1.dot(turning_direction[k]);
-  }
   const Vec3 dv = end_vector(v, end[0]) - end_vector(v, end[1]);
   const Vec3 wi = end_vector(v, end[2]), wj = end_vector(v, end[3]);
   const Vec3 u = g.arm[0] * wi + g.arm[1] * wj;
@@ -62,6 +60,7 @@ void NmdBlockInput::resize(int rows, int end_count, bool entries) {
 
 void NmdBlockInput::extend(int rows, int end_count) {
   const int R = this->rows(), E = ends();
+  assert(rows >= R && end_count >= E && jacobian.size() == 6 * static_cast<std::size_t>(R) * E);
   // Row r, end e moves from 6 (r E + e) to 6 (r E' + e), never to a lower offset: moved from the
   // last entry down, no entry is overwritten before it is read. Every other slot is then zeroed.
   jacobian.resize(6 * static_cast<std::size_t>(rows) * end_count, 0);
@@ -69,7 +68,7 @@ void NmdBlockInput::extend(int rows, int end_count) {
   for (int r = R - 1; r >= 0; --r)
     for (int e = E - 1; e >= 0; --e) {
       const Real* from = jacobian.data() + 6 * (static_cast<std::size_t>(r) * E + e);
-      std::copy_backward(from, from + 6, at(r, e) + 6);
+      std::memmove(at(r, e), from, 6 * sizeof(Real));  // the two may overlap
     }
   for (int r = 0; r < rows; ++r)
     for (int e = r < R ? E : 0; e < end_count; ++e) std::fill(at(r, e), at(r, e) + 6, Real(0));
@@ -130,12 +129,15 @@ void NmdSystem::add(const NmdBlockInput& in, const VelocitySpace& space, Real h,
   slot.first_row = row_count();
   slot.first_end = static_cast<Index>(block_ends.size());
   slot.first_entry = static_cast<Index>(jacobian.size());
-  slot.matrix = in.kind == NmdBlockKind::equality ? static_cast<Index>(inverse.size()) : -1;
+  // Equality blocks keep the inverse of their R x R matrix; a contact block with turning rows the
+  // inverse of its 3 x 3 turning block.
+  const bool turning_block = in.kind == NmdBlockKind::contact && R == 6;
+  slot.matrix = in.kind == NmdBlockKind::equality || turning_block ? static_cast<Index>(inverse.size()) : -1;
   if (in.kind == NmdBlockKind::grain_pair) {
     slot.grain_pair = static_cast<Index>(grain_pairs.size());
     grain_pairs.emplace_back();
   }
-  grow(1, in.ends(), R, R * stride, slot.matrix >= 0 ? R * R : 0);
+  grow(1, in.ends(), R, R * stride, in.kind == NmdBlockKind::equality ? R * R : turning_block ? 9 : 0);
   fill(slot, in, space, h, settings);
 }
 
@@ -257,6 +259,20 @@ void NmdSystem::fill(const NmdSlot& slot, const NmdBlockInput& in, const Velocit
     block.friction = slip2 > settings.sliding_speed * settings.sliding_speed ? in.dynamic_friction : in.static_friction;
     block.cohesion = in.cohesion * h;
     block.rolling = in.rolling;
+  }
+  if (in.kind == NmdBlockKind::contact && R == 6) {
+    // The turning rows' own block of G W G^T (they carry no compliance): against a rigid body its
+    // world inverse inertia couples them, and a step scaled by the largest diagonal alone may
+    // overshoot; its inverse makes each sweep's turning update exact for the block.
+    block.matrix = slot.matrix;
+    const Mat3 turning = A.block<3, 3>(3, 3);
+    const Eigen::FullPivLU<Mat3> lu(turning);
+    const Mat3 inv = lu.isInvertible() ? Mat3(lu.inverse()) : Mat3(turning.completeOrthogonalDecomposition().pseudoInverse());
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) {
+        inverse[slot.matrix + 3 * r + c] = inv(r, c);
+        sigma_block[slot.matrix + 3 * r + c] = 0;
+      }
   }
   if (in.kind == NmdBlockKind::equality) {
     block.matrix = slot.matrix;

@@ -76,15 +76,14 @@ void solve_bounded_row(const RowAccess& a, const NmdBlock& b, Index row, Real om
 }
 
 // A grain contact's three turning rows (rows 3 to 5, turning_contact_rows.hpp) after its normal
-// and friction rows, at the velocities those left: one Jacobi update of the three with the
-// largest of their diagonals (exact for two grains, whose block is k I), projected onto the ball
-// |l| <= mu_r R* (l_n + F h) of the rolling resistance. The rates are read in one pass over the
-// ends and the impulse changes applied in one, as in solve_contact.
+// and friction rows, at the velocities those left: the three together, l <- l - omega (G W G^T)^-1
+// r with the inverse of their own 3 x 3 block (nmd_system.cpp: against a rigid body its inverse
+// inertia couples them), projected onto the ball |l| <= mu_r R* (l_n + F h) of the rolling
+// resistance. The rates are read in one pass over the ends and the impulse changes applied in
+// one, as in solve_contact.
 void solve_turning(const RowAccess& a, const NmdBlock& b, Real omega) {
   NmdSystem& s = a.s;
   const Index first = b.first_row + 3;
-  const Real inverse_D = s.inverse_diagonal[first];
-  if (inverse_D <= 0) return;
   const VelocityEnd* end = s.ends_of(b);
   const Index stride = s.jacobian_offset[first + 1] - s.jacobian_offset[first];
   const Real* J = s.jacobian.data() + s.jacobian_offset[first];
@@ -94,10 +93,13 @@ void solve_turning(const RowAccess& a, const NmdBlock& b, Real omega) {
     const Real* v = a.v.data() + end[e].dof;
     for (int k = 0; k < 3; ++k) rate[k] += NmdSystem::end_rate(J + k * stride + c0, v, end[e].size);
   }
+  const Real* inv = s.inverse.data() + b.matrix;
+  Real residual[3];
+  for (int k = 0; k < 3; ++k) residual[k] = rate[k] + s.sigma[first + k] * s.impulse[first + k] - s.rhs[first + k];
   Real l[3], length2 = 0;
   for (int k = 0; k < 3; ++k) {
-    const Index row = first + k;
-    l[k] = s.impulse[row] - omega * (rate[k] + s.sigma[row] * s.impulse[row] - s.rhs[row]) * inverse_D;
+    l[k] = s.impulse[first + k] -
+           omega * (inv[3 * k] * residual[0] + inv[3 * k + 1] * residual[1] + inv[3 * k + 2] * residual[2]);
     length2 += l[k] * l[k];
   }
   const Real limit = b.rolling * std::max(s.impulse[b.first_row] + b.cohesion, Real(0));

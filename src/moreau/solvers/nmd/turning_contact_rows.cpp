@@ -20,7 +20,7 @@ bool add_turning_rows(NmdBlockInput& in, const VelocitySpace& space, const std::
     if (side.grain >= 0) {
       in.end[e] = space.spin_end(side.grain);
       const Vec3 arm = -sign * side.arm * n;  // a_i = -r_i n, a_j = +r_j n
-      for (int r = 0; r < 3; ++r) set(in.at(r, e), sign * arm.cross(contact_direction[r]));
+      for (int r = 1; r < 3; ++r) set(in.at(r, e), sign * arm.cross(contact_direction[r]));  // the normal row's: a x n = 0
       for (int r = 0; r < 3; ++r) set(in.at(3 + r, e), sign * turning_direction[r]);
       ++e;
     } else if (side.body_end >= 0) {

@@ -6,7 +6,8 @@
 // hold the linear columns of both sides and a rigid body's angular ones. A grain side s turns at
 // w_s and touches at the arm a_s from its centre: a_i = -r_i n, a_j = +r_j n, between two grains
 // the radii scaled to the centre distance d, so that a_j - a_i = d n and the pair's impulses
-// exert no net torque. Its contact point moves at v_s + w_s x a_s, so the rates of the rows,
+// exert no net torque; against a rigid body the distance to the body's surface point, where the
+// body's rows act (against a collider the radius). Its contact point moves at v_s + w_s x a_s, so the rates of the rows,
 // e . (u_i - u_j) with u the contact point's velocity on each side, take
 //   e . (w_s x a_s) = w_s . (a_s x e)        (+ for side i, - for side j)
 // in the grain's spin columns: nothing in the normal row (a_s is along n), the arm's lever in the
@@ -17,6 +18,11 @@
 // together by the ball |l_roll| <= mu_r R* (l_n + F h): the constant rolling-resistance model
 // (Ai, Chen, Rotter and Ooi 2011, model A), R* = r_i r_j / (r_i + r_j) between two grains, the
 // grain's r against anything else, F a cohesive bond's pull.
+//
+// Projected Gauss-Seidel solves the friction rows and then the turning rows of a contact. Where
+// the sides differ (a grain against the ground, a body or a smaller grain) the two couple through
+// c = r_i I_i^-1 - r_j I_j^-1, and a sweep leaves c^2 / (D_friction D_turning) of their joint error
+// (5/7 for a grain on the ground): slower than the rows of equal grains, which do not couple.
 #include <array>
 
 #include "moreau/solvers/nmd/nmd_system.hpp"
