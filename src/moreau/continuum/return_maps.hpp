@@ -1,0 +1,67 @@
+#pragma once
+// Return maps of the inelastic continua: the plastic flow that brings a trial elastic state back
+// onto its yield surface, in the principal stretches sigma of the elastic deformation gradient
+// F = U diag(sigma) V^T (the rotations stay; F = U diag(Z(sigma)) V^T after the map).
+//
+// With the St. Venant-Kirchhoff-Hencky law (hencky_elasticity.hpp) the Kirchhoff stress is
+// tau_i = 2 mu eps_i + lambda tr eps in the Hencky strain eps = ln sigma, so its deviator is 2 mu
+// times the strain's, eps^ = eps - (tr eps / 3) 1, and its trace (3 lambda + 2 mu) tr eps. Both
+// maps below flow along eps^ alone (a radial return in the deviatoric plane):
+//
+//   Drucker-Prager (Klar, Gast, Pradhana, Fu, Schroeder, Jiang, Teran 2016, "Drucker-Prager
+//   elastoplasticity for sand animation", SIGGRAPH 2016), cohesionless sand of friction angle phi:
+//     yield when |tau^| + alpha tr tau > 0, alpha = sqrt(2/3) 2 sin phi / (3 - sin phi), i.e.
+//     dgamma = |eps^| + alpha (3 lambda + 2 mu) / (2 mu) tr eps > 0;
+//     in tension (tr eps > 0) sand carries no stress: eps = 0 (the cone's tip);
+//     otherwise eps -= dgamma eps^ / |eps^|, which keeps the volume (tr eps) and lands on the cone.
+//   This alpha puts the cone through Mohr-Coulomb's in triaxial compression, where the largest
+//   and smallest compressions a < b at yield satisfy (b - a) / (b + a) = sin phi.
+//
+//   von Mises (J2) plasticity, metal and plasticine of uniaxial yield stress sigma_Y: yield when
+//   the von Mises stress sqrt(3/2) |tau^| exceeds sigma_Y, i.e.
+//     dgamma = |eps^| - sqrt(2/3) sigma_Y / (2 mu) > 0;  eps -= dgamma eps^ / |eps^|,
+//   volume preserving, back onto the cylinder. (XPBI's third-party descriptions write
+//   sigma_Y / (2 mu), taking sigma_Y as the deviator's norm |tau^|; here sigma_Y is the stress at
+//   which a bar pulled along its axis yields, as engineering tables give it.)
+#include <cmath>
+
+#include "moreau/continuum/hencky_elasticity.hpp"
+
+namespace moreau {
+
+/// A return map's result: the principal stretches after the flow and the plastic strain of the
+/// flow, dgamma (the deviatoric Hencky strain removed; at the cone's tip |eps| before it).
+struct PlasticReturn {
+  Vec3 sigma;
+  Real plastic_strain = 0;
+};
+
+/// alpha of the Drucker-Prager cone for friction angle phi (rad).
+inline Real drucker_prager_alpha(Real friction_angle) {
+  const Real s = std::sin(friction_angle);
+  return std::sqrt(Real(2) / 3) * 2 * s / (3 - s);
+}
+
+inline PlasticReturn drucker_prager_return(const LameParameters& m, Real friction_angle, const Vec3& sigma) {
+  const Vec3 eps = hencky_strain(sigma);
+  const Real trace = eps.sum();
+  if (trace > 0) return {Vec3::Ones(), eps.norm()};  // tension: the tip, no stress
+  const Vec3 deviator = eps - (trace / 3) * Vec3::Ones();
+  const Real norm = deviator.norm();
+  const Real dgamma = norm + drucker_prager_alpha(friction_angle) * (3 * m.lambda + 2 * m.mu) / (2 * m.mu) * trace;
+  if (dgamma <= 0 || norm <= 0) return {sigma, 0};  // inside the cone
+  const Vec3 returned = eps - (dgamma / norm) * deviator;
+  return {returned.array().exp().matrix(), dgamma};
+}
+
+inline PlasticReturn von_mises_return(const LameParameters& m, Real yield_stress, const Vec3& sigma) {
+  const Vec3 eps = hencky_strain(sigma);
+  const Vec3 deviator = eps - (eps.sum() / 3) * Vec3::Ones();
+  const Real norm = deviator.norm();
+  const Real dgamma = norm - std::sqrt(Real(2) / 3) * yield_stress / (2 * m.mu);
+  if (dgamma <= 0) return {sigma, 0};
+  const Vec3 returned = eps - (dgamma / norm) * deviator;
+  return {returned.array().exp().matrix(), dgamma};
+}
+
+}  // namespace moreau
