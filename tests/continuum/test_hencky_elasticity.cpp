@@ -10,7 +10,7 @@
 namespace moreau {
 namespace {
 
-const LameParameters kSand = LameParameters::from_young(1e4, 0.3);
+const LameParameters kSand = lame_from_youngs(1e4, 0.3);
 
 Real energy_of(const Mat3& F) { return hencky_energy(kSand, rotation_svd(F).sigma); }
 

@@ -12,7 +12,7 @@
 namespace moreau {
 namespace {
 
-const LameParameters kSand = LameParameters::from_young(1e4, 0.3);
+const LameParameters kSand = lame_from_youngs(1e4, 0.3);
 constexpr Real kPhi = 35 * kPi / 180;  // friction angle
 
 Vec3 deviator(const Vec3& x) { return x - (x.sum() / 3) * Vec3::Ones(); }
@@ -78,7 +78,7 @@ TEST(ReturnMaps, DruckerPragerConeMeetsMohrCoulombInTriaxialCompression) {
 }
 
 TEST(ReturnMaps, VonMisesYieldsAtTheUniaxialYieldStressAndKeepsTheVolume) {
-  const LameParameters metal = LameParameters::from_young(2e11, 0.3);
+  const LameParameters metal = lame_from_youngs(2e11, 0.3);
   const Real yield = 2.5e8;  // Pa
   std::mt19937 rng(23);
   int inside = 0, returned = 0;

@@ -14,18 +14,10 @@
 // Defined for sigma_i > 0 (an inverted particle has no logarithmic strain).
 #include <cmath>
 
+#include "moreau/materials/hyperelastic.hpp"
 #include "moreau/math/rotation_svd.hpp"
 
 namespace moreau {
-
-/// Lame parameters (Pa) from Young's modulus E (Pa) and Poisson's ratio nu.
-struct LameParameters {
-  Real mu = 0, lambda = 0;
-
-  static LameParameters from_young(Real E, Real nu) {
-    return {E / (2 * (1 + nu)), E * nu / ((1 + nu) * (1 - 2 * nu))};
-  }
-};
 
 /// The Hencky strain eps_i = ln sigma_i of principal stretches sigma (all > 0).
 inline Vec3 hencky_strain(const Vec3& sigma) { return sigma.array().log().matrix(); }
