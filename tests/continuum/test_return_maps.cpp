@@ -92,7 +92,9 @@ TEST(ReturnMaps, VonMisesYieldsAtTheUniaxialYieldStressAndKeepsTheVolume) {
       EXPECT_EQ(r.sigma, sigma);
     } else {
       ++returned;
-      EXPECT_NEAR(after, yield, 1e-9 * yield);  // the von Mises stress at yield
+      // The von Mises stress at yield: exact but for the rounding of ln and exp of stretches near 1
+      // (1e-16 absolute on strains of 1e-3, 1e-13 of the stress); 1e-9 leaves room.
+      EXPECT_NEAR(after, yield, 1e-9 * yield);
       EXPECT_NEAR(r.sigma.prod(), sigma.prod(), 1e-12);
     }
   }

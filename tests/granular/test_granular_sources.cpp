@@ -41,6 +41,31 @@ TEST(GranularSources, AClosedMeshFillsLikeTheBlockItBounds) {
   EXPECT_EQ(from_mesh, from_block);
 }
 
+// The corner tetrahedron x + y + z <= 0.1 of that cube keeps only the lattice points inside it:
+// as many grains as the points (r_max + i d, r_max + j d, r_max + k d), d = 2.04 r_max, with
+// x + y + z < 0.1, and every grain centre within its lattice jitter (1 % of r) of the inside.
+TEST(GranularSources, AClosedMeshKeepsOnlyTheLatticePointsInsideIt) {
+  const std::string path = test::temp_dir("granular-mesh") + "/corner.obj";
+  {
+    std::ofstream out(path);
+    out << "v 0 0 0\nv 0.1 0 0\nv 0 0.1 0\nv 0 0 0.1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  }
+  const std::vector<double> x = grain_positions(fmt::format(R"("mesh": "{}")", path));
+  const Real r = 0.005, d = 2.04 * r;
+  long inside = 0;
+  for (int i = 0; i < 9; ++i)  // the box holds 9 points a side: (0.1 - 2 r) / d + 1 = 9.8
+    for (int j = 0; j < 9; ++j)
+      for (int k = 0; k < 9; ++k) inside += 3 * r + d * (i + j + k) < 0.1;
+  Real outside = 0;  // m: the furthest a centre lies beyond the slanted face
+  for (size_t p = 0; p < x.size(); p += 3) outside = std::max(outside, (x[p] + x[p + 1] + x[p + 2] - 0.1) / std::sqrt(3.0));
+  std::printf("corner tetrahedron: %zu grains (lattice points inside: %ld), furthest %.2g m beyond its face\n",
+              x.size() / 3, inside, outside);
+  EXPECT_EQ(static_cast<long>(x.size() / 3), inside);
+  EXPECT_GT(inside, 10);
+  EXPECT_LT(inside, 729);
+  EXPECT_LE(outside, 0.01 * r * std::sqrt(3.0));
+}
+
 // Bad emitter keys fail with the key's path and what is allowed.
 TEST(GranularSources, EmitterKeysAreChecked) {
   struct Case {
@@ -50,7 +75,7 @@ TEST(GranularSources, EmitterKeysAreChecked) {
       {R"("shape": "disc", "center": [0, 1, 0], "direction": [0, -1, 0], "radius": 0.03, "speed": 1, "mass_rate": 1)",
        "objects[0].emitter.speed", "exactly one of"},
       {R"("shape": "disc", "center": [0, 1, 0], "direction": [0, -1, 0], "radius": 0.03, "flow_rate": 1)",
-       "objects[0].emitter.flow_rate", "unknown key"},
+       "objects[0].emitter.flow_rate", "grains are poured at a \"mass_rate\""},
       {R"("shape": "disc", "center": [0, 1, 0], "direction": [0, 0, 0], "radius": 0.03, "speed": 1)",
        "objects[0].emitter.direction", "non-zero"},
       {R"("shape": "disc", "center": [0, 1, 0], "direction": [0, -1, 0], "radius": 0.001, "speed": 1)",
@@ -93,7 +118,8 @@ TEST(GranularSources, EmittedGrainsHoldNoJointOrProbe) {
   const std::string both = R"("blocks": [{"min": [0, 0, 0], "max": [0.0102, 0.0204, 0.0102]}], )" + emitter;
   World w = World::from_json(fmt::format(R"({{"name": "ok", "settings": {{"dt": 0.001, "duration": 1}},
       "objects": [{{"name": "sand", "kind": "granular", "radius": 0.005, {}}}], {}}})", both, probe));
-  EXPECT_NEAR(w.probe_values().at(1), 0.015, 1e-3);  // the upper block grain's height, not the opening's 1 m
+  // The upper block grain's height, r + d = 0.0152 m, not the opening's 1 m, within its lattice jitter (1 % of r).
+  EXPECT_NEAR(w.probe_values().at(1), 0.005 + 2.04 * 0.005, 0.01 * 0.005);
   EXPECT_NE(error(both, R"("probes": [{"name": "p", "type": "point", "object": "sand", "vertex": 2}])").find("probes[0].vertex"),
             std::string::npos);
 }

@@ -2,7 +2,9 @@
 // turning contact built entry by entry (turning_contact_rows.hpp): for two unequal grains, whose
 // friction and turning rows couple, both give the same right-hand sides, diagonals and bounds, and
 // the same impulses and velocities after one and after thirty projected Gauss-Seidel sweeps, with
-// the friction and the rolling resistance at their bounds or within them.
+// the friction and the rolling resistance at their bounds or within them. The two differ only in
+// the order of their additions: 1e-12 relative on the system and the impulses, 1e-11 on the
+// velocities, which sum thirty sweeps' changes onto spins of tens of rad/s.
 #include <gtest/gtest.h>
 
 #include <random>

@@ -4,8 +4,9 @@
 // An emitter releases layers of grains on the lattice of its opening (spacing d = 2.04 r_max, the
 // granular lattice's): layer k is due at t_k = start + k d / v in the opening's plane and moves
 // along the normal n at speed v, so the layers arrive one spacing apart. A layer holds N grains;
-// the mass rate is N m̄ v / d, m̄ the mean mass of the emitter's grains (drawn when the scene is
-// built, like every grain's radius and offset). Layers are released at the start of each step; a
+// the mass rate is N m̄ v / d, m̄ the expected mass of a grain of the object's radius range,
+// rho 4/3 pi E[r^3] (each grain's radius and offset are drawn when the scene is built, and the
+// drawn masses scatter about m̄). Layers are released at the start of each step; a
 // layer due during the previous step is placed where it would be by now, x = x_k + v (t - t_k) n,
 // with velocity v n (gravity over that part of a step is neglected).
 //

@@ -200,17 +200,19 @@ std::string resolve_path(const SceneBuildContext& ctx, const std::string& path) 
   return resolved;
 }
 
-TriangleMesh read_closed_surface(const SceneBuildContext& ctx, const SpecPlace& place, const std::string& field,
-                                 const std::string& file) {
+ClosedSurface read_closed_surface(const SceneBuildContext& ctx, const SpecPlace& place, const std::string& field,
+                                  const std::string& file) {
   const std::string path = resolve_path(ctx, file);
-  TriangleMesh mesh;
+  ClosedSurface surface;
   try {
-    mesh = read_obj_triangles(path);
+    surface.mesh = read_obj_triangles(path);
   } catch (const std::exception& e) {
     place.fail(field, e.what());
   }
-  if (mesh.vertices.empty()) place.fail(field, fmt::format("'{}' has no vertices", path));
-  return mesh;
+  if (surface.mesh.vertices.empty()) place.fail(field, fmt::format("'{}' has no vertices", path));
+  surface.lo = surface.hi = surface.mesh.vertices.front();
+  for (const Vec3& v : surface.mesh.vertices) surface.lo = surface.lo.cwiseMin(v), surface.hi = surface.hi.cwiseMax(v);
+  return surface;
 }
 
 void place_vertices(const MeshFile& file, const SpecPlace& place, std::vector<Vec3>& vertices) {

@@ -9,7 +9,7 @@
 
 namespace moreau {
 
-EmitterSpec read_emitter(const JsonObject& e, const std::string& rate_key) {
+EmitterSpec read_emitter(const JsonObject& e) {
   EmitterSpec spec;
   spec.center = to_vector3(e.vec3("center"));
   spec.direction = to_vector3(e.vec3("direction"));
@@ -22,7 +22,8 @@ EmitterSpec read_emitter(const JsonObject& e, const std::string& rate_key) {
     spec.tangent = read_vector(e, "tangent", spec.tangent);
   }
   spec.speed = read_optional_number(e, "speed");
-  (rate_key == "mass_rate" ? spec.mass_rate : spec.flow_rate) = read_optional_number(e, rate_key);
+  spec.flow_rate = read_optional_number(e, "flow_rate");  // fluids take this one,
+  spec.mass_rate = read_optional_number(e, "mass_rate");  // grains this one: their builders say so
   spec.start = e.number("start", spec.start);
   spec.stop = read_optional_number(e, "stop");
   e.finish();

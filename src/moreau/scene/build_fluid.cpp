@@ -82,7 +82,7 @@ FluidSpec read_fluid(const JsonObject& object) {
   if (object.has("mesh")) spec.mesh = object.string("mesh");
   if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");
   spec.velocity = read_vector(object, "velocity", spec.velocity);
-  if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"), "flow_rate");
+  if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"));
   return spec;
 }
 
@@ -137,13 +137,11 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   for (size_t k = 0; k < spec.blocks.size(); ++k) add_block(spec.blocks[k], place.at(fmt::format("blocks[{}]", k)), d, points);
   if (!spec.mesh.empty()) {
     // Lattice points inside a closed OBJ surface.
-    const TriangleMesh mesh = read_closed_surface(ctx, place, "mesh", spec.mesh);
-    Vec3 lo = mesh.vertices.front(), hi = lo;
-    for (const Vec3& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const ClosedSurface surface = read_closed_surface(ctx, place, "mesh", spec.mesh);
     std::vector<Vec3> lattice;
-    fill_block(lo, hi, d, lattice);
+    fill_block(surface.lo, surface.hi, d, lattice);
     for (const Vec3& p : lattice)
-      if (point_in_closed_mesh(mesh, p)) points.push_back(p);
+      if (point_in_closed_mesh(surface.mesh, p)) points.push_back(p);
   }
   if (points.empty() && sources > 0) place.fail(spec.mesh.empty() ? "block" : "mesh", "the fluid volume holds no particle of spacing 2r");
 

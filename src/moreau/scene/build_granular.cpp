@@ -85,7 +85,6 @@ class GrainLattice {
     }
     const Real u1 = unit_draw(generator_), u2 = unit_draw(generator_), u3 = unit_draw(generator_);
     const Mat3 R = uniform_rotation(u1, u2, u3);
-    clump_first.push_back(static_cast<Index>(positions.size()));
     for (const Vec3& o : clump_) add_sphere(p + r * (R * o), r);
   }
 
@@ -99,8 +98,7 @@ class GrainLattice {
   }
 
   std::vector<Vec3> positions;
-  std::vector<Real> masses, radii;
-  std::vector<Index> clump_first;  // clumps: the first sphere of each (its spheres follow)
+  std::vector<Real> masses, radii;  // clumps: each clump's spheres one after another
 
  private:
   void add_sphere(const Vec3& p, Real r) {
@@ -159,7 +157,7 @@ GranularSpec read_granular(const JsonObject& object) {
   }
   if (object.has("mesh")) spec.mesh = object.string("mesh");
   if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");
-  if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"), "mass_rate");
+  if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"));
   if (object.has("clump")) {
     const JsonObject clump = object.object("clump");
     spec.clump = GranularClump{};
@@ -234,11 +232,10 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
   }
   // A closed OBJ surface keeps the lattice points of its bounding box that lie inside it.
   if (!spec.mesh.empty()) {
-    const TriangleMesh mesh = read_closed_surface(ctx, place, "mesh", spec.mesh);
-    Vec3 lo = mesh.vertices.front(), hi = lo;
-    for (const Vec3& v : mesh.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    const ClosedSurface surface = read_closed_surface(ctx, place, "mesh", spec.mesh);
     const std::size_t before = lattice.positions.size();
-    lattice.fill(place, "mesh", lo, hi, [&](const Vec3& p) { return point_in_closed_mesh(mesh, p); });
+    lattice.fill(place, "mesh", surface.lo, surface.hi,
+                 [&](const Vec3& p) { return point_in_closed_mesh(surface.mesh, p); });
     if (lattice.positions.size() == before)
       place.fail("mesh", fmt::format("the surface holds no grain of diameter {} m on the lattice", diameter));
   }
@@ -282,7 +279,7 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     const Index object = static_cast<Index>(m.objects.size());
     const Index size = static_cast<Index>(clump.size());
     std::vector<Index> members(size);
-    for (Index first : lattice.clump_first) {
+    for (Index first = 0; first < static_cast<Index>(lattice.positions.size()); first += size) {
       for (Index k = 0; k < size; ++k) members[k] = info.particle_begin + first + k;
       m.shape_matching.add(members, m.particle_rest_position, m.particle_mass, 0, object);
     }

@@ -75,9 +75,9 @@ Vector3 read_vector(const JsonObject& object, const std::string& key, const Vect
 std::optional<Vector3> read_optional_vector(const JsonObject& object, const std::string& key);
 std::optional<double> read_optional_number(const JsonObject& object, const std::string& key);
 std::optional<Vector2> read_optional_pair(const JsonObject& object, const std::string& key);
-/// An "emitter" {"shape", "center", "direction", ...} of a fluid (rate_key "flow_rate", m^3/s)
-/// or a granular object ("mass_rate", kg/s).
-EmitterSpec read_emitter(const JsonObject& e, const std::string& rate_key);
+/// An "emitter" {"shape", "center", "direction", ...} of a fluid ("flow_rate", m^3/s) or a
+/// granular object ("mass_rate", kg/s); the object's builder refuses the other one's rate.
+EmitterSpec read_emitter(const JsonObject& e);
 /// An emitter's opening (lattice points of spacing d about its centre) and window, checked.
 struct EmitterOpening {
   Vec3 center = Vec3::Zero(), normal = Vec3::UnitY();  // m; the unit flow direction
@@ -144,9 +144,14 @@ void add_particles(SceneBuildContext& ctx, ObjectInfo& info, const std::vector<V
 void add_pins(const std::vector<PinSpec>& pins, const SpecPlace& place, const ObjectInfo& info, SceneBuildContext& ctx);
 /// Resolves a mesh path relative to the scene file.
 std::string resolve_path(const SceneBuildContext& ctx, const std::string& path);
-/// A closed OBJ surface whose inside is filled (fluids, grains); read errors fail at `field`.
-TriangleMesh read_closed_surface(const SceneBuildContext& ctx, const SpecPlace& place, const std::string& field,
-                                 const std::string& file);
+/// A closed OBJ surface whose inside is filled (fluids, grains), with its bounding box (m).
+struct ClosedSurface {
+  TriangleMesh mesh;
+  Vec3 lo, hi;
+};
+/// Reads one; read errors fail at `field`.
+ClosedSurface read_closed_surface(const SceneBuildContext& ctx, const SpecPlace& place, const std::string& field,
+                                  const std::string& file);
 /// A mesh file's vertices, scaled then translated.
 void place_vertices(const MeshFile& file, const SpecPlace& place, std::vector<Vec3>& vertices);
 

@@ -33,17 +33,24 @@ Mat3 polar_rotation(const Mat3& A) {
   return U * V.transpose();
 }
 
-void shape_match_goals(const ShapeMatchClusters& clusters, Index k, const Vec3* x, Vec3* goals) {
+ShapeMatchFit fit_cluster(const ShapeMatchClusters& clusters, Index k, const Vec3* x) {
   const Index begin = clusters.offsets[k], end = clusters.offsets[k + 1];
-  Real total = 0;
-  Vec3 center = Vec3::Zero();
-  for (Index e = begin; e < end; ++e) total += clusters.mass[e], center += clusters.mass[e] * x[clusters.particle[e]];
-  center /= total;
-  Mat3 A = Mat3::Zero();
+  ShapeMatchFit fit;
+  for (Index e = begin; e < end; ++e) {
+    fit.mass += clusters.mass[e];
+    fit.center += clusters.mass[e] * x[clusters.particle[e]];
+  }
+  fit.center /= fit.mass;
   for (Index e = begin; e < end; ++e)
-    A += clusters.mass[e] * (x[clusters.particle[e]] - center) * clusters.rest_offset[e].transpose();
-  const Mat3 R = polar_rotation(A);
-  for (Index e = begin; e < end; ++e) goals[e - begin] = center + R * clusters.rest_offset[e];
+    fit.A += clusters.mass[e] * (x[clusters.particle[e]] - fit.center) * clusters.rest_offset[e].transpose();
+  fit.R = polar_rotation(fit.A);
+  return fit;
+}
+
+void shape_match_goals(const ShapeMatchClusters& clusters, Index k, const Vec3* x, Vec3* goals) {
+  const ShapeMatchFit fit = fit_cluster(clusters, k, x);
+  for (Index e = clusters.offsets[k]; e < clusters.offsets[k + 1]; ++e)
+    goals[e - clusters.offsets[k]] = fit.center + fit.R * clusters.rest_offset[e];
 }
 
 Real shape_match_energy(const ShapeMatchClusters& clusters, const Vec3* x, Index object) {

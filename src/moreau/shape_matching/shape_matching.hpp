@@ -46,6 +46,15 @@ struct ShapeMatchClusters {
 /// rotation of the nearest proper orthogonal matrix from its SVD).
 Mat3 polar_rotation(const Mat3& A);
 
+/// The best rigid fit of cluster k at positions x: its mass M, mass centre c, A = sum m_i (x_i - c)
+/// q_i^T and A's rotation R.
+struct ShapeMatchFit {
+  Real mass = 0;
+  Vec3 center = Vec3::Zero();
+  Mat3 A = Mat3::Zero(), R = Mat3::Identity();
+};
+ShapeMatchFit fit_cluster(const ShapeMatchClusters& clusters, Index k, const Vec3* x);
+
 /// Goals g_i of cluster k at positions x, written to goals[0 .. cluster size).
 void shape_match_goals(const ShapeMatchClusters& clusters, Index k, const Vec3* x, Vec3* goals);
 

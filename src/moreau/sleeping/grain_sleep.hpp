@@ -35,6 +35,9 @@ struct GrainSleepState {
   std::vector<char> keeps_awake, island_awake;
 
   bool asleep(Index p) const { return island[p] >= 0; }
+  /// Whether the shape-matching cluster whose first particle is `first` sleeps: a clump sleeps and
+  /// wakes whole (cheap while nothing sleeps).
+  bool cluster_asleep(Index first) const { return asleep_count > 0 && asleep(first); }
   /// Rebuilds `awake` from `island` (after grains fell asleep or woke).
   void list_awake();
   /// Every particle awake and just become still at `positions`.

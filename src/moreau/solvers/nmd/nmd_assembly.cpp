@@ -227,14 +227,7 @@ void add_particle_contacts(Assembly& a) {
     const Real rolling = c.rolling_resistance[q] * effective_radius(ri, rj);
     const Vec3 n = rows.gradient[0].row(0), t1 = rows.gradient[0].row(1), t2 = rows.gradient[0].row(2);
     if (grain_pair) {
-      in.kind = NmdBlockKind::grain_pair;
-      for (int r = 3; r < 6; ++r) in.level[r] = RowLevel::friction;
-      in.rolling = rolling;
-      in.grain_pair.n = n;
-      in.grain_pair.t1 = t1;
-      in.grain_pair.t2 = t2;
-      in.grain_pair.arm[0] = share * ri;
-      in.grain_pair.arm[1] = share * rj;
+      make_grain_pair(in, n, t1, t2, share * ri, share * rj, rolling);
     } else {
       add_turning_rows(in, a.space,
                        {TurningSide{a.space.turns(i) ? i : -1, share * ri}, TurningSide{a.space.turns(j) ? j : -1, share * rj}},

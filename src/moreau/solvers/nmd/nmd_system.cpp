@@ -263,16 +263,12 @@ void NmdSystem::fill(const NmdSlot& slot, const NmdBlockInput& in, const Velocit
   if (in.kind == NmdBlockKind::contact && R == 6) {
     // The turning rows' own block of G W G^T (they carry no compliance): against a rigid body its
     // world inverse inertia couples them, and a step scaled by the largest diagonal alone may
-    // overshoot; its inverse makes each sweep's turning update exact for the block.
+    // overshoot; its inverse makes each sweep's turning update exact for the block. A grain side
+    // turns, so the block is at least I_grain^-1 times the identity: positive definite.
     block.matrix = slot.matrix;
-    const Mat3 turning = A.block<3, 3>(3, 3);
-    const Eigen::FullPivLU<Mat3> lu(turning);
-    const Mat3 inv = lu.isInvertible() ? Mat3(lu.inverse()) : Mat3(turning.completeOrthogonalDecomposition().pseudoInverse());
+    const Mat3 inv = A.block<3, 3>(3, 3).inverse();
     for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) {
-        inverse[slot.matrix + 3 * r + c] = inv(r, c);
-        sigma_block[slot.matrix + 3 * r + c] = 0;
-      }
+      for (int c = 0; c < 3; ++c) inverse[slot.matrix + 3 * r + c] = inv(r, c);
   }
   if (in.kind == NmdBlockKind::equality) {
     block.matrix = slot.matrix;

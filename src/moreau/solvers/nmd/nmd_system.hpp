@@ -109,7 +109,8 @@ struct NmdBlock {
   int rows = 0, ends = 0;
   Index first_row = 0;
   Index first_end = 0;                // into NmdSystem::block_ends
-  Index matrix = -1;                  // equality blocks: offset of the R x R inverse of G W G^T + S
+  Index matrix = -1;                  // equality blocks: offset of the R x R inverse of G W G^T + S; contact
+                                      // blocks of six rows: of the 3 x 3 inverse of their turning rows' G W G^T
   Real friction = 0;                  // contact blocks: mu of this solve (static or kinetic)
   Real cohesion = 0;                  // contact blocks: F h of a bond (the friction bound is mu (l_n + F h))
   Real rolling = 0;                   // contact blocks of six rows: mu_r R* (m), the turning rows' bound per unit of l_n + F h
@@ -121,7 +122,7 @@ struct NmdBlock {
 /// Where a block's data go in the system's arrays (room made by NmdSystem::grow).
 struct NmdSlot {
   Index block = 0, first_row = 0, first_end = 0, first_entry = 0;
-  Index matrix = -1;  // equality blocks: the offset of their R x R matrices
+  Index matrix = -1;  // equality blocks: the offset of their R x R matrices (a turning block's 3 x 3)
   Index grain_pair = -1;  // grain pairs: their place in NmdSystem::grain_pairs
 };
 
@@ -141,7 +142,7 @@ struct NmdSystem {
   // contact's friction rows both keep 1 / the larger of their two diagonals.
   std::vector<Real> inverse_diagonal;
   std::vector<Real> sigma_block;      // equality blocks: S, R x R (row-major), at NmdBlock::matrix
-  std::vector<Real> inverse;          // equality blocks: (G W G^T + S)^-1, R x R
+  std::vector<Real> inverse;          // equality blocks: (G W G^T + S)^-1, R x R; turning rows' (G W G^T)^-1, 3 x 3
   std::vector<GrainPairRows> grain_pairs;  // grain pairs' rows, from NmdBlock::grain_pair
 
   void clear();

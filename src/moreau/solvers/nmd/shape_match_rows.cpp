@@ -9,24 +9,17 @@ void add_shape_match_rows(const Model& model, const State& state, const Velocity
                           NmdSystem& system, std::vector<Vec3>& memory) {
   const ShapeMatchClusters& clusters = model.shape_matching;
   memory.resize(clusters.particle.size(), Vec3::Zero());
-  std::vector<Vec3> p;       // R q_j of each member
-  std::vector<Mat3> turn;    // m_j K^-1 [p_j]x: how member j's velocity turns the fit
+  thread_local std::vector<Vec3> p;     // R q_j of each member (kept from step to step: no allocation)
+  thread_local std::vector<Mat3> turn;  // m_j K^-1 [p_j]x: how member j's velocity turns the fit
   for (Index k = 0; k < clusters.size(); ++k) {
     const Index begin = clusters.offsets[k], end = clusters.offsets[k + 1];
-    if (state.sleep.asleep_count > 0 && state.sleep.asleep(clusters.particle[begin])) continue;  // a sleeping clump
+    if (state.sleep.cluster_asleep(clusters.particle[begin])) continue;  // a sleeping clump
     const int n = static_cast<int>(end - begin);
-    Real total = 0;
-    Vec3 center = Vec3::Zero();
-    for (Index e = begin; e < end; ++e) {
-      total += clusters.mass[e];
-      center += clusters.mass[e] * state.position[clusters.particle[e]];
-    }
-    center /= total;
-    Mat3 A = Mat3::Zero();
-    for (Index e = begin; e < end; ++e)
-      A += clusters.mass[e] * (state.position[clusters.particle[e]] - center) * clusters.rest_offset[e].transpose();
-    const Mat3 R = polar_rotation(A);
-    Mat3 S = A * R.transpose();
+    const ShapeMatchFit fit = fit_cluster(clusters, k, state.position.data());
+    const Real total = fit.mass;
+    const Vec3& center = fit.center;
+    const Mat3& R = fit.R;
+    Mat3 S = fit.A * R.transpose();
     S = 0.5 * (S + S.transpose());  // symmetric up to rounding
     // K's pseudo-inverse: a cluster on a line (a clump's pair) has no inertia about that line, and
     // turning about it moves nothing; a fit turned inside out (K not positive) keeps its positive part.
@@ -49,7 +42,7 @@ void add_shape_match_rows(const Model& model, const State& state, const Velocity
       in.resize(3, n);
       const Mat3 arm = cross_matrix(state.position[particle] - center);
       for (int j = 0; j < n; ++j) {
-        in.end[j] = space.particle_end(clusters.particle[begin + j]);
+        in.end[j] = space.particle_end(clusters.particle[begin + j]);  // three loads: cheaper than a copy
         Mat3 J = arm * turn[j];
         J.diagonal().array() -= clusters.mass[begin + j] / total;
         if (j == i) J.diagonal().array() += 1;
@@ -58,7 +51,6 @@ void add_shape_match_rows(const Model& model, const State& state, const Velocity
       }
       in.C = state.position[particle] - center - p[i];
       if (omega2 > 0) in.compliance.diagonal().setConstant(1 / (clusters.mass[entry] * omega2));
-      in.kind = NmdBlockKind::equality;
       in.memory = memory[entry].data();
       in.memory_rows = 3;
       system.add(in, space, h, model.settings.nmd);

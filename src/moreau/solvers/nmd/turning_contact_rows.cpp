@@ -32,4 +32,16 @@ bool add_turning_rows(NmdBlockInput& in, const VelocitySpace& space, const std::
   return true;
 }
 
+void make_grain_pair(NmdBlockInput& in, const Vec3& n, const Vec3& t1, const Vec3& t2, Real arm_i, Real arm_j,
+                     Real rolling) {
+  in.kind = NmdBlockKind::grain_pair;
+  for (int r = 3; r < 6; ++r) in.level[r] = RowLevel::friction;
+  in.rolling = rolling;
+  in.grain_pair.n = n;
+  in.grain_pair.t1 = t1;
+  in.grain_pair.t2 = t2;
+  in.grain_pair.arm[0] = arm_i;
+  in.grain_pair.arm[1] = arm_j;
+}
+
 }  // namespace moreau

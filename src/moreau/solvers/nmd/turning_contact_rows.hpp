@@ -42,4 +42,10 @@ struct TurningSide {
 bool add_turning_rows(NmdBlockInput& in, const VelocitySpace& space, const std::array<TurningSide, 2>& sides,
                       const Vec3& n, const Vec3& t1, const Vec3& t2, Real rolling);
 
+/// The same rows for two grains that both turn, in closed form (nmd_system.hpp, GrainPairRows):
+/// makes a contact block of six rows over the ends (v_i, v_j, w_i, w_j), sized by
+/// `resize(6, 4, false)` and made a contact by set_contact, a grain pair of arms r_i', r_j'.
+void make_grain_pair(NmdBlockInput& in, const Vec3& n, const Vec3& t1, const Vec3& t2, Real arm_i, Real arm_j,
+                     Real rolling);
+
 }  // namespace moreau

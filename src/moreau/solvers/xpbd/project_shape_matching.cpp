@@ -31,7 +31,7 @@ void project_cluster(const ShapeMatchClusters& clusters, Index k, const SubstepC
 void project_shape_matching(const Model& model, const GrainSleepState& sleep, const SubstepContext& s, Vec3* lambda) {
   const ShapeMatchClusters& clusters = model.shape_matching;
   const Index count = clusters.size();
-  auto awake = [&](Index k) { return sleep.asleep_count == 0 || !sleep.asleep(clusters.particle[clusters.offsets[k]]); };
+  auto awake = [&](Index k) { return !sleep.cluster_asleep(clusters.particle[clusters.offsets[k]]); };
   if (clusters.disjoint) {  // each particle in one cluster: the order does not matter
 #pragma omp for schedule(static)
     for (Index k = 0; k < count; ++k)
