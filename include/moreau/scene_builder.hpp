@@ -60,6 +60,13 @@ struct SleepSolverSettings {
   std::optional<double> time;   // s: an island still this long falls asleep
 };
 
+/// settings.xpbi: the continua's smoothing and spacing (`"solver": "xpbi"`). Unset fields keep
+/// the engine defaults.
+struct XpbiSolverSettings {
+  std::optional<double> xsph;          // c of the XSPH velocity smoothing per substep
+  std::optional<double> min_distance;  // in particle spacings: the anti-clumping distance
+};
+
 /// "settings". Unset fields keep the engine defaults listed in docs/scene-format.md.
 struct SceneSettings {
   std::string solver = "xpbd";          // a registered constraint-engine formulation
@@ -74,6 +81,7 @@ struct SceneSettings {
   std::string joint_solver = "direct";  // "direct" or "gauss_seidel"
   FluidSolverSettings fluid;
   NmdSolverSettings nmd;
+  XpbiSolverSettings xpbi;
   std::optional<SleepSolverSettings> sleep;  // absent: grains never sleep
   int output_every = 1;                 // output.every: frames and probe rows every N steps
   bool write_vtk = true;                // output.formats contains "vtk"
@@ -389,8 +397,37 @@ struct ShapeMatchedSpec {
   ContactMaterial contact;
 };
 
+/// A continuum's plastic flow: "drucker_prager" (sand), "von_mises" (metal, plasticine) or
+/// "snow" (Stomakhin et al. 2013); absent, the continuum is an elastic StVK-Hencky solid.
+struct ContinuumPlasticity {
+  std::string model;                         // drucker_prager, von_mises, snow
+  std::optional<double> friction_angle_deg;  // drucker_prager (required), degrees
+  double cohesion = 0;                       // drucker_prager: Pa, the isotropic tension it carries
+  std::optional<double> yield_stress;        // von_mises (required): Pa, uniaxial
+  double critical_compression = 0.025;       // snow: theta_c (Stomakhin et al. 2013)
+  double critical_stretch = 0.0075;          // snow: theta_s
+  double hardening = 10;                     // snow: xi
+};
+
+/// "kind": "continuum": an inelastic (or elastic) continuum of particles on a cubic lattice of
+/// spacing r filling boxes, cylinders or a closed mesh, simulated by XPBI (`"solver": "xpbi"`)
+/// (docs/scene-format.md, "Continua").
+struct ContinuumSpec {
+  std::string name;
+  std::vector<FluidBlock> blocks;           // m, boxes the particles fill
+  std::vector<GranularCylinder> cylinders;  // m, vertical cylinders the particles fill
+  std::string mesh;                         // a closed OBJ surface whose inside the particles fill
+  double spacing = 0;                       // m, r (required)
+  double density = 1000;                    // kg/m^3
+  std::optional<double> youngs_modulus;     // Pa, E (required)
+  double poisson_ratio = 0.3;               // nu in (-1, 0.5)
+  std::optional<ContinuumPlasticity> plasticity;
+  Vector3 velocity{};                       // m/s
+  ContactMaterial contact;                  // against colliders and other objects
+};
+
 using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec, RodSpec, GranularSpec,
-                                ShapeMatchedSpec>;
+                                ShapeMatchedSpec, ContinuumSpec>;
 
 // ---- Joints ---------------------------------------------------------------------------------
 

@@ -301,6 +301,8 @@ void detect_particle_contacts(const Model& model, State& state, ContactScratch& 
                    (model.particle_rest_position[i] - model.particle_rest_position[j]).norm() < contact_distance) {
           return;
         }
+      } else if (model.objects[oi].kind == ObjectKind::continuum && model.objects[oj].kind == ObjectKind::continuum) {
+        return;  // one continuum: its particles' constraints hold them apart (continuum_model.hpp)
       }
       const Real reach =
           contact_distance + scratch.bond_reach[oi * objects + oj] +

@@ -34,6 +34,7 @@ namespace moreau {
 struct PlasticReturn {
   Vec3 sigma;
   Real plastic_strain = 0;
+  Real plastic_volume_factor = 1;  // J_p grows by this factor (snow; det of the flow)
 };
 
 /// alpha of the Drucker-Prager cone for friction angle phi (rad).
@@ -42,15 +43,20 @@ inline Real drucker_prager_alpha(Real friction_angle) {
   return std::sqrt(Real(2) / 3) * 2 * s / (3 - s);
 }
 
-inline PlasticReturn drucker_prager_return(const LameParameters& m, Real friction_angle, const Vec3& sigma) {
-  const Vec3 eps = hencky_strain(sigma);
+/// `cohesion` (Pa, >= 0) moves the cone's tip from zero stress to an isotropic tension whose mean
+/// Kirchhoff stress is the cohesion: the map acts on eps - s 1, s = cohesion / (3 lambda + 2 mu),
+/// and s is added back.
+inline PlasticReturn drucker_prager_return(const LameParameters& m, Real friction_angle, const Vec3& sigma,
+                                           Real cohesion = 0) {
+  const Real shift = cohesion / (3 * m.lambda + 2 * m.mu);
+  const Vec3 eps = hencky_strain(sigma) - Vec3::Constant(shift);
   const Real trace = eps.sum();
-  if (trace > 0) return {Vec3::Ones(), eps.norm()};  // tension: the tip, no stress
+  if (trace > 0) return {Vec3::Constant(std::exp(shift)), eps.norm()};  // beyond the tip: the tip's stress
   const Vec3 deviator = eps - (trace / 3) * Vec3::Ones();
   const Real norm = deviator.norm();
   const Real dgamma = norm + drucker_prager_alpha(friction_angle) * (3 * m.lambda + 2 * m.mu) / (2 * m.mu) * trace;
   if (dgamma <= 0 || norm <= 0) return {sigma, 0};  // inside the cone
-  const Vec3 returned = eps - (dgamma / norm) * deviator;
+  const Vec3 returned = eps - (dgamma / norm) * deviator + Vec3::Constant(shift);
   return {returned.array().exp().matrix(), dgamma};
 }
 
@@ -62,6 +68,23 @@ inline PlasticReturn von_mises_return(const LameParameters& m, Real yield_stress
   if (dgamma <= 0) return {sigma, 0};
   const Vec3 returned = eps - (dgamma / norm) * deviator;
   return {returned.array().exp().matrix(), dgamma};
+}
+
+/// Snow after Stomakhin, Schroeder, Chai, Teran, Selle 2013 ("A material point method for snow
+/// simulation", SIGGRAPH 2013): the stretches are clamped to [1 - theta_c, 1 + theta_s] and what
+/// is clamped away becomes plastic; J_p grows by det(trial) / det(clamped). (The paper's elastic
+/// law is fixed-corotated; here the clamp acts on the StVK-Hencky solid, and its hardening
+/// exp(xi (1 - J_p)) scales that solid's Lame parameters: snow_hardened.)
+inline PlasticReturn snow_return(Real critical_compression, Real critical_stretch, const Vec3& sigma) {
+  const Vec3 clamped = sigma.cwiseMax(1 - critical_compression).cwiseMin(1 + critical_stretch);
+  const Vec3 flow = hencky_strain(sigma) - hencky_strain(clamped);
+  return {clamped, flow.norm(), sigma.prod() / clamped.prod()};
+}
+
+/// Snow's Lame parameters at plastic volume ratio J_p: compacted snow (J_p < 1) is stiffer.
+inline LameParameters snow_hardened(const LameParameters& m, Real hardening, Real plastic_volume) {
+  const Real scale = std::exp(hardening * (1 - plastic_volume));
+  return {m.lambda * scale, m.mu * scale};
 }
 
 }  // namespace moreau

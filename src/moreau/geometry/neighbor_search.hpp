@@ -20,6 +20,8 @@ class NeighborSearch {
   /// the cells visited, then by position in the sort).
   Index count(Index i) const { return offsets_[i + 1] - offsets_[i]; }
   const Index* neighbors(Index i) const { return indices_.data() + offsets_[i]; }
+  /// Where point i's list starts among all the lists (arrays per pair share this layout).
+  Index offset(Index i) const { return offsets_[i]; }
   Index total() const { return offsets_.empty() ? 0 : offsets_.back(); }
 
   /// The z-order sort of the points: order()[k] is the k-th point along the curve.

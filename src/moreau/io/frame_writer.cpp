@@ -9,6 +9,7 @@
 
 #include "moreau/collision/collider_surface.hpp"
 #include "moreau/errors.hpp"
+#include "moreau/io/continuum_frame.hpp"
 #include "moreau/io/rod_frame.hpp"
 #include "moreau/collision/shape_surface.hpp"
 
@@ -76,7 +77,8 @@ void FrameWriter::write(const State& state) {
   for (size_t o = 0; o < model_.objects.size(); ++o) {
     const ObjectInfo& obj = model_.objects[o];
     const bool particles_only = obj.kind == ObjectKind::fluid || obj.kind == ObjectKind::rod ||
-                                obj.kind == ObjectKind::granular || obj.kind == ObjectKind::shape_matched;  // .vtp files
+                                obj.kind == ObjectKind::granular || obj.kind == ObjectKind::shape_matched ||
+                                obj.kind == ObjectKind::continuum;  // .vtp files
     const std::string file = fmt::format("frames/{}_{:06d}.{}", safe_file_name(obj.name), frame_, particles_only ? "vtp" : "vtu");
     const std::string path = out_dir_ + "/" + file;
     if (obj.kind == ObjectKind::fluid) {
@@ -118,6 +120,8 @@ void FrameWriter::write(const State& state) {
         vectors.push_back({"angular_velocity", std::vector<Vec3>(state.angular_velocity.begin() + b,
                                                                   state.angular_velocity.begin() + b + n)});
       write_vtp(path, x, vectors, scalars);
+    } else if (obj.kind == ObjectKind::continuum) {
+      write_continuum_frame(path, model_, obj, state);
     } else if (obj.kind == ObjectKind::rod) {
       write_rod_frame(path, model_, model_.rods[obj.rod], state);
     } else if (obj.kind == ObjectKind::rigid_body) {

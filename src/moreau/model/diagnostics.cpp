@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "moreau/continuum/plastic_flow.hpp"
 #include "moreau/rods/rod_geometry.hpp"
 
 namespace moreau {
@@ -58,6 +59,15 @@ Real elastic_energy(const Model& model, const State& state, Index object) {
   for (const RodModel& rod : model.rods)
     if (object < 0 || rod.object == object) energy += rod_elastic_energy(rod, model.joints, state);
   energy += shape_match_energy(model.shape_matching, state.position.data(), object);
+  // The continua's stored energy sum V^0 Psi(F) of the elastic deformation gradients.
+  const ContinuumModel& continuum = model.continuum;
+  for (Index i = 0; i < state.continuum.size(); ++i) {
+    if (object >= 0 && model.particle_object[continuum.particle[i]] != object) continue;
+    const ContinuumMaterial& material = continuum.materials[continuum.material[i]];
+    const Vec3 sigma = rotation_svd(state.continuum.deformation[i]).sigma.cwiseMax(kMinContinuumStretch);
+    energy += continuum.rest_volume[i] *
+              hencky_energy(continuum_lame(material, state.continuum.plastic_volume[i]), sigma);
+  }
   return energy;
 }
 

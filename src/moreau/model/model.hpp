@@ -7,6 +7,7 @@
 
 #include "moreau/collision/collider.hpp"
 #include "moreau/constraints/compliant_contact.hpp"
+#include "moreau/continuum/continuum_model.hpp"
 #include "moreau/constraints/particle_families.hpp"
 #include "moreau/constraints/suction_cavity.hpp"
 #include "moreau/fluids/fluid_model.hpp"
@@ -20,7 +21,7 @@
 
 namespace moreau {
 
-enum class ObjectKind { collider, cloth, soft_body, fluid, rigid_body, rod, granular, shape_matched };
+enum class ObjectKind { collider, cloth, soft_body, fluid, rigid_body, rod, granular, shape_matched, continuum };
 
 /// One named scene object. Particles of an object are the contiguous range [particle_begin, particle_end).
 /// Fluid objects have no particles here: theirs live in FluidState (phase `fluid_phase`).
@@ -66,6 +67,13 @@ struct SleepSettings {
   Real time = 0.5;                          // s
 };
 
+// The continua under XPBI (solvers/xpbi/): Yu et al. 2024's XSPH coefficient and anti-clumping
+// distance.
+struct XpbiSettings {
+  Real xsph = 0.01;          // c of v_p += c sum_b V_b (v_b - v_p) W_pb, once per substep
+  Real min_distance = 0.75;  // in r: no two continuum particles come closer
+};
+
 struct SolverSettings {
   Real dt = 1.0 / 60;                       // s, output-independent step
   int substeps = 20;
@@ -77,6 +85,7 @@ struct SolverSettings {
   Real max_speed = 1e3;                     // m/s; faster particles are reported as a numerical failure
   JointSolver joint_solver = JointSolver::direct;
   NmdSettings nmd;                          // the velocity-level formulation (settings.nmd)
+  XpbiSettings xpbi;                        // the continua (settings.xpbi)
   SleepSettings sleep;                      // settings.sleep
 };
 
@@ -105,6 +114,7 @@ struct Model {
   ShapeMatchClusters shape_matching;          // the clusters of shape-matched objects
   std::vector<GrainEmitter> grain_emitters;   // granular objects' emitters: their grains are particles from the start
   std::vector<SuctionCup> suction_cups;       // soft bodies with a sealed cavity (nmd only)
+  ContinuumModel continuum;                   // the inelastic continua's particles and materials (xpbi only)
   JointForest joint_forest;                   // joints solved directly (empty for Gauss-Seidel)
 
   SolverSettings settings;

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "moreau/collision/particle_contacts.hpp"
+#include "moreau/continuum/continuum_state.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 #include "moreau/granular/grain_emitter.hpp"
 #include "moreau/model/model.hpp"
@@ -37,6 +38,7 @@ struct State {
   std::vector<SuctionCupState> suction;         // per Model::suction_cups
   GrainSleepState sleep;                        // sleeping grains (settings.sleep)
   GrainEmitterState emitters;                   // what the grain emitters have released
+  ContinuumState continuum;                     // the inelastic continua's deformation (per Model::continuum particle)
 
   /// Whether particle p takes part in the run: every particle but a grain its emitter has not
   /// released (grain_emitter.hpp).

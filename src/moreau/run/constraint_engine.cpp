@@ -116,7 +116,7 @@ std::vector<std::string> ConstraintEngine::warnings() const {
 }
 
 const char* kind_name(ObjectKind kind) {
-  static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid", "rigid_body", "rod", "granular", "shape_matched"};
+  static const char* kinds[] = {"collider", "cloth", "soft_body", "fluid", "rigid_body", "rod", "granular", "shape_matched", "continuum"};
   return kinds[static_cast<int>(kind)];
 }
 

@@ -57,6 +57,11 @@ SceneSettings read_settings(const JsonObject& settings) {
     if (nmd->has("warm_start")) s.nmd.warm_start = nmd->boolean("warm_start", true);
     nmd->finish();
   }
+  if (auto xpbi = settings.optional_object("xpbi")) {
+    s.xpbi.xsph = read_optional_number(*xpbi, "xsph");
+    s.xpbi.min_distance = read_optional_number(*xpbi, "min_distance");
+    xpbi->finish();
+  }
   if (auto sleep = settings.optional_object("sleep")) {
     s.sleep = SleepSolverSettings{read_optional_number(*sleep, "speed"), read_optional_number(*sleep, "time")};
     sleep->finish();
@@ -113,6 +118,10 @@ void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& sc
   nmd.contact_compliance =
       nmd_place.number("contact_compliance", ns.contact_compliance.value_or(nmd.contact_compliance), Range::non_negative());
   nmd.warm_start = ns.warm_start.value_or(nmd.warm_start);
+  const SpecPlace xpbi = place.at("xpbi");
+  s.xpbi.xsph = xpbi.number("xsph", spec.xpbi.xsph.value_or(s.xpbi.xsph), Range::closed(0, 1));
+  s.xpbi.min_distance =
+      xpbi.number("min_distance", spec.xpbi.min_distance.value_or(s.xpbi.min_distance), Range::closed(0, 1));
   if (spec.sleep) {
     const SpecPlace sleep = place.at("sleep");
     s.sleep.enabled = true;

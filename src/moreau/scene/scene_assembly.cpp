@@ -42,6 +42,7 @@ void add_object(const ObjectSpec& object, const SpecPlace& place, ObjectInfo& in
         else if constexpr (std::is_same_v<T, RodSpec>) add_rod(spec, place, info, ctx);
         else if constexpr (std::is_same_v<T, GranularSpec>) add_granular(spec, place, info, ctx);
         else if constexpr (std::is_same_v<T, ShapeMatchedSpec>) add_shape_matched(spec, place, info, ctx);
+        else if constexpr (std::is_same_v<T, ContinuumSpec>) add_continuum(spec, place, info, ctx);
         else add_rigid_body(spec, place, info, ctx);
       },
       object);

@@ -42,7 +42,7 @@ Scene build_fem_scene_file(const JsonObject& top, const JsonObject& settings, co
 // One object of "objects", read into its kind's spec.
 ObjectSpec read_object(const JsonObject& object) {
   const std::string name = object.string("name");
-  const std::string kind = object.choice("kind", {"collider", "cloth", "soft_body", "fluid", "rigid_body", "rod", "granular", "shape_matched"});
+  const std::string kind = object.choice("kind", {"collider", "cloth", "soft_body", "fluid", "rigid_body", "rod", "granular", "shape_matched", "continuum"});
   ObjectSpec spec;
   if (kind == "collider") spec = read_collider(object);
   else if (kind == "rigid_body") spec = read_rigid_body(object);
@@ -51,6 +51,7 @@ ObjectSpec read_object(const JsonObject& object) {
   else if (kind == "rod") spec = read_rod(object);
   else if (kind == "granular") spec = read_granular(object);
   else if (kind == "shape_matched") spec = read_shape_matched(object);
+  else if (kind == "continuum") spec = read_continuum(object);
   else spec = read_soft_body(object);
   std::visit([&](auto& s) { s.name = name; }, spec);
   object.finish();

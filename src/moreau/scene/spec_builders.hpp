@@ -38,6 +38,7 @@ RigidBodySpec read_rigid_body(const JsonObject& object);
 RodSpec read_rod(const JsonObject& object);
 GranularSpec read_granular(const JsonObject& object);
 ShapeMatchedSpec read_shape_matched(const JsonObject& object);
+ContinuumSpec read_continuum(const JsonObject& object);
 JointSpec read_joint(const JsonObject& joint);
 ProbeSpec read_probe(const JsonObject& probe);
 /// "settings" of a constraint-engine scene.
@@ -60,6 +61,8 @@ void add_rod(const RodSpec& spec, const SpecPlace& place, ObjectInfo& info, Scen
 /// The grains: particles on a lattice in the blocks, all of them in the particle contacts.
 void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 void add_shape_matched(const ShapeMatchedSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
+/// The continuum's particles on a lattice of its spacing, its material and its rest volumes.
+void add_continuum(const ContinuumSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 /// After all objects and joints: colliders become kinematic bodies for the rigid bodies.
 void add_colliders_as_bodies(Model& model);
 /// After all objects: one joint (pairs_without_contact is sorted by finish_joints).

@@ -6,6 +6,7 @@
 
 #include "moreau/solvers/nmd/nmd_solver.hpp"
 #include "moreau/solvers/xpbd/xpbd_solver.hpp"
+#include "moreau/solvers/xpbi/xpbi_solver.hpp"
 
 namespace moreau {
 
@@ -17,16 +18,36 @@ struct SolverEntry {
   std::function<std::string(const Model&)> refusal;  // empty: every constraint scene
 };
 
-std::string xpbd_refusal(const Model& model) {
-  if (!model.suction_cups.empty())
-    return "the 'xpbd' formulation does not simulate suction cups (a soft body's \"suction\"); run with \"solver\": \"nmd\"";
+// The continua (kind "continuum") are simulated by XPBI alone.
+std::string continuum_refusal(std::string_view solver, const Model& model) {
+  for (const ObjectInfo& o : model.objects)
+    if (o.kind == ObjectKind::continuum)
+      return fmt::format("the '{}' formulation does not simulate continua ('{}' is a \"continuum\"); run with "
+                         "\"solver\": \"xpbi\"",
+                         solver, o.name);
   return {};
 }
+
+std::string no_suction_cups(std::string_view solver, const Model& model) {
+  if (!model.suction_cups.empty())
+    return fmt::format("the '{}' formulation does not simulate suction cups (a soft body's \"suction\"); run with "
+                       "\"solver\": \"nmd\"",
+                       solver);
+  return {};
+}
+
+std::string xpbd_refusal(const Model& model) {
+  if (std::string why = no_suction_cups("xpbd", model); !why.empty()) return why;
+  return continuum_refusal("xpbd", model);
+}
+
+std::string xpbi_refusal(const Model& model) { return no_suction_cups("xpbi", model); }
 
 // A shape-matching cluster of n particles has n^2 Jacobian blocks under nmd (shape_match_rows.hpp).
 constexpr Index kMaxNmdClusterSize = 512;
 
 std::string nmd_refusal(const Model& model) {
+  if (std::string why = continuum_refusal("nmd", model); !why.empty()) return why;
   const ShapeMatchClusters& clusters = model.shape_matching;
   for (Index k = 0; k < clusters.size(); ++k) {
     const Index size = clusters.offsets[k + 1] - clusters.offsets[k];
@@ -42,6 +63,7 @@ const std::vector<SolverEntry>& registry() {
   static const std::vector<SolverEntry> entries{
       {"xpbd", [](const Model&) { return std::make_unique<XpbdSolver>(); }, xpbd_refusal},
       {"nmd", [](const Model&) { return std::make_unique<NmdSolver>(); }, nmd_refusal},
+      {"xpbi", [](const Model&) { return std::make_unique<XpbiSolver>(); }, xpbi_refusal},
   };
   return entries;
 }

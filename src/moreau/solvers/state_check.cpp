@@ -49,6 +49,16 @@ void check_state(const Model& model, const State& state) {
     const ObjectInfo& obj = model.objects[model.particle_object[p]];
     report_divergence(state, obj.name, p - obj.particle_begin, state.position[p], state.velocity[p], limit);
   }
+  const ContinuumModel& continuum = model.continuum;
+  for (Index i = 0; i < state.continuum.size(); ++i) {
+    if (state.continuum.deformation[i].allFinite()) continue;
+    const Index p = continuum.particle[i];
+    const ObjectInfo& obj = model.objects[model.particle_object[p]];
+    throw NumericalError(fmt::format(
+        "simulation diverged at step {} (t = {:.6g} s) in continuum '{}': particle {} has a non-finite deformation "
+        "gradient; try more substeps or a smaller dt",
+        state.step, state.time, obj.name, p - obj.particle_begin));
+  }
 }
 
 }  // namespace moreau

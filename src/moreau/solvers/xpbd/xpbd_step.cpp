@@ -97,7 +97,8 @@ void update_velocity(const Model& model, State& state, const XpbdWorkspace& work
 
 }  // namespace
 
-void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer& timer, int threads) {
+void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer& timer, int threads,
+               SubstepExtension* extension) {
   threads = std::max(1, threads);
   timer.start();
   work.fit(model);
@@ -123,13 +124,18 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   FluidState& fluid = state.fluid;
   if (!model.fluid.emitters.empty()) emit_fluid(model, fluid, start_time);
 
+  constexpr int extension_stage = xpbd_family_stage(kParticleFamilyCount);  // the extension's stages follow XPBD's
+  for (int sub = 0; sub < substeps; ++sub) {
+    if (extension) {
+      extension->begin_substep(model, state, h, threads);
+      timer.lap(extension_stage);
+    }
 #pragma omp parallel num_threads(threads)
-  {
-    auto lap = [&](auto stage) {
+    {
+      auto lap = [&](auto stage) {
 #pragma omp master
-      timer.lap(stage);
-    };
-    for (int sub = 0; sub < substeps; ++sub) {
+        timer.lap(stage);
+      };
       const Real substep_end = start_time + (sub + 1) * h;
       if (rigid) {
 #pragma omp single
@@ -152,6 +158,10 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
         lap(XpbdStage::fluid_neighbors);
       }
       for (int it = 0; it < iterations; ++it) {
+        if (extension) {
+          extension->project(model, state, ctx);
+          lap(extension_stage + 1);
+        }
         for_each_family(model.constraints, state.constraint_lambda, [&](const auto& family, auto& lambda, int index) {
           xpbd_project(family, lambda.data(), ctx);
           lap(xpbd_family_stage(index));
@@ -192,6 +202,10 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
       if (rigid) update_rigid_body_velocities(model, state.rigid, work.bodies, h);
       if (fluids) update_fluid_velocity(fluid, work.fluid, h);
       lap(XpbdStage::update_velocity);
+      if (extension) {
+        extension->end_substep(model, state, ctx);
+        lap(extension_stage + 2);
+      }
       particle_contact_velocities(model, state, work.velocity_before.data(), h);
       collider_contact_velocities(model, state, work.velocity_before.data(), h);
       if (rigid) {
@@ -206,11 +220,14 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
 #pragma omp barrier
       lap(XpbdStage::velocity_pass);
     }
-    if (fluids) {
+  }
+  if (fluids) {
+#pragma omp parallel num_threads(threads)
+    {
       apply_fluid_velocity_corrections(model, fluid, work.fluid, dt);
       apply_fluid_surface_tension(model, fluid, work.fluid, dt);
-      lap(XpbdStage::fluid_velocity);
     }
+    timer.lap(XpbdStage::fluid_velocity);
   }
   if (fluids) fluid_cfl_number(model, fluid, h);
 

@@ -1,0 +1,35 @@
+#include "moreau/io/continuum_frame.hpp"
+
+#include "moreau/continuum/continuum_stress.hpp"
+#include "moreau/io/vtk_writer.hpp"
+
+namespace moreau {
+
+void write_continuum_frame(const std::string& path, const Model& model, const ObjectInfo& object, const State& state) {
+  const Index b = object.particle_begin, n = object.particle_count();
+  const ContinuumModel& continuum = model.continuum;
+  const ContinuumState& deformation = state.continuum;
+  const Index first = continuum.index_of(b);
+  std::vector<Vec3> x(state.position.begin() + b, state.position.begin() + b + n);
+  std::vector<Vec3> v(state.velocity.begin() + b, state.velocity.begin() + b + n), u(n);
+  std::vector<Real> J(n), plastic(n), mises(n), pressure(n);
+  for (Index k = 0; k < n; ++k) {
+    const Index i = first + k;
+    u[k] = x[k] - model.particle_rest_position[b + k];
+    const Mat3& F = deformation.deformation[i];
+    J[k] = F.determinant();
+    plastic[k] = deformation.plastic_strain[i];
+    const Vec3 s =
+        principal_cauchy_stress(continuum.materials[continuum.material[i]], deformation.plastic_volume[i], F);
+    mises[k] = von_mises_stress(s);
+    pressure[k] = -s.sum() / 3;
+  }
+  write_vtp(path, x, {{"velocity", v}, {"displacement", u}},
+            {{"radius", std::vector<Real>(n, continuum.spacing / 2)},
+             {"J", J},
+             {"plastic_strain", plastic},
+             {"von_mises_stress", mises},
+             {"pressure", pressure}});
+}
+
+}  // namespace moreau

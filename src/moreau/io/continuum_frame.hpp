@@ -1,0 +1,15 @@
+#pragma once
+// A continuum's frame file: its particles as .vtp points.
+#include <string>
+
+#include "moreau/model/state.hpp"
+
+namespace moreau {
+
+/// Point arrays: velocity (m/s), displacement from the rest point (m), radius (m, half the
+/// spacing: ParaView's "Point Gaussian" by radius shows the filled volume), J = det F of the
+/// elastic deformation, the accumulated plastic strain, the von Mises stress (Pa) and the
+/// pressure (Pa, minus the mean Cauchy stress).
+void write_continuum_frame(const std::string& path, const Model& model, const ObjectInfo& object, const State& state);
+
+}  // namespace moreau

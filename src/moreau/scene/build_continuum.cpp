@@ -1,0 +1,159 @@
+// "kind": "continuum" objects: particles on a cubic lattice of spacing r (one per cell, at its
+// centre) filling boxes, cylinders or a closed mesh, each carrying the mass and rest volume r^3 of
+// its cell, a deformation gradient and its material's elastic law and plastic flow
+// (continuum/continuum_model.hpp). Simulated by XPBI (solvers/xpbi/).
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "moreau/geometry/point_in_mesh.hpp"
+#include "moreau/scene/spec_builders.hpp"
+
+namespace moreau {
+
+namespace {
+
+constexpr Index kMaxContinuumParticles = 20'000'000;
+
+ContinuumPlasticity read_plasticity(const JsonObject& object) {
+  ContinuumPlasticity p;
+  p.model = object.choice("model", {"drucker_prager", "von_mises", "snow"});
+  if (p.model == "drucker_prager") {
+    p.friction_angle_deg = object.number("friction_angle_deg");
+    p.cohesion = object.number("cohesion", p.cohesion);
+  } else if (p.model == "von_mises") {
+    p.yield_stress = object.number("yield_stress");
+  } else {
+    p.critical_compression = object.number("critical_compression", p.critical_compression);
+    p.critical_stretch = object.number("critical_stretch", p.critical_stretch);
+    p.hardening = object.number("hardening", p.hardening);
+  }
+  object.finish();
+  return p;
+}
+
+ContinuumMaterial continuum_material(const ContinuumSpec& spec, const SpecPlace& place) {
+  ContinuumMaterial m;
+  m.density = place.number("density", spec.density, Range::positive());
+  if (!spec.youngs_modulus) place.fail("youngs_modulus", "a continuum needs its Young's modulus E (Pa)");
+  m.youngs_modulus = place.number("youngs_modulus", *spec.youngs_modulus, Range::positive());
+  m.poisson_ratio = place.number("poisson_ratio", spec.poisson_ratio, Range::open(-1, 0.5));
+  m.lame = lame_from_youngs(m.youngs_modulus, m.poisson_ratio);
+  if (!spec.plasticity) return m;
+  const ContinuumPlasticity& p = *spec.plasticity;
+  const SpecPlace at = place.at("plasticity");
+  if (p.model == "drucker_prager") {
+    m.plastic = PlasticModel::drucker_prager;
+    m.friction_angle = at.number("friction_angle_deg", *p.friction_angle_deg, Range::open(0, 90)) * kPi / 180;
+    m.cohesion = at.number("cohesion", p.cohesion, Range::non_negative());
+  } else if (p.model == "von_mises") {
+    m.plastic = PlasticModel::von_mises;
+    m.yield_stress = at.number("yield_stress", *p.yield_stress, Range::positive());
+  } else {
+    m.plastic = PlasticModel::snow;
+    m.critical_compression = at.number("critical_compression", p.critical_compression, Range::open(0, 1));
+    m.critical_stretch = at.number("critical_stretch", p.critical_stretch, Range::positive());
+    m.hardening = at.number("hardening", p.hardening, Range::non_negative());
+  }
+  return m;
+}
+
+// The centres of the lattice cells of edge r in the box [lo, hi] that `keep` accepts.
+template <class Keep>
+void fill_lattice(const SpecPlace& place, const std::string& field, const Vec3& lo, const Vec3& hi, Real r, Keep keep,
+                  std::vector<Vec3>& points) {
+  const Eigen::Array3d count = ((hi - lo).array() / r + 1e-9).floor();
+  if (count.prod() + static_cast<double>(points.size()) > kMaxContinuumParticles)
+    place.fail(field, fmt::format("it holds {:.3g} particles of spacing {} m; at most {} per object", count.prod(), r,
+                                  kMaxContinuumParticles));
+  for (int i = 0; i < count.x(); ++i)
+    for (int j = 0; j < count.y(); ++j)
+      for (int k = 0; k < count.z(); ++k) {
+        const Vec3 x = lo + r * (Vec3(i, j, k) + Vec3::Constant(0.5));
+        if (keep(x)) points.push_back(x);
+      }
+}
+
+}  // namespace
+
+ContinuumSpec read_continuum(const JsonObject& object) {
+  ContinuumSpec spec;
+  for (const JsonObject& block : object.object_list("blocks")) spec.blocks.push_back(read_block(block));
+  for (const JsonObject& cylinder : object.object_list("cylinders")) {
+    spec.cylinders.push_back({to_vector3(cylinder.vec3("base")), cylinder.number("radius"), cylinder.number("height")});
+    cylinder.finish();
+  }
+  if (object.has("mesh")) spec.mesh = object.string("mesh");
+  if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");
+  spec.spacing = object.number("spacing");
+  spec.density = object.number("density", spec.density);
+  spec.youngs_modulus = read_optional_number(object, "youngs_modulus");
+  spec.poisson_ratio = object.number("poisson_ratio", spec.poisson_ratio);
+  if (auto plasticity = object.optional_object("plasticity")) spec.plasticity = read_plasticity(*plasticity);
+  spec.velocity = read_vector(object, "velocity", spec.velocity);
+  spec.contact = read_contact_material(object);
+  return spec;
+}
+
+void add_continuum(const ContinuumSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx) {
+  Model& m = ctx.model;
+  const Real r = place.number("spacing", spec.spacing, Range::positive());
+  if (m.continuum.spacing > 0 && r != m.continuum.spacing)
+    place.fail("spacing", fmt::format("every continuum of a scene shares one particle spacing (their particles are each "
+                                      "other's neighbours); an earlier one has {} m",
+                                      m.continuum.spacing));
+  const ContinuumMaterial material = continuum_material(spec, place);
+  if (spec.blocks.empty() && spec.cylinders.empty() && spec.mesh.empty())
+    place.fail("blocks", "a continuum needs a block {\"min\", \"max\"}, a cylinder {\"base\", \"radius\", \"height\"} or "
+                         "a closed \"mesh\" to fill");
+
+  std::vector<Vec3> points;
+  for (size_t b = 0; b < spec.blocks.size(); ++b) {
+    const SpecPlace block = place.at(fmt::format("blocks[{}]", b));
+    const Vec3 lo = block.vector("min", spec.blocks[b].min), hi = block.vector("max", spec.blocks[b].max);
+    if ((hi.array() - lo.array() < r * (1 - 1e-9)).any())
+      block.fail("max", fmt::format("the block must be at least one particle spacing ({} m) across in every direction", r));
+    fill_lattice(block, "max", lo, hi, r, [](const Vec3&) { return true; }, points);
+  }
+  // A cylinder keeps the cells of its bounding box whose centres lie inside it.
+  for (size_t c = 0; c < spec.cylinders.size(); ++c) {
+    const SpecPlace cylinder = place.at(fmt::format("cylinders[{}]", c));
+    const Vec3 base = cylinder.vector("base", spec.cylinders[c].base);
+    const Real radius = cylinder.number("radius", spec.cylinders[c].radius, Range::positive());
+    const Real height = cylinder.number("height", spec.cylinders[c].height, Range::positive());
+    if (radius < r || height < r)
+      cylinder.fail("radius", fmt::format("the cylinder must be at least one particle spacing ({} m) wide and tall", r));
+    const Vec3 lo = base - Vec3(radius, 0, radius), hi = base + Vec3(radius, height, radius);
+    fill_lattice(cylinder, "radius", lo, hi, r, [&](const Vec3& x) {
+      return Vec2(x.x() - base.x(), x.z() - base.z()).squaredNorm() <= radius * radius;
+    }, points);
+  }
+  if (!spec.mesh.empty()) {
+    const ClosedSurface surface = read_closed_surface(ctx, place, "mesh", spec.mesh);
+    const std::size_t before = points.size();
+    fill_lattice(place, "mesh", surface.lo, surface.hi, r,
+                 [&](const Vec3& x) { return point_in_closed_mesh(surface.mesh, x); }, points);
+    if (points.size() == before) place.fail("mesh", fmt::format("the surface holds no lattice cell of edge {} m", r));
+  }
+  if (points.size() < 2) place.fail("blocks", "a continuum needs at least two particles");
+
+  set_contact_material(spec.contact, place, info);
+  info.kind = ObjectKind::continuum;
+  info.self_collision = false;  // the continuum's constraints hold its particles apart
+  info.fluid_coupling = false;
+  const Real volume = r * r * r;
+  add_particles(ctx, info, points, std::vector<Real>(points.size(), material.density * volume), r / 2, r / 2,
+                place.vector("velocity", spec.velocity));
+  ContinuumModel& continuum = m.continuum;
+  continuum.spacing = r;
+  const Index material_index = static_cast<Index>(continuum.materials.size());
+  continuum.materials.push_back(material);
+  for (Index p = info.particle_begin; p < info.particle_end; ++p) {
+    m.contact_particle.push_back(p);
+    continuum.particle.push_back(p);
+    continuum.rest_volume.push_back(volume);
+    continuum.material.push_back(material_index);
+  }
+}
+
+}  // namespace moreau

@@ -1,0 +1,46 @@
+#include "moreau/solvers/xpbi/continuum_neighborhood.hpp"
+
+#include <omp.h>
+
+#include "moreau/continuum/velocity_gradient.hpp"
+
+namespace moreau {
+
+void ContinuumNeighborhood::build(const Model& model, const State& state, int threads) {
+  const ContinuumModel& continuum = model.continuum;
+  const Index n = continuum.size();
+  const WendlandKernel kernel_function(continuum.support());
+  start.resize(n);
+  volume.resize(n);
+  for (Index i = 0; i < n; ++i) {
+    start[i] = state.position[continuum.particle[i]];
+    volume[i] = continuum.rest_volume[i] * state.continuum.deformation[i].determinant();
+  }
+  neighbors.build(start, continuum.support(), threads);
+  gradient.resize(neighbors.total());
+  kernel.resize(neighbors.total());
+#pragma omp parallel num_threads(threads)
+  {
+    std::vector<KernelNeighbor> around;
+#pragma omp for schedule(static)
+    for (Index i = 0; i < n; ++i) {
+      const Index* list = neighbors.neighbors(i);
+      const Index count = neighbors.count(i), first = neighbors.offset(i);
+      around.resize(count);
+      for (Index k = 0; k < count; ++k) around[k] = {start[list[k]] - start[i], volume[list[k]]};
+      const Mat3 correction = kernel_correction(kernel_function, around);
+      for (Index k = 0; k < count; ++k) {
+        gradient[first + k] = corrected_gradient(kernel_function, correction, around[k].offset);
+        kernel[first + k] = kernel_function.value(around[k].offset.norm());
+      }
+    }
+  }
+  blocks.build(start.data(), n, GridFrame{Vec3::Zero(), 2 * continuum.support()});
+  for (auto& list : colour_blocks) list.clear();
+  for (Index c = 0; c < blocks.cell_count(); ++c) {
+    const CellCoord& b = blocks.cell_coord(c);
+    colour_blocks[(b[0] & 1) | (b[1] & 1) << 1 | (b[2] & 1) << 2].push_back(c);
+  }
+}
+
+}  // namespace moreau

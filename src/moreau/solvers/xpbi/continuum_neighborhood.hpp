@@ -1,0 +1,47 @@
+#pragma once
+// What every XPBI iteration of a substep reads about the continuum's particles, built once at the
+// substep's start x^n (Yu et al. 2024, Alg. 1, lines 1-2): each particle's neighbours within the
+// kernel support 2 r, its current volume V^n = V^0 det F^n, and per neighbour pair the corrected
+// kernel gradient L_p grad W_b (velocity_gradient.hpp) and the kernel value W_b; and the blocks
+// that let threads share a Gauss-Seidel sweep (continuum_sweep.hpp).
+#include <array>
+#include <vector>
+
+#include "moreau/geometry/cell_grid.hpp"
+#include "moreau/geometry/neighbor_search.hpp"
+#include "moreau/model/state.hpp"
+
+namespace moreau {
+
+struct ContinuumNeighborhood {
+  NeighborSearch neighbors;          // continuum indices (Model::continuum), pairs closer than the support
+  std::vector<Vec3> start;           // m, x^n per continuum particle
+  std::vector<Real> volume;          // m^3, V^n
+  std::vector<Vec3> gradient;        // 1/m^4, L_p grad_{x_p} W(x_p - x_b) per pair (the neighbors' layout)
+  std::vector<Real> kernel;          // 1/m^3, W(|x_p - x_b|) per pair
+  // Blocks of edge twice the support, coloured by the parity of their integer coordinates: the
+  // particles of two blocks of one colour are at least two supports apart, so their constraints
+  // share no particle.
+  CellGrid blocks;
+  std::array<std::vector<Index>, 8> colour_blocks;  // the blocks of each colour
+
+  /// Rebuilds everything from state.position (x^n) and the deformation gradients F^n.
+  void build(const Model& model, const State& state, int threads);
+
+  /// h grad v_i = sum_b V_b^n (d_b - d_i) (L_i grad W_b)^T of continuum particle i, with d = x - x^n
+  /// the motion over the substep (x and x_start indexed by global particle).
+  Mat3 substep_deformation(const ContinuumModel& continuum, const Vec3* x, const Vec3* x_start, Index i) const {
+    const Index* list = neighbors.neighbors(i);
+    const Index count = neighbors.count(i), first = neighbors.offset(i);
+    const Index p = continuum.particle[i];
+    const Vec3 dp = x[p] - x_start[p];
+    Mat3 G = Mat3::Zero();
+    for (Index k = 0; k < count; ++k) {
+      const Index b = continuum.particle[list[k]];
+      G.noalias() += (volume[list[k]] * (x[b] - x_start[b] - dp)) * gradient[first + k].transpose();
+    }
+    return G;
+  }
+};
+
+}  // namespace moreau
