@@ -73,7 +73,10 @@ std::vector<ScenePair> every_pair() {
 struct ExpectedRefusal {
   std::string solver, reason, key;
 };
-const std::vector<ExpectedRefusal> kRefusals = {{"xpbd", "does not simulate suction cups", "suction"}};
+const std::vector<ExpectedRefusal> kRefusals = {{"xpbd", "does not simulate suction cups", "suction"},
+                                                {"xpbi", "does not simulate suction cups", "suction"},
+                                                {"xpbd", "does not simulate continua", "kind=continuum"},
+                                                {"nmd", "does not simulate continua", "kind=continuum"}};
 
 bool holds_key(const std::string& scene, const std::string& key) {
   const nlohmann::json json = nlohmann::json::parse(std::ifstream(fs::path(MOREAU_SOURCE_DIR) / scene));

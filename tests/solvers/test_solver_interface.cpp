@@ -13,16 +13,28 @@ const std::string kShowcase = std::string(MOREAU_SOURCE_DIR) + "/scenes/showcase
 }
 
 TEST(SolverRegistry, MakesExactlyTheRegisteredFormulations) {
-  EXPECT_EQ(registered_solver_names(), (std::vector<std::string>{"xpbd", "nmd"}));
+  EXPECT_EQ(registered_solver_names(), (std::vector<std::string>{"xpbd", "nmd", "xpbi"}));
   const Model model;
-  for (const std::string name : {"xpbd", "nmd"}) {
+  for (const std::string name : {"xpbd", "nmd", "xpbi"}) {
     const auto solver = make_solver(name, model);
     ASSERT_TRUE(solver) << name;
     EXPECT_EQ(solver->name(), name);
     EXPECT_EQ(solver_refusal(name, model), "") << name;
   }
-  // The scene format names it, but until it is registered a scene selecting it is bad input.
-  EXPECT_FALSE(make_solver("xpbi", model));
+  // The scene format names the FEM engine too, but it is not a formulation of the constraint engine.
+  EXPECT_FALSE(make_solver("fem", model));
+}
+
+// XPBI adds the continua to the XPBD substep; a scene without continua steps exactly as under xpbd.
+TEST(SolverInterface, XpbiStepsASceneWithoutContinuaExactlyAsXpbd) {
+  Scene xpbi = load_scene(kShowcase, {"settings.solver=\"xpbi\""}), xpbd = load_scene(kShowcase);
+  StageTimer timer;
+  for (int s = 0; s < 20; ++s) {
+    xpbi.formulation->step(xpbi.model, xpbi.state, timer, 2);
+    xpbd.formulation->step(xpbd.model, xpbd.state, timer, 1);
+  }
+  EXPECT_TRUE(xpbi.state.position == xpbd.state.position);
+  EXPECT_TRUE(xpbi.state.velocity == xpbd.state.velocity);
 }
 
 // The showcase (cloth with isometric bending, Neo-Hookean tets, a sphere and a floor) for 20 steps:

@@ -42,7 +42,7 @@ std::vector<std::string> probe_keys(const std::string& type) {
   return keys;
 }
 
-enum class Accepts { any, fluids, solids, bodies, particles, rods, points, grains };
+enum class Accepts { any, fluids, solids, bodies, particles, rods, points, grains, piles };
 
 Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& model, bool allow_all,
                    Accepts accepts = Accepts::any) {
@@ -56,6 +56,7 @@ Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& m
     if (accepts == Accepts::rods) return o.kind == ObjectKind::rod;
     if (accepts == Accepts::points) return o.has_particles() || o.kind == ObjectKind::rod;
     if (accepts == Accepts::grains) return o.kind == ObjectKind::granular;
+    if (accepts == Accepts::piles) return o.kind == ObjectKind::granular || o.kind == ObjectKind::continuum;
     return o.is_simulated();
   };
   const Index i = model.find_object(name);
@@ -73,6 +74,7 @@ Index object_index(const ProbeSpec& spec, const SpecPlace& probe, const Model& m
                                      : accepts == Accepts::rods      ? "rod "
                                      : accepts == Accepts::points    ? "particle (cloth, soft-body, granular or shape-matched) or rod "
                                      : accepts == Accepts::grains    ? "granular "
+                                     : accepts == Accepts::piles     ? "granular or continuum "
                                                                      : "simulated ",
                                      name, names));
   }
@@ -233,7 +235,7 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
     p.rod = model.objects[p.object].rod;
   } else if (type == "angle_of_repose") {
     p.type = ProbeType::angle_of_repose;
-    p.object = object_index(spec, j, model, false, Accepts::grains);
+    p.object = object_index(spec, j, model, false, Accepts::piles);
     if (spec.center) p.pile_axis = j.vector("center", *spec.center);
     Real largest_radius = 0;
     const ObjectInfo& o = model.objects[p.object];
