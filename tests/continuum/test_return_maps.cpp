@@ -114,5 +114,38 @@ TEST(ReturnMaps, VonMisesYieldsAtTheUniaxialYieldStressAndKeepsTheVolume) {
   EXPECT_NEAR(flowed[0] - flowed[1], yield, 1e-9 * yield);  // sqrt(3/2)|tau^| = tau_x - tau_y for this state
 }
 
+// Snow (Stomakhin et al. 2013): stretches outside [1 - theta_c, 1 + theta_s] are clamped, the
+// plastic volume ratio grows by det(trial) / det(clamped), so that J_p J_e keeps the total
+// volume, and compaction (J_p < 1) stiffens by exp(xi (1 - J_p)).
+TEST(SnowReturn, ClampsTheStretchesAndKeepsTheTotalVolumeInTheTwoParts) {
+  const Real theta_c = 0.025, theta_s = 0.0075;
+  const Vec3 inside(1.005, 0.99, 0.98);
+  const PlasticReturn elastic = snow_return(theta_c, theta_s, inside);
+  EXPECT_EQ(elastic.sigma, inside);
+  EXPECT_EQ(elastic.plastic_volume_factor, 1);
+  EXPECT_EQ(elastic.plastic_strain, 0);
+  const Vec3 trial(1.02, 0.99, 0.9);  // stretched past 1 + theta_s, compressed past 1 - theta_c
+  const PlasticReturn r = snow_return(theta_c, theta_s, trial);
+  EXPECT_EQ(r.sigma, Vec3(1 + theta_s, 0.99, 1 - theta_c));
+  EXPECT_NEAR(r.plastic_volume_factor * r.sigma.prod(), trial.prod(), 1e-15);
+  EXPECT_NEAR(r.plastic_strain, std::hypot(std::log(1.02 / 1.0075), std::log(0.9 / 0.975)), 1e-15);
+  const LameParameters m{2.0, 3.0};
+  const LameParameters compacted = snow_hardened(m, 10, 0.9);
+  EXPECT_NEAR(compacted.mu, 3.0 * std::exp(1.0), 1e-12);
+  EXPECT_NEAR(compacted.lambda, 2.0 * std::exp(1.0), 1e-12);
+}
+
+// Cohesion moves the cone's tip to an isotropic tension whose mean Kirchhoff stress is the
+// cohesion: a particle stretched beyond it returns to that stress; one inside keeps its state.
+TEST(DruckerPragerReturn, CohesionCarriesAnIsotropicTensionUpToIt) {
+  const LameParameters sand = lame_from_youngs(1e5, 0.3);
+  const Real phi = 30 * kPi / 180, cohesion = 50;
+  const PlasticReturn pulled = drucker_prager_return(sand, phi, Vec3::Constant(1.01), cohesion);
+  EXPECT_NEAR(hencky_kirchhoff(sand, pulled.sigma).mean(), cohesion, 1e-9 * cohesion);
+  const Vec3 small = Vec3::Constant(1 + 1e-5);  // mean stress (3 lambda + 2 mu) 1e-5 = 2.5 Pa
+  EXPECT_EQ(drucker_prager_return(sand, phi, small, cohesion).sigma, small);
+  EXPECT_EQ(drucker_prager_return(sand, phi, small).sigma, Vec3::Ones());  // without cohesion: the tip
+}
+
 }  // namespace
 }  // namespace moreau
