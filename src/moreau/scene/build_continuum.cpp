@@ -78,13 +78,7 @@ void fill_lattice(const SpecPlace& place, const std::string& field, const Vec3& 
 
 ContinuumSpec read_continuum(const JsonObject& object) {
   ContinuumSpec spec;
-  for (const JsonObject& block : object.object_list("blocks")) spec.blocks.push_back(read_block(block));
-  for (const JsonObject& cylinder : object.object_list("cylinders")) {
-    spec.cylinders.push_back({to_vector3(cylinder.vec3("base")), cylinder.number("radius"), cylinder.number("height")});
-    cylinder.finish();
-  }
-  if (object.has("mesh")) spec.mesh = object.string("mesh");
-  if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");
+  read_filled_regions(object, spec);
   spec.spacing = object.number("spacing");
   spec.density = object.number("density", spec.density);
   spec.youngs_modulus = read_optional_number(object, "youngs_modulus");

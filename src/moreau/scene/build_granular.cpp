@@ -150,13 +150,7 @@ GrainEmitter pour_grains(const EmitterSpec& spec, const SpecPlace& e, GrainLatti
 
 GranularSpec read_granular(const JsonObject& object) {
   GranularSpec spec;
-  for (const JsonObject& block : object.object_list("blocks")) spec.blocks.push_back(read_block(block));
-  for (const JsonObject& cylinder : object.object_list("cylinders")) {
-    spec.cylinders.push_back({to_vector3(cylinder.vec3("base")), cylinder.number("radius"), cylinder.number("height")});
-    cylinder.finish();
-  }
-  if (object.has("mesh")) spec.mesh = object.string("mesh");
-  if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");
+  read_filled_regions(object, spec);
   if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"));
   if (object.has("clump")) {
     const JsonObject clump = object.object("clump");
