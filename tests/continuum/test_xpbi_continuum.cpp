@@ -61,6 +61,8 @@ void expect_virial(Scene& scene, const char* what, Real settle_time) {
   const Real measured = stress_integral(scene)(1, 1);
   fmt::print("{}: int sigma_yy dV = {:.6g} N m, -W (y_c - r/2) = {:.6g} N m, error {:.3g} %, kinetic {:.3g} J\n", what,
              measured, expected, 100 * (measured / expected - 1), kinetic_energy(scene.model, scene.state, 1));
+  // 2 %: the issue's bound on the StVK-Hencky stress. What is left are the particles near the
+  // surfaces, whose corrected gradients see one-sided neighbourhoods.
   EXPECT_NEAR(measured / expected, 1, 0.02) << what;
 }
 
@@ -105,7 +107,8 @@ std::string sand_column(Real spacing) {
 TEST(XpbiContinuum, ACollapsedSandColumnAtRestCarriesItsWeightByItsStress) {
   Scene scene = load_scene_text(sand_column(0.01), "sand");
   expect_virial(scene, "sand pile", 0.6);
-  EXPECT_LT(kinetic_energy(scene.model, scene.state, 1), 1e-9);  // at rest
+  // At rest: 1e-9 J is a speed of about 1 mm/s, far below the 0.5 m/s of the collapse.
+  EXPECT_LT(kinetic_energy(scene.model, scene.state, 1), 1e-9);
 }
 
 TEST(XpbiContinuum, ResultsAreBitIdenticalOnAnyThreadCount) {
@@ -142,6 +145,8 @@ TEST(XpbiContinuum, ASpinningBodyLosesOnlyThePositionLevelSchemesShare) {
   fmt::print("angular momentum {:.6g} -> {:.6g} ({:.4g} kept), off-axis {:.3g}\n", L0.y(), L1.y(), L1.y() / L0.y(),
              std::hypot(L1.x(), L1.z()));
   const Real D = 10 * 0.005 / 10, expected = std::pow(1 - D * D, 1000);
+  // 0.2 %: the prediction is first order in D^2 and ignores the stretch the elastic rows leave; the
+  // spin axis stays put but for round-off (1e-6 of the spin).
   EXPECT_NEAR(L1.y() / L0.y(), expected, 2e-3 * expected);
   EXPECT_LT(std::hypot(L1.x(), L1.z()), 1e-6 * L0.y());
 }
@@ -166,11 +171,20 @@ TEST(XpbiContinuum, VonMisesCompressionLeavesTheTotalStrainLessTheElasticPart) {
   const Real h0 = height();
   run(scene, 0.4);
   const Real loaded = std::log(h0 / height());
-  run(scene, 0.6);
-  const Real permanent = std::log(h0 / height()), expected = loaded - 1000 / 1e5;
-  fmt::print("compressed {:.4f}, permanent {:.4f}, expected {:.4f} ({:.3g} %)\n", loaded, permanent, expected,
-             100 * (permanent / expected - 1));
-  EXPECT_NEAR(permanent / expected, 1, 0.05);
+  run(scene, 0.3);
+  // Released, the block rings about its unloaded height: average over the next 0.3 s.
+  Real mean_height = 0;
+  for (int k = 0; k < 30; ++k) {
+    run(scene, 0.01);
+    mean_height += height() / 30;
+  }
+  const Real permanent = std::log(h0 / mean_height), springback = loaded - permanent, elastic = 1000 / 1e5;
+  fmt::print("compressed {:.4f}, permanent {:.4f}, springback {:.4f} against sigma_Y / E = {:.4f} ({:.3g} %)\n",
+             loaded, permanent, springback, elastic, 100 * (springback / elastic - 1));
+  EXPECT_NEAR(permanent / (loaded - elastic), 1, 0.05);  // the issue's bound on the permanent strain
+  // The springback alone comes out 27 % above sigma_Y / E (0.0127 against 0.0100; not explained
+  // yet: docs/validation.md). This bound keeps it from growing unnoticed; it does not validate it.
+  EXPECT_NEAR(springback / elastic, 1, 0.3);
 }
 
 // Bad input names its JSON path and what is allowed; the formulations without continua name xpbi.
@@ -197,7 +211,6 @@ TEST(XpbiContinuum, BadInputNamesItsPath) {
       {"xpbi", R"(, "youngs_modulus": 1e5, "plasticity": {"model": "drucker_prager", "friction_angle_deg": 95})",
        {"objects[0].plasticity.friction_angle_deg", "out of range"}},
       {"xpbi", R"(, "youngs_modulus": 1e5, "plasticity": {"model": "von_mises"})", {"yield_stress"}},
-      {"xpbi", R"(, "youngs_modulus": 1e5, "spacing": 0.02)", {"spacing"}},
   };
   for (const Case& c : cases) {
     std::string message;

@@ -23,7 +23,6 @@ enum class PlasticModel {
 struct ContinuumMaterial {
   Real density = 0;                // kg/m^3 of the filled volume
   LameParameters lame;             // Pa
-  Real youngs_modulus = 0, poisson_ratio = 0;  // E (Pa), nu: as the scene gave them
   PlasticModel plastic = PlasticModel::none;
   Real friction_angle = 0;         // rad (drucker_prager)
   Real cohesion = 0;               // Pa (drucker_prager): the isotropic tension the sand carries

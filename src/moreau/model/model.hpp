@@ -70,7 +70,7 @@ struct SleepSettings {
 // The continua under XPBI (solvers/xpbi/): Yu et al. 2024's XSPH coefficient and anti-clumping
 // distance.
 struct XpbiSettings {
-  Real xsph = 0.01;          // c of v_p += c sum_b V_b (v_b - v_p) W_pb, once per substep
+  Real xsph = 0.01;          // c of the XSPH smoothing, once per substep (solvers/xpbi/continuum_update.hpp)
   Real min_distance = 0.75;  // in r: no two continuum particles come closer
 };
 

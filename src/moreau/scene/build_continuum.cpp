@@ -4,8 +4,6 @@
 // (continuum/continuum_model.hpp). Simulated by XPBI (solvers/xpbi/).
 #include <fmt/format.h>
 
-#include <cmath>
-
 #include "moreau/geometry/point_in_mesh.hpp"
 #include "moreau/scene/spec_builders.hpp"
 
@@ -36,9 +34,8 @@ ContinuumMaterial continuum_material(const ContinuumSpec& spec, const SpecPlace&
   ContinuumMaterial m;
   m.density = place.number("density", spec.density, Range::positive());
   if (!spec.youngs_modulus) place.fail("youngs_modulus", "a continuum needs its Young's modulus E (Pa)");
-  m.youngs_modulus = place.number("youngs_modulus", *spec.youngs_modulus, Range::positive());
-  m.poisson_ratio = place.number("poisson_ratio", spec.poisson_ratio, Range::open(-1, 0.5));
-  m.lame = lame_from_youngs(m.youngs_modulus, m.poisson_ratio);
+  m.lame = lame_from_youngs(place.number("youngs_modulus", *spec.youngs_modulus, Range::positive()),
+                            place.number("poisson_ratio", spec.poisson_ratio, Range::open(-1, 0.5)));
   if (!spec.plasticity) return m;
   const ContinuumPlasticity& p = *spec.plasticity;
   const SpecPlace at = place.at("plasticity");

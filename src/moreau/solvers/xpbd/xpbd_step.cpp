@@ -125,109 +125,118 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   if (!model.fluid.emitters.empty()) emit_fluid(model, fluid, start_time);
 
   constexpr int extension_stage = xpbd_family_stage(kParticleFamilyCount);  // the extension's stages follow XPBD's
-  for (int sub = 0; sub < substeps; ++sub) {
-    if (extension) {
-      extension->begin_substep(model, state, h, threads);
-      timer.lap(extension_stage);
-    }
-#pragma omp parallel num_threads(threads)
-    {
-      auto lap = [&](auto stage) {
+  auto lap = [&](auto stage) {
 #pragma omp master
-        timer.lap(stage);
-      };
-      const Real substep_end = start_time + (sub + 1) * h;
-      if (rigid) {
+    timer.lap(stage);
+  };
+  // One substep, on every thread of a parallel region.
+  auto substep = [&](int sub) {
+    const Real substep_end = start_time + (sub + 1) * h;
+    if (rigid) {
 #pragma omp single
-        {
-          reset_joints(model, state, work.joint_drive_start.data());
-          reset_rigid_contacts(state);
-          reset_particle_body_contacts(state);
-          choose_tree_contacts(model, state);
-        }
+      {
+        reset_joints(model, state, work.joint_drive_start.data());
+        reset_rigid_contacts(state);
+        reset_particle_body_contacts(state);
+        choose_tree_contacts(model, state);
       }
-      predict(model, state, work, h);
-      if (rigid) predict_rigid_bodies(model, state.rigid, work.bodies, h);
-      if (fluids) predict_fluid(model, fluid, work.fluid, h);
-      lap(XpbdStage::predict);
-      if (fluids) {
-        if (model.fluid.boundary.moving) place_boundary_samples(model, fluid, substep_end);
-        if (coupled_solids) place_solid_samples(model, state);
-        update_fluid_neighbors(model, fluid, work.fluid, substep_end);
-        if (coupled_solids) split_solid_masses(model, fluid, work.fluid);
-        lap(XpbdStage::fluid_neighbors);
-      }
-      for (int it = 0; it < iterations; ++it) {
-        if (extension) {
-          extension->project(model, state, ctx);
-          lap(extension_stage + 1);
-        }
-        for_each_family(model.constraints, state.constraint_lambda, [&](const auto& family, auto& lambda, int index) {
-          xpbd_project(family, lambda.data(), ctx);
-          lap(xpbd_family_stage(index));
-        });
-        if (!model.shape_matching.empty()) {
-          project_shape_matching(model, state.sleep, ctx, work.shape_match_lambda.data());
-          lap(XpbdStage::shape_matching);
-        }
-        // The fluid before the contacts: what it pushes into a collider, the contacts push out.
-        if (fluids) {
-          if (coupled_solids) place_solid_samples(model, state);
-          project_fluid_density(model, fluid, work.fluid, h);
-          if (coupled_solids) apply_solid_reactions(model, state, work.fluid);
-          apply_fluid_corrections(model, fluid, work.fluid, h, substep_end);
-          if (coupled_solids) {
-            place_solid_samples(model, state);
-            project_solid_contacts(model, state, work.fluid, substep_end);
-          }
-          lap(XpbdStage::fluid_density);
-        }
-        project_particle_contacts(model, state, ctx);
-        lap(XpbdStage::particle_contacts);
-        project_collider_contacts(model, state, ctx, substep_end);
-        lap(XpbdStage::collider_contacts);
-        if (rigid) {
-#pragma omp single
-          {
-            solve_joint_forest(model, state, start, h);
-            project_joints(model, state, work.joint_drive_start.data(), start, h);
-            timer.lap(XpbdStage::joints);
-            project_rigid_contacts(model, state, start);
-            project_particle_body_contacts(model, state, start, h);
-            timer.lap(XpbdStage::rigid_contacts);
-          }
-        }
-      }
-      update_velocity(model, state, work, h);
-      if (rigid) update_rigid_body_velocities(model, state.rigid, work.bodies, h);
-      if (fluids) update_fluid_velocity(fluid, work.fluid, h);
-      lap(XpbdStage::update_velocity);
-      if (extension) {
-        extension->end_substep(model, state, ctx);
-        lap(extension_stage + 2);
-      }
-      particle_contact_velocities(model, state, work.velocity_before.data(), h);
-      collider_contact_velocities(model, state, work.velocity_before.data(), h);
-      if (rigid) {
-#pragma omp single
-        {
-          accumulate_stuck_slip(state, start);
-          rigid_contact_velocities(model, state, work.bodies, h);
-          particle_body_contact_velocities(model, state, work.velocity_before.data(), work.bodies, h);
-          damp_joints(model, state, h);
-        }
-      }
-#pragma omp barrier
-      lap(XpbdStage::velocity_pass);
     }
-  }
-  if (fluids) {
+    predict(model, state, work, h);
+    if (rigid) predict_rigid_bodies(model, state.rigid, work.bodies, h);
+    if (fluids) predict_fluid(model, fluid, work.fluid, h);
+    lap(XpbdStage::predict);
+    if (fluids) {
+      if (model.fluid.boundary.moving) place_boundary_samples(model, fluid, substep_end);
+      if (coupled_solids) place_solid_samples(model, state);
+      update_fluid_neighbors(model, fluid, work.fluid, substep_end);
+      if (coupled_solids) split_solid_masses(model, fluid, work.fluid);
+      lap(XpbdStage::fluid_neighbors);
+    }
+    for (int it = 0; it < iterations; ++it) {
+      if (extension) {
+        extension->project(model, state, ctx);
+        lap(extension_stage + 1);
+      }
+      for_each_family(model.constraints, state.constraint_lambda, [&](const auto& family, auto& lambda, int index) {
+        xpbd_project(family, lambda.data(), ctx);
+        lap(xpbd_family_stage(index));
+      });
+      if (!model.shape_matching.empty()) {
+        project_shape_matching(model, state.sleep, ctx, work.shape_match_lambda.data());
+        lap(XpbdStage::shape_matching);
+      }
+      // The fluid before the contacts: what it pushes into a collider, the contacts push out.
+      if (fluids) {
+        if (coupled_solids) place_solid_samples(model, state);
+        project_fluid_density(model, fluid, work.fluid, h);
+        if (coupled_solids) apply_solid_reactions(model, state, work.fluid);
+        apply_fluid_corrections(model, fluid, work.fluid, h, substep_end);
+        if (coupled_solids) {
+          place_solid_samples(model, state);
+          project_solid_contacts(model, state, work.fluid, substep_end);
+        }
+        lap(XpbdStage::fluid_density);
+      }
+      project_particle_contacts(model, state, ctx);
+      lap(XpbdStage::particle_contacts);
+      project_collider_contacts(model, state, ctx, substep_end);
+      lap(XpbdStage::collider_contacts);
+      if (rigid) {
+#pragma omp single
+        {
+          solve_joint_forest(model, state, start, h);
+          project_joints(model, state, work.joint_drive_start.data(), start, h);
+          timer.lap(XpbdStage::joints);
+          project_rigid_contacts(model, state, start);
+          project_particle_body_contacts(model, state, start, h);
+          timer.lap(XpbdStage::rigid_contacts);
+        }
+      }
+    }
+    update_velocity(model, state, work, h);
+    if (rigid) update_rigid_body_velocities(model, state.rigid, work.bodies, h);
+    if (fluids) update_fluid_velocity(fluid, work.fluid, h);
+    lap(XpbdStage::update_velocity);
+    if (extension) {
+      extension->end_substep(model, state, ctx);
+      lap(extension_stage + 2);
+    }
+    particle_contact_velocities(model, state, work.velocity_before.data(), h);
+    collider_contact_velocities(model, state, work.velocity_before.data(), h);
+    if (rigid) {
+#pragma omp single
+      {
+        accumulate_stuck_slip(state, start);
+        rigid_contact_velocities(model, state, work.bodies, h);
+        particle_body_contact_velocities(model, state, work.velocity_before.data(), work.bodies, h);
+        damp_joints(model, state, h);
+      }
+    }
+#pragma omp barrier
+    lap(XpbdStage::velocity_pass);
+  };
+  auto finish_fluids = [&] {
+    apply_fluid_velocity_corrections(model, fluid, work.fluid, dt);
+    apply_fluid_surface_tension(model, fluid, work.fluid, dt);
+    lap(XpbdStage::fluid_velocity);
+  };
+  if (!extension) {  // one parallel region for the whole step
 #pragma omp parallel num_threads(threads)
     {
-      apply_fluid_velocity_corrections(model, fluid, work.fluid, dt);
-      apply_fluid_surface_tension(model, fluid, work.fluid, dt);
+      for (int sub = 0; sub < substeps; ++sub) substep(sub);
+      if (fluids) finish_fluids();
     }
-    timer.lap(XpbdStage::fluid_velocity);
+  } else {  // the extension works between substeps, outside the parallel region
+    for (int sub = 0; sub < substeps; ++sub) {
+      extension->begin_substep(model, state, threads);
+      timer.lap(extension_stage);
+#pragma omp parallel num_threads(threads)
+      substep(sub);
+    }
+    if (fluids) {
+#pragma omp parallel num_threads(threads)
+      finish_fluids();
+    }
   }
   if (fluids) fluid_cfl_number(model, fluid, h);
 

@@ -19,7 +19,7 @@ class SubstepExtension {
   virtual std::array<std::string, 3> stage_names() const = 0;
   /// Before each substep, outside any parallel region (it may open its own on `threads` threads);
   /// state.position holds the substep's start.
-  virtual void begin_substep(const Model& model, State& state, Real h, int threads) = 0;
+  virtual void begin_substep(const Model& model, State& state, int threads) = 0;
   /// In every iteration, before the other constraints, on every thread of the substep's region.
   virtual void project(const Model& model, State& state, const SubstepContext& ctx) = 0;
   /// After the velocity update v = (x - x_start) / h and before the contacts' velocity pass, on

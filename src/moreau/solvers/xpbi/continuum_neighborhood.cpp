@@ -2,7 +2,7 @@
 
 #include <omp.h>
 
-#include "moreau/continuum/velocity_gradient.hpp"
+#include <array>
 
 namespace moreau {
 
@@ -19,9 +19,10 @@ void ContinuumNeighborhood::build(const Model& model, const State& state, int th
   neighbors.build(start, continuum.support(), threads);
   gradient.resize(neighbors.total());
   kernel.resize(neighbors.total());
+  scratch.resize(threads);
 #pragma omp parallel num_threads(threads)
   {
-    std::vector<KernelNeighbor> around;
+    std::vector<KernelNeighbor>& around = scratch[omp_get_thread_num()];
 #pragma omp for schedule(static)
     for (Index i = 0; i < n; ++i) {
       const Index* list = neighbors.neighbors(i);
@@ -36,10 +37,19 @@ void ContinuumNeighborhood::build(const Model& model, const State& state, int th
     }
   }
   blocks.build(start.data(), n, GridFrame{Vec3::Zero(), 2 * continuum.support()});
-  for (auto& list : colour_blocks) list.clear();
+  std::array<std::vector<Index>, kTileColors> colour_blocks;
   for (Index c = 0; c < blocks.cell_count(); ++c) {
     const CellCoord& b = blocks.cell_coord(c);
     colour_blocks[(b[0] & 1) | (b[1] & 1) << 1 | (b[2] & 1) << 2].push_back(c);
+  }
+  sweep_order.clear();
+  sweep_batches.clear();
+  for (const std::vector<Index>& colour : colour_blocks) {
+    for (Index c : colour) {
+      for (Index s = blocks.cell_begin(c); s < blocks.cell_begin(c + 1); ++s) sweep_order.push_back(blocks.order()[s]);
+      sweep_batches.tile_offsets.push_back(static_cast<Index>(sweep_order.size()));
+    }
+    sweep_batches.color_tiles.push_back(static_cast<Index>(sweep_batches.tile_offsets.size()) - 1);
   }
 }
 

@@ -4,11 +4,12 @@
 // kernel support 2 r, its current volume V^n = V^0 det F^n, and per neighbour pair the corrected
 // kernel gradient L_p grad W_b (velocity_gradient.hpp) and the kernel value W_b; and the blocks
 // that let threads share a Gauss-Seidel sweep (continuum_sweep.hpp).
-#include <array>
 #include <vector>
 
+#include "moreau/constraints/tile_batches.hpp"
 #include "moreau/geometry/cell_grid.hpp"
 #include "moreau/geometry/neighbor_search.hpp"
+#include "moreau/continuum/velocity_gradient.hpp"
 #include "moreau/model/state.hpp"
 
 namespace moreau {
@@ -19,11 +20,14 @@ struct ContinuumNeighborhood {
   std::vector<Real> volume;          // m^3, V^n
   std::vector<Vec3> gradient;        // 1/m^4, L_p grad_{x_p} W(x_p - x_b) per pair (the neighbors' layout)
   std::vector<Real> kernel;          // 1/m^3, W(|x_p - x_b|) per pair
-  // Blocks of edge twice the support, coloured by the parity of their integer coordinates: the
-  // particles of two blocks of one colour are at least two supports apart, so their constraints
-  // share no particle.
+  // The Gauss-Seidel sweep's order: blocks of edge twice the support, coloured by the parity of
+  // their integer coordinates (tile_batches.hpp). Two blocks of one colour have a whole block
+  // between them, and a particle's constraint moves only particles closer than the support to it
+  // at x^n, so the constraints of two such blocks share no particle.
   CellGrid blocks;
-  std::array<std::vector<Index>, 8> colour_blocks;  // the blocks of each colour
+  std::vector<Index> sweep_order;  // continuum indices, block by block, colour after colour
+  TileBatches sweep_batches;       // the blocks as tiles of sweep_order
+  std::vector<std::vector<KernelNeighbor>> scratch;  // per thread: one particle's neighbours
 
   /// Rebuilds everything from state.position (x^n) and the deformation gradients F^n.
   void build(const Model& model, const State& state, int threads);

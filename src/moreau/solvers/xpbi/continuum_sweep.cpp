@@ -12,7 +12,7 @@ namespace {
 constexpr Real kUnstrained = 1e-12;
 
 void project_elastoplastic(const Model& model, const State& state, const ContinuumNeighborhood& around,
-                           const SubstepContext& ctx, Real& lambda, Index i, std::vector<Vec3>& grad) {
+                           const SubstepContext& ctx, Real& lambda, Index i) {
   const ContinuumModel& continuum = model.continuum;
   const ContinuumMaterial& material = continuum.materials[continuum.material[i]];
   const Mat3& Fn = state.continuum.deformation[i];
@@ -21,26 +21,26 @@ void project_elastoplastic(const Model& model, const State& state, const Continu
   const PlasticReturn returned = plastic_flow(material, lame, trial.sigma);
   const Real C = std::sqrt(2 * hencky_energy(lame, returned.sigma));
   if (!(C > kUnstrained)) return;
-  // dC/dF (F^n)^T, with P = U diag(dPsi/dsigma) V^T at the returned stretches.
-  const Mat3 A = (trial.U * (hencky_energy_gradient(lame, returned.sigma) / C).asDiagonal() * trial.V.transpose()) *
-                 Fn.transpose();
+  // dC/dF (F^n)^T = P(F) (F^n)^T / C, P at the returned stretches.
+  const Mat3 A = hencky_piola(lame, RotationSvd{trial.U, trial.V, returned.sigma}) * Fn.transpose() / C;
   const Index* list = around.neighbors.neighbors(i);
   const Index count = around.neighbors.count(i), first = around.neighbors.offset(i);
   const Index p = continuum.particle[i];
-  grad.resize(count);
+  // grad_b C = V_b A g_b, computed again where it is applied (cheaper than keeping it).
+  auto grad = [&](Index k) -> Vec3 { return around.volume[list[k]] * (A * around.gradient[first + k]); };
   Vec3 grad_p = Vec3::Zero();
   Real w_grad_sq = 0;
   for (Index k = 0; k < count; ++k) {
-    grad[k] = around.volume[list[k]] * (A * around.gradient[first + k]);
-    grad_p -= grad[k];
-    w_grad_sq += ctx.inv_mass[continuum.particle[list[k]]] * grad[k].squaredNorm();
+    const Vec3 g = grad(k);
+    grad_p -= g;
+    w_grad_sq += ctx.inv_mass[continuum.particle[list[k]]] * g.squaredNorm();
   }
   w_grad_sq += ctx.inv_mass[p] * grad_p.squaredNorm();
   const Real dlambda = xpbd_delta_lambda(C, lambda, 1 / continuum.rest_volume[i], 0, ctx, w_grad_sq, 0);
   lambda += dlambda;
   for (Index k = 0; k < count; ++k) {
     const Index b = continuum.particle[list[k]];
-    ctx.x[b] += (ctx.inv_mass[b] * dlambda) * grad[k];
+    ctx.x[b] += (ctx.inv_mass[b] * dlambda) * grad(k);
   }
   ctx.x[p] += (ctx.inv_mass[p] * dlambda) * grad_p;
 }
@@ -48,6 +48,7 @@ void project_elastoplastic(const Model& model, const State& state, const Continu
 void separate_clumped(const Model& model, const ContinuumNeighborhood& around, const SubstepContext& ctx, Index i) {
   const ContinuumModel& continuum = model.continuum;
   const Real min_distance = model.settings.xpbi.min_distance * continuum.spacing;
+  if (min_distance <= 0) return;
   const Index* list = around.neighbors.neighbors(i);
   const Index count = around.neighbors.count(i);
   const Index p = continuum.particle[i];
@@ -68,20 +69,11 @@ void separate_clumped(const Model& model, const ContinuumNeighborhood& around, c
 
 void sweep_continuum(const Model& model, const State& state, const ContinuumNeighborhood& around,
                      const SubstepContext& ctx, std::vector<Real>& lambda) {
-  std::vector<Vec3> grad;  // this thread's gradients of one constraint
-  const std::vector<Index>& order = around.blocks.order();
-  for (const std::vector<Index>& colour : around.colour_blocks) {
-    const Index blocks = static_cast<Index>(colour.size());
-#pragma omp for schedule(dynamic, 4)
-    for (Index k = 0; k < blocks; ++k) {
-      const Index c = colour[k];
-      for (Index s = around.blocks.cell_begin(c); s < around.blocks.cell_begin(c + 1); ++s) {
-        const Index i = order[s];
-        project_elastoplastic(model, state, around, ctx, lambda[i], i, grad);
-        separate_clumped(model, around, ctx, i);
-      }
-    }
-  }
+  for_each_by_tile(around.sweep_batches, [&](Index s) {
+    const Index i = around.sweep_order[s];
+    project_elastoplastic(model, state, around, ctx, lambda[i], i);
+    separate_clumped(model, around, ctx, i);
+  });
 }
 
 }  // namespace moreau

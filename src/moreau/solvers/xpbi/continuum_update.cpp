@@ -44,7 +44,6 @@ void finish_continuum_substep(const Model& model, State& state, const ContinuumN
     deformation.plastic_strain[i] += returned.plastic_strain;
     deformation.plastic_volume[i] *= returned.plastic_volume_factor;
   }
-#pragma omp barrier
 }
 
 }  // namespace moreau

@@ -9,7 +9,7 @@ std::array<std::string, 3> ContinuumSubstep::stage_names() const {
   return {"continuum_neighbors", "continuum_constraints", "continuum_update"};
 }
 
-void ContinuumSubstep::begin_substep(const Model& model, State& state, Real, int threads) {
+void ContinuumSubstep::begin_substep(const Model& model, State& state, int threads) {
   if (model.continuum.empty()) return;
   around_.build(model, state, threads);
   lambda_.assign(model.continuum.size(), 0);

@@ -27,7 +27,7 @@ namespace moreau {
 class ContinuumSubstep final : public SubstepExtension {
  public:
   std::array<std::string, 3> stage_names() const override;
-  void begin_substep(const Model& model, State& state, Real h, int threads) override;
+  void begin_substep(const Model& model, State& state, int threads) override;
   void project(const Model& model, State& state, const SubstepContext& ctx) override;
   void end_substep(const Model& model, State& state, const SubstepContext& ctx) override;
 
