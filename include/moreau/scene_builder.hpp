@@ -354,6 +354,12 @@ struct GranularCylinder {
   double height = 0;   // m
 };
 
+/// A ball of grains or continuum particles, e.g. a snowball.
+struct FilledSphere {
+  Vector3 center{};    // m
+  double radius = 0;   // m
+};
+
 /// A granular object's clumps: each grain a rigid cluster of overlapping spheres of its radius.
 struct GranularClump {
   int spheres = 2;        // 2 (a pair), 3 (a triangle) or 4 (a tetrahedron)
@@ -367,6 +373,7 @@ struct GranularSpec {
   std::string name;
   std::vector<FluidBlock> blocks;         // m, boxes the grains fill
   std::vector<GranularCylinder> cylinders;  // m, vertical cylinders the grains fill
+  std::vector<FilledSphere> spheres;      // m, balls the grains fill
   std::string mesh;                       // a closed OBJ surface whose inside the grains fill
   std::optional<double> radius;           // m, one radius; or
   std::optional<Vector2> radius_range;    // m, radii drawn uniformly from [min, max] (polydisperse)
@@ -397,16 +404,20 @@ struct ShapeMatchedSpec {
   ContactMaterial contact;
 };
 
-/// A continuum's plastic flow: "drucker_prager" (sand), "von_mises" (metal, plasticine) or
-/// "snow" (Stomakhin et al. 2013); absent, the continuum is an elastic StVK-Hencky solid.
+/// A continuum's plastic flow: "drucker_prager" (sand), "von_mises" (metal, plasticine), "snow"
+/// (Stomakhin et al. 2013) or "herschel_bulkley" (foam, cream, mud, paste; Bingham for flow index
+/// 1); absent, the continuum is an elastic StVK-Hencky solid.
 struct ContinuumPlasticity {
-  std::string model;                         // drucker_prager, von_mises, snow
+  std::string model;                         // drucker_prager, von_mises, snow, herschel_bulkley
   std::optional<double> friction_angle_deg;  // drucker_prager (required), degrees
   double cohesion = 0;                       // drucker_prager: Pa, the isotropic tension it carries
   std::optional<double> yield_stress;        // von_mises (required): Pa, uniaxial
   double critical_compression = 0.025;       // snow: theta_c (Stomakhin et al. 2013)
   double critical_stretch = 0.0075;          // snow: theta_s
   double hardening = 10;                     // snow: xi
+  std::optional<double> shear_yield_stress;  // herschel_bulkley (required): Pa, tau_y in simple shear
+  std::optional<double> consistency;         // herschel_bulkley (required): Pa s^n, K
+  double flow_index = 1;                     // herschel_bulkley: n (1: Bingham)
 };
 
 /// "kind": "continuum": an inelastic (or elastic) continuum of particles on a cubic lattice of
@@ -416,6 +427,7 @@ struct ContinuumSpec {
   std::string name;
   std::vector<FluidBlock> blocks;           // m, boxes the particles fill
   std::vector<GranularCylinder> cylinders;  // m, vertical cylinders the particles fill
+  std::vector<FilledSphere> spheres;        // m, balls the particles fill
   std::string mesh;                         // a closed OBJ surface whose inside the particles fill
   double spacing = 0;                       // m, r (required)
   double density = 1000;                    // kg/m^3

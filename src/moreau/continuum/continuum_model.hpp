@@ -1,9 +1,10 @@
 #pragma once
 // The inelastic continua of the XPBI formulation (`"solver": "xpbi"`, Yu et al. 2024): sand, snow,
-// plasticine, metal, or an elastic solid, each a cloud of particles in the model's particle
-// arrays (ObjectKind::continuum) that carries a deformation gradient. One continuum per scene:
-// every continuum object shares the particle spacing r and the kernel support 2 r, and particles
-// of different continuum objects are each other's neighbours (sand poured onto sand is one body).
+// plasticine, metal, foam and mud, or an elastic solid, each a cloud of particles in the model's
+// particle arrays (ObjectKind::continuum) that carries a deformation gradient. One continuum per
+// scene: every continuum object shares the particle spacing r and the kernel support 2 r, and
+// particles of different continuum objects are each other's neighbours (sand poured onto sand is
+// one body).
 #include <algorithm>
 #include <vector>
 
@@ -17,7 +18,8 @@ enum class PlasticModel {
   none,            // an elastic StVK-Hencky solid
   drucker_prager,  // sand: friction angle, cohesion
   von_mises,       // metal, plasticine: uniaxial yield stress
-  snow             // Stomakhin et al. 2013: stretches clamped, hardening with compaction
+  snow,            // Stomakhin et al. 2013: stretches clamped, hardening with compaction
+  herschel_bulkley // foam, cream, mud: shear yield stress, consistency, flow index (Bingham: 1)
 };
 
 struct ContinuumMaterial {
@@ -30,6 +32,9 @@ struct ContinuumMaterial {
   Real critical_compression = 0;   // theta_c (snow): the smallest stretch is 1 - theta_c
   Real critical_stretch = 0;       // theta_s (snow): the largest stretch is 1 + theta_s
   Real hardening = 0;              // xi (snow): mu, lambda scale with exp(xi (1 - J_p))
+  Real shear_yield_stress = 0;     // Pa (herschel_bulkley): tau_y in simple shear
+  Real consistency = 0;            // Pa s^n (herschel_bulkley): K in tau = tau_y + K gamma'^n
+  Real flow_index = 1;             // n (herschel_bulkley): 1 is a Bingham fluid
 };
 
 struct ContinuumModel {

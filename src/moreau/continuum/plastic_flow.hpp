@@ -15,13 +15,16 @@ inline LameParameters continuum_lame(const ContinuumMaterial& m, Real plastic_vo
   return m.plastic == PlasticModel::snow ? snow_hardened(m.lame, m.hardening, plastic_volume) : m.lame;
 }
 
-/// Z applied to trial principal stretches `sigma`, with Lame parameters `lame` (continuum_lame).
-inline PlasticReturn plastic_flow(const ContinuumMaterial& m, const LameParameters& lame, Vec3 sigma) {
+/// Z applied to trial principal stretches `sigma` reached over a step of h seconds (the rate
+/// matters to Herschel-Bulkley alone), with Lame parameters `lame` (continuum_lame).
+inline PlasticReturn plastic_flow(const ContinuumMaterial& m, const LameParameters& lame, Vec3 sigma, Real h) {
   sigma = sigma.cwiseMax(kMinContinuumStretch);
   switch (m.plastic) {
     case PlasticModel::drucker_prager: return drucker_prager_return(lame, m.friction_angle, sigma, m.cohesion);
     case PlasticModel::von_mises: return von_mises_return(lame, m.yield_stress, sigma);
     case PlasticModel::snow: return snow_return(m.critical_compression, m.critical_stretch, sigma);
+    case PlasticModel::herschel_bulkley:
+      return herschel_bulkley_return(lame, m.shear_yield_stress, m.consistency, m.flow_index, h, sigma);
     case PlasticModel::none: break;
   }
   return {sigma, 0};

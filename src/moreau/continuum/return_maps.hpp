@@ -70,6 +70,51 @@ inline PlasticReturn von_mises_return(const LameParameters& m, Real yield_stress
   return {returned.array().exp().matrix(), dgamma};
 }
 
+/// Herschel-Bulkley viscoplasticity (foam, cream, mud, paste; Bingham for flow index n = 1), the
+/// overstress form of Yue, Smith, Batty, Chen, Zhang, Cao, Duhamel 2015 ("Continuum foam: a
+/// material point method for shear-dependent flows", ACM TOG 34) written, like the maps above, in
+/// the Hencky strain. In simple shear at rate gamma' the fluid carries tau = tau_y + K gamma'^n
+/// once it flows; as a tensor law the deviatoric Kirchhoff stress has the norm
+///   |tau^| = sqrt(2) (tau_y + K gamma'_eq^n),  gamma'_eq = sqrt(2) |D_p|,
+/// where D_p is the plastic rate of deformation (simple shear: |tau^| = sqrt(2) tau, |D| =
+/// gamma' / sqrt(2)). A substep h that removes dgamma along eps^ / |eps^| flows at |D_p| = dgamma
+/// / h, and the returned stress 2 mu (|eps^_trial| - dgamma) must equal the flow stress:
+///   f(dgamma) = 2 mu (N - dgamma) - sqrt(2) tau_y - sqrt(2) K (sqrt(2) dgamma / h)^n = 0,
+/// N = |eps^_trial|. f decreases from f(0) > 0 (the trial state is beyond yield) to f <= 0 at
+/// the rate-free return dgamma_0 = N - sqrt(2) tau_y / (2 mu) (von Mises with sigma_Y = sqrt(3)
+/// tau_y, which K -> 0 recovers); for n = 1 the root is dgamma = 2 mu dgamma_0 / (2 mu + 2 K / h),
+/// otherwise Newton's method safeguarded by bisection finds it. Volume is kept.
+inline PlasticReturn herschel_bulkley_return(const LameParameters& m, Real shear_yield_stress, Real consistency,
+                                             Real flow_index, Real h, const Vec3& sigma) {
+  const Vec3 eps = hencky_strain(sigma);
+  const Vec3 deviator = eps - (eps.sum() / 3) * Vec3::Ones();
+  const Real norm = deviator.norm();
+  const Real rate_free = norm - std::sqrt(Real(2)) * shear_yield_stress / (2 * m.mu);
+  if (rate_free <= 0) return {sigma, 0};
+  Real dgamma;
+  if (flow_index == 1) {
+    dgamma = 2 * m.mu * rate_free / (2 * m.mu + 2 * consistency / h);
+  } else {
+    const Real rate = std::sqrt(Real(2)) / h;  // equivalent shear rate per unit dgamma
+    auto f = [&](Real g) { return 2 * m.mu * (rate_free - g) - std::sqrt(Real(2)) * consistency * std::pow(rate * g, flow_index); };
+    Real lo = 0, hi = rate_free;
+    dgamma = rate_free / 2;
+    for (int iteration = 0; iteration < 60; ++iteration) {
+      const Real value = f(dgamma);
+      (value > 0 ? lo : hi) = dgamma;
+      const Real slope = -2 * m.mu - std::sqrt(Real(2)) * consistency * flow_index * rate *
+                                         std::pow(rate * dgamma, flow_index - 1);
+      const Real newton = dgamma - value / slope;
+      const Real next = newton > lo && newton < hi ? newton : (lo + hi) / 2;
+      const bool converged = std::abs(next - dgamma) <= 1e-13 * rate_free;
+      dgamma = next;
+      if (converged) break;
+    }
+  }
+  const Vec3 returned = eps - (dgamma / norm) * deviator;
+  return {returned.array().exp().matrix(), dgamma};
+}
+
 /// Snow after Stomakhin, Schroeder, Chai, Teran, Selle 2013 ("A material point method for snow
 /// simulation", SIGGRAPH 2013): the stretches are clamped to [1 - theta_c, 1 + theta_s] and what
 /// is clamped away becomes plastic; J_p grows by det(trial) / det(clamped). (The paper's elastic

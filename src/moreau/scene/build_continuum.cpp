@@ -1,5 +1,5 @@
 // "kind": "continuum" objects: particles on a cubic lattice of spacing r (one per cell, at its
-// centre) filling boxes, cylinders or a closed mesh, each carrying the mass and rest volume r^3 of
+// centre) filling boxes, cylinders, spheres or a closed mesh, each carrying the mass and rest volume r^3 of
 // its cell, a deformation gradient and its material's elastic law and plastic flow
 // (continuum/continuum_model.hpp). Simulated by XPBI (solvers/xpbi/).
 #include <fmt/format.h>
@@ -15,12 +15,16 @@ constexpr Index kMaxContinuumParticles = 20'000'000;
 
 ContinuumPlasticity read_plasticity(const JsonObject& object) {
   ContinuumPlasticity p;
-  p.model = object.choice("model", {"drucker_prager", "von_mises", "snow"});
+  p.model = object.choice("model", {"drucker_prager", "von_mises", "snow", "herschel_bulkley"});
   if (p.model == "drucker_prager") {
     p.friction_angle_deg = object.number("friction_angle_deg");
     p.cohesion = object.number("cohesion", p.cohesion);
   } else if (p.model == "von_mises") {
     p.yield_stress = object.number("yield_stress");
+  } else if (p.model == "herschel_bulkley") {
+    p.shear_yield_stress = object.number("shear_yield_stress");
+    p.consistency = object.number("consistency");
+    p.flow_index = object.number("flow_index", p.flow_index);
   } else {
     p.critical_compression = object.number("critical_compression", p.critical_compression);
     p.critical_stretch = object.number("critical_stretch", p.critical_stretch);
@@ -46,6 +50,11 @@ ContinuumMaterial continuum_material(const ContinuumSpec& spec, const SpecPlace&
   } else if (p.model == "von_mises") {
     m.plastic = PlasticModel::von_mises;
     m.yield_stress = at.number("yield_stress", *p.yield_stress, Range::positive());
+  } else if (p.model == "herschel_bulkley") {
+    m.plastic = PlasticModel::herschel_bulkley;
+    m.shear_yield_stress = at.number("shear_yield_stress", *p.shear_yield_stress, Range::non_negative());
+    m.consistency = at.number("consistency", *p.consistency, Range::non_negative());
+    m.flow_index = at.number("flow_index", p.flow_index, Range::positive());
   } else {
     m.plastic = PlasticModel::snow;
     m.critical_compression = at.number("critical_compression", p.critical_compression, Range::open(0, 1));
@@ -94,9 +103,9 @@ void add_continuum(const ContinuumSpec& spec, const SpecPlace& place, ObjectInfo
                                       "other's neighbours); an earlier one has {} m",
                                       m.continuum.spacing));
   const ContinuumMaterial material = continuum_material(spec, place);
-  if (spec.blocks.empty() && spec.cylinders.empty() && spec.mesh.empty())
-    place.fail("blocks", "a continuum needs a block {\"min\", \"max\"}, a cylinder {\"base\", \"radius\", \"height\"} or "
-                         "a closed \"mesh\" to fill");
+  if (spec.blocks.empty() && spec.cylinders.empty() && spec.spheres.empty() && spec.mesh.empty())
+    place.fail("blocks", "a continuum needs a block {\"min\", \"max\"}, a cylinder {\"base\", \"radius\", \"height\"}, a "
+                         "sphere {\"center\", \"radius\"} or a closed \"mesh\" to fill");
 
   std::vector<Vec3> points;
   for (size_t b = 0; b < spec.blocks.size(); ++b) {
@@ -118,6 +127,15 @@ void add_continuum(const ContinuumSpec& spec, const SpecPlace& place, ObjectInfo
     fill_lattice(cylinder, "radius", lo, hi, r, [&](const Vec3& x) {
       return Vec2(x.x() - base.x(), x.z() - base.z()).squaredNorm() <= radius * radius;
     }, points);
+  }
+  // A sphere keeps the cells of its bounding box whose centres lie inside it.
+  for (size_t s = 0; s < spec.spheres.size(); ++s) {
+    const SpecPlace sphere = place.at(fmt::format("spheres[{}]", s));
+    const Vec3 center = sphere.vector("center", spec.spheres[s].center);
+    const Real radius = sphere.number("radius", spec.spheres[s].radius, Range::positive());
+    if (radius < r) sphere.fail("radius", fmt::format("the sphere must be at least one particle spacing ({} m) in radius", r));
+    fill_lattice(sphere, "radius", center - Vec3::Constant(radius), center + Vec3::Constant(radius), r,
+                 [&](const Vec3& x) { return (x - center).squaredNorm() <= radius * radius; }, points);
   }
   if (!spec.mesh.empty()) {
     const ClosedSurface surface = read_closed_surface(ctx, place, "mesh", spec.mesh);

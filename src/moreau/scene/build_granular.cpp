@@ -186,9 +186,10 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     r_max = r.y();
   }
   const Real density = place.number("density", spec.density, Range::positive());
-  if (spec.blocks.empty() && spec.cylinders.empty() && spec.mesh.empty() && !spec.emitter)
-    place.fail("blocks", "a granular object needs a block {\"min\", \"max\"} or cylinder {\"base\", \"radius\", \"height\"} "
-                         "to fill, a closed \"mesh\" to fill, or an \"emitter\" to pour its grains");
+  if (spec.blocks.empty() && spec.cylinders.empty() && spec.spheres.empty() && spec.mesh.empty() && !spec.emitter)
+    place.fail("blocks", "a granular object needs a block {\"min\", \"max\"}, cylinder {\"base\", \"radius\", \"height\"} "
+                         "or sphere {\"center\", \"radius\"} to fill, a closed \"mesh\" to fill, or an \"emitter\" to "
+                         "pour its grains");
 
   std::vector<Vec3> clump;
   if (spec.clump) {
@@ -223,6 +224,17 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     lattice.fill(cylinder, "radius", lo, hi, [&](const Vec3& p) {
       return Vec2(p.x() - base.x(), p.z() - base.z()).squaredNorm() <= reach * reach * (1 + 1e-12);
     });
+  }
+  // A sphere keeps the lattice points of its bounding box whose grains lie inside it.
+  for (size_t s = 0; s < spec.spheres.size(); ++s) {
+    const SpecPlace sphere = place.at(fmt::format("spheres[{}]", s));
+    const Vec3 center = sphere.vector("center", spec.spheres[s].center);
+    const Real radius = sphere.number("radius", spec.spheres[s].radius, Range::positive());
+    if (radius < diameter / 2 * (1 - 1e-9))
+      sphere.fail("radius", fmt::format("the sphere must be at least one grain diameter ({} m) wide", diameter));
+    const Real reach = radius - diameter / 2;  // of a grain (or clump) centre from the centre
+    lattice.fill(sphere, "radius", center - Vec3::Constant(radius), center + Vec3::Constant(radius),
+                 [&](const Vec3& p) { return (p - center).squaredNorm() <= reach * reach * (1 + 1e-12); });
   }
   // A closed OBJ surface keeps the lattice points of its bounding box that lie inside it.
   if (!spec.mesh.empty()) {

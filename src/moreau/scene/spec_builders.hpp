@@ -113,14 +113,18 @@ void read_particle_object_keys(const JsonObject& object, ParticleObjectSpec& spe
   spec.contact = read_contact_material(object);
   spec.pin = read_pins(object);
 }
-/// What a granular object or a continuum fills: "blocks", vertical "cylinders" and a closed OBJ
-/// "mesh" (its path).
+/// What a granular object or a continuum fills: "blocks", vertical "cylinders", "spheres" and a
+/// closed OBJ "mesh" (its path).
 template <class FilledSpec>
 void read_filled_regions(const JsonObject& object, FilledSpec& spec) {
   for (const JsonObject& block : object.object_list("blocks")) spec.blocks.push_back(read_block(block));
   for (const JsonObject& cylinder : object.object_list("cylinders")) {
     spec.cylinders.push_back({to_vector3(cylinder.vec3("base")), cylinder.number("radius"), cylinder.number("height")});
     cylinder.finish();
+  }
+  for (const JsonObject& sphere : object.object_list("spheres")) {
+    spec.spheres.push_back({to_vector3(sphere.vec3("center")), sphere.number("radius")});
+    sphere.finish();
   }
   if (object.has("mesh")) spec.mesh = object.string("mesh");
   if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");

@@ -18,7 +18,7 @@ void project_elastoplastic(const Model& model, const State& state, const Continu
   const Mat3& Fn = state.continuum.deformation[i];
   const RotationSvd trial = rotation_svd((Mat3::Identity() + around.substep_deformation(continuum, ctx.x, ctx.x_start, i)) * Fn);
   const LameParameters lame = continuum_lame(material, state.continuum.plastic_volume[i]);
-  const PlasticReturn returned = plastic_flow(material, lame, trial.sigma);
+  const PlasticReturn returned = plastic_flow(material, lame, trial.sigma, ctx.h);
   const Real C = std::sqrt(2 * hencky_energy(lame, returned.sigma));
   if (!(C > kUnstrained)) return;
   // dC/dF (F^n)^T = P(F) (F^n)^T / C, P at the returned stretches.

@@ -39,7 +39,7 @@ void finish_continuum_substep(const Model& model, State& state, const ContinuumN
     const ContinuumMaterial& material = continuum.materials[continuum.material[i]];
     const RotationSvd trial = rotation_svd((Mat3::Identity() + G) * deformation.deformation[i]);
     const PlasticReturn returned =
-        plastic_flow(material, continuum_lame(material, deformation.plastic_volume[i]), trial.sigma);
+        plastic_flow(material, continuum_lame(material, deformation.plastic_volume[i]), trial.sigma, ctx.h);
     deformation.deformation[i] = trial.U * returned.sigma.asDiagonal() * trial.V.transpose();
     deformation.plastic_strain[i] += returned.plastic_strain;
     deformation.plastic_volume[i] *= returned.plastic_volume_factor;
