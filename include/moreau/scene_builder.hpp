@@ -436,6 +436,7 @@ struct ContinuumSpec {
   std::optional<ContinuumPlasticity> plasticity;
   Vector3 velocity{};                       // m/s
   ContactMaterial contact;                  // against colliders and other objects
+  bool fluid_coupling = true;               // the particles are a two-way boundary of the fluids
 };
 
 using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec, RodSpec, GranularSpec,

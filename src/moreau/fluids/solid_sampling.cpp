@@ -148,6 +148,19 @@ struct Sampler {
     }
   }
 
+  // A continuum: one sample per particle at its centre (weight 1) carrying the particle's rest
+  // volume. A uniformly filled region's Akinci volume 1 / sum W is its cells' volume, so the body
+  // counts in the fluid's density as the fluid filling its place would: water meets it at rest
+  // density and a floating body displaces its own volume. Its surface lies half a spacing beyond
+  // the outer samples (one fluid radius when the spacings match).
+  void sample_continuum(Index object, const ObjectInfo& info) {
+    for (Index p = info.particle_begin; p < info.particle_end; ++p) {
+      add(object, {p, p, p, p}, {1, 0, 0, 0});
+      out.volume.push_back(model.continuum.rest_volume[model.continuum.index_of(p)]);
+    }
+    rest.clear();
+  }
+
   void finish_object(Real spacing, const CubicSplineKernel& kernel) {
     const std::vector<Real> volume = akinci_volumes(rest, spacing, kernel);
     out.volume.insert(out.volume.end(), volume.begin(), volume.end());
@@ -162,6 +175,10 @@ FluidSolidSamples sample_fluid_solids(const Model& model, Real particle_radius, 
   for (Index o = 0; o < static_cast<Index>(model.objects.size()); ++o) {
     const ObjectInfo& info = model.objects[o];
     if (!info.fluid_coupling) continue;
+    if (info.kind == ObjectKind::continuum) {
+      sampler.sample_continuum(o, info);
+      continue;
+    }
     if (info.kind == ObjectKind::cloth) sampler.sample_cloth(o, info);
     else if (info.kind == ObjectKind::soft_body) sampler.sample_soft_body(o, info);
     else continue;

@@ -92,6 +92,7 @@ ContinuumSpec read_continuum(const JsonObject& object) {
   if (auto plasticity = object.optional_object("plasticity")) spec.plasticity = read_plasticity(*plasticity);
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   spec.contact = read_contact_material(object);
+  spec.fluid_coupling = object.boolean("fluid_coupling", spec.fluid_coupling);
   return spec;
 }
 
@@ -149,7 +150,7 @@ void add_continuum(const ContinuumSpec& spec, const SpecPlace& place, ObjectInfo
   set_contact_material(spec.contact, place, info);
   info.kind = ObjectKind::continuum;
   info.self_collision = false;  // the continuum's constraints hold its particles apart
-  info.fluid_coupling = false;
+  info.fluid_coupling = spec.fluid_coupling;
   const Real volume = r * r * r;
   add_particles(ctx, info, points, std::vector<Real>(points.size(), material.density * volume), r / 2, r / 2,
                 place.vector("velocity", spec.velocity));
