@@ -31,7 +31,7 @@ Real slab_bottom(const Scene& scene) {
 
 void run(Scene& scene, int steps) {
   StageTimer timer;
-  for (int k = 0; k < steps; ++k) scene.formulation->step(scene.model, scene.state, timer, 2);
+  for (int k = 0; k < steps; ++k) scene.formulation->step(scene.model, scene.state, timer, 1);
 }
 
 // Archimedes: rho_s H = rho_w T, T = 0.03125 m at half the water's density. The slab still bobs

@@ -47,7 +47,7 @@ Slump slump(Real shear_yield_stress) {
                   kHeight, kDensity, shear_yield_stress),
       "slump");
   StageTimer timer;
-  for (int k = 0; k < 160; ++k) scene.formulation->step(scene.model, scene.state, timer, 2);
+  for (int k = 0; k < 160; ++k) scene.formulation->step(scene.model, scene.state, timer, 1);
   Real top = 0;
   for (const Vec3& x : scene.state.position) top = std::max(top, x.y());
   // The top particle's centre lies half a spacing below the surface.

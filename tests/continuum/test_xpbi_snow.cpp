@@ -47,7 +47,7 @@ Real piece_after_impact(Real critical_stretch) {
                   critical_stretch),
       "snowball");
   StageTimer timer;
-  for (int k = 0; k < 40; ++k) scene.formulation->step(scene.model, scene.state, timer, 2);
+  for (int k = 0; k < 40; ++k) scene.formulation->step(scene.model, scene.state, timer, 1);
   return largest_piece(scene);
 }
 
