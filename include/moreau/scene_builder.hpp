@@ -347,17 +347,27 @@ struct RodSpec {
   bool self_collision = true;
 };
 
-/// A vertical cylinder (its axis along y) of grains, e.g. a column released on the ground.
-struct GranularCylinder {
+/// A vertical cylinder (its axis along y) to fill, e.g. a column released on the ground.
+struct FilledCylinder {
   Vector3 base{};      // m, the centre of its bottom face
   double radius = 0;   // m
   double height = 0;   // m
 };
 
-/// A ball of grains or continuum particles, e.g. a snowball.
+/// A ball to fill, e.g. a snowball.
 struct FilledSphere {
   Vector3 center{};    // m
   double radius = 0;   // m
+};
+
+/// What a granular object or a continuum fills, any together: boxes ("blocks"), vertical
+/// "cylinders", "spheres" and the inside of a closed OBJ surface ("mesh").
+struct FilledRegions {
+  std::vector<FluidBlock> blocks;         // m
+  std::vector<FilledCylinder> cylinders;  // m
+  std::vector<FilledSphere> spheres;      // m
+  std::string mesh;                       // the path of a closed OBJ surface
+  bool empty() const { return blocks.empty() && cylinders.empty() && spheres.empty() && mesh.empty(); }
 };
 
 /// A granular object's clumps: each grain a rigid cluster of overlapping spheres of its radius.
@@ -366,15 +376,12 @@ struct GranularClump {
   double spacing = 1.0;   // the spheres' centre distance in radii, in (0, 2)
 };
 
-/// "kind": "granular": grains (spheres) on a lattice filling boxes or cylinders, each a particle
+/// "kind": "granular": grains (spheres) on a lattice filling regions, each a particle
 /// that touches the others, the colliders, rigid bodies and rods with friction and restitution
 /// (docs/scene-format.md, "Granular media").
 struct GranularSpec {
   std::string name;
-  std::vector<FluidBlock> blocks;         // m, boxes the grains fill
-  std::vector<GranularCylinder> cylinders;  // m, vertical cylinders the grains fill
-  std::vector<FilledSphere> spheres;      // m, balls the grains fill
-  std::string mesh;                       // a closed OBJ surface whose inside the grains fill
+  FilledRegions regions;                  // what the grains fill (or an emitter pours them)
   std::optional<double> radius;           // m, one radius; or
   std::optional<Vector2> radius_range;    // m, radii drawn uniformly from [min, max] (polydisperse)
   int seed = 1;                           // of the radius draws
@@ -421,14 +428,11 @@ struct ContinuumPlasticity {
 };
 
 /// "kind": "continuum": an inelastic (or elastic) continuum of particles on a cubic lattice of
-/// spacing r filling boxes, cylinders or a closed mesh, simulated by XPBI (`"solver": "xpbi"`)
+/// spacing r filling regions, simulated by XPBI (`"solver": "xpbi"`)
 /// (docs/scene-format.md, "Continua").
 struct ContinuumSpec {
   std::string name;
-  std::vector<FluidBlock> blocks;           // m, boxes the particles fill
-  std::vector<GranularCylinder> cylinders;  // m, vertical cylinders the particles fill
-  std::vector<FilledSphere> spheres;        // m, balls the particles fill
-  std::string mesh;                         // a closed OBJ surface whose inside the particles fill
+  FilledRegions regions;                    // what the particles fill
   double spacing = 0;                       // m, r (required)
   double density = 1000;                    // kg/m^3
   std::optional<double> youngs_modulus;     // Pa, E (required)

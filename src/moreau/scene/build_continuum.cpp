@@ -1,11 +1,10 @@
 // "kind": "continuum" objects: particles on a cubic lattice of spacing r (one per cell, at its
-// centre) filling boxes, cylinders, spheres or a closed mesh, each carrying the mass and rest volume r^3 of
-// its cell, a deformation gradient and its material's elastic law and plastic flow
+// centre) filling boxes, cylinders, spheres or a closed mesh, each carrying the mass and rest
+// volume r^3 of its cell, a deformation gradient and its material's elastic law and plastic flow
 // (continuum/continuum_model.hpp). Simulated by XPBI (solvers/xpbi/).
 #include <fmt/format.h>
 
-#include "moreau/geometry/point_in_mesh.hpp"
-#include "moreau/scene/spec_builders.hpp"
+#include "moreau/scene/filled_regions.hpp"
 
 namespace moreau {
 
@@ -84,7 +83,7 @@ void fill_lattice(const SpecPlace& place, const std::string& field, const Vec3& 
 
 ContinuumSpec read_continuum(const JsonObject& object) {
   ContinuumSpec spec;
-  read_filled_regions(object, spec);
+  spec.regions = read_filled_regions(object);
   spec.spacing = object.number("spacing");
   spec.density = object.number("density", spec.density);
   spec.youngs_modulus = read_optional_number(object, "youngs_modulus");
@@ -104,47 +103,16 @@ void add_continuum(const ContinuumSpec& spec, const SpecPlace& place, ObjectInfo
                                       "other's neighbours); an earlier one has {} m",
                                       m.continuum.spacing));
   const ContinuumMaterial material = continuum_material(spec, place);
-  if (spec.blocks.empty() && spec.cylinders.empty() && spec.spheres.empty() && spec.mesh.empty())
+  if (spec.regions.empty())
     place.fail("blocks", "a continuum needs a block {\"min\", \"max\"}, a cylinder {\"base\", \"radius\", \"height\"}, a "
                          "sphere {\"center\", \"radius\"} or a closed \"mesh\" to fill");
 
   std::vector<Vec3> points;
-  for (size_t b = 0; b < spec.blocks.size(); ++b) {
-    const SpecPlace block = place.at(fmt::format("blocks[{}]", b));
-    const Vec3 lo = block.vector("min", spec.blocks[b].min), hi = block.vector("max", spec.blocks[b].max);
-    if ((hi.array() - lo.array() < r * (1 - 1e-9)).any())
-      block.fail("max", fmt::format("the block must be at least one particle spacing ({} m) across in every direction", r));
-    fill_lattice(block, "max", lo, hi, r, [](const Vec3&) { return true; }, points);
-  }
-  // A cylinder keeps the cells of its bounding box whose centres lie inside it.
-  for (size_t c = 0; c < spec.cylinders.size(); ++c) {
-    const SpecPlace cylinder = place.at(fmt::format("cylinders[{}]", c));
-    const Vec3 base = cylinder.vector("base", spec.cylinders[c].base);
-    const Real radius = cylinder.number("radius", spec.cylinders[c].radius, Range::positive());
-    const Real height = cylinder.number("height", spec.cylinders[c].height, Range::positive());
-    if (radius < r || height < r)
-      cylinder.fail("radius", fmt::format("the cylinder must be at least one particle spacing ({} m) wide and tall", r));
-    const Vec3 lo = base - Vec3(radius, 0, radius), hi = base + Vec3(radius, height, radius);
-    fill_lattice(cylinder, "radius", lo, hi, r, [&](const Vec3& x) {
-      return Vec2(x.x() - base.x(), x.z() - base.z()).squaredNorm() <= radius * radius;
-    }, points);
-  }
-  // A sphere keeps the cells of its bounding box whose centres lie inside it.
-  for (size_t s = 0; s < spec.spheres.size(); ++s) {
-    const SpecPlace sphere = place.at(fmt::format("spheres[{}]", s));
-    const Vec3 center = sphere.vector("center", spec.spheres[s].center);
-    const Real radius = sphere.number("radius", spec.spheres[s].radius, Range::positive());
-    if (radius < r) sphere.fail("radius", fmt::format("the sphere must be at least one particle spacing ({} m) in radius", r));
-    fill_lattice(sphere, "radius", center - Vec3::Constant(radius), center + Vec3::Constant(radius), r,
-                 [&](const Vec3& x) { return (x - center).squaredNorm() <= radius * radius; }, points);
-  }
-  if (!spec.mesh.empty()) {
-    const ClosedSurface surface = read_closed_surface(ctx, place, "mesh", spec.mesh);
-    const std::size_t before = points.size();
-    fill_lattice(place, "mesh", surface.lo, surface.hi, r,
-                 [&](const Vec3& x) { return point_in_closed_mesh(surface.mesh, x); }, points);
-    if (points.size() == before) place.fail("mesh", fmt::format("the surface holds no lattice cell of edge {} m", r));
-  }
+  fill_regions(spec.regions, place, ctx, {r, 0, "particle spacing"},
+               [&](const SpecPlace& at, const std::string& field, const Vec3& lo, const Vec3& hi, auto keep) {
+                 fill_lattice(at, field, lo, hi, r, keep, points);
+               },
+               [&] { return points.size(); });
   if (points.size() < 2) place.fail("blocks", "a continuum needs at least two particles");
 
   set_contact_material(spec.contact, place, info);

@@ -1,6 +1,6 @@
-// "kind": "granular" objects: grains as particles on a lattice filling boxes, cylinders or a
-// closed mesh, or poured by an emitter, each touching the others, colliders, rigid bodies and rods
-// through the particle contacts (with friction, restitution and cohesion); polydisperse radii
+// "kind": "granular" objects: grains as particles on a lattice filling boxes, cylinders, spheres or
+// a closed mesh, or poured by an emitter, each touching the others, colliders, rigid bodies and
+// rods through the particle contacts (with friction, restitution and cohesion); polydisperse radii
 // drawn from a seeded generator.
 #include <fmt/format.h>
 
@@ -8,8 +8,7 @@
 #include <cmath>
 #include <random>
 
-#include "moreau/geometry/point_in_mesh.hpp"
-#include "moreau/scene/spec_builders.hpp"
+#include "moreau/scene/filled_regions.hpp"
 
 namespace moreau {
 
@@ -150,7 +149,7 @@ GrainEmitter pour_grains(const EmitterSpec& spec, const SpecPlace& e, GrainLatti
 
 GranularSpec read_granular(const JsonObject& object) {
   GranularSpec spec;
-  read_filled_regions(object, spec);
+  spec.regions = read_filled_regions(object);
   if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"));
   if (object.has("clump")) {
     const JsonObject clump = object.object("clump");
@@ -186,7 +185,7 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     r_max = r.y();
   }
   const Real density = place.number("density", spec.density, Range::positive());
-  if (spec.blocks.empty() && spec.cylinders.empty() && spec.spheres.empty() && spec.mesh.empty() && !spec.emitter)
+  if (spec.regions.empty() && !spec.emitter)
     place.fail("blocks", "a granular object needs a block {\"min\", \"max\"}, cylinder {\"base\", \"radius\", \"height\"} "
                          "or sphere {\"center\", \"radius\"} to fill, a closed \"mesh\" to fill, or an \"emitter\" to "
                          "pour its grains");
@@ -197,54 +196,16 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     const int spheres = c.integer("spheres", spec.clump->spheres, 2, 4);
     const Real spacing = c.number("spacing", spec.clump->spacing, Range::positive());
     if (spacing >= 2) c.fail("spacing", "the spheres of a clump must overlap: their centre distance is below 2 radii");
-    if (spec.emitter) place.fail("emitter", "an emitter pours single grains; clumps fill blocks, cylinders or meshes");
+    if (spec.emitter) place.fail("emitter", "an emitter pours single grains; clumps fill blocks, cylinders, spheres or meshes");
     clump = clump_offsets(spheres, spacing);
   }
   GrainLattice lattice(r_min, r_max, density, static_cast<std::uint64_t>(spec.seed), clump);
   const Real diameter = lattice.spacing() / 1.02;  // of a grain or a clump's bounding sphere
-  for (size_t b = 0; b < spec.blocks.size(); ++b) {
-    const SpecPlace block = place.at(fmt::format("blocks[{}]", b));
-    const Vec3 lo = block.vector("min", spec.blocks[b].min), hi = block.vector("max", spec.blocks[b].max);
-    if ((hi.array() - lo.array() < diameter * (1 - 1e-9)).any())
-      block.fail("max", fmt::format("the block must be at least one grain diameter ({} m) across in every direction", diameter));
-    lattice.fill(block, "max", lo, hi, [](const Vec3&) { return true; });
-  }
-  // A cylinder keeps the lattice points of its bounding box whose grains lie inside it.
-  for (size_t c = 0; c < spec.cylinders.size(); ++c) {
-    const SpecPlace cylinder = place.at(fmt::format("cylinders[{}]", c));
-    const Vec3 base = cylinder.vector("base", spec.cylinders[c].base);
-    const Real radius = cylinder.number("radius", spec.cylinders[c].radius, Range::positive());
-    const Real height = cylinder.number("height", spec.cylinders[c].height, Range::positive());
-    if (radius < diameter / 2 * (1 - 1e-9))
-      cylinder.fail("radius", fmt::format("the cylinder must be at least one grain diameter ({} m) wide", diameter));
-    if (height < diameter * (1 - 1e-9))
-      cylinder.fail("height", fmt::format("the cylinder must be at least one grain diameter ({} m) tall", diameter));
-    const Vec3 lo = base - Vec3(radius, 0, radius), hi = base + Vec3(radius, height, radius);
-    const Real reach = radius - diameter / 2;  // of a grain (or clump) centre from the axis
-    lattice.fill(cylinder, "radius", lo, hi, [&](const Vec3& p) {
-      return Vec2(p.x() - base.x(), p.z() - base.z()).squaredNorm() <= reach * reach * (1 + 1e-12);
-    });
-  }
-  // A sphere keeps the lattice points of its bounding box whose grains lie inside it.
-  for (size_t s = 0; s < spec.spheres.size(); ++s) {
-    const SpecPlace sphere = place.at(fmt::format("spheres[{}]", s));
-    const Vec3 center = sphere.vector("center", spec.spheres[s].center);
-    const Real radius = sphere.number("radius", spec.spheres[s].radius, Range::positive());
-    if (radius < diameter / 2 * (1 - 1e-9))
-      sphere.fail("radius", fmt::format("the sphere must be at least one grain diameter ({} m) wide", diameter));
-    const Real reach = radius - diameter / 2;  // of a grain (or clump) centre from the centre
-    lattice.fill(sphere, "radius", center - Vec3::Constant(radius), center + Vec3::Constant(radius),
-                 [&](const Vec3& p) { return (p - center).squaredNorm() <= reach * reach * (1 + 1e-12); });
-  }
-  // A closed OBJ surface keeps the lattice points of its bounding box that lie inside it.
-  if (!spec.mesh.empty()) {
-    const ClosedSurface surface = read_closed_surface(ctx, place, "mesh", spec.mesh);
-    const std::size_t before = lattice.positions.size();
-    lattice.fill(place, "mesh", surface.lo, surface.hi,
-                 [&](const Vec3& p) { return point_in_closed_mesh(surface.mesh, p); });
-    if (lattice.positions.size() == before)
-      place.fail("mesh", fmt::format("the surface holds no grain of diameter {} m on the lattice", diameter));
-  }
+  fill_regions(spec.regions, place, ctx, {diameter, diameter / 2, "grain diameter"},
+               [&](const SpecPlace& at, const std::string& field, const Vec3& lo, const Vec3& hi, auto keep) {
+                 lattice.fill(at, field, lo, hi, keep);
+               },
+               [&] { return lattice.positions.size(); });
   const Index filled = static_cast<Index>(lattice.positions.size());
   GrainEmitter emitter;
   if (spec.emitter) emitter = pour_grains(*spec.emitter, place.at("emitter"), lattice, r_max, ctx.duration);

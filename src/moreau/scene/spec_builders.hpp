@@ -115,8 +115,8 @@ void read_particle_object_keys(const JsonObject& object, ParticleObjectSpec& spe
 }
 /// What a granular object or a continuum fills: "blocks", vertical "cylinders", "spheres" and a
 /// closed OBJ "mesh" (its path).
-template <class FilledSpec>
-void read_filled_regions(const JsonObject& object, FilledSpec& spec) {
+inline FilledRegions read_filled_regions(const JsonObject& object) {
+  FilledRegions spec;
   for (const JsonObject& block : object.object_list("blocks")) spec.blocks.push_back(read_block(block));
   for (const JsonObject& cylinder : object.object_list("cylinders")) {
     spec.cylinders.push_back({to_vector3(cylinder.vec3("base")), cylinder.number("radius"), cylinder.number("height")});
@@ -128,6 +128,7 @@ void read_filled_regions(const JsonObject& object, FilledSpec& spec) {
   }
   if (object.has("mesh")) spec.mesh = object.string("mesh");
   if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");
+  return spec;
 }
 /// A cloth or soft-body "mesh" read from a file: "file", "scale", "translate".
 MeshFile read_mesh_file(const JsonObject& mesh);
