@@ -3,6 +3,8 @@
 // small strains give linear elasticity.
 #include <gtest/gtest.h>
 
+#include <Eigen/SVD>
+
 #include <random>
 
 #include "moreau/continuum/hencky_elasticity.hpp"
@@ -35,6 +37,41 @@ TEST(HenckyElasticity, RotationSvdKeepsRotationsAndRebuildsF) {
     EXPECT_NEAR(s.V.determinant(), 1, 1e-12);
     EXPECT_LT((s.compose() - F).norm(), 1e-12);
     EXPECT_EQ(s.sigma[2] < 0, F.determinant() < 0);
+  }
+}
+
+// The closed-form SVD against Eigen's iterative JacobiSVD where closed forms are weakest: equal
+// stretches (the eigenvectors of F^T F are not unique), F within 1e-9 of a rotation, the 0.05
+// stretch the continua clamp to, and F of rank two and one. The singular values agree to 1e-12
+// of the largest, and U diag(sigma) V^T rebuilds F to 1e-12 of |F|.
+TEST(HenckyElasticity, ClosedFormSvdMatchesJacobiSvd) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<Real> tiny(-1e-9, 1e-9);
+  auto check = [](const Mat3& F, const char* what) {
+    const RotationSvd s = rotation_svd(F);
+    const Vec3 reference = Eigen::JacobiSVD<Mat3>(F).singularValues();
+    const Real scale = std::max<Real>(reference[0], 1e-300);
+    EXPECT_LT((s.sigma.cwiseAbs() - reference).norm(), 1e-12 * scale) << what << "\n" << F;
+    EXPECT_LT((s.compose() - F).norm(), 1e-12 * scale) << what << "\n" << F;
+    EXPECT_NEAR(s.U.determinant(), 1, 1e-12) << what;
+    EXPECT_NEAR(s.V.determinant(), 1, 1e-12) << what;
+    // Ordered largest first, up to the round-off that tells equal stretches apart.
+    EXPECT_GE(s.sigma[0], s.sigma[1] - 1e-12 * scale) << what;
+    EXPECT_GE(s.sigma[1], std::abs(s.sigma[2]) - 1e-12 * scale) << what;
+  };
+  check(Mat3::Identity(), "identity");
+  check(Mat3::Zero(), "zero");
+  for (int k = 0; k < 50; ++k) {
+    const Mat3 R1 = random_rotation(rng), R2 = random_rotation(rng);
+    Mat3 near_rotation = R1;
+    for (int i = 0; i < 9; ++i) near_rotation(i) += tiny(rng);
+    check(near_rotation, "near a rotation");
+    check(R1 * Vec3(1.3, 1.3, 0.7).asDiagonal() * R2, "two equal stretches");
+    check(R1 * Vec3(0.9, 0.9, 0.9).asDiagonal() * R2, "three equal stretches");
+    check(R1 * Vec3(1.0, 0.05, 0.05).asDiagonal() * R2, "the clamped stretch");
+    check(R1 * Vec3(1.2, 0.8, -0.3).asDiagonal() * R2, "inverted");
+    check(R1 * Vec3(1.2, 0.8, 0).asDiagonal() * R2, "rank two");
+    check(R1 * Vec3(1.2, 0, 0).asDiagonal() * R2, "rank one");
   }
 }
 

@@ -2,7 +2,11 @@
 
 #include <omp.h>
 
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace moreau {
 
@@ -12,9 +16,15 @@ void ContinuumNeighborhood::build(const Model& model, const State& state, int th
   const WendlandKernel kernel_function(continuum.support());
   start.resize(n);
   volume.resize(n);
+  clump_distance.resize(n);
+  const Real min_distance = model.settings.xpbi.min_distance * continuum.spacing;
   for (Index i = 0; i < n; ++i) {
+    const Mat3& F = state.continuum.deformation[i];
     start[i] = state.position[continuum.particle[i]];
-    volume[i] = continuum.rest_volume[i] * state.continuum.deformation[i].determinant();
+    volume[i] = continuum.rest_volume[i] * F.determinant();
+    Eigen::SelfAdjointEigenSolver<Mat3> stretches;
+    stretches.computeDirect(F.transpose() * F, Eigen::EigenvaluesOnly);
+    clump_distance[i] = min_distance * std::min<Real>(1, std::sqrt(std::max<Real>(0, stretches.eigenvalues()[0])));
   }
   neighbors.build(start, continuum.support(), threads);
   gradient.resize(neighbors.total());

@@ -20,6 +20,10 @@ struct ContinuumNeighborhood {
   std::vector<Real> volume;          // m^3, V^n
   std::vector<Vec3> gradient;        // 1/m^4, L_p grad_{x_p} W(x_p - x_b) per pair (the neighbors' layout)
   std::vector<Real> kernel;          // 1/m^3, W(|x_p - x_b|) per pair
+  // m, the anti-clumping distance of each particle: settings.xpbi.min_distance r, shortened by the
+  // smallest stretch of F^n where the body is compressed, so that a uniformly compressed lattice
+  // (spacing r s) is not pushed apart as if its particles were clumping.
+  std::vector<Real> clump_distance;
   // The Gauss-Seidel sweep's order: blocks of edge twice the support, coloured by the parity of
   // their integer coordinates (tile_batches.hpp). Two blocks of one colour have a whole block
   // between them, and a particle's constraint moves only particles closer than the support to it

@@ -47,13 +47,12 @@ void project_elastoplastic(const Model& model, const State& state, const Continu
 
 void separate_clumped(const Model& model, const ContinuumNeighborhood& around, const SubstepContext& ctx, Index i) {
   const ContinuumModel& continuum = model.continuum;
-  const Real min_distance = model.settings.xpbi.min_distance * continuum.spacing;
-  if (min_distance <= 0) return;
   const Index* list = around.neighbors.neighbors(i);
   const Index count = around.neighbors.count(i);
   const Index p = continuum.particle[i];
   for (Index k = 0; k < count; ++k) {
     const Index b = continuum.particle[list[k]];
+    const Real min_distance = std::min(around.clump_distance[i], around.clump_distance[list[k]]);
     const Vec3 d = ctx.x[p] - ctx.x[b];
     const Real distance2 = d.squaredNorm();
     if (distance2 >= min_distance * min_distance) continue;
