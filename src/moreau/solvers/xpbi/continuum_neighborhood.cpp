@@ -19,12 +19,8 @@ void ContinuumNeighborhood::build(const Model& model, const State& state, int th
   clump_distance.resize(n);
   const Real min_distance = model.settings.xpbi.min_distance * continuum.spacing;
   for (Index i = 0; i < n; ++i) {
-    const Mat3& F = state.continuum.deformation[i];
     start[i] = state.position[continuum.particle[i]];
-    volume[i] = continuum.rest_volume[i] * F.determinant();
-    Eigen::SelfAdjointEigenSolver<Mat3> stretches;
-    stretches.computeDirect(F.transpose() * F, Eigen::EigenvaluesOnly);
-    clump_distance[i] = min_distance * std::min<Real>(1, std::sqrt(std::max<Real>(0, stretches.eigenvalues()[0])));
+    volume[i] = continuum.rest_volume[i] * state.continuum.deformation[i].determinant();
   }
   neighbors.build(start, continuum.support(), threads);
   gradient.resize(neighbors.total());
@@ -44,6 +40,11 @@ void ContinuumNeighborhood::build(const Model& model, const State& state, int th
         gradient[first + k] = corrected_gradient(kernel_function, correction, around[k].offset);
         kernel[first + k] = kernel_function.value(around[k].offset.norm());
       }
+      // The smallest stretch of F^n: the square root of the smallest eigenvalue of F^T F.
+      const Mat3& F = state.continuum.deformation[i];
+      Eigen::SelfAdjointEigenSolver<Mat3> stretches;
+      stretches.computeDirect(F.transpose() * F, Eigen::EigenvaluesOnly);
+      clump_distance[i] = min_distance * std::min<Real>(1, std::sqrt(std::max<Real>(0, stretches.eigenvalues()[0])));
     }
   }
   blocks.build(start.data(), n, GridFrame{Vec3::Zero(), 2 * continuum.support()});

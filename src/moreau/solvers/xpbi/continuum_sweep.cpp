@@ -46,6 +46,7 @@ void project_elastoplastic(const Model& model, const State& state, const Continu
 }
 
 void separate_clumped(const Model& model, const ContinuumNeighborhood& around, const SubstepContext& ctx, Index i) {
+  if (model.settings.xpbi.min_distance <= 0) return;
   const ContinuumModel& continuum = model.continuum;
   const Index* list = around.neighbors.neighbors(i);
   const Index count = around.neighbors.count(i);
