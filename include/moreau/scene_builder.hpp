@@ -65,6 +65,7 @@ struct SleepSolverSettings {
 struct XpbiSolverSettings {
   std::optional<double> xsph;          // c of the XSPH velocity smoothing per substep
   std::optional<double> min_distance;  // in particle spacings: the anti-clumping distance
+  std::optional<bool> packing_volume;  // F's volume follows the particles' packing where it is closer
 };
 
 /// "settings". Unset fields keep the engine defaults listed in docs/scene-format.md.

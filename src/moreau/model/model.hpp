@@ -72,6 +72,7 @@ struct SleepSettings {
 struct XpbiSettings {
   Real xsph = 0.01;          // c of the XSPH smoothing, once per substep (solvers/xpbi/continuum_update.hpp)
   Real min_distance = 0.75;  // in r: no two continuum particles come closer
+  bool packing_volume = true;  // det F follows the particles' packing where they pack closer (continuum/packing_volume.hpp)
 };
 
 struct SolverSettings {

@@ -60,6 +60,7 @@ SceneSettings read_settings(const JsonObject& settings) {
   if (auto xpbi = settings.optional_object("xpbi")) {
     s.xpbi.xsph = read_optional_number(*xpbi, "xsph");
     s.xpbi.min_distance = read_optional_number(*xpbi, "min_distance");
+    if (xpbi->has("packing_volume")) s.xpbi.packing_volume = xpbi->boolean("packing_volume", true);
     xpbi->finish();
   }
   if (auto sleep = settings.optional_object("sleep")) {
@@ -122,6 +123,7 @@ void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& sc
   s.xpbi.xsph = xpbi.number("xsph", spec.xpbi.xsph.value_or(s.xpbi.xsph), Range::closed(0, 1));
   s.xpbi.min_distance =
       xpbi.number("min_distance", spec.xpbi.min_distance.value_or(s.xpbi.min_distance), Range::closed(0, 1));
+  s.xpbi.packing_volume = spec.xpbi.packing_volume.value_or(s.xpbi.packing_volume);
   if (spec.sleep) {
     const SpecPlace sleep = place.at("sleep");
     s.sleep.enabled = true;

@@ -11,7 +11,9 @@
 //                   pair's terms are equal and opposite, so the momentum is kept;
 //   positions:      x_p = x_p^n + h v_p, with the smoothed velocity;
 //   deformation:    F_p^{n+1} = Z((I + h grad v_p) F_p^n) (eq. 22) with that same velocity; the
-//                   flow's plastic strain is added up and snow's J_p grows by its volume factor.
+//                   flow's plastic strain is added up and snow's J_p grows by its volume factor;
+//   packing:        where the particles pack more than 10 % closer than det F holds, F's volume
+//                   follows them (continuum/packing_volume.hpp; settings.xpbi.packing_volume).
 #include <vector>
 
 #include "moreau/solvers/xpbd/substep_context.hpp"
