@@ -20,6 +20,8 @@
 // lattice, though: stretched isochorically 1.3 : 1 it says 3.8 % less volume, 1.5 : 1 11 %, and a
 // von Mises block pressed by 22 % sprang back twice as far when det F followed it exactly. So F
 // follows the packing only beyond kPackingTolerance: it bounds the drift instead of removing it.
+#include <cmath>
+
 #include "moreau/continuum/wendland_kernel.hpp"
 
 namespace moreau {
