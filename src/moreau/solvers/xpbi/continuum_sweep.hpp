@@ -19,7 +19,7 @@
 
 namespace moreau {
 
-/// Every thread of a parallel region calls it; `lambda` holds each particle's multiplier of this
+/// Every thread of a parallel region calls it; `lambda` holds each sweep position's multiplier of this
 /// substep (zero at its start).
 void sweep_continuum(const Model& model, const State& state, const ContinuumNeighborhood& around,
                      const SubstepContext& ctx, std::vector<Real>& lambda);

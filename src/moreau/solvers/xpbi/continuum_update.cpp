@@ -7,15 +7,15 @@ namespace moreau {
 
 namespace {
 
-/// n_p = sum_b V_b^0 W(|x_b - x_p|), p included, at the substep's end (packing_volume.hpp); the
-/// pairs are the substep's, found at its start.
+/// n_p = sum_b V_b^0 W(|x_b - x_p|), p included, at the substep's end (packing_volume.hpp), for
+/// the particle at sweep position s; the pairs are the substep's, found at its start.
 Real packing(const ContinuumModel& continuum, const ContinuumNeighborhood& around, const WendlandKernel& kernel,
-             const Vec3* x, Index i) {
-  const Index* list = around.neighbors.neighbors(i);
-  const Index count = around.neighbors.count(i);
+             const Vec3* x, Index s) {
+  const Index i = around.sweep_order[s];
   const Vec3& xp = x[continuum.particle[i]];
   Real sum = continuum.rest_volume[i] * kernel.value(0);
-  for (Index k = 0; k < count; ++k) sum += continuum.rest_volume[list[k]] * kernel.value((x[continuum.particle[list[k]]] - xp).norm());
+  for (Index k = around.pair_begin[s]; k < around.pair_begin[s + 1]; ++k)
+    sum += continuum.rest_volume[around.neighbor[k]] * kernel.value((x[around.neighbor_particle[k]] - xp).norm());
   return sum;
 }
 
@@ -26,19 +26,19 @@ void finish_continuum_substep(const Model& model, State& state, const ContinuumN
   const ContinuumModel& continuum = model.continuum;
   const Index n = continuum.size();
   const Real c = model.settings.xpbi.xsph;
+  // The passes below go through the particles in the sweep's order, in which the pairs are laid out.
 #pragma omp for schedule(static)
-  for (Index i = 0; i < n; ++i) scratch.velocity_gradient[i] = around.substep_deformation(continuum, ctx.x, ctx.x_start, i) * ctx.inv_h;
+  for (Index s = 0; s < n; ++s)
+    scratch.velocity_gradient[around.sweep_order[s]] = around.substep_deformation(continuum, ctx.x, ctx.x_start, s) * ctx.inv_h;
 #pragma omp for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    const Index p = continuum.particle[i];
-    const Index* list = around.neighbors.neighbors(i);
-    const Index count = around.neighbors.count(i), first = around.neighbors.offset(i);
+  for (Index s = 0; s < n; ++s) {
+    const Index i = around.sweep_order[s], p = continuum.particle[i];
     Vec3 dv = Vec3::Zero();
-    for (Index k = 0; k < count; ++k) {
-      const Index j = list[k], b = continuum.particle[j];
+    for (Index k = around.pair_begin[s]; k < around.pair_begin[s + 1]; ++k) {
+      const Index j = around.neighbor[k], b = around.neighbor_particle[k];
       const Real weight = 0.5 * (around.volume[j] + model.particle_mass[b] / model.particle_mass[p] * around.volume[i]);
       const Vec3 linear = 0.5 * (scratch.velocity_gradient[i] + scratch.velocity_gradient[j]) * (around.start[j] - around.start[i]);
-      dv += (weight * around.kernel[first + k]) * (state.velocity[b] - state.velocity[p] - linear);
+      dv += (weight * around.kernel[k]) * (state.velocity[b] - state.velocity[p] - linear);
     }
     scratch.smoothed[i] = state.velocity[p] + c * dv;
   }
@@ -53,8 +53,9 @@ void finish_continuum_substep(const Model& model, State& state, const ContinuumN
   const WendlandKernel kernel(continuum.support());
   const Real lattice_sum = lattice_kernel_sum(kernel, continuum.spacing);
 #pragma omp for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    const Mat3 G = around.substep_deformation(continuum, ctx.x, ctx.x_start, i);
+  for (Index s = 0; s < n; ++s) {
+    const Index i = around.sweep_order[s];
+    const Mat3 G = around.substep_deformation(continuum, ctx.x, ctx.x_start, s);
     const ContinuumMaterial& material = continuum.materials[continuum.material[i]];
     const RotationSvd trial = rotation_svd((Mat3::Identity() + G) * deformation.deformation[i]);
     const PlasticReturn returned =
@@ -66,7 +67,7 @@ void finish_continuum_substep(const Model& model, State& state, const ContinuumN
       deformation.deformation[i] = F;
       continue;
     }
-    deformation.deformation[i] = packed_deformation(F, lattice_sum / packing(continuum, around, kernel, ctx.x, i),
+    deformation.deformation[i] = packed_deformation(F, lattice_sum / packing(continuum, around, kernel, ctx.x, s),
                                                     deformation.plastic_volume[i]);
   }
 }

@@ -33,7 +33,7 @@ class ContinuumSubstep final : public SubstepExtension {
 
  private:
   ContinuumNeighborhood around_;
-  std::vector<Real> lambda_;     // per continuum particle, this substep
+  std::vector<Real> lambda_;     // per sweep position (ContinuumNeighborhood), this substep
   ContinuumSubstepScratch scratch_;
 };
 
