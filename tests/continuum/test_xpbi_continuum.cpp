@@ -13,6 +13,7 @@
 #include "moreau/errors.hpp"
 #include "moreau/model/diagnostics.hpp"
 #include "moreau/scene/scene.hpp"
+#include "continuum_test_helpers.hpp"
 
 namespace moreau {
 namespace {
@@ -21,19 +22,6 @@ void run(Scene& scene, Real duration, int threads = 1) {
   StageTimer timer;
   const long steps = std::lround(duration / scene.model.settings.dt);
   for (long k = 0; k < steps; ++k) scene.formulation->step(scene.model, scene.state, timer, threads);
-}
-
-// sum_p V_p^0 tau_p: the volume integral of the Cauchy stress, sum V sigma = sum V^0 J sigma.
-Mat3 stress_integral(const Scene& scene) {
-  const ContinuumModel& c = scene.model.continuum;
-  const ContinuumState& s = scene.state.continuum;
-  Mat3 total = Mat3::Zero();
-  for (Index i = 0; i < c.size(); ++i) {
-    const RotationSvd F = rotation_svd(s.deformation[i]);
-    const LameParameters lame = continuum_lame(c.materials[c.material[i]], s.plastic_volume[i]);
-    total += c.rest_volume[i] * (F.U * hencky_kirchhoff(lame, F.sigma).asDiagonal() * F.U.transpose());
-  }
-  return total;
 }
 
 std::string column_scene(const std::string& plasticity) {
@@ -58,7 +46,7 @@ void expect_virial(Scene& scene, const char* what, Real settle_time) {
     W += 9.81 * scene.model.particle_mass[scene.model.continuum.particle[i]];
   const Real y_c = center_of_mass(scene.model, scene.state, 1).y();
   const Real expected = -W * (y_c - scene.model.continuum.spacing / 2);
-  const Real measured = stress_integral(scene)(1, 1);
+  const Real measured = test::continuum_stress_integral(scene)(1, 1);
   fmt::print("{}: int sigma_yy dV = {:.6g} N m, -W (y_c - r/2) = {:.6g} N m, error {:.3g} %, kinetic {:.3g} J\n", what,
              measured, expected, 100 * (measured / expected - 1), kinetic_energy(scene.model, scene.state, 1));
   // 2 %: the bound on the StVK-Hencky stress. What is left are the particles near the
