@@ -12,15 +12,12 @@
 #include "moreau/model/diagnostics.hpp"
 #include "moreau/scene/scene.hpp"
 #include "continuum_test_helpers.hpp"
+#include "test_helpers.hpp"
 
 namespace moreau {
 namespace {
 
-void run(Scene& scene, Real duration) {
-  StageTimer timer;
-  const long steps = std::lround(duration / scene.model.settings.dt);
-  for (long k = 0; k < steps; ++k) scene.formulation->step(scene.model, scene.state, timer, 1);
-}
+void run(Scene& scene, Real duration) { test::run_steps(scene, std::lround(duration / scene.model.settings.dt)); }
 
 Real object_mass(const Scene& scene, Index object) {
   Real mass = 0;

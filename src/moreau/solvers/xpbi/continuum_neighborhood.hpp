@@ -35,7 +35,8 @@ struct ContinuumNeighborhood {
 
   // What the iterations read, laid out in the sweep's order so that a sweep streams through it:
   // the pairs of the particle at sweep position s are [pair_begin[s], pair_begin[s + 1]).
-  // Per pair: the neighbour (continuum index) and its particle (Model index), the corrected kernel
+  // Per pair: the neighbour (continuum index) and its particle (Model index; kept beside it so that
+  // the iterations' loops, which read only positions, need no second lookup), the corrected kernel
   // gradient weighted by the neighbour's volume, V_b^n L_p grad_{x_p} W(x_p - x_b) (1/m), and the
   // kernel value W(|x_p - x_b|) (1/m^3).
   std::vector<Index> pair_begin;
