@@ -20,6 +20,7 @@ packages=(
   libqhull-dev         # convex hulls of rigid bodies
   libccd-dev           # convex-convex contacts (Minkowski portal refinement)
   libgtest-dev libgmock-dev libbenchmark-dev
+  python3-numpy        # bench/mpm_column_reference.py, the MPM reference of the XPBI sand column
 )
 
 missing=()
