@@ -116,12 +116,12 @@ def simulate(a, dx, phi_deg, mu, duration, report=True):
         gv = np.zeros_like(grid_p)
         gv[has] = grid_p[has] / grid_m[has, None]
         gv[has, 1] += dt * G
-        # Symmetry walls x = 0 and z = 0: no flow through them.
-        wall_x = node_x[:, 0] < 0.5 * dx
-        wall_z = node_x[:, 2] < 0.5 * dx
-        gv[wall_x & (gv[:, 0] < 0), 0] = 0
-        gv[wall_z & (gv[:, 2] < 0), 2] = 0
-        # The ground: no penetration, Coulomb friction mu on what the normal stop removes.
+        # Symmetry planes x = 0 and z = 0: the normal velocity, odd across them, is zero there
+        # (and on the ghost nodes behind them, which the particles within 1.5 dx reach).
+        gv[node_x[:, 0] < 0.5 * dx, 0] = 0
+        gv[node_x[:, 2] < 0.5 * dx, 2] = 0
+        # The ground: no penetration, Coulomb friction mu on what the normal stop removes. As in
+        # any MPM, the nodes' friction reaches the particles within 1.5 dx of the ground.
         ground = (node_x[:, 1] < 0.5 * dx) & (gv[:, 1] < 0)
         vn = -gv[ground, 1]
         vt = gv[ground][:, [0, 2]]
@@ -155,7 +155,7 @@ def main():
     p.add_argument("--dx", type=float, default=0.005)
     p.add_argument("--phi", type=float, default=35)
     p.add_argument("--mu", type=float, default=0.6)
-    p.add_argument("--duration", type=float, default=0.4)
+    p.add_argument("--duration", type=float, default=0.6)
     args = p.parse_args()
     print(f"MLS-MPM, dx = {args.dx} m (particles {args.dx / 2} m apart), phi = {args.phi} deg, ground mu = {args.mu}")
     for a in args.aspect:

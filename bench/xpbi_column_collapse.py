@@ -40,7 +40,7 @@ def run(args, a):
     scene["settings"]["duration"] = args.duration
     scene["settings"]["output"]["every"] = 20
     scene["probes"] = [p for p in scene["probes"] if p["name"] in ("slope", "runout", "height", "kinetic")]
-    tag = f"a{a}_r{args.spacing}_phi{args.friction_angle}" + "".join("_" + s.split(".")[-1] for s in args.set)
+    tag = f"a{a}_r{args.spacing}_phi{args.friction_angle}" + "".join("_" + s.replace("/", "_") for s in args.set)
     out = os.path.join(args.out, tag)
     os.makedirs(out, exist_ok=True)
     path = os.path.join(out, "scene.json")

@@ -22,7 +22,7 @@ struct Deposit {
 
 Deposit collapse(Real friction_angle_deg) {
   // 10 substeps of 0.5 ms instead of the scene's 20: 5, 10, 20 and 40 substeps give runouts
-  // 0.732, 0.759, 0.724 and 0.711 at 35 degrees, within the 4 % this test does not resolve.
+  // 0.732, 0.759, 0.724 and 0.711 at 35 degrees, a spread of 7 %.
   World w = World::load(std::string(MOREAU_SOURCE_DIR) + "/scenes/sand_column_xpbi.json",
                         {R"(objects.sand.cylinders=[{"base": [0, 0, 0], "radius": 0.04, "height": 0.04}])",
                          fmt::format("objects.sand.plasticity.friction_angle_deg={}", friction_angle_deg),
@@ -42,13 +42,13 @@ TEST(XpbiSandCollapse, MoreFrictionGivesAShorterRunoutAndASteeperFlank) {
   // is a mean speed of 2.5 mm/s in the 0.32 kg pile, a few particles still settling at the toe.
   EXPECT_LT(loose.kinetic, 1e-6);
   EXPECT_LT(firm.kinetic, 1e-6);
-  // Measured 1.92x (runout 1.152 against 0.601) and 14.8 degrees (flank 14.4 against 29.2) apart:
-  // the bounds leave room for a drift of several percent, not for friction that stops mattering.
-  EXPECT_GT(loose.runout, 1.3 * firm.runout);
-  EXPECT_GT(firm.flank_deg, loose.flank_deg + 5);
-  // No deposit stands steeper than its friction angle.
-  EXPECT_LT(loose.flank_deg, 25);
-  EXPECT_LT(firm.flank_deg, 40);
+  // Measured 1.92x (runout 1.152 against 0.601) and 14.8 degrees (flank 14.4 against 29.2) apart.
+  EXPECT_GT(loose.runout, 1.6 * firm.runout);
+  EXPECT_GT(firm.flank_deg, loose.flank_deg + 10);
+  // And each where it was measured, to 15 %: twice the 7 % that the substep count alone moves the
+  // runout by, so that a change in the sand's physics that moves both together does not pass.
+  EXPECT_NEAR(loose.runout / 1.152, 1, 0.15);
+  EXPECT_NEAR(firm.runout / 0.601, 1, 0.15);
 }
 
 }  // namespace
