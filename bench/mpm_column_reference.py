@@ -31,9 +31,11 @@ import time
 
 import numpy as np
 
-R_I = 0.04
+from xpbi_column_collapse import R_I, lube_runout
+
 RHO, E, NU, G = 1600.0, 1e5, 0.3, -9.81
 MU_LAME, LAMBDA = E / (2 * (1 + NU)), E * NU / ((1 + NU) * (1 - 2 * NU))
+NODE_OFFSETS = [(i, j, l) for i in range(3) for j in range(3) for l in range(3)]  # a particle's 27 nodes
 
 
 def drucker_prager(F, alpha):
@@ -101,9 +103,8 @@ def simulate(a, dx, phi_deg, mu, duration, report=True):
         w = [0.5 * (1.5 - fx) ** 2, 0.75 - (fx - 1) ** 2, 0.5 * (fx - 0.5) ** 2]
         grid_m = np.zeros(nx * ny * nx)
         grid_p = np.zeros((nx * ny * nx, 3))
-        offsets = [(i, j, l) for i in range(3) for j in range(3) for l in range(3)]
         cache = []
-        for (i, j, l) in offsets:
+        for (i, j, l) in NODE_OFFSETS:
             weight = w[i][:, 0] * w[j][:, 1] * w[l][:, 2]
             idx = np.ravel_multi_index((base[:, 0] + i, base[:, 1] + j, base[:, 2] + l), shape)
             dpos = (np.array([i, j, l])[None, :] - fx) * dx
@@ -143,10 +144,6 @@ def simulate(a, dx, phi_deg, mu, duration, report=True):
             print(f"  t = {k * dt:.3f} s: runout {(runout(x, s) - r0) / r0:.3f}, kinetic {kinetic:.2e} J, "
                   f"top {x[:, 1].max() + s / 2:.4f} m, {time.time() - start:.0f} s", flush=True)
     return (runout(x, s) - r0) / r0, (x[:, 1].max() + s / 2) / r0, n * 4
-
-
-def lube_runout(a):
-    return 1.24 * a if a < 1.7 else 1.6 * math.sqrt(a)
 
 
 def main():

@@ -19,16 +19,13 @@ Usage: bench/xpbi_column_collapse.py [--moreau build/moreau] [--out DIR] [--thre
 import argparse
 import csv
 import json
-import math
 import os
 import subprocess
 
-ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-R_I = 0.04
+from collapse_options import ROOT
+from column_collapse import lube_runout
 
-
-def lube_runout(a):
-    return 1.24 * a if a < 1.7 else 1.6 * math.sqrt(a)
+R_I = 0.04  # the scene's column radius, m
 
 
 def run(args, a):

@@ -6,7 +6,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <string>
+#include <vector>
 
 #include "moreau/math/types.hpp"
 #include "moreau/world.hpp"
@@ -27,10 +29,15 @@ Deposit collapse(Real friction_angle_deg) {
                         {R"(objects.sand.cylinders=[{"base": [0, 0, 0], "radius": 0.04, "height": 0.04}])",
                          fmt::format("objects.sand.plasticity.friction_angle_deg={}", friction_angle_deg),
                          "settings.substeps=10", "settings.threads=1"});
-  const Real start = w.probe_values()[1];  // slope, runout, height, kinetic, elastic
+  const std::vector<std::string> names = w.probe_names();
+  auto probe = [&](const char* name) {
+    const auto at = std::find(names.begin(), names.end(), name);
+    EXPECT_NE(at, names.end()) << name;
+    return w.probe_values().at(at - names.begin());
+  };
+  const Real start = probe("runout");
   while (w.time() < 0.3 - 1e-9) w.step();
-  const std::vector<double> end = w.probe_values();
-  return {(end[1] - start) / start, end[0], end[3]};
+  return {(probe("runout") - start) / start, probe("slope"), probe("kinetic")};
 }
 
 TEST(XpbiSandCollapse, MoreFrictionGivesAShorterRunoutAndASteeperFlank) {
