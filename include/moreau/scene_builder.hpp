@@ -86,6 +86,7 @@ struct SceneSettings {
   std::optional<SleepSolverSettings> sleep;  // absent: grains never sleep
   int output_every = 1;                 // output.every: frames and probe rows every N steps
   bool write_vtk = true;                // output.formats contains "vtk"
+  int checkpoint_every = 0;             // output.checkpoint_every: a checkpoint every N steps (0: none)
 };
 
 // ---- Shared pieces --------------------------------------------------------------------------

@@ -19,16 +19,25 @@ namespace moreau {
 
 struct RunOptions {
   std::string out_dir;                 // empty: out/<scene name>
-  std::optional<double> duration;      // s, overrides settings.duration
+  std::optional<double> duration;      // s to run from the current state; default: settings.duration,
+                                       // less the time already simulated after World::restore
   std::optional<int> threads;          // overrides settings.threads (0 = all cores)
+  std::optional<int> checkpoint_every; // steps between checkpoints; overrides settings.output.checkpoint_every (0: none)
   bool progress = false;               // draw a progress bar on stderr
 };
 
 struct RunResult {
-  long steps = 0;
+  long steps = 0;                      // steps this run took
   double wall_time_s = 0;              // the stepping loop only
   std::string out_dir;
+  int stopped_by_signal = 0;           // the signal (SIGINT, SIGTERM) that stopped the run early; 0 if none
+  std::string checkpoint;              // the last checkpoint written (out_dir/checkpoint.bin); empty if none
 };
+
+/// Asks every run in progress (World::run) to stop after its current step, write a checkpoint and
+/// a run.json with "status": "interrupted", and return with RunResult::stopped_by_signal set.
+/// Async-signal-safe: the command line calls it from its SIGINT and SIGTERM handlers.
+void request_stop(int signal_number);
 
 /// One array of the current state: `count` items of `components` doubles each, item-major
 /// (x0 y0 z0 x1 y1 z1 ...). See World::arrays for the names each engine offers.
@@ -51,6 +60,8 @@ struct WorldObject {
 
 struct Scene;
 class Engine;
+struct RestartPoint;
+struct CheckpointHeader;
 
 class World {
  public:
@@ -74,7 +85,7 @@ class World {
 
   double time() const;                 // s
   double dt() const;                   // s, one step (0 for a steady flow, which solves once)
-  long steps() const;                  // steps taken since the scene was loaded
+  long steps() const;                  // steps from the scene's start (those of a restored checkpoint included)
 
   /// Advances one step of dt on settings.threads threads (or `threads`; results do not depend on
   /// the count). Throws NumericalError naming the step, the time and the object; the state is
@@ -108,6 +119,15 @@ class World {
   /// changes the state the next step starts from (a controller, a prescribed velocity).
   StateArray array(const std::string& name);
 
+  /// Writes a checkpoint of the current state to `path` (a versioned binary file, written whole or
+  /// not at all): everything a later step reads, so that restore() continues bit for bit.
+  void save_checkpoint(const std::string& path);
+  /// Replaces the current state by the checkpoint at `path`, written by a run of this same scene
+  /// (only settings.duration, output and threads may differ). Throws InputError naming the file
+  /// and what differs, leaving the state as it was. The next run() continues the checkpoint's
+  /// output directory (its frames, probes.csv and .pvd up to the checkpoint) when it writes there.
+  void restore(const std::string& path);
+
   /// Probe columns (after time) and their values at the current state, in the order of
   /// probes.csv.
   std::vector<std::string> probe_names() const;
@@ -122,6 +142,8 @@ class World {
   std::unique_ptr<Scene> scene_;
   std::unique_ptr<Engine> engine_;  // steps scene_'s state
   long steps_ = 0;
+  std::unique_ptr<CheckpointHeader> identity_;  // the scene as checkpoints identify it (at its start)
+  std::unique_ptr<RestartPoint> restart_;       // the restored checkpoint, until the next run
 };
 
 }  // namespace moreau

@@ -40,7 +40,7 @@ TEST(CliBadInput, FlagsOutOfRangeAreRefused) {
 TEST(CliBadInput, NumbersThatOverflowADoubleAreBadInput) {
   const std::string dir = test::temp_dir("overflow");
   std::ofstream(dir + "/big.json") << R"({"name": "big", "settings": {"dt": 1e999}})";
-  expect_bad_input(fmt::format("check {}/big.json", dir), "numbers must fit a double");
+  expect_bad_input(fmt::format("check {}/big.json", dir), "settings.dt: the number '1e999' does not fit a double");
   expect_bad_input(fmt::format("check {} --set settings.dt=1e999", kShowcase), "does not fit a double");
 }
 

@@ -1,22 +1,32 @@
 // The `moreau` command-line program.
 //   moreau run SCENE.json [--out DIR] [--duration T] [--threads N] [--quiet] [--set key=value ...]
+//              [--checkpoint-every N] [--restart CHECKPOINT]
 //   moreau check SCENE.json [--set key=value ...]
 //   moreau compare SCENE.json --solvers xpbd,nmd [--out DIR] [--duration T] [--threads N] [--quiet] [--set ...]
 // run and check take --memory-limit GB (what a scene's meshes and particles may need).
 //   moreau --version | --help
-// Exit codes: 0 success, 1 anything else, 2 bad input, 3 numerical failure.
+// Exit codes: 0 success, 1 anything else, 2 bad input, 3 numerical failure, 128 + the signal's
+// number when SIGINT (130) or SIGTERM (143) stopped a run (after its step, with a checkpoint).
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
+#include <csignal>
 #include <string>
 
 #include "moreau/moreau.hpp"
 
 namespace {
 constexpr int kExitOther = 1, kExitBadInput = 2, kExitNumerical = 3;
+
+// The first SIGINT or SIGTERM asks the run to stop after its current step and write a checkpoint;
+// a second one ends the program at once (the default action).
+extern "C" void stop_after_step(int signal_number) {
+  moreau::request_stop(signal_number);
+  std::signal(signal_number, SIG_DFL);
+}
 }
 
 int main(int argc, char** argv) {
@@ -57,6 +67,15 @@ int main(int argc, char** argv) {
   const auto positive_gb = CLI::Range(1e-6, 1e9);
   run->add_option("--memory-limit", memory_limit_gb, memory_limit_help)->check(positive_gb);
   run->add_option("--set", overrides, "override a scene value by its JSON path, e.g. --set settings.substeps=40");
+  int checkpoint_every = -1;
+  std::string restart_path;
+  run->add_option("--checkpoint-every", checkpoint_every,
+                  "write DIR/checkpoint.bin every N steps and at the end (overrides settings.output.checkpoint_every; 0: "
+                  "only when interrupted)")
+      ->check(CLI::Range(0, 1 << 30));
+  run->add_option("--restart", restart_path,
+                  "resume from a checkpoint of this scene; runs what is left of settings.duration (or --duration more) "
+                  "and continues the checkpoint's output directory");
 
   CLI::App* check = app.add_subcommand("check", "validate a scene and print what it builds");
   check->add_option("scene", scene_path, "scene file (JSON)")->required();
@@ -110,12 +129,25 @@ int main(int argc, char** argv) {
       fmt::print("scene is valid\n");
       return 0;
     }
+    if (!restart_path.empty()) world.restore(restart_path);
     moreau::RunOptions options;
     options.out_dir = out_dir;
     if (duration > 0) options.duration = duration;
     if (threads >= 0) options.threads = threads;
+    if (checkpoint_every >= 0) options.checkpoint_every = checkpoint_every;
     options.progress = !quiet && isatty(STDERR_FILENO);
+    std::signal(SIGINT, stop_after_step);
+    std::signal(SIGTERM, stop_after_step);
     const moreau::RunResult r = world.run(options);
+    if (r.stopped_by_signal != 0) {
+      std::string resume = "moreau run " + scene_path;
+      for (const std::string& o : overrides) resume += " --set '" + o + "'";
+      if (!out_dir.empty()) resume += " --out " + out_dir;
+      fmt::print(stderr, "moreau: stopped by {} at t = {:.6g} s after {} steps; checkpoint {}\nmoreau: resume with: {} --restart {}\n",
+                 r.stopped_by_signal == SIGINT ? "SIGINT" : r.stopped_by_signal == SIGTERM ? "SIGTERM" : "a signal",
+                 world.time(), world.steps(), r.checkpoint, resume, r.checkpoint);
+      return 128 + r.stopped_by_signal;
+    }
     if (!quiet)
       fmt::print("moreau: '{}' ran {} steps in {:.3f} s ({:.1f} steps/s); output in {}/\n", world.name(), r.steps,
                  r.wall_time_s, r.steps / std::max(r.wall_time_s, 1e-12), r.out_dir);

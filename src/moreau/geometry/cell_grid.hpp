@@ -14,6 +14,7 @@
 #include <array>
 #include <cstdint>
 #include <utility>
+#include <tuple>
 #include <vector>
 
 #include "moreau/math/types.hpp"
@@ -66,6 +67,10 @@ class CellGrid {
 
   /// The 63-bit Morton key of non-negative cell offsets (21 bits per axis, interleaved x, y, z).
   static std::uint64_t morton_key(std::uint32_t cx, std::uint32_t cy, std::uint32_t cz);
+
+  /// Every member, for checkpoints (io/binary_archive.hpp): a restored grid answers as this one.
+  auto archive_members() { return std::tie(frame_, lo_, extent_, order_, point_cell_, key_, key_scratch_, order_scratch_, histogram_, cell_key_, cell_begin_, cell_coord_, dense_, use_dense_); }
+  auto archive_members() const { return std::tie(frame_, lo_, extent_, order_, point_cell_, key_, key_scratch_, order_scratch_, histogram_, cell_key_, cell_begin_, cell_coord_, dense_, use_dense_); }
 
  private:
   GridFrame frame_;

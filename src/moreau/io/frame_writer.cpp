@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <fstream>
+#include <set>
 
 #include "moreau/collision/collider_surface.hpp"
 #include "moreau/errors.hpp"
@@ -19,8 +20,8 @@ void FrameWriter::write_rigid_poses(const State& state) {
   const bool any = std::any_of(model_.objects.begin(), model_.objects.end(),
                                [](const ObjectInfo& o) { return o.kind == ObjectKind::rigid_body; });
   if (!any) return;
-  std::ofstream out(out_dir_ + "/rigid_poses.csv", frame_ == 0 ? std::ios::trunc : std::ios::app);
-  if (frame_ == 0) out << "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+  std::ofstream out(out_dir_ + "/rigid_poses.csv", series_.frames == 0 ? std::ios::trunc : std::ios::app);
+  if (series_.frames == 0) out << "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
   out.precision(17);
   for (const ObjectInfo& o : model_.objects) {
     if (o.kind != ObjectKind::rigid_body) continue;
@@ -36,20 +37,9 @@ void FrameWriter::write_rigid_poses(const State& state) {
   }
 }
 
-std::string safe_file_name(const std::string& name) {
-  std::string s = name;
-  for (char& c : s)
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
-  // A leading dot would hide the file: a scene named "../../x" gives "___.._x", not ".._.._x".
-  for (char& c : s) {
-    if (c != '.') break;
-    c = '_';
-  }
-  return s.empty() ? std::string("_") : s;
-}
-
-FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string scene_name)
-    : model_(model), out_dir_(std::move(out_dir)), scene_name_(safe_file_name(scene_name)) {
+FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string scene_name, FrameSeries resume)
+    : model_(model), out_dir_(std::move(out_dir)), scene_name_(safe_file_name(scene_name)), series_(std::move(resume)) {
+  if (series_.frames > 0) write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", series_.entries);
   // Draw planes large enough to hold the scene's particles.
   Vec3 lo = Vec3::Constant(-1), hi = Vec3::Constant(1);
   for (const auto& x : model.particle_rest_position) {
@@ -79,7 +69,7 @@ void FrameWriter::write(const State& state) {
     const bool particles_only = obj.kind == ObjectKind::fluid || obj.kind == ObjectKind::rod ||
                                 obj.kind == ObjectKind::granular || obj.kind == ObjectKind::shape_matched ||
                                 obj.kind == ObjectKind::continuum;  // .vtp files
-    const std::string file = fmt::format("frames/{}_{:06d}.{}", safe_file_name(obj.name), frame_, particles_only ? "vtp" : "vtu");
+    const std::string file = fmt::format("frames/{}_{:06d}.{}", safe_file_name(obj.name), series_.frames, particles_only ? "vtp" : "vtu");
     const std::string path = out_dir_ + "/" + file;
     if (obj.kind == ObjectKind::fluid) {
       // Live particles of this fluid: position, velocity, density, pressure, stable id.
@@ -165,11 +155,11 @@ void FrameWriter::write(const State& state) {
         write_vtu(path, x, conn, 3, VtkCell::triangle, {{"velocity", v}, {"displacement", u}});
       }
     }
-    entries_.push_back({state.time, static_cast<int>(o), file});
+    series_.entries.push_back({state.time, static_cast<int>(o), file});
   }
-  write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", entries_);
+  write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", series_.entries);
   write_rigid_poses(state);
-  ++frame_;
+  ++series_.frames;
 }
 
 void prepare_output_directory(const std::string& out_dir) {
@@ -180,6 +170,31 @@ void prepare_output_directory(const std::string& out_dir) {
   fs::create_directories(dir / "frames");
   for (const auto& entry : fs::directory_iterator(dir))
     if (entry.path().extension() == ".pvd") fs::remove(entry.path());
+  fs::remove(dir / "checkpoint.bin");
+}
+
+void resume_output_directory(const std::string& out_dir, const FrameSeries& frames,
+                             const std::vector<std::pair<std::string, std::uint64_t>>& appended_files) {
+  namespace fs = std::filesystem;
+  const fs::path dir(out_dir);
+  try {
+    for (const auto& [name, size] : appended_files) {
+      if (!fs::exists(dir / name) || fs::file_size(dir / name) < size)
+        throw InputError(fmt::format("--out {}: {} is shorter than when the checkpoint was written; restart into an empty "
+                                     "directory with --out",
+                                     out_dir, name));
+      fs::resize_file(dir / name, size);
+    }
+    std::set<std::string> kept;
+    for (const PvdEntry& e : frames.entries) kept.insert(fs::path(e.file).filename().string());
+    fs::create_directories(dir / "frames");
+    std::vector<fs::path> stale;
+    for (const auto& entry : fs::directory_iterator(dir / "frames"))
+      if (!kept.count(entry.path().filename().string())) stale.push_back(entry.path());
+    for (const fs::path& p : stale) fs::remove(p);
+  } catch (const fs::filesystem_error& e) {
+    throw InputError(fmt::format("--out {}: cannot continue the output directory ({})", out_dir, e.code().message()));
+  }
 }
 
 void writable_directory(const std::string& dir) {

@@ -2,7 +2,9 @@
 // Writes one .vtu per object and output step into DIR/frames/ and keeps DIR/<scene>.pvd, the
 // ParaView collection that ties them together, up to date after every frame (so a run that stops
 // early still opens).
+#include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "moreau/io/vtk_writer.hpp"
@@ -12,9 +14,10 @@ namespace moreau {
 
 class FrameWriter {
  public:
-  FrameWriter(const Model& model, std::string out_dir, std::string scene_name);
+  /// Starts a series in out_dir, or continues `resume` (a restarted run).
+  FrameWriter(const Model& model, std::string out_dir, std::string scene_name, FrameSeries resume = {});
   void write(const State& state);
-  int frames_written() const { return frame_; }
+  const FrameSeries& series() const { return series_; }
 
  private:
   /// Appends every rigid body's pose (shape frame), velocity and angular velocity to
@@ -24,15 +27,17 @@ class FrameWriter {
   const Model& model_;
   std::string out_dir_, scene_name_;
   Real plane_half_size_ = 1;
-  int frame_ = 0;
-  std::vector<PvdEntry> entries_;
+  FrameSeries series_;
 };
 
-/// File-system-safe version of a scene or object name.
-std::string safe_file_name(const std::string& name);
-
-/// Creates the output directory and clears the frames and .pvd files of an earlier run.
+/// Creates the output directory and clears the frames, .pvd files and checkpoint of an earlier run.
 void prepare_output_directory(const std::string& dir);
+
+/// Cuts a run's output directory back to a checkpoint: the files it appends rows to to their
+/// sizes then, and frames/ to the frames of `frames` (later ones and partial files removed); the
+/// engine's frame writer rewrites the .pvd from `frames` when it continues the series.
+void resume_output_directory(const std::string& dir, const FrameSeries& frames,
+                             const std::vector<std::pair<std::string, std::uint64_t>>& appended_files);
 
 /// Creates `dir` if missing; an InputError (naming --out) when it cannot be made or written.
 void writable_directory(const std::string& dir);

@@ -4,7 +4,9 @@
 
 namespace moreau {
 
-ProbeCsv::ProbeCsv(const std::string& dir, const std::vector<std::string>& columns) : out_(dir + "/probes.csv") {
+ProbeCsv::ProbeCsv(const std::string& dir, const std::vector<std::string>& columns, bool append)
+    : out_(dir + "/probes.csv", append ? std::ios::app : std::ios::trunc) {
+  if (append) return;
   out_ << "time";
   for (const std::string& c : columns) out_ << ',' << c;
   out_ << '\n';

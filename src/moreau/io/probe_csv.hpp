@@ -19,8 +19,9 @@ std::vector<std::string> probe_table_columns(const std::vector<Item>& probes, Co
 
 class ProbeCsv {
  public:
-  /// Creates dir/probes.csv with the header "time,<columns>".
-  ProbeCsv(const std::string& dir, const std::vector<std::string>& columns);
+  /// Creates dir/probes.csv with the header "time,<columns>", or appends to it (a restarted run
+  /// continuing its output directory).
+  ProbeCsv(const std::string& dir, const std::vector<std::string>& columns, bool append = false);
   /// One row: the time (9 significant digits) and the values (17, round-trip exact).
   void write_row(double time, const std::vector<Real>& values);
   /// Writes what is buffered (for measuring the file's size).

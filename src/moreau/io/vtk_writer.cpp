@@ -2,9 +2,12 @@
 
 #include <fmt/format.h>
 
+#include <cctype>
 #include <cstdint>
 #include <fstream>
 #include <stdexcept>
+
+#include "moreau/io/atomic_file.hpp"
 
 namespace moreau {
 
@@ -31,11 +34,12 @@ std::vector<double> flatten(const std::vector<Vec3>& v) {
 }
 
 void write_file(const std::string& path, const std::string& xml, const AppendedData& data) {
-  std::ofstream out(path, std::ios::binary);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path));
+  AtomicFile file(path);
+  std::ofstream& out = file.stream();
   out << xml;
   out.write(data.bytes.data(), static_cast<std::streamsize>(data.bytes.size()));
   out << "\n</AppendedData>\n</VTKFile>\n";
+  file.commit();
 }
 
 }  // namespace
@@ -135,12 +139,23 @@ void write_vtu(const std::string& path, const std::vector<Vec3>& points, const s
 }
 
 void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries) {
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error(fmt::format("cannot write {}", path));
-  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n<Collection>\n";
+  std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n<Collection>\n";
   for (const auto& e : entries)
-    out << fmt::format("<DataSet timestep=\"{:.9g}\" part=\"{}\" file=\"{}\"/>\n", e.time, e.part, e.file);
-  out << "</Collection>\n</VTKFile>\n";
+    xml += fmt::format("<DataSet timestep=\"{:.9g}\" part=\"{}\" file=\"{}\"/>\n", e.time, e.part, e.file);
+  xml += "</Collection>\n</VTKFile>\n";
+  write_file_atomically(path, xml);
+}
+
+std::string safe_file_name(const std::string& name) {
+  std::string s = name;
+  for (char& c : s)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '-' && c != '_' && c != '.') c = '_';
+  // A leading dot would hide the file: a scene named "../../x" gives "___.._x", not ".._.._x".
+  for (char& c : s) {
+    if (c != '.') break;
+    c = '_';
+  }
+  return s.empty() ? std::string("_") : s;
 }
 
 }  // namespace moreau

@@ -55,4 +55,14 @@ struct PvdEntry {
 };
 void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries);
 
+/// File-system-safe version of a scene or object name.
+std::string safe_file_name(const std::string& name);
+
+/// The frames a run has written: how many, and the .pvd's entries. A run restarted from a
+/// checkpoint in the same output directory continues the series.
+struct FrameSeries {
+  int frames = 0;
+  std::vector<PvdEntry> entries;
+};
+
 }  // namespace moreau

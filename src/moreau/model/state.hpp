@@ -11,6 +11,7 @@
 #include "moreau/collision/particle_body_contacts.hpp"
 #include "moreau/collision/rigid_contacts.hpp"
 #include "moreau/sleeping/grain_sleep.hpp"
+#include "moreau/solvers/nmd/nmd_row_memory.hpp"
 
 namespace moreau {
 
@@ -39,6 +40,7 @@ struct State {
   GrainSleepState sleep;                        // sleeping grains (settings.sleep)
   GrainEmitterState emitters;                   // what the grain emitters have released
   ContinuumState continuum;                     // the inelastic continua's deformation (per Model::continuum particle)
+  NmdRowMemory nmd_rows;                        // nmd: last step's impulses of rows the families' multipliers do not hold
 
   /// Whether particle p takes part in the run: every particle but a grain its emitter has not
   /// released (grain_emitter.hpp).

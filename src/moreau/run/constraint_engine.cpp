@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "moreau/io/binary_archive.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/probe_csv.hpp"
 #include "moreau/model/diagnostics.hpp"
@@ -37,10 +38,15 @@ class ConstraintEngine final : public Engine {
     for (const Probe& p : scene_.probes) evaluate_probe(p, model_, state_, values);
   }
 
-  void open_frames(const std::string& out_dir, const std::string& scene_name) override {
-    frames_.emplace(model_, out_dir, scene_name);
+  void open_frames(const std::string& out_dir, const std::string& scene_name, FrameSeries resume) override {
+    frames_.emplace(model_, out_dir, scene_name, std::move(resume));
   }
   void write_frame() override { frames_->write(state_); }
+  FrameSeries frame_series() const override { return frames_ ? frames_->series() : FrameSeries{}; }
+
+  // Every solver keeps what carries over from step to step in the State (solver.hpp).
+  void save_state(ArchiveWriter& out) const override { archive(out, state_); }
+  void load_state(ArchiveReader& in) override { unarchive(in, state_); }
 
   void add_run_fields(nlohmann::json& j, bool completed) const override;
   std::vector<std::string> warnings() const override;

@@ -11,12 +11,15 @@
 #include <string>
 #include <vector>
 
+#include "moreau/io/vtk_writer.hpp"
 #include "moreau/math/types.hpp"
 #include "moreau/world.hpp"
 
 namespace moreau {
 
 struct Scene;
+class ArchiveWriter;
+class ArchiveReader;
 
 class Engine {
  public:
@@ -40,9 +43,12 @@ class Engine {
   virtual std::vector<std::string> probe_columns() const = 0;
   virtual void sample_probes(std::vector<Real>& values) const = 0;
 
-  /// Starts the frames of a run in `out_dir` (frames/, <scene>.pvd), then writes one per call.
-  virtual void open_frames(const std::string& out_dir, const std::string& scene_name) = 0;
+  /// Starts the frames of a run in `out_dir` (frames/, <scene>.pvd), or continues `resume` (a
+  /// restarted run), then writes one per call.
+  virtual void open_frames(const std::string& out_dir, const std::string& scene_name, FrameSeries resume) = 0;
   virtual void write_frame() = 0;
+  /// The frames written since open_frames (none before it).
+  virtual FrameSeries frame_series() const = 0;
   /// Output that describes the final state only (a flow's line probes); written when the run ends.
   virtual void write_final_output(const std::string& /*out_dir*/) const {}
 
@@ -54,6 +60,14 @@ class Engine {
 
   /// A human-readable account of what the scene builds (`moreau check`).
   virtual std::string summary() const = 0;
+
+  /// Checkpoints (run/checkpoint.hpp): everything a later step reads — the state, warm starts,
+  /// the time scheme's history, lagged preconditioners — and the counters that probes and run.json
+  /// report, so that a restored engine continues bit for bit. load_state reads what save_state of
+  /// the same scene wrote (the checkpoint's header has checked that) and throws ArchiveError if
+  /// the data do not fit.
+  virtual void save_state(ArchiveWriter& out) const = 0;
+  virtual void load_state(ArchiveReader& in) = 0;
 
   /// The name World::engine reports ("xpbd", "fem", "flow").
   virtual std::string name() const = 0;

@@ -11,6 +11,7 @@
 #include "moreau/errors.hpp"
 #include "moreau/fem/flow/flow_frames.hpp"
 #include "moreau/fem/flow/flow_stepper.hpp"
+#include "moreau/io/binary_archive.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/probe_csv.hpp"
 #include "moreau/run/state_arrays.hpp"
@@ -47,10 +48,25 @@ class FlowEngine final : public Engine {
   void sample_probes(std::vector<Real>& values) const override {
     for (const FlowProbe& p : problem_.probes) evaluate_flow_probe(p, problem_, x_, *last_step_, last_iterations_, values);
   }
-  void open_frames(const std::string& out_dir, const std::string& scene_name) override {
-    frames_.emplace(problem_.model, problem_.name, out_dir, scene_name);
+  void open_frames(const std::string& out_dir, const std::string& scene_name, FrameSeries resume) override {
+    frames_.emplace(problem_.model, problem_.name, out_dir, scene_name, std::move(resume));
   }
   void write_frame() override { frames_->write(x_, time_); }
+  FrameSeries frame_series() const override { return frames_ ? frames_->series() : FrameSeries{}; }
+
+  void save_state(ArchiveWriter& out) const override {
+    archive(out, std::tie(x_, time_, steps_, last_iterations_, max_iterations_, total_iterations_, picard_iterations_));
+    stepper_.save(out);
+    solver_.save(out);
+  }
+  void load_state(ArchiveReader& in) override {
+    auto fields = std::tie(x_, time_, steps_, last_iterations_, max_iterations_, total_iterations_, picard_iterations_);
+    unarchive(in, fields);
+    if (x_.size() != problem_.initial.size()) throw ArchiveError("the checkpoint's flow has another number of unknowns");
+    stepper_.load(in);
+    solver_.load(in);
+    last_step_ = steady() || steps_ == 0 ? &steady_step_ : &stepper_.last_step();
+  }
   void write_final_output(const std::string& out_dir) const override {
     for (const FlowProbe& p : problem_.probes)
       if (p.type == FlowProbeType::line) write_line_probe(p, problem_, x_, out_dir + "/line_" + safe_file_name(p.name) + ".csv");

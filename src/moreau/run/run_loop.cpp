@@ -3,10 +3,11 @@
 #include <fmt/format.h>
 #include <omp.h>
 
+#include <atomic>
 #include <chrono>
 #include <filesystem>
-#include <fstream>
 
+#include "moreau/io/atomic_file.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/output_budget.hpp"
 #include "moreau/io/probe_csv.hpp"
@@ -18,18 +19,61 @@
 
 namespace moreau {
 
-RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& options, long& steps_taken) {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The signal request_stop was called with (0: none). A lock-free atomic is async-signal-safe.
+std::atomic<int> stop_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
+
+// Files a run appends rows to (the checkpoint records their sizes, and a restart cuts them back).
+constexpr const char* kAppendedFiles[] = {"probes.csv", "rigid_poses.csv"};
+
+std::vector<std::pair<std::string, std::uint64_t>> appended_file_sizes(const std::string& dir) {
+  std::vector<std::pair<std::string, std::uint64_t>> sizes;
+  for (const char* name : kAppendedFiles) {
+    std::error_code ec;
+    const auto size = fs::file_size(fs::path(dir) / name, ec);
+    if (!ec) sizes.emplace_back(name, size);
+  }
+  return sizes;
+}
+
+bool same_directory(const std::string& a, const std::string& b) {
+  std::error_code ec;
+  return fs::equivalent(a, b, ec);
+}
+
+}  // namespace
+
+void request_stop(int signal_number) { stop_signal.store(signal_number, std::memory_order_relaxed); }
+
+RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& options, const RunContext& context) {
   const int requested_threads = options.threads.value_or(engine.requested_threads());
   const int threads = requested_threads > 0 ? requested_threads : omp_get_max_threads();
-  const double duration = options.duration.value_or(scene.duration);
   const bool solves_once = engine.dt() == 0;
-  const long steps = solves_once ? 1 : run_step_count(duration, engine.dt());
-  const auto started = std::filesystem::file_time_type::clock::now();
+  const RestartPoint* restart = solves_once ? nullptr : context.restart;
+  long steps = 1;
+  if (!solves_once && restart && !options.duration)
+    steps = std::max(0L, run_step_count(scene.duration, engine.dt()) - context.steps_taken);
+  else if (!solves_once)
+    steps = run_step_count(options.duration.value_or(scene.duration), engine.dt());
+  const double duration = steps * engine.dt();
+  const int checkpoint_every = options.checkpoint_every.value_or(scene.output.checkpoint_every);
+  const auto started = fs::file_time_type::clock::now();
 
   RunResult result;
-  result.out_dir = run_output_directory(options.out_dir, scene.name);
-  engine.open_frames(result.out_dir, scene.name);
-  ProbeCsv csv(result.out_dir, engine.probe_columns());
+  result.out_dir = options.out_dir.empty() ? "out/" + safe_file_name(scene.name) : options.out_dir;
+  const bool continuing = restart && same_directory(restart->header.out_dir, result.out_dir);
+  if (continuing) {
+    writable_directory(result.out_dir);
+    resume_output_directory(result.out_dir, restart->header.frames, restart->header.appended_files);
+  } else {
+    result.out_dir = run_output_directory(options.out_dir, scene.name);
+  }
+  engine.open_frames(result.out_dir, scene.name, continuing ? restart->header.frames : FrameSeries{});
+  ProbeCsv csv(result.out_dir, engine.probe_columns(), continuing);
   std::vector<Real> values;
   auto sample = [&] {
     values.clear();
@@ -37,9 +81,20 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
     csv.write_row(engine.time(), values);
     if (scene.output.write_vtk) engine.write_frame();
   };
+  auto checkpoint = [&] {
+    csv.flush();
+    CheckpointHeader header = context.identity;
+    header.time = engine.time();
+    header.steps = context.steps_taken;
+    header.out_dir = fs::absolute(result.out_dir).lexically_normal().string();
+    header.frames = engine.frame_series();
+    header.appended_files = appended_file_sizes(result.out_dir);
+    result.checkpoint = result.out_dir + "/checkpoint.bin";
+    write_checkpoint(result.checkpoint, header, engine);
+  };
 
   ProgressBar progress(options.progress && !solves_once, duration);
-  if (!solves_once) {
+  if (!solves_once && !continuing) {
     sample();
     csv.flush();
     check_output_budget(result.out_dir, steps, scene.output.every, started);
@@ -60,9 +115,20 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
       }
       wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       result.steps = s + 1;
-      ++steps_taken;
-      if ((s + 1) % scene.output.every == 0 || s + 1 == steps) sample();
+      const long step = ++context.steps_taken;  // from the scene's start: the cadence survives a restart
+      const bool last = s + 1 == steps;
+      if (step % scene.output.every == 0 || last) sample();
+      const bool checkpointed = checkpoint_every > 0 && (step % checkpoint_every == 0 || last);
+      if (checkpointed) checkpoint();
       progress.update(engine.time(), result.steps, wall);
+      // Stopped by a signal: no extra sample, so that the resumed run's output is the uninterrupted one's.
+      if (const int signal = stop_signal.exchange(0); signal != 0 && !last) {
+        result.stopped_by_signal = signal;
+        status = "interrupted";
+        message = fmt::format("stopped by signal {} after step {} (t = {:.9g} s)", signal, step, engine.time());
+        if (!checkpointed) checkpoint();
+        break;
+      }
     }
   } catch (const NumericalError& e) {
     status = "failed";
@@ -70,14 +136,17 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
   }
   progress.finish();
   for (const std::string& w : engine.warnings()) fmt::print(stderr, "warning: {}\n", w);
-  engine.write_final_output(result.out_dir);
+  if (status != "interrupted") engine.write_final_output(result.out_dir);
   result.wall_time_s = wall;
 
   nlohmann::json j = run_summary_json({scene.name, scene.file, scene.solver, status, message, engine.dt(),
                                        engine.time(), wall, threads, result.steps});
+  if (!result.checkpoint.empty()) j["checkpoint"] = "checkpoint.bin";
+  if (restart)
+    j["restarted_from"] = {{"checkpoint", restart->path}, {"time", restart->header.time}, {"step", restart->header.steps}};
   engine.add_run_fields(j, status == "completed");
-  std::ofstream(result.out_dir + "/run.json") << j.dump(2) << '\n';
-  if (status != "completed") throw NumericalError(message);
+  write_file_atomically(result.out_dir + "/run.json", j.dump(2) + '\n');
+  if (status == "failed") throw NumericalError(message);
   return result;
 }
 

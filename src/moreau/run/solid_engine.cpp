@@ -14,6 +14,7 @@
 #include "moreau/fem/bodies/coupled_step.hpp"
 #include "moreau/fem/scene/fem_output.hpp"
 #include "moreau/fem/solids/fem_assembly.hpp"
+#include "moreau/io/binary_archive.hpp"
 #include "moreau/io/probe_csv.hpp"
 #include "moreau/run/state_arrays.hpp"
 #include "moreau/scene/scene.hpp"
@@ -46,10 +47,19 @@ class SolidEngine final : public Engine {
   void sample_probes(std::vector<Real>& values) const override {
     for (const FemProbe& p : problem_.probes) evaluate_fem_probe(p, problem_, run_, last_iterations_, values);
   }
-  void open_frames(const std::string& out_dir, const std::string& scene_name) override {
-    frames_.emplace(problem_, out_dir, scene_name);
+  void open_frames(const std::string& out_dir, const std::string& scene_name, FrameSeries resume) override {
+    frames_.emplace(problem_, out_dir, scene_name, std::move(resume));
   }
   void write_frame() override { frames_->write(run_); }
+  FrameSeries frame_series() const override { return frames_ ? frames_->series() : FrameSeries{}; }
+
+  // The mass matrix is assembled again at the first step; the linear solvers' symbolic analyses
+  // depend on the (fixed) pattern only, and every Newton iteration factorizes afresh.
+  void save_state(ArchiveWriter& out) const override { archive(out, std::tie(run_, steps_, last_iterations_, max_iterations_, total_iterations_)); }
+  void load_state(ArchiveReader& in) override {
+    auto fields = std::tie(run_, steps_, last_iterations_, max_iterations_, total_iterations_);
+    unarchive(in, fields);
+  }
 
   void add_run_fields(nlohmann::json& j, bool completed) const override;
   std::string summary() const override;

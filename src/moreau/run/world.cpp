@@ -17,7 +17,9 @@ const char* version() { return MOREAU_VERSION; }
 
 void set_memory_limit(double bytes) { set_memory_limit_bytes(bytes); }
 
-World::World(std::unique_ptr<Scene> scene) : scene_(std::move(scene)), engine_(make_engine(*scene_)) {}
+World::World(std::unique_ptr<Scene> scene)
+    : scene_(std::move(scene)), engine_(make_engine(*scene_)),
+      identity_(std::make_unique<CheckpointHeader>(checkpoint_identity(*scene_, *engine_))) {}
 World::~World() = default;
 World::World(World&&) noexcept = default;
 World& World::operator=(World&&) noexcept = default;
@@ -48,7 +50,23 @@ void World::step(int threads) {
   ++steps_;
 }
 
-RunResult World::run(const RunOptions& options) { return run_engine(*engine_, *scene_, options, steps_); }
+RunResult World::run(const RunOptions& options) {
+  const std::unique_ptr<RestartPoint> restart = std::move(restart_);  // continued by this run only
+  return run_engine(*engine_, *scene_, options, {*identity_, restart.get(), steps_});
+}
+
+void World::save_checkpoint(const std::string& path) {
+  CheckpointHeader header = *identity_;
+  header.time = engine_->time();
+  header.steps = steps_;
+  write_checkpoint(path, header, *engine_);
+}
+
+void World::restore(const std::string& path) {
+  CheckpointHeader header = read_checkpoint(path, *identity_, *engine_);
+  steps_ = header.steps;
+  restart_ = std::make_unique<RestartPoint>(RestartPoint{path, std::move(header)});
+}
 
 std::vector<StateArray> World::arrays() { return engine_->state_arrays(); }
 

@@ -62,7 +62,7 @@ TriangleMesh make_cloth_mesh(const ClothMesh& spec, const SpecPlace& place, Scen
     const Mat3 rotation = rotation_from_degrees(place.vector("rotation_deg", grid->rotation_deg));
     for (auto& v : out.vertices) v = center + rotation * (v - center);
   } else if (const auto* file = std::get_if<MeshFile>(&spec)) {
-    out = read_obj_triangles(resolve_path(ctx, file->file));
+    out = read_mesh_at(place, [&] { return read_obj_triangles(resolve_path(ctx, file->file)); });
     place_vertices(*file, place, out.vertices);
   } else {
     const auto& list = std::get<TriangleList>(spec);

@@ -125,7 +125,11 @@ FemMesh read_fem_mesh(const JsonObject& mesh, const std::string& where, MeshUse 
     if (std::filesystem::is_directory(resolved))
       mesh.fail("file", fmt::format("'{}' is a directory; give the path of a mesh file", resolved.string()));
     if (type == "msh") {
-      result = read_gmsh_fem_mesh(resolved.string());
+      try {
+        result = read_gmsh_fem_mesh(resolved.string());
+      } catch (const InputError& e) {
+        mesh.fail("file", e.what());
+      }
     } else {
       const int dim = mesh.integer("dimension", 2, 2, 3);
       const std::string msh = mesh_geo_file(mesh, resolved, dim);

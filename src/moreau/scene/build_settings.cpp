@@ -8,9 +8,10 @@
 
 namespace moreau {
 
-void read_output_settings(const JsonObject& settings, int& every, bool& write_vtk) {
+void read_output_settings(const JsonObject& settings, int& every, bool& write_vtk, int& checkpoint_every) {
   if (auto output = settings.optional_object("output")) {
     every = output->integer("every", every, 1);
+    checkpoint_every = output->integer("checkpoint_every", checkpoint_every, 0);
     if (output->has("formats")) {
       const auto& formats = output->raw("formats");
       if (!formats.is_array()) output->fail("formats", "expected an array of format names; allowed: vtk");
@@ -67,7 +68,7 @@ SceneSettings read_settings(const JsonObject& settings) {
     s.sleep = SleepSolverSettings{read_optional_number(*sleep, "speed"), read_optional_number(*sleep, "time")};
     sleep->finish();
   }
-  read_output_settings(settings, s.output_every, s.write_vtk);
+  read_output_settings(settings, s.output_every, s.write_vtk, s.checkpoint_every);
   settings.finish();
   return s;
 }
@@ -132,6 +133,7 @@ void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& sc
   }
   scene.output.every = place.integer("output.every", spec.output_every, 1);
   scene.output.write_vtk = spec.write_vtk;
+  scene.output.checkpoint_every = place.integer("output.checkpoint_every", spec.checkpoint_every, 0);
 }
 
 }  // namespace moreau

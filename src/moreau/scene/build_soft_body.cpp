@@ -71,21 +71,30 @@ TetMesh make_soft_body_mesh(const SoftBodyMesh& spec, const SpecPlace& place, Sc
     check_memory(place, "cells", double(cells[0]) * cells[1] * cells[2] * per_cell, memory_cost::tetrahedron, "tetrahedra");
     out = make_box_tets(lo, hi, cells, per_cell == 5 ? CellSplit::five : CellSplit::six);
   } else if (const auto* file = std::get_if<TetMeshFile>(&spec)) {
-    source = resolve_path(ctx, file->file.file);
-    if (place.choice("type", file->format, {"msh", "tetgen"}) == "msh") out = read_gmsh_msh4(source);
-    else out = read_tetgen(source + ".node", source + ".ele");  // base name: <file>.node and <file>.ele
+    source = read_mesh_at(place, [&] { return resolve_path(ctx, file->file.file); });
+    const bool gmsh = place.choice("type", file->format, {"msh", "tetgen"}) == "msh";
+    // TetGen: a base name, read from <file>.node and <file>.ele.
+    out = read_mesh_at(place, [&] { return gmsh ? read_gmsh_msh4(source) : read_tetgen(source + ".node", source + ".ele"); });
     place_vertices(file->file, place, out.vertices);
   } else if (const auto* obj = std::get_if<TetrahedralizedObj>(&spec)) {
-    source = resolve_path(ctx, obj->file.file);
-    out = tetrahedralize_obj(source, place.number("quality", obj->quality, Range::closed(1.1, 10)),
-                             place.number("max_volume", obj->max_volume, Range::non_negative()));
+    source = read_mesh_at(place, [&] { return resolve_path(ctx, obj->file.file); });
+    const Real quality = place.number("quality", obj->quality, Range::closed(1.1, 10));
+    const Real max_volume = place.number("max_volume", obj->max_volume, Range::non_negative());
+    out = read_mesh_at(place, [&] { return tetrahedralize_obj(source, quality, max_volume); });
     place_vertices(obj->file, place, out.vertices);
   } else {
     const auto& list = std::get<TetList>(spec);
     for (const Vector3& v : list.vertices) out.vertices.push_back(place.vector("vertices", v));
     out.tets = checked_cells(list.tets, list.vertices.size(), place, "tets");
   }
-  orient_and_validate_tets(out, source);
+  if (std::holds_alternative<TetList>(spec) || std::holds_alternative<TetBox>(spec)) {
+    orient_and_validate_tets(out, source);
+  } else {  // a mesh file's inverted or degenerate cells are reported at its "file" key
+    read_mesh_at(place, [&] {
+      orient_and_validate_tets(out, source);
+      return 0;
+    });
+  }
   return out;
 }
 

@@ -258,6 +258,13 @@ class DuplicateKeyCheck {
     return true;
   }
 
+  /// The JSON path of the value being parsed (e.g. "settings.dt").
+  std::string path() const {
+    std::string p;
+    for (const Level& l : open_) p += l.is_object ? (p.empty() ? "" : ".") + l.key : fmt::format("[{}]", l.index);
+    return p;
+  }
+
  private:
   struct Level {
     bool is_object;
@@ -267,11 +274,6 @@ class DuplicateKeyCheck {
   };
   void element_done() {
     if (!open_.empty() && !open_.back().is_object) ++open_.back().index;
-  }
-  std::string path() const {
-    std::string p;
-    for (const Level& l : open_) p += l.is_object ? (p.empty() ? "" : ".") + l.key : fmt::format("[{}]", l.index);
-    return p;
   }
   std::string file_;
   std::vector<Level> open_;
@@ -295,8 +297,9 @@ json parse_json_text(const std::string& text, const std::string& path) {
     const auto [line, column] = line_and_column(text, nul);
     throw InputError(fmt::format("{}:{}:{}: the file contains a NUL byte; a scene file is UTF-8 JSON text", path, line, column));
   }
+  DuplicateKeyCheck check(path);  // shared with the parser, so that an overflow can name its path
   try {
-    return json::parse(text, DuplicateKeyCheck(path));
+    return json::parse(text, [&check](int depth, json::parse_event_t event, json& parsed) { return check(depth, event, parsed); });
   } catch (const json::parse_error& e) {
     const auto [line, column] = line_and_column(text, e.byte == 0 ? 0 : e.byte - 1);
     std::string what = e.what();
@@ -304,8 +307,11 @@ json parse_json_text(const std::string& text, const std::string& path) {
     throw InputError(fmt::format("{}:{}:{}: malformed JSON: {}", path, line, column,
                                  colon == std::string::npos ? what : what.substr(colon)));
   } catch (const json::out_of_range& e) {
-    // A number too large for a double (1e999).
-    throw InputError(fmt::format("{}: {}; numbers must fit a double (|x| < 1.8e308)", path, e.what()));
+    // A number too large for a double (1e999): nlohmann says "number overflow parsing '1e999'".
+    const std::string what = e.what();
+    const auto quote = what.find('\'');
+    throw InputError(fmt::format("{}: {}: the number {} does not fit a double (|x| < 1.8e308)", path, check.path(),
+                                 quote == std::string::npos ? std::string("given") : what.substr(quote)));
   }
 }
 

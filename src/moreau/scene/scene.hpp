@@ -15,11 +15,16 @@ namespace moreau {
 struct OutputSettings {
   int every = 1;          // write frames and probe rows every N steps
   bool write_vtk = true;  // frames/*.vtu + <scene>.pvd
+  int checkpoint_every = 0;  // write checkpoint.bin every N steps (and at the end); 0: only when interrupted
 };
 
 struct Scene {
   std::string name;
   std::string file;
+  // A hash of the scene's JSON (after --set) without what only shapes a run (duration, output,
+  // threads, description): a checkpoint records it and a restart compares it. Empty for a scene
+  // built in code.
+  std::string fingerprint;
   std::string solver = "xpbd";
   Real duration = 1.0;  // s
   Model model;

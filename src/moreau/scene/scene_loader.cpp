@@ -25,7 +25,7 @@ void read_fem_settings(const JsonObject& settings, Scene& scene) {
   scene.duration = settings.number("duration", scene.duration, Range::positive());
   scene.model.settings.gravity = settings.vec3("gravity", scene.model.settings.gravity);
   scene.model.settings.threads = settings.integer("threads", scene.model.settings.threads, 0, 1024);
-  read_output_settings(settings, scene.output.every, scene.output.write_vtk);
+  read_output_settings(settings, scene.output.every, scene.output.write_vtk, scene.output.checkpoint_every);
   settings.finish();
 }
 
@@ -58,10 +58,8 @@ ObjectSpec read_object(const JsonObject& object) {
   return spec;
 }
 
-// Validates and builds the scene in `root` (read from `path`) after applying the overrides.
-Scene build_scene(nlohmann::json root, const std::string& path, const std::vector<std::string>& overrides) {
-  for (const auto& o : overrides) apply_override(root, o, path);
-
+// Validates and builds the scene in `root` (read from `path`, overrides applied).
+Scene build_scene_from_json(const nlohmann::json& root, const std::string& path) {
   const JsonObject top(root, "", path);
   SceneSpec spec;
   spec.name = top.string("name");
@@ -83,6 +81,28 @@ Scene build_scene(nlohmann::json root, const std::string& path, const std::vecto
   }
   top.finish();
   return assemble_scene(spec, path, path, std::filesystem::absolute(path).parent_path());
+}
+
+
+// FNV-1a (64 bit) of the scene's JSON with the keys that only shape a run removed: the same
+// physics gives the same fingerprint, whatever the duration, output or thread count.
+std::string scene_fingerprint(nlohmann::json root) {
+  if (root.is_object()) {
+    root.erase("description");
+    if (root.contains("settings") && root["settings"].is_object())
+      for (const char* key : {"duration", "output", "threads"}) root["settings"].erase(key);
+  }
+  std::uint64_t hash = 14695981039346656037ull;
+  for (unsigned char c : root.dump()) hash = (hash ^ c) * 1099511628211ull;
+  return fmt::format("{:016x}", hash);
+}
+
+// Validates and builds the scene in `root` (read from `path`) after applying the overrides.
+Scene build_scene(nlohmann::json root, const std::string& path, const std::vector<std::string>& overrides) {
+  for (const auto& o : overrides) apply_override(root, o, path);
+  Scene scene = build_scene_from_json(root, path);
+  scene.fingerprint = scene_fingerprint(std::move(root));
+  return scene;
 }
 
 }  // namespace

@@ -46,7 +46,7 @@ SceneSettings read_settings(const JsonObject& settings);
 /// settings -> the scene's solver settings, duration and output.
 void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& scene);
 /// "settings.output": every N steps, and the formats.
-void read_output_settings(const JsonObject& settings, int& every, bool& write_vtk);
+void read_output_settings(const JsonObject& settings, int& every, bool& write_vtk, int& checkpoint_every);
 
 void add_collider(const ColliderSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 void add_cloth(const ClothSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
@@ -164,6 +164,16 @@ void add_particles(SceneBuildContext& ctx, ObjectInfo& info, const std::vector<V
 void add_pins(const std::vector<PinSpec>& pins, const SpecPlace& place, const ObjectInfo& info, SceneBuildContext& ctx);
 /// Resolves a mesh path relative to the scene file.
 std::string resolve_path(const SceneBuildContext& ctx, const std::string& path);
+/// Runs `read` (a mesh file reader) and reports what it refuses at the place's "file" key, so that
+/// the message names the scene file and JSON path as well as the mesh file.
+template <class Read>
+auto read_mesh_at(const SpecPlace& place, Read&& read) {
+  try {
+    return read();
+  } catch (const InputError& e) {
+    place.fail("file", e.what());
+  }
+}
 /// A closed OBJ surface whose inside is filled (fluids, grains), with its bounding box (m).
 struct ClosedSurface {
   TriangleMesh mesh;

@@ -2,7 +2,9 @@
 // One formulation of the constraint engine behind one interface. A scene's `settings.solver`
 // names a registered formulation (solver_registry.hpp); the run loop, the public API, tests and
 // benchmarks step it through this interface only. A solver keeps its scratch buffers to itself;
-// the Model is read-only and the State holds what a step changes.
+// the Model is read-only and the State holds what a step changes — everything a later step reads,
+// warm starts included, since a checkpoint is the State alone. A solver's own buffers must be
+// scratch: rewritten before they are read in every step.
 #include <string>
 #include <string_view>
 #include <vector>

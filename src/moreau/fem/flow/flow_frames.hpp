@@ -12,16 +12,21 @@ namespace moreau {
 
 class FlowFrameWriter {
  public:
-  FlowFrameWriter(const NavierStokesModel& model, std::string fluid_name, std::string out_dir, std::string scene_name)
-      : model_(model), fluid_name_(std::move(fluid_name)), out_dir_(std::move(out_dir)), scene_name_(std::move(scene_name)) {}
+  /// Starts a series in out_dir, or continues `resume` (a restarted run).
+  FlowFrameWriter(const NavierStokesModel& model, std::string fluid_name, std::string out_dir, std::string scene_name,
+                  FrameSeries resume = {})
+      : model_(model), fluid_name_(std::move(fluid_name)), out_dir_(std::move(out_dir)), scene_name_(safe_file_name(scene_name)),
+        series_(std::move(resume)) {
+    if (series_.frames > 0) write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", series_.entries);
+  }
 
   void write(const VectorX& x, Real time);
+  const FrameSeries& series() const { return series_; }
 
  private:
   const NavierStokesModel& model_;
   std::string fluid_name_, out_dir_, scene_name_;
-  std::vector<PvdEntry> entries_;
-  int frame_ = 0;
+  FrameSeries series_;
 };
 
 }  // namespace moreau

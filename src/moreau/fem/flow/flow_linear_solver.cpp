@@ -7,6 +7,8 @@
 #include <chrono>
 #include <unsupported/Eigen/IterativeSolvers>
 
+#include "moreau/io/binary_archive.hpp"
+
 namespace moreau {
 
 namespace {
@@ -30,6 +32,7 @@ class HeldIlut {
 
 struct FlowLinearSolver::Iterative {
   Eigen::IncompleteLUT<Real> ilu;
+  SparseMatrix ilu_source;       // the matrix the held ILU was computed from (for checkpoints)
   Eigen::GMRES<SparseMatrix, HeldIlut> gmres;
   bool ilu_valid = false;        // the held ILU was computed without breaking down
   bool fresh = false;            // ... from the Jacobian being solved
@@ -62,6 +65,7 @@ bool FlowLinearSolver::refresh_preconditioner() {
   const bool same_pattern = state.rows == matrix_->rows() && state.entries == matrix_->nonZeros();
   if (!same_pattern) state.ilu.analyzePattern(*matrix_);
   state.ilu.factorize(*matrix_);
+  state.ilu_source = *matrix_;
   statistics_.preconditioner_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++statistics_.preconditioner_updates;
   state.rows = matrix_->rows();
@@ -126,6 +130,31 @@ bool FlowLinearSolver::solve(const VectorX& b, VectorX& dx) {
         "settings.linear_solver.max_iterations or fill_factor, lower drop_tolerance, or use \"type\": \"direct\"",
         settings_.tolerance, iterations, state.gmres.error());
     return false;
+  }
+}
+
+// The counters carry over; preconditioner_s, a wall time, is of the run that measured it.
+void FlowLinearSolver::save(ArchiveWriter& out) const {
+  const FlowLinearStatistics& t = statistics_;
+  archive(out, std::tie(t.solves, t.retries, t.iterations, t.max_iterations, t.preconditioner_updates));
+  if (!iterative_) return;
+  const Iterative& s = *iterative_;
+  archive(out, std::tie(s.ilu_source, s.ilu_valid, s.fresh, s.rows, s.entries, s.baseline_iterations, s.last_iterations,
+                        s.last_failed));
+}
+
+void FlowLinearSolver::load(ArchiveReader& in) {
+  FlowLinearStatistics& t = statistics_;
+  auto counters = std::tie(t.solves, t.retries, t.iterations, t.max_iterations, t.preconditioner_updates);
+  unarchive(in, counters);
+  if (!iterative_) return;
+  Iterative& s = *iterative_;
+  auto fields = std::tie(s.ilu_source, s.ilu_valid, s.fresh, s.rows, s.entries, s.baseline_iterations, s.last_iterations,
+                         s.last_failed);
+  unarchive(in, fields);
+  if (s.rows >= 0) {
+    s.ilu.analyzePattern(s.ilu_source);
+    s.ilu.factorize(s.ilu_source);
   }
 }
 

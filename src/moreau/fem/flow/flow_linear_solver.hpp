@@ -30,6 +30,9 @@
 
 namespace moreau {
 
+class ArchiveWriter;
+class ArchiveReader;
+
 enum class FlowLinearMethod { direct, gmres };
 
 struct FlowLinearSettings {
@@ -69,6 +72,13 @@ class FlowLinearSolver {
   const FlowLinearStatistics& statistics() const { return statistics_; }
   /// "umfpack" or "gmres+ilut".
   std::string name() const;
+
+  /// Checkpoints: the statistics and, for gmres, the lagged ILU — as the matrix it was computed
+  /// from, computed again on load (the same bits: the factorization is serial and its ordering
+  /// depends on the pattern only) — and the counters that decide its next refresh. The direct
+  /// solver keeps nothing between solves but its symbolic analysis, which depends on the pattern.
+  void save(ArchiveWriter& out) const;
+  void load(ArchiveReader& in);
 
  private:
   struct Iterative;

@@ -1,5 +1,7 @@
 #include "moreau/fem/flow/flow_stepper.hpp"
 
+#include "moreau/io/binary_archive.hpp"
+
 namespace moreau {
 
 FlowSolveResult FlowStepper::single(const NavierStokesModel& model, FlowIntegrator scheme, Real t, Real dt, VectorX& x,
@@ -31,6 +33,18 @@ FlowSolveResult FlowStepper::step(const NavierStokesModel& model, Real t, Real d
   }
   const FlowIntegrator scheme = first && integrator_ == FlowIntegrator::bdf2 ? FlowIntegrator::backward_euler : integrator_;
   return single(model, scheme, t, dt, x, solver, settings);
+}
+
+void FlowStepper::save(ArchiveWriter& out) const {
+  archive(out, std::tie(steps_, previous_, before_previous_, last_.integrator, last_.dt));
+}
+
+void FlowStepper::load(ArchiveReader& in) {
+  auto fields = std::tie(steps_, previous_, before_previous_, last_.integrator, last_.dt);
+  unarchive(in, fields);
+  const bool transient = last_.integrator != FlowIntegrator::steady;
+  last_.previous = transient ? &previous_ : nullptr;
+  last_.before_previous = transient ? &before_previous_ : nullptr;
 }
 
 }  // namespace moreau

@@ -11,6 +11,9 @@
 
 namespace moreau {
 
+class ArchiveWriter;
+class ArchiveReader;
+
 class FlowStepper {
  public:
   explicit FlowStepper(FlowIntegrator integrator) : integrator_(integrator) {}
@@ -22,6 +25,11 @@ class FlowStepper {
 
   /// The last step's scheme (with its previous states), for residual-based probes.
   const FlowTimeStep& last_step() const { return last_; }
+
+  /// Checkpoints: the steps taken, the previous states and the last step's scheme (pointing at
+  /// this stepper's previous states again after load).
+  void save(ArchiveWriter& out) const;
+  void load(ArchiveReader& in);
 
  private:
   FlowSolveResult single(const NavierStokesModel& model, FlowIntegrator scheme, Real t, Real dt, VectorX& x,

@@ -22,16 +22,20 @@ void cell_stresses(const FemModel& model, const FemSolid& solid, const VectorX& 
 
 class FemFrameWriter {
  public:
-  FemFrameWriter(const FemProblem& problem, std::string out_dir, std::string scene_name)
-      : problem_(problem), model_(problem.model), out_dir_(std::move(out_dir)), scene_name_(std::move(scene_name)) {}
+  /// Starts a series in out_dir, or continues `resume` (a restarted run).
+  FemFrameWriter(const FemProblem& problem, std::string out_dir, std::string scene_name, FrameSeries resume = {})
+      : problem_(problem), model_(problem.model), out_dir_(std::move(out_dir)), scene_name_(safe_file_name(scene_name)),
+        series_(std::move(resume)) {
+    if (series_.frames > 0) write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", series_.entries);
+  }
   void write(const FemRunState& state);
+  const FrameSeries& series() const { return series_; }
 
  private:
   const FemProblem& problem_;
   const FemModel& model_;
   std::string out_dir_, scene_name_;
-  std::vector<PvdEntry> entries_;
-  int frame_ = 0;
+  FrameSeries series_;
 };
 
 }  // namespace moreau

@@ -14,12 +14,6 @@
 
 namespace moreau {
 
-/// The last step's impulses of rows whose family multipliers have another size: each Neo-Hookean
-/// tetrahedron's six Green-strain rows (the state keeps the two of its XPBD pair).
-struct NmdRowMemory {
-  std::vector<Eigen::Matrix<Real, 6, 1>> neo_hookean;
-  std::vector<Vec3> shape_match;  // per shape-matching cluster entry (shape_match_rows.hpp)
-};
 
 /// Adds every block at the state's positions and velocities (`space` gathered from the state)
 /// for a solve of step h ending at time `end_time`; the rigid contact points are filled on up to

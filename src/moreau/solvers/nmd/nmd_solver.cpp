@@ -86,7 +86,7 @@ void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int th
       timer.lap(NmdStage::fluid_neighbors);
     }
     space_.gather(model, state);
-    assemble_nmd_system(model, state, space_, h, end_time, system_, row_memory_, threads);
+    assemble_nmd_system(model, state, space_, h, end_time, system_, state.nmd_rows, threads);
     if (fluids) fluid_.add_rows(model, state, space_, h, end_time, input_, system_);
     add_suction_rows(model, state, space_, h, end_time - h, input_, system_);
     schedule_.build(system_, static_cast<Index>(space_.v.size()));

@@ -29,7 +29,6 @@ class NmdSolver final : public Solver {
   SweepSchedule schedule_;  // the sweeps' order for threads (rebuilt after each assembly)
   ContactScratch contact_scratch_;
   ConstraintFluid fluid_;
-  NmdRowMemory row_memory_;
   NmdBlockInput input_;  // the fluid rows' block being built (its buffers kept from step to step)
 };
 
