@@ -2,7 +2,7 @@
 BUILD_DIR ?= build
 JOBS ?= 2
 
-.PHONY: deps build demo test bench clean
+.PHONY: deps build demo test bench clean sanitize-build test-sanitize fuzz
 
 deps:
 	./scripts/install-deps.sh
@@ -23,6 +23,27 @@ test: build
 
 bench: build
 	./$(BUILD_DIR)/bench/moreau_bench
+
+# AddressSanitizer + UndefinedBehaviorSanitizer build (clang) of the engine, its tests and the
+# libFuzzer targets, in $(SANITIZE_DIR). test-sanitize runs every test but the slow ones listed in
+# tests/sanitize-skip.txt (those that take 3 s or more in the Release build); fuzz fuzzes each
+# target for FUZZ_SECONDS (scripts/fuzz.sh).
+SANITIZE_DIR ?= build-sanitize
+FUZZ_SECONDS ?= 60
+SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
+               UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+
+sanitize-build: deps
+	cmake -S . -B $(SANITIZE_DIR) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release -DMOREAU_SANITIZE=ON \
+	  -DMOREAU_BUILD_BENCHMARKS=OFF
+	cmake --build $(SANITIZE_DIR) -j$(JOBS)
+
+test-sanitize: sanitize-build
+	cd $(SANITIZE_DIR) && $(SANITIZE_ENV) ctest -j$(JOBS) --output-on-failure --timeout 1800 \
+	  -E "$$(sed 's/.*/^&$$/' ../tests/sanitize-skip.txt | paste -sd'|')"
+
+fuzz: sanitize-build
+	$(SANITIZE_ENV) ./scripts/fuzz.sh $(SANITIZE_DIR) $(FUZZ_SECONDS)
 
 clean:
 	rm -rf $(BUILD_DIR)

@@ -19,7 +19,9 @@ packages=(
   gmsh                 # meshing .geo files for FEM solids and fluids (the cylinder benchmark)
   libqhull-dev         # convex hulls of rigid bodies
   libccd-dev           # convex-convex contacts (Minkowski portal refinement)
+  libboost1.81-dev     # Boost.PFR: checkpoints walk the state's structs field by field
   libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev libomp-14-dev  # make test-sanitize and make fuzz: ASan, UBSan, libFuzzer (clang 14)
   python3-numpy        # bench/mpm_column_reference.py, the MPM reference of the XPBI sand column
 )
 

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <fstream>
-#include <set>
 
 #include "moreau/collision/collider_surface.hpp"
 #include "moreau/errors.hpp"
@@ -20,8 +19,8 @@ void FrameWriter::write_rigid_poses(const State& state) {
   const bool any = std::any_of(model_.objects.begin(), model_.objects.end(),
                                [](const ObjectInfo& o) { return o.kind == ObjectKind::rigid_body; });
   if (!any) return;
-  std::ofstream out(out_dir_ + "/rigid_poses.csv", series_.frames == 0 ? std::ios::trunc : std::ios::app);
-  if (series_.frames == 0) out << "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
+  std::ofstream out(out_dir_ + "/rigid_poses.csv", frames_ == 0 ? std::ios::trunc : std::ios::app);
+  if (frames_ == 0) out << "time,body,x,y,z,qw,qx,qy,qz,vx,vy,vz,wx,wy,wz\n";
   out.precision(17);
   for (const ObjectInfo& o : model_.objects) {
     if (o.kind != ObjectKind::rigid_body) continue;
@@ -38,8 +37,8 @@ void FrameWriter::write_rigid_poses(const State& state) {
 }
 
 FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string scene_name, FrameSeries resume)
-    : model_(model), out_dir_(std::move(out_dir)), scene_name_(safe_file_name(scene_name)), series_(std::move(resume)) {
-  if (series_.frames > 0) write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", series_.entries);
+    : model_(model), out_dir_(std::move(out_dir)), scene_name_(safe_file_name(scene_name)), frames_(resume.frames),
+      pvd_(out_dir_ + "/" + scene_name_ + ".pvd", resume) {
   // Draw planes large enough to hold the scene's particles.
   Vec3 lo = Vec3::Constant(-1), hi = Vec3::Constant(1);
   for (const auto& x : model.particle_rest_position) {
@@ -64,12 +63,13 @@ FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string sc
 }
 
 void FrameWriter::write(const State& state) {
+  std::vector<PvdEntry> entries;
   for (size_t o = 0; o < model_.objects.size(); ++o) {
     const ObjectInfo& obj = model_.objects[o];
     const bool particles_only = obj.kind == ObjectKind::fluid || obj.kind == ObjectKind::rod ||
                                 obj.kind == ObjectKind::granular || obj.kind == ObjectKind::shape_matched ||
                                 obj.kind == ObjectKind::continuum;  // .vtp files
-    const std::string file = fmt::format("frames/{}_{:06d}.{}", safe_file_name(obj.name), series_.frames, particles_only ? "vtp" : "vtu");
+    const std::string file = fmt::format("frames/{}_{:06d}.{}", safe_file_name(obj.name), frames_, particles_only ? "vtp" : "vtu");
     const std::string path = out_dir_ + "/" + file;
     if (obj.kind == ObjectKind::fluid) {
       // Live particles of this fluid: position, velocity, density, pressure, stable id.
@@ -155,11 +155,11 @@ void FrameWriter::write(const State& state) {
         write_vtu(path, x, conn, 3, VtkCell::triangle, {{"velocity", v}, {"displacement", u}});
       }
     }
-    series_.entries.push_back({state.time, static_cast<int>(o), file});
+    entries.push_back({state.time, static_cast<int>(o), file});
   }
-  write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", series_.entries);
+  pvd_.add_frame(entries);
   write_rigid_poses(state);
-  ++series_.frames;
+  ++frames_;
 }
 
 void prepare_output_directory(const std::string& out_dir) {
@@ -185,12 +185,16 @@ void resume_output_directory(const std::string& out_dir, const FrameSeries& fram
                                      out_dir, name));
       fs::resize_file(dir / name, size);
     }
-    std::set<std::string> kept;
-    for (const PvdEntry& e : frames.entries) kept.insert(fs::path(e.file).filename().string());
+    // Frames are frames/<object>_<NNNNNN>.<ext>: those numbered from frames.frames on are later
+    // than the checkpoint; anything else there (a partial .part file) goes too.
     fs::create_directories(dir / "frames");
     std::vector<fs::path> stale;
-    for (const auto& entry : fs::directory_iterator(dir / "frames"))
-      if (!kept.count(entry.path().filename().string())) stale.push_back(entry.path());
+    for (const auto& entry : fs::directory_iterator(dir / "frames")) {
+      const std::string stem = entry.path().stem().string();
+      const std::string number = stem.substr(stem.rfind('_') + 1);
+      const bool numbered = !number.empty() && number.find_first_not_of("0123456789") == std::string::npos;
+      if (!numbered || std::stol(number) >= frames.frames) stale.push_back(entry.path());
+    }
     for (const fs::path& p : stale) fs::remove(p);
   } catch (const fs::filesystem_error& e) {
     throw InputError(fmt::format("--out {}: cannot continue the output directory ({})", out_dir, e.code().message()));

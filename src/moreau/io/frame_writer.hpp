@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "moreau/io/pvd_collection.hpp"
 #include "moreau/io/vtk_writer.hpp"
 #include "moreau/model/state.hpp"
 
@@ -17,7 +18,7 @@ class FrameWriter {
   /// Starts a series in out_dir, or continues `resume` (a restarted run).
   FrameWriter(const Model& model, std::string out_dir, std::string scene_name, FrameSeries resume = {});
   void write(const State& state);
-  const FrameSeries& series() const { return series_; }
+  FrameSeries series() const { return {frames_, pvd_.bytes()}; }
 
  private:
   /// Appends every rigid body's pose (shape frame), velocity and angular velocity to
@@ -27,15 +28,16 @@ class FrameWriter {
   const Model& model_;
   std::string out_dir_, scene_name_;
   Real plane_half_size_ = 1;
-  FrameSeries series_;
+  int frames_ = 0;
+  PvdCollection pvd_;
 };
 
 /// Creates the output directory and clears the frames, .pvd files and checkpoint of an earlier run.
 void prepare_output_directory(const std::string& dir);
 
 /// Cuts a run's output directory back to a checkpoint: the files it appends rows to to their
-/// sizes then, and frames/ to the frames of `frames` (later ones and partial files removed); the
-/// engine's frame writer rewrites the .pvd from `frames` when it continues the series.
+/// sizes then, and frames/ to the first `frames.frames` frames (later ones and partial files
+/// removed); the engine's frame writer cuts the .pvd back when it continues the series.
 void resume_output_directory(const std::string& dir, const FrameSeries& frames,
                              const std::vector<std::pair<std::string, std::uint64_t>>& appended_files);
 

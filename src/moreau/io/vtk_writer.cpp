@@ -138,14 +138,6 @@ void write_vtu(const std::string& path, const std::vector<Vec3>& points, const s
   write_file(path, xml, data);
 }
 
-void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries) {
-  std::string xml = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"1.0\" byte_order=\"LittleEndian\">\n<Collection>\n";
-  for (const auto& e : entries)
-    xml += fmt::format("<DataSet timestep=\"{:.9g}\" part=\"{}\" file=\"{}\"/>\n", e.time, e.part, e.file);
-  xml += "</Collection>\n</VTKFile>\n";
-  write_file_atomically(path, xml);
-}
-
 std::string safe_file_name(const std::string& name) {
   std::string s = name;
   for (char& c : s)

@@ -47,22 +47,7 @@ void write_polyline_vtp(const std::string& path, const std::vector<Vec3>& points
                         const std::vector<VtkPointArray>& point_vectors, const std::vector<VtkScalarArray>& point_scalars,
                         const std::vector<VtkPointArray>& cell_vectors, const std::vector<VtkScalarArray>& cell_scalars);
 
-/// A ParaView collection (.pvd): each entry is (time, part, file relative to the .pvd).
-struct PvdEntry {
-  Real time;
-  int part;
-  std::string file;
-};
-void write_pvd(const std::string& path, const std::vector<PvdEntry>& entries);
-
 /// File-system-safe version of a scene or object name.
 std::string safe_file_name(const std::string& name);
-
-/// The frames a run has written: how many, and the .pvd's entries. A run restarted from a
-/// checkpoint in the same output directory continues the series.
-struct FrameSeries {
-  int frames = 0;
-  std::vector<PvdEntry> entries;
-};
 
 }  // namespace moreau

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "moreau/io/vtk_writer.hpp"
+#include "moreau/io/pvd_collection.hpp"
 
 namespace moreau {
 

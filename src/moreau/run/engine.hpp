@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "moreau/io/vtk_writer.hpp"
+#include "moreau/io/pvd_collection.hpp"
 #include "moreau/math/types.hpp"
 #include "moreau/world.hpp"
 

@@ -26,11 +26,10 @@ void FlowFrameWriter::write(const VectorX& x, Real time) {
   } else {
     vectors.push_back({"vorticity", curl});
   }
-  const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(fluid_name_), series_.frames++);
+  const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(fluid_name_), frames_++);
   write_vtu(out_dir_ + "/" + file, model_.mesh.nodes, model_.mesh.cells, model_.mesh.nodes_per_cell(),
             vtk_cell(model_.mesh.element), vectors, {}, scalars);
-  series_.entries.push_back({time, 0, file});
-  write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", series_.entries);
+  pvd_.add_frame({{time, 0, file}});
 }
 
 }  // namespace moreau

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "moreau/fem/flow/navier_stokes.hpp"
+#include "moreau/io/pvd_collection.hpp"
 #include "moreau/io/vtk_writer.hpp"
 
 namespace moreau {
@@ -16,17 +17,16 @@ class FlowFrameWriter {
   FlowFrameWriter(const NavierStokesModel& model, std::string fluid_name, std::string out_dir, std::string scene_name,
                   FrameSeries resume = {})
       : model_(model), fluid_name_(std::move(fluid_name)), out_dir_(std::move(out_dir)), scene_name_(safe_file_name(scene_name)),
-        series_(std::move(resume)) {
-    if (series_.frames > 0) write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", series_.entries);
-  }
+        frames_(resume.frames), pvd_(out_dir_ + "/" + scene_name_ + ".pvd", resume) {}
 
   void write(const VectorX& x, Real time);
-  const FrameSeries& series() const { return series_; }
+  FrameSeries series() const { return {frames_, pvd_.bytes()}; }
 
  private:
   const NavierStokesModel& model_;
   std::string fluid_name_, out_dir_, scene_name_;
-  FrameSeries series_;
+  int frames_ = 0;
+  PvdCollection pvd_;
 };
 
 }  // namespace moreau

@@ -48,6 +48,7 @@ VtkCell vtk_cell(ElementType type) {
 
 void FemFrameWriter::write(const FemRunState& run) {
   const FemDynamicState& state = run.solids;
+  std::vector<PvdEntry> entries;
   for (size_t i = 0; i < model_.solids.size(); ++i) {
     const FemSolid& s = model_.solids[i];
     const Index n = s.mesh.node_count();
@@ -61,10 +62,10 @@ void FemFrameWriter::write(const FemRunState& run) {
     }
     std::vector<Real> cauchy, von_mises;
     cell_stresses(model_, s, state.u, cauchy, von_mises);
-    const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(s.name), series_.frames);
+    const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(s.name), frames_);
     write_vtu(out_dir_ + "/" + file, x, s.mesh.cells, s.mesh.nodes_per_cell(), vtk_cell(s.mesh.element),
               {{"displacement", u}, {"velocity", v}}, {{"cauchy_stress", 6, cauchy}, {"von_mises", 1, von_mises}});
-    series_.entries.push_back({state.time, static_cast<int>(i), file});
+    entries.push_back({state.time, static_cast<int>(i), file});
   }
   for (size_t b = 0; b < problem_.rigid_bodies.size(); ++b) {
     const FemRigidBody& body = problem_.rigid_bodies[b];
@@ -82,13 +83,13 @@ void FemFrameWriter::write(const FemRunState& run) {
       }
       u[a] = x[a] - body.mesh.nodes[a];
     }
-    const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(body.name), series_.frames);
+    const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(body.name), frames_);
     write_vtu(out_dir_ + "/" + file, x, body.mesh.cells, body.mesh.nodes_per_cell(), vtk_cell(body.mesh.element),
               {{"displacement", u}, {"velocity", v}});
-    series_.entries.push_back({state.time, static_cast<int>(model_.solids.size() + b), file});
+    entries.push_back({state.time, static_cast<int>(model_.solids.size() + b), file});
   }
-  write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", series_.entries);
-  ++series_.frames;
+  pvd_.add_frame(entries);
+  ++frames_;
 }
 
 }  // namespace moreau

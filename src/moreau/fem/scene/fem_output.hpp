@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "moreau/fem/scene/fem_problem.hpp"
+#include "moreau/io/pvd_collection.hpp"
 #include "moreau/io/vtk_writer.hpp"
 
 namespace moreau {
@@ -25,17 +26,16 @@ class FemFrameWriter {
   /// Starts a series in out_dir, or continues `resume` (a restarted run).
   FemFrameWriter(const FemProblem& problem, std::string out_dir, std::string scene_name, FrameSeries resume = {})
       : problem_(problem), model_(problem.model), out_dir_(std::move(out_dir)), scene_name_(safe_file_name(scene_name)),
-        series_(std::move(resume)) {
-    if (series_.frames > 0) write_pvd(out_dir_ + "/" + scene_name_ + ".pvd", series_.entries);
-  }
+        frames_(resume.frames), pvd_(out_dir_ + "/" + scene_name_ + ".pvd", resume) {}
   void write(const FemRunState& state);
-  const FrameSeries& series() const { return series_; }
+  FrameSeries series() const { return {frames_, pvd_.bytes()}; }
 
  private:
   const FemProblem& problem_;
   const FemModel& model_;
   std::string out_dir_, scene_name_;
-  FrameSeries series_;
+  int frames_ = 0;
+  PvdCollection pvd_;
 };
 
 }  // namespace moreau

@@ -1,0 +1,23 @@
+// libFuzzer target: scene JSON text -> a World (reading, validation and building of every object
+// kind, without stepping). Refusing the input (InputError) is the expected answer to nonsense;
+// anything else that escapes — another exception, a crash, a leak, a hang, an allocation the
+// memory limit should have stopped — is a finding. The memory limit is 256 MB, so a scene that
+// asks for 10^9 vertices must be refused before it allocates.
+#include <cstdint>
+#include <string>
+
+#include "moreau/errors.hpp"
+#include "moreau/world.hpp"
+
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  moreau::set_memory_limit(256e6);
+  return 0;
+}
+
+extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+  try {
+    moreau::World::from_json(std::string(reinterpret_cast<const char*>(data), size));
+  } catch (const moreau::InputError&) {
+  }
+  return 0;
+}
