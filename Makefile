@@ -26,21 +26,24 @@ bench: build
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build (clang) of the engine, its tests and the
 # libFuzzer targets, in $(SANITIZE_DIR). test-sanitize runs every test but the slow ones listed in
-# tests/sanitize-skip.txt (those that take 3 s or more in the Release build); fuzz fuzzes each
-# target for FUZZ_SECONDS (scripts/fuzz.sh).
+# tests/sanitize-skip.txt (those that take 3 s or more in the Release build), or only the tests of
+# the folders in SANITIZE_TEST_DIRS (e.g. "app;run", as CI does); fuzz fuzzes each target for
+# FUZZ_SECONDS (scripts/fuzz.sh).
 SANITIZE_DIR ?= build-sanitize
 FUZZ_SECONDS ?= 60
 SANITIZE_ENV = ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1 \
                UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 
+SANITIZE_TEST_DIRS ?=
+
 sanitize-build: deps
 	cmake -S . -B $(SANITIZE_DIR) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release -DMOREAU_SANITIZE=ON \
-	  -DMOREAU_BUILD_BENCHMARKS=OFF
+	  -DMOREAU_BUILD_BENCHMARKS=OFF -DMOREAU_TEST_DIRS="$(SANITIZE_TEST_DIRS)"
 	cmake --build $(SANITIZE_DIR) -j$(JOBS)
 
 test-sanitize: sanitize-build
 	cd $(SANITIZE_DIR) && $(SANITIZE_ENV) ctest -j$(JOBS) --output-on-failure --timeout 1800 \
-	  -E "$$(sed 's/.*/^&$$/' ../tests/sanitize-skip.txt | paste -sd'|')"
+	  -E "$$(grep -v '^#' ../tests/sanitize-skip.txt | sed 's/.*/^&$$|^& /' | paste -sd'|')"
 
 fuzz: sanitize-build
 	$(SANITIZE_ENV) ./scripts/fuzz.sh $(SANITIZE_DIR) $(FUZZ_SECONDS)

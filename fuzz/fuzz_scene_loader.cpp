@@ -1,16 +1,16 @@
 // libFuzzer target: scene JSON text -> a World (reading, validation and building of every object
 // kind, without stepping). Refusing the input (InputError) is the expected answer to nonsense;
 // anything else that escapes — another exception, a crash, a leak, a hang, an allocation the
-// memory limit should have stopped — is a finding. The memory limit is 256 MB, so a scene that
+// memory limit should have stopped — is a finding. The memory limit is 64 MB, so a scene that
 // asks for 10^9 vertices must be refused before it allocates.
 #include <cstdint>
 #include <string>
 
 #include "moreau/errors.hpp"
-#include "moreau/world.hpp"
+#include "moreau/moreau.hpp"
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  moreau::set_memory_limit(256e6);
+  moreau::set_memory_limit(64e6);
   return 0;
 }
 

@@ -19,7 +19,7 @@ for target in scene_loader set_override obj_reader tetgen_reader gmsh_reader; do
   cp "$root/fuzz/seeds/$target/"* "$corpus/"
   if [ -d "$root/fuzz/regressions/$target" ]; then cp "$root/fuzz/regressions/$target/"* "$corpus/"; fi
   case $target in
-    scene_loader) cp "$root"/scenes/*.json "$root"/bench/scenes/*.json "$corpus/" ;;
+    scene_loader) cp "$root"/scenes/*.json "$corpus/" ;;  # (bench/scenes are benchmark-sized: seconds to build)
     obj_reader) cp "$root"/scenes/meshes/*.obj "$corpus/" ;;
   esac
   echo "== fuzz_$target: $seconds s"

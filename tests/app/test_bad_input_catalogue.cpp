@@ -72,7 +72,7 @@ std::vector<BadInput> catalogue() {
       {"huge_number", replaced(cloth, "0.01", "1e999"), {}, "", {"settings.dt", "'1e999' does not fit a double"}},
       {"nan_by_set", cloth, {}, "--set settings.dt=nan", {"settings.dt"}},
       {"infinity_by_set", cloth, {}, "--set settings.gravity=[0,-inf,0]", {"settings.gravity"}},
-      {"too_many_vertices", replaced(cloth, "[4, 4]", "[100000, 100000]"), {}, "", {"objects[0].mesh.resolution"}},
+      {"too_many_vertices", replaced(cloth, "[4, 4]", "[100000, 100000]"), {}, "", {"objects[0].mesh.resolution", "memory limit"}},
       // Mesh files.
       {"missing_obj", soft_body("obj", "nowhere.obj"), {}, "", {"objects[0].mesh.file", "nowhere.obj", "not found"}},
       {"empty_obj", soft_body("obj", "empty.obj"), {{"empty.obj", ""}}, "", {"empty.obj"}},

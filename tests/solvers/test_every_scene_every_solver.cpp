@@ -140,7 +140,7 @@ TEST_P(EverySceneEverySolver, RunsFiniteAndIndependentOfTheThreadCount) {
       for (size_t k = 0; k < values.size(); ++k) ASSERT_TRUE(std::isfinite(values[k])) << name << " value " << k;
     }
     // Bits, not a tolerance: the same operations in the same order on any thread count.
-    EXPECT_EQ(std::memcmp(values.data(), other.data(), values.size() * sizeof(double)), 0)
+    EXPECT_TRUE(values.empty() || std::memcmp(values.data(), other.data(), values.size() * sizeof(double)) == 0)
         << name << " of " << pair.scene << " under " << pair.solver << " differs between one and two threads";
   }
 }

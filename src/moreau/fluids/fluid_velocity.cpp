@@ -1,6 +1,7 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 
 #include "moreau/fluids/pair_chunks.hpp"
+#include "moreau/math/target_clones.hpp"
 #include "moreau/model/model.hpp"
 
 namespace moreau {
@@ -21,7 +22,7 @@ Vec3 fluid_vorticity(const Model& model, const FluidState& fluid, Index i) {
   return fm.particle_volume * omega;
 }
 
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+MOREAU_TARGET_CLONES
 void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, FluidScratch& scratch, Real dt) {
   const FluidModel& fm = model.fluid;
   bool any_viscosity = false, any_xsph = false, any_vorticity = false;

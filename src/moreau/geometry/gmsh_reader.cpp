@@ -50,10 +50,15 @@ void read_entities(LineReader& r, GmshFile& file) {
       line >> tag;
       for (int k = 0; k < coordinates; ++k) line >> box[k];
       long physical_count = 0;
-      if (!(line >> physical_count)) r.fail("malformed entity");
-      std::vector<int> physicals(physical_count);
-      for (int& p : physicals)
+      if (!(line >> physical_count) || physical_count < 0) r.fail("malformed entity (its number of physical tags)");
+      // Read tag by tag rather than sizing for the count: a corrupt count (10^18) then fails at the
+      // first missing tag instead of allocating (found by fuzzing).
+      std::vector<int> physicals;
+      for (long k = 0; k < physical_count; ++k) {
+        int p = 0;
         if (!(line >> p)) r.fail("malformed entity physical tags");
+        physicals.push_back(p);
+      }
       file.entity_physicals[{dim, tag}] = physicals;
     }
 }
@@ -105,9 +110,14 @@ GmshFile read_gmsh_file(const std::string& path) {
         long in_block = 0;
         if (!r.next(line) || !(line >> dim >> entity >> parametric >> in_block)) r.fail("malformed node block header");
         if (parametric != 0) r.fail("parametric nodes are not supported");
-        std::vector<long> tags(in_block);
-        for (auto& tag : tags)
+        if (in_block < 0) r.fail("malformed node block header (a negative node count)");
+        // Tag by tag, not sized for the count: a corrupt count fails at the first missing line.
+        std::vector<long> tags;
+        for (long k = 0; k < in_block; ++k) {
+          long tag = 0;
           if (!r.next(line) || !(line >> tag)) r.fail("malformed node tag");
+          tags.push_back(tag);
+        }
         for (long tag : tags) {
           double x, y, z;
           if (!r.next(line) || !(line >> x >> y >> z)) r.fail("malformed node coordinates");

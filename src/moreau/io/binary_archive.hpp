@@ -36,7 +36,9 @@ class ArchiveError : public std::runtime_error {
 
 class ArchiveWriter {
  public:
-  void bytes(const void* data, std::size_t n) { buffer_.append(static_cast<const char*>(data), n); }
+  void bytes(const void* data, std::size_t n) {
+    if (n > 0) buffer_.append(static_cast<const char*>(data), n);  // an empty vector's data() may be null
+  }
   const std::string& buffer() const { return buffer_; }
 
  private:
@@ -48,6 +50,7 @@ class ArchiveReader {
   ArchiveReader(const char* data, std::size_t size) : data_(data), size_(size) {}
   void bytes(void* out, std::size_t n) {
     if (n > remaining()) throw ArchiveError("the checkpoint ends early (truncated?)");
+    if (n == 0) return;  // memcpy into an empty vector's null data() is undefined
     std::memcpy(out, data_ + at_, n);
     at_ += n;
   }

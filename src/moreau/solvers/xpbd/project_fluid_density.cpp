@@ -2,11 +2,12 @@
 
 #include "moreau/fluids/density_constraint.hpp"
 #include "moreau/fluids/fluid_scratch.hpp"
+#include "moreau/math/target_clones.hpp"
 #include "moreau/model/model.hpp"
 
 namespace moreau {
 
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+MOREAU_TARGET_CLONES
 void project_fluid_density(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h) {
   const FluidModel& fm = model.fluid;
   const CubicSplineKernel kernel = fm.kernel;
