@@ -121,7 +121,7 @@ class World {
 
   /// Writes a checkpoint of the current state to `path` (a versioned binary file, written whole or
   /// not at all): everything a later step reads, so that restore() continues bit for bit.
-  void save_checkpoint(const std::string& path);
+  void save_checkpoint(const std::string& path) const;
   /// Replaces the current state by the checkpoint at `path`, written by a run of this same scene
   /// (only settings.duration, output and threads may differ). Throws InputError naming the file
   /// and what differs, leaving the state as it was. The next run() continues the checkpoint's

@@ -48,27 +48,12 @@ constexpr const char* kEveryMaterial = R"({"name": "every_material",
   "probes": [{"name": "crate", "type": "center_of_mass", "object": "crate"},
              {"name": "water_front", "type": "extent", "object": "water", "axis": "x", "quantity": "max"}]})";
 
-constexpr const char* kTransientCavity = R"({"name": "transient_cavity",
-  "settings": {"solver": "fem", "integrator": "bdf2", "dt": 0.05, "gravity": [0, 0, 0]},
-  "objects": [{"name": "fluid", "kind": "fluid", "mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [16, 16]},
-               "density": 1.0, "viscosity": 0.01,
-               "boundaries": [{"where": {"side": "top"}, "velocity": ["1", "0"]},
-                              {"where": {"side": ["left", "right", "bottom"]}, "type": "no_slip"}],
-               "pressure_reference": {"mean": 0}}],
-  "probes": [{"name": "centre", "type": "point", "at": [0.5, 0.5]},
-             {"name": "lid_force", "type": "boundary_force", "where": {"side": "top"}}]})";
-
 struct Case {
   const char* name;
   const char* scene;  // a file in scenes/, or the scene's JSON
   std::vector<std::string> overrides;
   int steps;  // T in steps (a multiple of the scene's output.every)
 };
-
-std::string scene_path(const char* scene) {
-  if (scene[0] == '{') return write_scene("restart-scene", scene);
-  return (fs::path(MOREAU_SOURCE_DIR) / "scenes" / scene).string();
-}
 
 std::string file_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

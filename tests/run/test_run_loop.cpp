@@ -14,17 +14,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A transient flow small enough for a test: the lid-driven cavity on 16 x 16 cells by BDF2.
-constexpr const char* kTransientCavity = R"({"name": "transient_cavity",
-  "settings": {"solver": "fem", "integrator": "bdf2", "dt": 0.05, "gravity": [0, 0, 0]},
-  "objects": [{"name": "fluid", "kind": "fluid", "mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [16, 16]},
-               "density": 1.0, "viscosity": 0.01,
-               "boundaries": [{"where": {"side": "top"}, "velocity": ["1", "0"]},
-                              {"where": {"side": ["left", "right", "bottom"]}, "type": "no_slip"}],
-               "pressure_reference": {"mean": 0}}],
-  "probes": [{"name": "centre", "type": "point", "at": [0.5, 0.5]},
-             {"name": "lid_force", "type": "boundary_force", "where": {"side": "top"}}]})";
-
 struct Case {
   const char* name;
   const char* scene;  // a file in scenes/, or the scene's JSON
@@ -32,11 +21,6 @@ struct Case {
   double dt;
   int steps;  // taken by World::step before the run of the rest
 };
-
-std::string scene_path(const char* scene) {
-  if (scene[0] == '{') return write_scene("run-loop-scene", scene);
-  return (fs::path(MOREAU_SOURCE_DIR) / "scenes" / scene).string();
-}
 
 class RunLoopContinues : public ::testing::TestWithParam<Case> {};
 

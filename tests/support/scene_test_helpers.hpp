@@ -2,6 +2,7 @@
 // Helpers for tests that run scene files through the command line and read what they write.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
@@ -16,6 +17,25 @@ inline std::string write_scene(const std::string& tag, const std::string& text) 
   std::ofstream(path) << text;
   return path;
 }
+
+/// A scene file's path: `scene` names a file in scenes/, or (starting with '{') is the scene's JSON,
+/// written to a file of its own.
+inline std::string scene_path(const std::string& scene) {
+  if (scene.starts_with('{')) return write_scene("inline-scene", scene);
+  return (std::filesystem::path(MOREAU_SOURCE_DIR) / "scenes" / scene).string();
+}
+
+// A transient flow small enough for a test: the lid-driven cavity on 16 x 16 cells by BDF2.
+inline constexpr const char* kTransientCavity = R"({"name": "transient_cavity",
+  "settings": {"solver": "fem", "integrator": "bdf2", "dt": 0.05, "gravity": [0, 0, 0]},
+  "objects": [{"name": "fluid", "kind": "fluid", "mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [16, 16]},
+               "density": 1.0, "viscosity": 0.01,
+               "boundaries": [{"where": {"side": "top"}, "velocity": ["1", "0"]},
+                              {"where": {"side": ["left", "right", "bottom"]}, "type": "no_slip"}],
+               "pressure_reference": {"mean": 0}}],
+  "probes": [{"name": "centre", "type": "point", "at": [0.5, 0.5]},
+             {"name": "lid_force", "type": "boundary_force", "where": {"side": "top"}}]})";
+
 
 // probes.csv as rows of numbers (the header skipped).
 inline std::vector<std::vector<Real>> read_probes(const std::string& dir) {

@@ -218,8 +218,12 @@ void writable_directory(const std::string& dir) {
     throw InputError(fmt::format("--out {}: the directory is not writable; choose a writable directory", dir));
 }
 
+std::string output_directory_path(const std::string& requested, const std::string& scene_name) {
+  return requested.empty() ? "out/" + safe_file_name(scene_name) : requested;
+}
+
 std::string run_output_directory(const std::string& requested, const std::string& scene_name) {
-  const std::string dir = requested.empty() ? "out/" + safe_file_name(scene_name) : requested;
+  const std::string dir = output_directory_path(requested, scene_name);
   writable_directory(dir);
   try {
     prepare_output_directory(dir);

@@ -44,6 +44,9 @@ void resume_output_directory(const std::string& dir, const FrameSeries& frames,
 /// Creates `dir` if missing; an InputError (naming --out) when it cannot be made or written.
 void writable_directory(const std::string& dir);
 
+/// `requested`, or out/<scene name> when it is empty.
+std::string output_directory_path(const std::string& requested, const std::string& scene_name);
+
 /// A run's output directory, `requested` or out/<scene name>, prepared for the run.
 std::string run_output_directory(const std::string& requested, const std::string& scene_name);
 

@@ -9,6 +9,7 @@
 #include "moreau/errors.hpp"
 #include "moreau/io/atomic_file.hpp"
 #include "moreau/io/binary_archive.hpp"
+#include "moreau/math/fnv1a.hpp"
 #include "moreau/moreau.hpp"
 #include "moreau/run/engine.hpp"
 #include "moreau/scene/scene.hpp"
@@ -21,12 +22,8 @@ constexpr char kMagic[] = "moreau-checkpoint\n";
 constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
 constexpr std::uint32_t kFormatVersion = 1;
 
-std::uint64_t fnv1a(const std::string& a, const std::string& b) {
-  std::uint64_t hash = 14695981039346656037ull;
-  for (const std::string* s : {&a, &b})
-    for (unsigned char c : *s) hash = (hash ^ c) * 1099511628211ull;
-  return hash;
-}
+// The checksum of a checkpoint's header and state.
+std::uint64_t checksum(const std::string& header, const std::string& state) { return fnv1a(state, fnv1a(header)); }
 
 template <class T>
 void put(std::string& out, const T& value) {
@@ -65,7 +62,7 @@ void write_checkpoint(const std::string& path, const CheckpointHeader& header, c
   bytes += head.buffer();
   put(bytes, static_cast<std::uint64_t>(state.buffer().size()));
   bytes += state.buffer();
-  put(bytes, fnv1a(head.buffer(), state.buffer()));
+  put(bytes, checksum(head.buffer(), state.buffer()));
   write_file_atomically(path, bytes);
 }
 
@@ -93,7 +90,7 @@ CheckpointHeader read_checkpoint(const std::string& path, const CheckpointHeader
   } catch (const ArchiveError&) {
     throw fail("the file is truncated (the run that wrote it may have been killed while writing it)");
   }
-  if (file.remaining() != 0 || stored_hash != fnv1a(head_bytes, state_bytes))
+  if (file.remaining() != 0 || stored_hash != checksum(head_bytes, state_bytes))
     throw fail("the file is damaged (its checksum does not match its contents)");
 
   CheckpointHeader header;

@@ -64,7 +64,7 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
   const auto started = fs::file_time_type::clock::now();
 
   RunResult result;
-  result.out_dir = options.out_dir.empty() ? "out/" + safe_file_name(scene.name) : options.out_dir;
+  result.out_dir = output_directory_path(options.out_dir, scene.name);
   const bool continuing = restart && same_directory(restart->header.out_dir, result.out_dir);
   if (continuing) {
     writable_directory(result.out_dir);

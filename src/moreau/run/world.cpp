@@ -55,7 +55,7 @@ RunResult World::run(const RunOptions& options) {
   return run_engine(*engine_, *scene_, options, {*identity_, restart.get(), steps_});
 }
 
-void World::save_checkpoint(const std::string& path) {
+void World::save_checkpoint(const std::string& path) const {
   CheckpointHeader header = *identity_;
   header.time = engine_->time();
   header.steps = steps_;

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "moreau/errors.hpp"
+#include "moreau/math/fnv1a.hpp"
 #include "moreau/scene/fem_scene.hpp"
 #include "moreau/scene/spec_builders.hpp"
 #include "moreau/scene/scene.hpp"
@@ -92,9 +93,7 @@ std::string scene_fingerprint(nlohmann::json root) {
     if (root.contains("settings") && root["settings"].is_object())
       for (const char* key : {"duration", "output", "threads"}) root["settings"].erase(key);
   }
-  std::uint64_t hash = 14695981039346656037ull;
-  for (unsigned char c : root.dump()) hash = (hash ^ c) * 1099511628211ull;
-  return fmt::format("{:016x}", hash);
+  return fmt::format("{:016x}", fnv1a(root.dump()));
 }
 
 // Validates and builds the scene in `root` (read from `path`) after applying the overrides.

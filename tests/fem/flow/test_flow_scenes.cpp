@@ -16,7 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string scene_path(const std::string& name) { return (fs::path(MOREAU_SOURCE_DIR) / "scenes" / name).string(); }
 
 std::string read_text(const std::string& path) {
   std::ifstream in(path);
@@ -61,7 +60,7 @@ TEST(FlowScenes, CylinderBenchmark2D1DragLiftAndPressureDrop) {
   std::vector<Real> lift, dp;
   for (int n : {2, 8}) {
     const std::string out = test::temp_dir(fmt::format("cylinder{}", n)) + "/out";
-    const auto rows = test::run_scene(scene_path("cylinder_re20.json"), out, fmt::format("--set objects.fluid.mesh.parameters.N={}", n));
+    const auto rows = test::run_scene(test::scene_path("cylinder_re20.json"), out, fmt::format("--set objects.fluid.mesh.parameters.N={}", n));
     ASSERT_EQ(rows.size(), 1u);
     // time, force.x, force.y, coefficient.x, coefficient.y, dp
     const auto& r = rows[0];
@@ -86,7 +85,7 @@ TEST(FlowScenes, CavitySceneMatchesGhiaAndWritesFrames) {
   // model-level test does (measured 0.0048 / 0.0072). The frame carries velocity, pressure and
   // vorticity.
   const std::string out = test::temp_dir("cavity_scene") + "/out";
-  test::run_scene(scene_path("cavity_re1000.json"), out,
+  test::run_scene(test::scene_path("cavity_re1000.json"), out,
                   "--set objects.fluid.viscosity=0.01 --set objects.fluid.continuation.viscosity=[0.01] --set objects.fluid.mesh.cells=[64,64]");
   const auto u = read_line(out + "/line_vertical_centreline.csv", 1, 2);
   const auto v = read_line(out + "/line_horizontal_centreline.csv", 0, 3);
@@ -166,7 +165,7 @@ TEST(FlowScenes, Cavity3DSceneWithGmresMatchesUmfpackAndIsMirrorSymmetric) {
   for (int k = 0; k < 2; ++k) {
     const std::string out = test::temp_dir(fmt::format("cavity3d_{}", k)) + "/out";
     const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet --set 'objects.fluid.mesh.cells=[8,8,8]' {}",
-                                                scene_path("cavity3d_re400.json"), out, overrides[k]));
+                                                test::scene_path("cavity3d_re400.json"), out, overrides[k]));
     ASSERT_EQ(r.exit_code, 0) << r.output;
     u[k] = read_line(out + "/line_vertical_centreline.csv", 1, 3);
     w[k] = read_line(out + "/line_vertical_centreline.csv", 1, 5);
@@ -197,7 +196,7 @@ TEST(FlowScenes, TransientRunIsBitIdenticalOnOneAndTwoThreads) {
       const auto r = test::run_moreau(fmt::format(
           "run {} --out {} --quiet --threads {} --set settings.integrator=midpoint --set settings.dt=0.05 "
           "--set settings.duration=0.3 --set objects.fluid.mesh.parameters.N=1 --set settings.linear_solver.type={}",
-          scene_path("cylinder_re20.json"), out, threads, linear));
+          test::scene_path("cylinder_re20.json"), out, threads, linear));
       ASSERT_EQ(r.exit_code, 0) << r.output;
       csv[threads - 1] = read_text(out + "/probes.csv");
     }
