@@ -22,7 +22,11 @@ packages=(
   libboost1.81-dev     # Boost.PFR: checkpoints walk the state's structs field by field
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev libomp-14-dev  # make test-sanitize and make fuzz: ASan, UBSan, libFuzzer (clang 14)
-  python3-numpy        # bench/mpm_column_reference.py, the MPM reference of the XPBI sand column
+  python3-numpy        # the Python module's arrays; bench/mpm_column_reference.py, the MPM reference of the XPBI sand column
+  python3-dev pybind11-dev  # the Python module (python/)
+  python3-pytest       # its tests
+  python3-matplotlib   # its example (python/examples/drop_and_plot.py)
+  blender              # tests/external: Blender imports and renders the OBJ and PLY frames
 )
 
 missing=()

@@ -85,7 +85,9 @@ struct SceneSettings {
   XpbiSolverSettings xpbi;
   std::optional<SleepSolverSettings> sleep;  // absent: grains never sleep
   int output_every = 1;                 // output.every: frames and probe rows every N steps
-  bool write_vtk = true;                // output.formats contains "vtk"
+  bool write_vtk = true;                // output.formats contains "vtk": frames/*.vtu|vtp and <scene>.pvd
+  bool write_obj = false;               // ... "obj": frames/*.obj of the surfaces (cloth, soft and rigid bodies, colliders)
+  bool write_ply = false;               // ... "ply": frames/*.ply of the particles with their arrays
   int checkpoint_every = 0;             // output.checkpoint_every: a checkpoint every N steps (0: none)
 };
 

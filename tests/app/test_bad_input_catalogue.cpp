@@ -72,6 +72,8 @@ std::vector<BadInput> catalogue() {
       {"huge_number", replaced(cloth, "0.01", "1e999"), {}, "", {"settings.dt", "'1e999' does not fit a double"}},
       {"nan_by_set", cloth, {}, "--set settings.dt=nan", {"settings.dt"}},
       {"infinity_by_set", cloth, {}, "--set settings.gravity=[0,-inf,0]", {"settings.gravity"}},
+      {"unknown_frame_format", cloth, {}, "--set 'settings.output.formats=[\"vtk\",\"stl\"]'",
+       {"settings.output.formats", "\"stl\" is not a known format; allowed: vtk, obj, ply"}},
       {"too_many_vertices", replaced(cloth, "[4, 4]", "[100000, 100000]"), {}, "", {"objects[0].mesh.resolution", "memory limit"}},
       // Mesh files.
       {"missing_obj", soft_body("obj", "nowhere.obj"), {}, "", {"objects[0].mesh.file", "nowhere.obj", "not found"}},
@@ -95,6 +97,8 @@ std::vector<BadInput> catalogue() {
       {"unwritable_output", cloth, {}, "--out /proc/moreau-out", {"--out /proc/moreau-out"}},
       {"unknown_set_path", cloth, {}, "--set settings.substepz=4", {"settings.substepz", "substeps"}},
       {"set_without_value", cloth, {}, "--set settings.dt", {"settings.dt"}},
+      {"set_index_too_long", cloth, {}, "--set objects.123456789012345678901234567890.name=x",
+       {"objects.123456789012345678901234567890", "no element"}},
       {"threads_out_of_range", cloth, {}, "--threads 5000", {"--threads", "not in range"}},
       {"negative_duration", cloth, {}, "--duration -1", {"--duration"}},
       {"restart_missing", cloth, {}, "--restart {dir}/none.bin", {"--restart", "none.bin", "cannot open"}},

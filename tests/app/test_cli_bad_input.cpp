@@ -137,11 +137,23 @@ TEST(CliBadInput, ScenesTooLargeForMemoryAreRefusedBeforeAllocating) {
                    "objects[0].mesh.cells: 1e+10 cells need at least 6e+04 GB");
   expect_bad_input(fmt::format("check {}fem_beam.json --set objects.beam.mesh.cells=[100000,100000,2]", scenes),
                    "objects[0].mesh.cells: 2e+10 cells need at least 2e+05 GB");
+  // A fluid tank's walls are sampled at the fluid's spacing: a tank 2 km square at 2.5 cm is
+  // 1.3e10 wall samples, refused at the tank's shape before any is made.
+  expect_bad_input(fmt::format("check {}dam_break.json --set objects.tank.shape.half_extents=[1000,0.5,1000]", scenes),
+                   "objects[0].shape: ");
+  expect_bad_input(fmt::format("check {}dam_break.json --set objects.tank.shape.half_extents=[1000,0.5,1000]", scenes),
+                   "fluid wall samples at the fluid's particle spacing need at least");
   // A small scene under a smaller limit given on the command line.
   const std::string small = fmt::format("{}/soft.json --set objects.b.mesh.cells=[40,40,40]", dir);
   expect_bad_input(fmt::format("check {} --memory-limit 0.1", small),
                    "3.84e+05 tetrahedra need at least 0.115 GB (300 bytes each), more than the memory limit of 0.1 GB (set by --memory-limit)");
   EXPECT_EQ(test::run_moreau(fmt::format("check {} --memory-limit 1", small)).exit_code, 0);
+}
+
+TEST(CliBadInput, FemScenesWriteVtkFramesOnly) {
+  const std::string scenes = std::string(MOREAU_SOURCE_DIR) + "/scenes/";
+  expect_bad_input(fmt::format("check {}fem_beam.json --set 'settings.output.formats=[\"obj\"]'", scenes),
+                   "settings.output.formats: \"obj\" is not a known format; allowed: vtk (FEM scenes)");
 }
 
 TEST(CliBadInput, RunsThatCannotFinishOrFitOnDiskAreRefused) {

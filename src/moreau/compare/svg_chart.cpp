@@ -13,7 +13,7 @@ namespace {
 // Colours that stay distinct for readers with the common colour-vision deficiencies (Okabe & Ito).
 constexpr const char* kColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#56B4E9"};
 
-struct Range {
+struct AxisRange {
   double low = std::numeric_limits<double>::infinity(), high = -std::numeric_limits<double>::infinity();
   void add(double v) {
     if (!std::isfinite(v)) return;
@@ -21,7 +21,7 @@ struct Range {
     high = std::max(high, v);
   }
   // A range to draw: a constant series gets a band around its value, an empty one [0, 1].
-  Range padded() const {
+  AxisRange padded() const {
     if (!(low <= high)) return {0, 1};
     if (high - low > 1e-12 * std::max(std::abs(low), std::abs(high))) return *this;
     const double half = low == 0 ? 1 : 0.05 * std::abs(low);
@@ -61,7 +61,7 @@ std::vector<double> round_ticks(double low, double high, int wanted) {
 std::string svg_line_chart(const LineChart& chart, int width, int height) {
   const double left = 78, right = 16, top = 30, bottom = 44;
   const double plot_w = width - left - right, plot_h = height - top - bottom;
-  Range xr, yr;
+  AxisRange xr, yr;
   for (const ChartLine& line : chart.lines) {
     for (double v : line.x) xr.add(v);
     for (double v : line.y) yr.add(v);

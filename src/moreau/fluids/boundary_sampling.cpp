@@ -95,6 +95,30 @@ std::vector<Vec3> sample_collider_surface(const Collider& c, Real spacing, Real 
   }
 }
 
+double collider_surface_sample_count(const Collider& c, Real spacing, Real depth, Real plane_half_size) {
+  const Real grow = c.inside ? depth : -depth;
+  auto offset_radius = [&](Real radius) { return std::max(0.5 * radius, radius + grow); };
+  auto cells = [spacing](Real length) { return std::max(1.0, std::ceil(length / spacing)); };
+  const auto sphere_points = [&](Real radius) { return std::max(12.0, std::ceil(4 * kPi * radius * radius / (spacing * spacing))); };
+  switch (c.shape.type) {
+    case ShapeType::box: {
+      const Vec3 half = c.shape.half_extents.unaryExpr(offset_radius);
+      const double n0 = cells(2 * half.x()), n1 = cells(2 * half.y()), n2 = cells(2 * half.z());
+      return (n0 + 1) * (n1 + 1) * (n2 + 1) - std::max(0.0, n0 - 1) * std::max(0.0, n1 - 1) * std::max(0.0, n2 - 1);
+    }
+    case ShapeType::sphere: return sphere_points(offset_radius(c.shape.radius));
+    case ShapeType::capsule: {
+      const Real radius = offset_radius(c.shape.radius);
+      return (cells(2 * c.shape.half_height) + 1) * std::max(8.0, std::ceil(2 * kPi * radius / spacing)) + sphere_points(radius);
+    }
+    case ShapeType::plane: {
+      const double m = cells(2 * plane_half_size);
+      return (m + 1) * (m + 1);
+    }
+    default: unsupported_collider_shape(c.shape.type);
+  }
+}
+
 std::vector<Real> akinci_volumes(const std::vector<Vec3>& world, Real spacing, const CubicSplineKernel& kernel) {
   // S_flat: the sum over a flat square layer at the fluid spacing (the sample itself included).
   Real flat_sum = 0;

@@ -28,6 +28,10 @@ namespace moreau {
 std::vector<Vec3> sample_collider_surface(const Collider& collider, Real spacing, Real depth, const Vec3& plane_center,
                                           Real plane_half_size);
 
+/// How many samples sample_collider_surface gives, counted without making them (a double: a
+/// scene's walls may ask for more than any integer holds).
+double collider_surface_sample_count(const Collider& collider, Real spacing, Real depth, Real plane_half_size);
+
 /// Akinci volumes V_b = V S_flat / sum_k W(x_b - x_k) of samples at `world` positions (all of
 /// them count each other), for a fluid lattice of the given spacing (V = spacing^3).
 std::vector<Real> akinci_volumes(const std::vector<Vec3>& world, Real spacing, const CubicSplineKernel& kernel);

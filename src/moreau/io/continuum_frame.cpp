@@ -1,11 +1,10 @@
 #include "moreau/io/continuum_frame.hpp"
 
 #include "moreau/continuum/continuum_stress.hpp"
-#include "moreau/io/vtk_writer.hpp"
 
 namespace moreau {
 
-void write_continuum_frame(const std::string& path, const Model& model, const ObjectInfo& object, const State& state) {
+ObjectFrame continuum_frame(const Model& model, const ObjectInfo& object, const State& state) {
   const Index b = object.particle_begin, n = object.particle_count();
   const ContinuumModel& continuum = model.continuum;
   const ContinuumState& deformation = state.continuum;
@@ -24,12 +23,13 @@ void write_continuum_frame(const std::string& path, const Model& model, const Ob
     mises[k] = von_mises_stress(s);
     pressure[k] = -s.sum() / 3;
   }
-  write_vtp(path, x, {{"velocity", v}, {"displacement", u}},
-            {{"radius", std::vector<Real>(n, continuum.spacing / 2)},
-             {"J", J},
-             {"plastic_strain", plastic},
-             {"von_mises_stress", mises},
-             {"pressure", pressure}});
+  return {.points = std::move(x),
+          .point_vectors = {{"velocity", std::move(v)}, {"displacement", std::move(u)}},
+          .point_scalars = {{"radius", std::vector<Real>(n, continuum.spacing / 2)},
+                            {"J", std::move(J)},
+                            {"plastic_strain", std::move(plastic)},
+                            {"von_mises_stress", std::move(mises)},
+                            {"pressure", std::move(pressure)}}};
 }
 
 }  // namespace moreau

@@ -1,8 +1,6 @@
 #pragma once
-// A continuum's frame file: its particles as .vtp points.
-#include <string>
-
-#include "moreau/model/state.hpp"
+// A continuum's frame: its particles as points.
+#include "moreau/io/object_frame.hpp"
 
 namespace moreau {
 
@@ -10,6 +8,6 @@ namespace moreau {
 /// spacing: ParaView's "Point Gaussian" by radius shows the filled volume), J = det F of the
 /// elastic deformation, the accumulated plastic strain, the von Mises stress (Pa) and the
 /// pressure (Pa, minus the mean Cauchy stress).
-void write_continuum_frame(const std::string& path, const Model& model, const ObjectInfo& object, const State& state);
+ObjectFrame continuum_frame(const Model& model, const ObjectInfo& object, const State& state);
 
 }  // namespace moreau

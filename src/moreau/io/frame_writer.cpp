@@ -7,11 +7,8 @@
 #include <algorithm>
 #include <fstream>
 
-#include "moreau/collision/collider_surface.hpp"
 #include "moreau/errors.hpp"
-#include "moreau/io/continuum_frame.hpp"
-#include "moreau/io/rod_frame.hpp"
-#include "moreau/collision/shape_surface.hpp"
+#include "moreau/io/object_frame.hpp"
 
 namespace moreau {
 
@@ -36,9 +33,11 @@ void FrameWriter::write_rigid_poses(const State& state) {
   }
 }
 
-FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string scene_name, FrameSeries resume)
-    : model_(model), out_dir_(std::move(out_dir)), scene_name_(safe_file_name(scene_name)), frames_(resume.frames),
-      pvd_(out_dir_ + "/" + scene_name_ + ".pvd", resume) {
+FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string scene_name, FrameFormats formats,
+                         FrameSeries resume)
+    : model_(model), out_dir_(std::move(out_dir)), scene_name_(safe_file_name(scene_name)), formats_(formats),
+      frames_(resume.frames) {
+  if (formats_.vtk) pvd_.emplace(out_dir_ + "/" + scene_name_ + ".pvd", resume);
   // Draw planes large enough to hold the scene's particles.
   Vec3 lo = Vec3::Constant(-1), hi = Vec3::Constant(1);
   for (const auto& x : model.particle_rest_position) {
@@ -65,99 +64,18 @@ FrameWriter::FrameWriter(const Model& model, std::string out_dir, std::string sc
 void FrameWriter::write(const State& state) {
   std::vector<PvdEntry> entries;
   for (size_t o = 0; o < model_.objects.size(); ++o) {
-    const ObjectInfo& obj = model_.objects[o];
-    const bool particles_only = obj.kind == ObjectKind::fluid || obj.kind == ObjectKind::rod ||
-                                obj.kind == ObjectKind::granular || obj.kind == ObjectKind::shape_matched ||
-                                obj.kind == ObjectKind::continuum;  // .vtp files
-    const std::string file = fmt::format("frames/{}_{:06d}.{}", safe_file_name(obj.name), frames_, particles_only ? "vtp" : "vtu");
-    const std::string path = out_dir_ + "/" + file;
-    if (obj.kind == ObjectKind::fluid) {
-      // Live particles of this fluid: position, velocity, density, pressure, stable id.
-      const FluidState& f = state.fluid;
-      std::vector<Vec3> x, v;
-      std::vector<Real> density, pressure, id;
-      for (Index i = 0; i < f.count; ++i) {
-        if (f.phase[i] != obj.fluid_phase) continue;
-        x.push_back(f.position[i]);
-        v.push_back(f.velocity[i]);
-        density.push_back(f.density[i]);
-        pressure.push_back(f.pressure[i]);
-        id.push_back(f.id[i]);
-      }
-      write_vtp(path, x, {{"velocity", v}},
-                {{"density", density}, {"pressure", pressure}, {"id", id},
-                 {"radius", std::vector<Real>(x.size(), model_.fluid.particle_radius)}});
-    } else if (obj.kind == ObjectKind::granular || obj.kind == ObjectKind::shape_matched) {
-      // Grains or shape-matched particles: position, velocity, displacement and radius
-      // (ParaView: "Point Gaussian" by radius); grains also their angular velocity and, with
-      // settings.sleep, whether each sleeps (1) or not (0). The grains an emitter has not
-      // released (the object's last, grain_emitter.hpp) are left out.
-      const Index b = obj.particle_begin;
-      Index n = obj.particle_count();
-      while (n > 0 && !state.live(b + n - 1)) --n;
-      std::vector<Vec3> x(state.position.begin() + b, state.position.begin() + b + n);
-      std::vector<Vec3> v(state.velocity.begin() + b, state.velocity.begin() + b + n), u(n);
-      for (Index i = 0; i < n; ++i) u[i] = x[i] - model_.particle_rest_position[b + i];
-      std::vector<VtkScalarArray> scalars{
-          {"radius", std::vector<Real>(model_.particle_radius.begin() + b, model_.particle_radius.begin() + b + n)}};
-      if (model_.settings.sleep.enabled && obj.kind == ObjectKind::granular) {
-        std::vector<Real> asleep(n);
-        for (Index i = 0; i < n; ++i) asleep[i] = state.sleep.asleep(b + i) ? 1 : 0;
-        scalars.push_back({"asleep", std::move(asleep)});
-      }
-      std::vector<VtkPointArray> vectors{{"velocity", v}, {"displacement", u}};
-      if (obj.kind == ObjectKind::granular)
-        vectors.push_back({"angular_velocity", std::vector<Vec3>(state.angular_velocity.begin() + b,
-                                                                  state.angular_velocity.begin() + b + n)});
-      write_vtp(path, x, vectors, scalars);
-    } else if (obj.kind == ObjectKind::continuum) {
-      write_continuum_frame(path, model_, obj, state);
-    } else if (obj.kind == ObjectKind::rod) {
-      write_rod_frame(path, model_, model_.rods[obj.rod], state);
-    } else if (obj.kind == ObjectKind::rigid_body) {
-      // The body's surface in the world, with the velocity of each surface point.
-      const Index b = obj.body;
-      const TriangleMesh m = shape_surface(model_.rigid.body_shape[b]);
-      const Quat& q = state.rigid.orientation[b];
-      const Vec3& x = state.rigid.position[b];
-      std::vector<Vec3> points(m.vertices.size()), velocity(m.vertices.size());
-      for (size_t i = 0; i < points.size(); ++i) {
-        const Vec3 r = q * m.vertices[i];
-        points[i] = x + r;
-        velocity[i] = state.rigid.velocity[b] + state.rigid.angular_velocity[b].cross(r);
-      }
-      std::vector<Index> conn;
-      for (const auto& t : m.triangles) conn.insert(conn.end(), t.begin(), t.end());
-      write_vtu(path, points, conn, 3, VtkCell::triangle, {{"velocity", velocity}});
-    } else if (obj.kind == ObjectKind::collider) {
-      const Collider& collider = model_.colliders[obj.collider];
-      // A removed collider (`until`) is written without a surface, so the series keeps its files.
-      const TriangleMesh m = collider.present_at(state.time) ? collider_surface(collider, state.time, plane_half_size_)
-                                                             : TriangleMesh{};
-      std::vector<Index> conn;
-      for (const auto& t : m.triangles) conn.insert(conn.end(), t.begin(), t.end());
-      const Vec3 v = model_.colliders[obj.collider].velocity;
-      write_vtu(path, m.vertices, conn, 3, VtkCell::triangle, {{"velocity", std::vector<Vec3>(m.vertices.size(), v)}});
-    } else {
-      const Index b = obj.particle_begin, n = obj.particle_count();
-      std::vector<Vec3> x(state.position.begin() + b, state.position.begin() + b + n);
-      std::vector<Vec3> v(state.velocity.begin() + b, state.velocity.begin() + b + n);
-      std::vector<Vec3> u(n);
-      for (Index i = 0; i < n; ++i) u[i] = x[i] - model_.particle_rest_position[b + i];
-      std::vector<Index> conn;
-      if (obj.kind == ObjectKind::soft_body) {
-        for (const auto& t : obj.tets)
-          for (Index p : t) conn.push_back(p - b);
-        write_vtu(path, x, conn, 4, VtkCell::tetra, {{"velocity", v}, {"displacement", u}});
-      } else {
-        for (const auto& t : obj.surface)
-          for (Index p : t) conn.push_back(p - b);
-        write_vtu(path, x, conn, 3, VtkCell::triangle, {{"velocity", v}, {"displacement", u}});
-      }
+    const ObjectInfo& object = model_.objects[o];
+    const ObjectFrame frame = object_frame(model_, object, state, plane_half_size_);
+    const std::string stem = fmt::format("frames/{}_{:06d}", safe_file_name(object.name), frames_);
+    if (formats_.vtk) {
+      const std::string file = stem + "." + vtk_extension(frame);
+      write_vtk_frame(out_dir_ + "/" + file, frame);
+      entries.push_back({state.time, static_cast<int>(o), file});
     }
-    entries.push_back({state.time, static_cast<int>(o), file});
+    if (formats_.obj && has_surface(frame)) write_obj_frame(out_dir_ + "/" + stem + ".obj", object.name, frame);
+    if (formats_.ply && is_point_set(frame)) write_ply_frame(out_dir_ + "/" + stem + ".ply", object.name, frame);
   }
-  pvd_.add_frame(entries);
+  if (pvd_) pvd_->add_frame(entries);
   write_rigid_poses(state);
   ++frames_;
 }

@@ -1,12 +1,15 @@
 #pragma once
-// Writes one .vtu per object and output step into DIR/frames/ and keeps DIR/<scene>.pvd, the
-// ParaView collection that ties them together, up to date after every frame (so a run that stops
-// early still opens).
+// Writes each object's frame file(s) per output step into DIR/frames/<object>_<NNNNNN>.<ext>, in
+// the formats of settings.output.formats (frame_formats.hpp), and with VTK keeps DIR/<scene>.pvd,
+// the ParaView collection that ties them together, up to date after every frame (so a run that
+// stops early still opens).
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "moreau/io/frame_formats.hpp"
 #include "moreau/io/pvd_collection.hpp"
 #include "moreau/io/vtk_writer.hpp"
 #include "moreau/model/state.hpp"
@@ -16,9 +19,10 @@ namespace moreau {
 class FrameWriter {
  public:
   /// Starts a series in out_dir, or continues `resume` (a restarted run).
-  FrameWriter(const Model& model, std::string out_dir, std::string scene_name, FrameSeries resume = {});
+  FrameWriter(const Model& model, std::string out_dir, std::string scene_name, FrameFormats formats,
+              FrameSeries resume = {});
   void write(const State& state);
-  FrameSeries series() const { return {frames_, pvd_.bytes()}; }
+  FrameSeries series() const { return {frames_, pvd_ ? pvd_->bytes() : 0}; }
 
  private:
   /// Appends every rigid body's pose (shape frame), velocity and angular velocity to
@@ -27,9 +31,10 @@ class FrameWriter {
 
   const Model& model_;
   std::string out_dir_, scene_name_;
+  FrameFormats formats_;
   Real plane_half_size_ = 1;
   int frames_ = 0;
-  PvdCollection pvd_;
+  std::optional<PvdCollection> pvd_;  // with VTK frames only
 };
 
 /// Creates the output directory and clears the frames, .pvd files and checkpoint of an earlier run.

@@ -4,12 +4,11 @@
 #include <cmath>
 
 #include "moreau/constraints/joints/joint_frames.hpp"
-#include "moreau/io/vtk_writer.hpp"
 #include "moreau/rods/rod_geometry.hpp"
 
 namespace moreau {
 
-void write_rod_frame(const std::string& path, const Model& model, const RodModel& rod, const State& state) {
+ObjectFrame rod_frame(const Model& model, const RodModel& rod, const State& state) {
   const RigidBodyState& bodies = state.rigid;
   const Index n = rod.points();
   std::vector<Vec3> points(n), velocity(n), displacement(n);
@@ -36,9 +35,11 @@ void write_rod_frame(const std::string& path, const Model& model, const RodModel
     twist[k] = junction_twist(j, state) / length;
     stretch[k] = a.axis(0).dot(b.anchor() - a.anchor()) / length;
   }
-  write_polyline_vtp(path, points, {{"velocity", velocity}, {"displacement", displacement}},
-                     {{"curvature", curvature}, {"twist", twist}, {"stretch", stretch}},
-                     {{"tangent", tangent}, {"normal", normal}, {"binormal", binormal}}, {});
+  return {.cells = ObjectFrame::Cells::polyline,
+          .points = std::move(points),
+          .point_vectors = {{"velocity", std::move(velocity)}, {"displacement", std::move(displacement)}},
+          .point_scalars = {{"curvature", std::move(curvature)}, {"twist", std::move(twist)}, {"stretch", std::move(stretch)}},
+          .cell_vectors = {{"tangent", std::move(tangent)}, {"normal", std::move(normal)}, {"binormal", std::move(binormal)}}};
 }
 
 }  // namespace moreau

@@ -1,9 +1,7 @@
 #pragma once
-// A rod's frame file: its centreline as a .vtp polyline (one line cell per segment) with the
-// material frame per segment and the strains at the centreline points.
-#include <string>
-
-#include "moreau/model/state.hpp"
+// A rod's frame: its centreline as a polyline (one line cell per segment) with the material frame
+// per segment and the strains at the centreline points.
+#include "moreau/io/object_frame.hpp"
 
 namespace moreau {
 
@@ -12,6 +10,6 @@ namespace moreau {
 /// beyond the rest shape's) and stretch (the axial strain of the junction's gap); the three
 /// strains are 0 at the rod's two ends. Cell arrays per segment: tangent, normal (the section's
 /// first axis) and binormal.
-void write_rod_frame(const std::string& path, const Model& model, const RodModel& rod, const State& state);
+ObjectFrame rod_frame(const Model& model, const RodModel& rod, const State& state);
 
 }  // namespace moreau

@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cstdint>
+#include <limits>
 
 namespace moreau {
 
@@ -18,6 +19,7 @@ using Quat = Eigen::Quaterniond;  // Hamilton convention, (w, x, y, z)
 using Index = std::int32_t;
 
 inline constexpr Real kPi = 3.14159265358979323846;
+inline constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
 
 /// [r]x, the matrix with [r]x v = r x v.
 inline Mat3 cross_matrix(const Vec3& r) {

@@ -39,7 +39,7 @@ class ConstraintEngine final : public Engine {
   }
 
   void open_frames(const std::string& out_dir, const std::string& scene_name, FrameSeries resume) override {
-    frames_.emplace(model_, out_dir, scene_name, std::move(resume));
+    frames_.emplace(model_, out_dir, scene_name, scene_.output.formats, std::move(resume));
   }
   void write_frame() override { frames_->write(state_); }
   FrameSeries frame_series() const override { return frames_ ? frames_->series() : FrameSeries{}; }

@@ -79,7 +79,7 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
     values.clear();
     engine.sample_probes(values);
     csv.write_row(engine.time(), values);
-    if (scene.output.write_vtk) engine.write_frame();
+    if (scene.output.formats.any()) engine.write_frame();
   };
   auto checkpoint = [&] {
     csv.flush();

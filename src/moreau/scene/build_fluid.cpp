@@ -164,7 +164,7 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   fm.phases.push_back(phase);
 }
 
-void finish_fluids(Model& model) {
+void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& object_place) {
   FluidModel& fm = model.fluid;
   if (fm.empty()) return;
   const Real d = 2 * fm.particle_radius;
@@ -186,6 +186,12 @@ void finish_fluids(Model& model) {
   std::vector<Index> sampled;
   for (Index c = 0; c < static_cast<Index>(model.colliders.size()); ++c)
     if (model.colliders[c].fluid_walls) sampled.push_back(c);
+  // A collider's samples are counted before any is made: a tank kilometres wide is refused here.
+  for (std::size_t k = 0; k < model.objects.size(); ++k)
+    if (model.objects[k].kind == ObjectKind::collider && model.colliders[model.objects[k].collider].fluid_walls)
+      check_memory(object_place(static_cast<Index>(k)), "shape",
+                   collider_surface_sample_count(model.colliders[model.objects[k].collider], d, 0.5 * d, plane_half_size),
+                   memory_cost::fluid_wall_sample, "fluid wall samples at the fluid's particle spacing");
   fm.boundary = sample_fluid_walls(model.colliders, sampled, d, fm.kernel, 0.5 * (lo + hi), plane_half_size);
   fm.solid = sample_fluid_solids(model, fm.particle_radius, fm.kernel);
 }

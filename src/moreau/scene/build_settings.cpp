@@ -8,18 +8,22 @@
 
 namespace moreau {
 
-void read_output_settings(const JsonObject& settings, int& every, bool& write_vtk, int& checkpoint_every) {
+void read_output_settings(const JsonObject& settings, int& every, FrameFormats& formats, int& checkpoint_every,
+                          bool surfaces_and_points) {
   if (auto output = settings.optional_object("output")) {
     every = output->integer("every", every, 1);
     checkpoint_every = output->integer("checkpoint_every", checkpoint_every, 0);
     if (output->has("formats")) {
-      const auto& formats = output->raw("formats");
-      if (!formats.is_array()) output->fail("formats", "expected an array of format names; allowed: vtk");
-      write_vtk = false;
-      for (const auto& f : formats) {
-        if (!f.is_string() || f.get<std::string>() != "vtk")
-          output->fail("formats", fmt::format("{} is not a known format; allowed: vtk", f.dump()));
-        write_vtk = true;
+      const char* allowed = surfaces_and_points ? "vtk, obj, ply" : "vtk (FEM scenes)";
+      const auto& names = output->raw("formats");
+      if (!names.is_array()) output->fail("formats", fmt::format("expected an array of format names; allowed: {}", allowed));
+      formats = {.vtk = false};
+      for (const auto& f : names) {
+        const std::string name = f.is_string() ? f.get<std::string>() : "";
+        bool* format = name == "vtk" ? &formats.vtk : !surfaces_and_points ? nullptr
+                     : name == "obj" ? &formats.obj : name == "ply" ? &formats.ply : nullptr;
+        if (!format) output->fail("formats", fmt::format("{} is not a known format; allowed: {}", f.dump(), allowed));
+        *format = true;
       }
     }
     output->finish();
@@ -68,7 +72,11 @@ SceneSettings read_settings(const JsonObject& settings) {
     s.sleep = SleepSolverSettings{read_optional_number(*sleep, "speed"), read_optional_number(*sleep, "time")};
     sleep->finish();
   }
-  read_output_settings(settings, s.output_every, s.write_vtk, s.checkpoint_every);
+  FrameFormats formats{.vtk = s.write_vtk, .obj = s.write_obj, .ply = s.write_ply};
+  read_output_settings(settings, s.output_every, formats, s.checkpoint_every, true);
+  s.write_vtk = formats.vtk;
+  s.write_obj = formats.obj;
+  s.write_ply = formats.ply;
   settings.finish();
   return s;
 }
@@ -132,7 +140,7 @@ void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& sc
     s.sleep.time = sleep.number("time", spec.sleep->time.value_or(s.sleep.time), Range::positive());
   }
   scene.output.every = place.integer("output.every", spec.output_every, 1);
-  scene.output.write_vtk = spec.write_vtk;
+  scene.output.formats = {.vtk = spec.write_vtk, .obj = spec.write_obj, .ply = spec.write_ply};
   scene.output.checkpoint_every = place.integer("output.checkpoint_every", spec.checkpoint_every, 0);
 }
 

@@ -341,7 +341,8 @@ void apply_override(json& scene, const std::string& assignment, const std::strin
     if (node->is_array()) {
       json* next = nullptr;
       if (!s.empty() && s.find_first_not_of("0123456789") == std::string::npos) {
-        const size_t k = std::stoul(s);
+        // An index of more digits than any array's size has is past the end (stoul would throw).
+        const size_t k = s.size() <= 9 ? std::stoul(s) : node->size();
         if (k < node->size()) next = &(*node)[k];
       } else {
         for (auto& item : *node)

@@ -16,6 +16,8 @@ namespace memory_cost {
 inline constexpr double tetrahedron = 300;       // XPBD soft body (measured 410 B: particles, constraints, solver)
 inline constexpr double cloth_cell = 300;        // XPBD cloth grid cell (two triangles; measured 410 B)
 inline constexpr double fluid_particle = 500;    // particle fluid (measured 850 B with neighbour lists)
+inline constexpr double fluid_wall_sample = 100; // a collider's wall sample for the fluid (60 B kept, plus the
+                                                 // neighbour search that computes the volumes)
 inline constexpr double solid_cell_2d = 3000;    // FEM quad4 cell with its sparse Cholesky factor (measured 4.4 kB)
 inline constexpr double solid_cell_3d = 10000;   // FEM hex8 cell (measured 40 kB at 27,000 cells; grows with size)
 inline constexpr double flow_cell_2d = 6000;     // Navier-Stokes Q1Q1 cell with its LU factors (measured 11 kB)

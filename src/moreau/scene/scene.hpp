@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "moreau/fem/scene/fem_problem.hpp"
+#include "moreau/io/frame_formats.hpp"
 #include "moreau/io/probes.hpp"
 #include "moreau/model/state.hpp"
 #include "moreau/solvers/solver.hpp"
@@ -14,7 +15,7 @@ namespace moreau {
 
 struct OutputSettings {
   int every = 1;          // write frames and probe rows every N steps
-  bool write_vtk = true;  // frames/*.vtu + <scene>.pvd
+  FrameFormats formats;   // vtk: frames/*.vtu|vtp + <scene>.pvd; obj, ply: frames/*.obj, *.ply
   int checkpoint_every = 0;  // write checkpoint.bin every N steps (and at the end); 0: only when interrupted
 };
 

@@ -75,7 +75,7 @@ Scene assemble_scene(const SceneSpec& spec, const std::string& source, const std
   }
   check_removed_colliders(scene.model, entry);
   scene.model.color_constraints();
-  finish_fluids(scene.model);
+  finish_fluids(scene.model, [&](Index k) { return entry("objects", k); });
   for (size_t k = 0; k < spec.joints.size(); ++k) add_joint(spec.joints[k], entry("joints", k), scene.model);
   finish_joints(scene.model);
   add_colliders_as_bodies(scene.model);

@@ -26,7 +26,7 @@ void read_fem_settings(const JsonObject& settings, Scene& scene) {
   scene.duration = settings.number("duration", scene.duration, Range::positive());
   scene.model.settings.gravity = settings.vec3("gravity", scene.model.settings.gravity);
   scene.model.settings.threads = settings.integer("threads", scene.model.settings.threads, 0, 1024);
-  read_output_settings(settings, scene.output.every, scene.output.write_vtk, scene.output.checkpoint_every);
+  read_output_settings(settings, scene.output.every, scene.output.formats, scene.output.checkpoint_every, false);
   settings.finish();
 }
 

@@ -9,8 +9,10 @@
 // A scene file and a SceneBuilder in code both end in the add_ functions (scene_assembly.cpp).
 // Not part of the public API.
 #include <filesystem>
+#include <functional>
 #include <vector>
 
+#include "moreau/io/frame_formats.hpp"
 #include "moreau/model/model.hpp"
 #include "moreau/scene/json_reader.hpp"
 #include "moreau/scene/spec_place.hpp"
@@ -46,7 +48,9 @@ SceneSettings read_settings(const JsonObject& settings);
 /// settings -> the scene's solver settings, duration and output.
 void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& scene);
 /// "settings.output": every N steps, and the formats.
-void read_output_settings(const JsonObject& settings, int& every, bool& write_vtk, int& checkpoint_every);
+/// `surfaces_and_points`: the engine also writes "obj" and "ply" (the constraint engine), not only "vtk".
+void read_output_settings(const JsonObject& settings, int& every, FrameFormats& formats, int& checkpoint_every,
+                          bool surfaces_and_points);
 
 void add_collider(const ColliderSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
 void add_cloth(const ClothSpec& spec, const SpecPlace& place, ObjectInfo& info, SceneBuildContext& ctx);
@@ -68,8 +72,9 @@ void add_colliders_as_bodies(Model& model);
 /// After all objects: one joint (pairs_without_contact is sorted by finish_joints).
 void add_joint(const JointSpec& spec, const SpecPlace& place, Model& model);
 void finish_joints(Model& model);
-/// After all objects: samples collider walls for the fluids and sets the derived fluid constants.
-void finish_fluids(Model& model);
+/// After all objects: samples collider walls for the fluids (refusing walls whose samples would
+/// not fit in memory, at `object_place` of the collider) and sets the derived fluid constants.
+void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& object_place);
 /// A probe bound to the model's objects, particles and joints.
 Probe bind_probe(const ProbeSpec& spec, const SpecPlace& place, const Model& model);
 

@@ -18,8 +18,6 @@ namespace moreau {
 
 namespace {
 
-constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
-
 // The entry of `end` in the row's ends from `first` on, appended (with a zero Jacobian) if new.
 std::size_t find_or_add(std::vector<VelocityEnd>& ends, std::vector<std::array<Real, 6>>& jacobian, std::size_t first,
                         const VelocityEnd& end) {

@@ -10,8 +10,6 @@ namespace moreau {
 
 namespace {
 
-constexpr Real kInfinity = std::numeric_limits<Real>::infinity();
-
 Vec3 end_vector(const std::vector<Real>& v, const VelocityEnd& e) { return Vec3(v[e.dof], v[e.dof + 1], v[e.dof + 2]); }
 
 // A = G W G^T and the rates G v of a grain pair's rows (GrainPairRows), ends (v_i, v_j, w_i, w_j).
