@@ -44,8 +44,7 @@ sanitize-build: deps
 	cmake --build $(SANITIZE_DIR) -j$(JOBS)
 
 test-sanitize: sanitize-build
-	cd $(SANITIZE_DIR) && $(SANITIZE_ENV) ctest -j$(JOBS) --output-on-failure --timeout 1800 \
-	  -E "$$(grep -v '^#' ../tests/sanitize-skip.txt | sed 's/.*/^&$$|^& /' | paste -sd'|')"
+	$(SANITIZE_ENV) ./scripts/test-sanitize.sh $(SANITIZE_DIR)
 
 fuzz: sanitize-build
 	$(SANITIZE_ENV) ./scripts/fuzz.sh $(SANITIZE_DIR) $(FUZZ_SECONDS)
