@@ -15,6 +15,7 @@ demo: build
 	./$(BUILD_DIR)/moreau run scenes/showcase.json --out out/showcase
 	@echo
 	@echo "Output written to out/showcase/"
+	@echo "Play it in a browser:  ./$(BUILD_DIR)/moreau view out/showcase"
 	@echo "Open it in ParaView:   paraview out/showcase/showcase.pvd"
 	@echo "Probe time series:     out/showcase/probes.csv    Run summary: out/showcase/run.json"
 
@@ -39,7 +40,7 @@ SANITIZE_TEST_DIRS ?=
 
 sanitize-build: deps
 	cmake -S . -B $(SANITIZE_DIR) -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=Release -DMOREAU_SANITIZE=ON \
-	  -DMOREAU_BUILD_BENCHMARKS=OFF -DMOREAU_BUILD_PYTHON=OFF -DMOREAU_TEST_DIRS="$(SANITIZE_TEST_DIRS)" \
+	  -DMOREAU_BUILD_BENCHMARKS=OFF -DMOREAU_BUILD_PYTHON=OFF -DMOREAU_BUILD_VIEWER=OFF -DMOREAU_TEST_DIRS="$(SANITIZE_TEST_DIRS)" \
 	  -DCMAKE_UNITY_BUILD=ON
 	cmake --build $(SANITIZE_DIR) -j$(JOBS)
 

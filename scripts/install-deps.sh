@@ -27,6 +27,8 @@ packages=(
   python3-pytest       # its tests
   python3-matplotlib   # its example (python/examples/drop_and_plot.py)
   blender              # tests/external: Blender imports and renders the OBJ and PLY frames
+  libcpp-httplib-dev   # moreau view: serves an output directory to the browser
+  chromium             # the viewer's browser test (headless, software WebGL)
 )
 
 missing=()
@@ -35,6 +37,12 @@ for p in "${packages[@]}"; do
     missing+=("$p")
   fi
 done
+
+# The viewer page is bundled with npm (viewer/package-lock.json). Node.js and npm usually come with
+# the machine; Debian's packages stand in where they do not.
+if ! command -v npm >/dev/null 2>&1; then
+  missing+=(nodejs npm)
+fi
 
 if [ ${#missing[@]} -eq 0 ]; then
   exit 0

@@ -10,12 +10,19 @@ deterministic for any thread count). For each scene in scenes/ and bench/scenes/
 for FEM time steppers (a static or steady scene runs whole), and prints one line per scene: the
 SHA-256 of its probes.csv, rigid_poses.csv and frame files, in name order, then the run's status.
 
+The FEM scenes' sparse factorizations call BLAS, and OpenBLAS picks its kernels for the CPU it
+runs on: an AVX-512 kernel sums in another order than an AVX2 one, so the last bits of a FEM
+result differ between CPUs (not between thread counts). The runs here pin OpenBLAS's AVX2 kernels
+(OPENBLAS_CORETYPE=Haswell, which every x86-64 CPU since 2013 runs), so one baseline holds on
+every such machine.
+
     scripts/scene-hashes.py [--moreau build/moreau] [--threads N] > hashes.txt
     diff bench/baseline/scene_hashes.txt hashes.txt
 """
 import argparse
 import hashlib
 import json
+import os
 import pathlib
 import subprocess
 import sys
@@ -51,6 +58,7 @@ def main():
     args = parser.parse_args()
     scenes = sorted((ROOT / "scenes").glob("*.json")) + sorted((ROOT / "bench" / "scenes").glob("*.json"))
     failures = 0
+    env = dict(os.environ, OPENBLAS_CORETYPE="Haswell")
     with tempfile.TemporaryDirectory() as tmp:
         for path in scenes:
             scene = json.loads(path.read_text())
@@ -60,7 +68,7 @@ def main():
             duration = short_duration(scene)
             if duration is not None:
                 command += ["--duration", repr(duration)]
-            result = subprocess.run(command, capture_output=True, text=True)
+            result = subprocess.run(command, capture_output=True, text=True, env=env)
             status = json.loads((out / "run.json").read_text())["status"] if (out / "run.json").exists() else "none"
             if result.returncode != 0:
                 failures += 1

@@ -3,6 +3,7 @@
 //              [--checkpoint-every N] [--restart CHECKPOINT]
 //   moreau check SCENE.json [--set key=value ...]
 //   moreau compare SCENE.json --solvers xpbd,nmd [--out DIR] [--duration T] [--threads N] [--quiet] [--set ...]
+//   moreau view OUTPUT_DIR [--port P] [--no-browser]
 // run and check take --memory-limit GB (what a scene's meshes and particles may need).
 //   moreau --version | --help
 // Exit codes: 0 success, 1 anything else, 2 bad input, 3 numerical failure, 128 + the signal's
@@ -16,6 +17,7 @@
 #include <csignal>
 #include <string>
 
+#include "moreau/app/view_server.hpp"
 #include "moreau/moreau.hpp"
 
 namespace {
@@ -93,6 +95,13 @@ int main(int argc, char** argv) {
   compare->add_flag("--quiet", quiet, "no progress bars");
   compare->add_option("--set", overrides, "override a scene value by its JSON path, for every solver");
 
+  moreau::ViewOptions view_options;
+  bool no_browser = false;
+  CLI::App* view = app.add_subcommand("view", "play a run's output back in the browser (served on this machine only)");
+  view->add_option("output", view_options.output_dir, "a run's output directory, e.g. out/showcase")->required();
+  view->add_option("--port", view_options.port, "port on 127.0.0.1 (default: any free one)")->check(CLI::Range(0, 65535));
+  view->add_flag("--no-browser", no_browser, "only print the page's address");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {
@@ -104,6 +113,11 @@ int main(int argc, char** argv) {
 
   try {
     if (memory_limit_gb > 0) moreau::set_memory_limit(memory_limit_gb * 1e9);
+    if (view->parsed()) {
+      view_options.open_browser = !no_browser;
+      moreau::serve_output(view_options);
+      return 0;
+    }
     if (compare->parsed()) {
       moreau::CompareOptions options;
       options.scene_path = scene_path;

@@ -1,0 +1,180 @@
+// The page `moreau view DIR` serves: plays the run in DIR back. It reads /manifest.json (the
+// directory's .pvd collections and probes), the chosen collection's frames under /data/, and
+// probes.csv, and wires the controls: play/pause, the time slider, colouring by a point array with
+// its colour bar, and the probe plot. `window.moreauViewer` lets scripts (and the browser test)
+// drive it and read where things are drawn.
+import 'uplot/dist/uPlot.min.css';
+
+import { isPlaneSquare } from './cell_geometry.js';
+import { paintColourBar, pointScalars } from './colour_map.js';
+import { ProbePlot, readProbesCsv } from './probe_plot.js';
+import { SceneView } from './scene_view.js';
+import { readPvd, readVtk } from './vtk_reader.js';
+
+const $ = (id) => document.getElementById(id);
+
+async function fetchOk(url, as) {
+  const response = await fetch(url);
+  if (!response.ok) throw new Error(`${url}: ${response.status} ${response.statusText}`);
+  return as === 'text' ? response.text() : as === 'json' ? response.json() : response.arrayBuffer();
+}
+
+// "frames/cloth_000012.vtu" -> "cloth"
+function objectName(file) {
+  return file.replace(/^.*\//, '').replace(/_\d+\.\w+$/, '');
+}
+
+class Player {
+  constructor(manifest, collection, frames) {
+    this.manifest = manifest;
+    this.frames = frames;
+    this.cache = new Map();  // frame index -> Promise<Map<part, {name, data}>>
+    this.index = -1;
+    this.shown = -1;  // the frame index last drawn
+    this.playing = false;
+    this.colourArray = '';
+    this.colouring = null;
+    this.base = '/data/' + collection.replace(/[^/]*$/, '');
+    this.view = new SceneView($('view'));
+    this.probes = null;
+  }
+
+  load(index) {
+    if (!this.cache.has(index)) {
+      const parts = this.frames[index].parts;
+      this.cache.set(index, Promise.all(parts.map(async ({ part, file }) => {
+        const data = readVtk(await fetchOk(this.base + file), file);
+        return [part, { name: objectName(file), data }];
+      })).then((entries) => new Map(entries)));
+      // Keep the frames near the one shown; drop the rest so long runs fit in memory.
+      for (const k of this.cache.keys()) if (Math.abs(k - index) > 8) this.cache.delete(k);
+    }
+    return this.cache.get(index);
+  }
+
+  async show(index) {
+    this.index = index;
+    const files = await this.load(index);
+    if (this.index !== index) return;  // a later request won
+    if (this.shown < 0) {
+      this.view.frame(files);
+      this.fillArrayChoices(files);
+    }
+    this.colouring = this.colourRange(files);
+    this.view.show(files, this.colouring);
+    this.shown = index;
+    const time = this.frames[index].time;
+    $('slider').value = String(index);
+    $('time').textContent = `t = ${time.toPrecision(4)} s  (frame ${index + 1} of ${this.frames.length})`;
+    if (this.probes) this.probes.mark(time);
+    this.load(Math.min(index + 1, this.frames.length - 1));  // the next one, while this one is looked at
+  }
+
+  // The point arrays of the first frame's objects, for the "colour by" list.
+  fillArrayChoices(files) {
+    const names = new Set();
+    for (const { data } of files.values()) for (const n of Object.keys(data.pointData)) names.add(n);
+    const select = $('colour-by');
+    for (const n of [...names].sort()) select.add(new Option(n, n));
+  }
+
+  // The chosen array's range over the frame's objects that have it, planes aside (the colour
+  // bar's ends).
+  colourRange(files) {
+    if (!this.colourArray) {
+      $('colour-bar-box').hidden = true;
+      return null;
+    }
+    let min = Infinity, max = -Infinity;
+    for (const { data } of files.values()) {
+      const array = data.pointData[this.colourArray];
+      if (!array || isPlaneSquare(data)) continue;  // planes are drawn grey
+      for (const s of pointScalars(array)) {
+        min = Math.min(min, s);
+        max = Math.max(max, s);
+      }
+    }
+    if (!(min <= max)) min = max = 0;
+    $('colour-bar-box').hidden = false;
+    $('colour-min').textContent = min.toPrecision(3);
+    $('colour-max').textContent = max.toPrecision(3);
+    $('colour-name').textContent = this.colourArray;
+    return { array: this.colourArray, min, max };
+  }
+
+  async play() {
+    this.playing = !this.playing;
+    $('play').textContent = this.playing ? 'Pause' : 'Play';
+    if (this.playing && this.index >= this.frames.length - 1) await this.show(0);
+    while (this.playing && this.index < this.frames.length - 1) {
+      const started = performance.now();
+      await this.show(this.index + 1);
+      const wait = 1000 / 30 - (performance.now() - started);
+      if (wait > 0) await new Promise((r) => setTimeout(r, wait));
+    }
+    this.playing = false;
+    $('play').textContent = 'Play';
+  }
+
+  // The world position of the point of object `name` where point array `array` is largest (or
+  // smallest) in the frame shown.
+  async extremePoint(name, array, which = 'max') {
+    const files = await this.load(this.shown);
+    for (const { name: n, data } of files.values()) {
+      if (n !== name || !data.pointData[array]) continue;
+      const s = pointScalars(data.pointData[array]);
+      let best = 0;
+      for (let i = 1; i < s.length; ++i) if (which === 'max' ? s[i] > s[best] : s[i] < s[best]) best = i;
+      return [data.points[best * 3], data.points[best * 3 + 1], data.points[best * 3 + 2]];
+    }
+    throw new Error(`no object '${name}' with array '${array}' in frame ${this.shown}`);
+  }
+}
+
+async function start() {
+  const manifest = await fetchOk('/manifest.json', 'json');
+  document.title = `${manifest.scene} — moreau`;
+  $('scene').textContent = manifest.scene;
+  $('directory').textContent = manifest.directory;
+  if (manifest.collections.length === 0) throw new Error(`${manifest.directory} has no .pvd collection`);
+  const collection = manifest.collections[0];
+  const frames = readPvd(await fetchOk('/data/' + collection, 'text'), collection);
+  if (frames.length === 0) throw new Error(`${collection} lists no frames yet`);
+  const player = new Player(manifest, collection, frames);
+
+  const slider = $('slider');
+  slider.max = String(frames.length - 1);
+  slider.addEventListener('input', () => player.show(Number(slider.value)).catch(report));
+  $('play').addEventListener('click', () => player.play().catch(report));
+  $('colour-by').addEventListener('change', (e) => {
+    player.colourArray = e.target.value;
+    player.show(player.index).catch(report);
+  });
+  paintColourBar($('colour-bar'));
+  if (manifest.probes) {
+    const probes = readProbesCsv(await fetchOk('/data/' + manifest.probes, 'text'));
+    if (probes.names.length > 1) player.probes = new ProbePlot($('probes'), probes);
+  }
+  await player.show(0);
+
+  window.moreauViewer = {
+    frameCount: frames.length,
+    get shownFrame() { return player.shown; },
+    get time() { return frames[player.shown].time; },
+    get colouring() { return player.colouring; },
+    project: (x, y, z) => player.view.project(x, y, z),
+    extremePoint: (name, array, which) => player.extremePoint(name, array, which),
+    objectColour: (name) => [...player.view.parts.values()].find((v) => v.name === name)?.baseColour,
+    showFrame: (index) => player.show(index),
+  };
+  document.body.dataset.state = 'ready';
+}
+
+function report(error) {
+  console.error(error);
+  $('error').textContent = String(error.message || error);
+  $('error').hidden = false;
+  document.body.dataset.state = 'error';
+}
+
+start().catch(report);
