@@ -28,7 +28,9 @@ packages=(
   python3-matplotlib   # its example (python/examples/drop_and_plot.py)
   blender              # tests/external: Blender imports and renders the OBJ and PLY frames
   libcpp-httplib-dev   # moreau view: serves an output directory to the browser
-  chromium             # the viewer's browser test (headless, software WebGL)
+  chromium             # moreau render and the viewer's browser test (headless, software WebGL)
+  ffmpeg               # moreau render --video
+  paraview python3-paraview  # tests/external: ParaView's pvpython opens every .pvd the engine writes
 )
 
 missing=()

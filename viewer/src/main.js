@@ -35,7 +35,7 @@ class Player {
     this.colourArray = '';
     this.colouring = null;
     this.base = '/data/' + collection.replace(/[^/]*$/, '');
-    this.view = new SceneView($('view'));
+    this.view = new SceneView($('view'), { keepPicture: renderRequest() !== null });
     this.probes = null;
   }
 
@@ -57,8 +57,10 @@ class Player {
     const files = await this.load(index);
     if (this.index !== index) return;  // a later request won
     if (this.shown < 0) {
-      this.view.frame(files);
-      this.fillArrayChoices(files);
+      // The camera frames the first frame, whichever is shown first, so views of a run agree.
+      const first = index === 0 ? files : await this.load(0);
+      this.view.frame(first);
+      this.fillArrayChoices(first);
     }
     this.colouring = this.colourRange(files);
     this.view.show(files, this.colouring);
@@ -151,6 +153,8 @@ async function start() {
     player.show(player.index).catch(report);
   });
   paintColourBar($('colour-bar'));
+  const render = renderRequest();
+  if (render) return renderFrames(player, render);
   if (manifest.probes) {
     const probes = readProbesCsv(await fetchOk('/data/' + manifest.probes, 'text'));
     if (probes.names.length > 1) player.probes = new ProbePlot($('probes'), probes);
@@ -170,7 +174,49 @@ async function start() {
   document.body.dataset.state = 'ready';
 }
 
+// moreau render opens the page as /?render=last|all|N&width=W&height=H[&colour=ARRAY]: the page
+// then draws those frames alone, W x H pixels, and posts each picture to /render/frame_NNNNNN, then /render/done (or
+// /render/bad_input and /render/error with the message).
+function renderRequest() {
+  const params = new URLSearchParams(location.search);
+  return params.has('render') ? {
+    frames: params.get('render'), colour: params.get('colour') || '',
+    width: Number(params.get('width') || 1280), height: Number(params.get('height') || 720),
+  } : null;
+}
+
+async function post(name, body) {
+  const response = await fetch(`/render/${name}`, { method: 'POST', body });
+  if (!response.ok) throw new Error(`posting ${name}: ${response.status}`);
+}
+
+async function renderFrames(player, request) {
+  document.body.classList.add('render');
+  player.view.fixSize(request.width, request.height);
+  const count = player.frames.length;
+  let indices;
+  if (request.frames === 'all') indices = [...Array(count).keys()];
+  else if (request.frames === 'last') indices = [count - 1];
+  else indices = [Number(request.frames)];
+  if (!indices.every((i) => Number.isInteger(i) && i >= 0 && i < count))
+    return post('bad_input', `frame ${request.frames}: the run has ${count} frames, 0 to ${count - 1}`);
+  await player.show(indices[0]);
+  if (request.colour) {
+    const choices = [...$('colour-by').options].map((o) => o.value).filter((v) => v);
+    if (!choices.includes(request.colour))
+      return post('bad_input', `--colour-by ${request.colour}: no object has that point array; the arrays are ${choices.join(', ')}`);
+    player.colourArray = request.colour;
+  }
+  for (const i of indices) {
+    await player.show(i);
+    await post(`frame_${String(i).padStart(6, '0')}`, await player.view.picture());
+  }
+  await post('done', '');
+  document.body.dataset.state = 'rendered';
+}
+
 function report(error) {
+  if (renderRequest()) post('error', String(error.message || error));
   console.error(error);
   $('error').textContent = String(error.message || error);
   $('error').hidden = false;

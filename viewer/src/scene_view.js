@@ -9,9 +9,10 @@ import { drawableCells, isPlaneSquare } from './cell_geometry.js';
 import { coolToWarm, GROUND_COLOUR, objectColour, pointScalars } from './colour_map.js';
 
 export class SceneView {
-  constructor(container) {
+  /** `keepPicture`: keep the drawing after it is shown, so it can be read back (moreau render). */
+  constructor(container, { keepPicture = false } = {}) {
     this.container = container;
-    this.renderer = new THREE.WebGLRenderer({ antialias: true });
+    this.renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: keepPicture });
     this.renderer.setPixelRatio(window.devicePixelRatio);
     container.appendChild(this.renderer.domElement);
     this.scene = new THREE.Scene();
@@ -31,8 +32,16 @@ export class SceneView {
     this.resize();
   }
 
+  /** Draws `width` x `height` pixels whatever the window's size (moreau render's pictures). */
+  fixSize(width, height) {
+    this.fixedSize = { width, height };
+    this.renderer.setPixelRatio(1);
+    this.resize();
+  }
+
   resize() {
-    const { clientWidth: w, clientHeight: h } = this.container;
+    const { clientWidth: w, clientHeight: h } = this.fixedSize
+      ? { clientWidth: this.fixedSize.width, clientHeight: this.fixedSize.height } : this.container;
     if (w === 0 || h === 0) return;
     this.renderer.setSize(w, h);
     this.camera.aspect = w / h;
@@ -41,6 +50,12 @@ export class SceneView {
   }
 
   render() { this.renderer.render(this.scene, this.camera); }
+
+  /** The picture shown, as PNG. */
+  picture() {
+    this.render();
+    return new Promise((resolve) => this.renderer.domElement.toBlob(resolve, 'image/png'));
+  }
 
   /**
    * Shows one frame: `files` maps part numbers to {name, data} (readVtk's result); `colouring` is

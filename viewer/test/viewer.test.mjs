@@ -2,11 +2,12 @@
 // the page in headless Chromium (Debian's, driven by playwright-core) and checks what is drawn —
 // the crate where free fall puts it and in its colour, the time slider moving it, the flag coloured
 // by displacement from blue at its pinned edge to red at its free edge — and that the console has
-// no error. Run by ctest as external.viewer:
+// no error — and that `moreau render` draws the same picture without a display, as PNG and MP4.
+// Run by ctest as external.viewer:
 //   MOREAU_BINARY=build/moreau node --test viewer/test/viewer.test.mjs
 import assert from 'node:assert/strict';
 import { spawn, spawnSync } from 'node:child_process';
-import { mkdtempSync, mkdirSync, rmSync } from 'node:fs';
+import { mkdtempSync, mkdirSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { after, before, test } from 'node:test';
@@ -152,4 +153,43 @@ test('moreau view refuses a directory without frames, naming it (exit 2)', () =>
   const noFrames = spawnSync(moreau, ['view', empty, '--no-browser'], { encoding: 'utf8' });
   assert.equal(noFrames.status, 2);
   assert.match(noFrames.stderr, /empty: no \.pvd file/);
+});
+
+test('moreau render draws the last frame as the page does: the fallen crate, as PNG', async () => {
+  const box = await page.locator('#view canvas').boundingBox();
+  const [width, height] = [Math.round(box.width), Math.round(box.height)];
+  const file = process.env.KEEP_RENDER || join(work, 'last.png');
+  const render = spawnSync(moreau, ['render', out, '--out', file, '--size', `${width}x${height}`, '--quiet'],
+    { encoding: 'utf8' });
+  assert.equal(render.status, 0, render.stderr);
+  const png = PNG.sync.read(readFileSync(file));
+  assert.deepEqual([png.width, png.height], [width, height]);
+  const pixel = (x, y) => {
+    const i = (Math.round(y) * png.width + Math.round(x)) * 4;
+    return [png.data[i] / 255, png.data[i + 1] / 255, png.data[i + 2] / 255];
+  };
+  // The same camera as the page's at the same size: the page's projection locates the crate.
+  await page.locator('#colour-by').selectOption('');
+  const crateColour = await page.evaluate(() => window.moreauViewer.objectColour('crate'));
+  const fallen = [crateStart[0], crateStart[1] - g * duration * duration / 2, crateStart[2]];
+  assert.ok(window_(pixel, await project(fallen), 2).every((c) => near(c, crateColour, 0.04)), 'the crate, fallen');
+  assert.ok(window_(pixel, await project(crateStart), 2).every((c) => !near(c, crateColour, 0.04)));
+});
+
+test('moreau render --video encodes every frame into an MP4', () => {
+  const video = join(work, 'run.mp4');
+  const render = spawnSync(moreau, ['render', out, '--video', video, '--size', '320x240', '--quiet'], { encoding: 'utf8' });
+  assert.equal(render.status, 0, render.stderr);
+  const probe = spawnSync('ffprobe', ['-v', 'error', '-count_frames', '-show_entries', 'stream=width,height,nb_read_frames',
+    '-of', 'csv=p=0', video], { encoding: 'utf8' });
+  assert.equal(probe.stdout.trim(), '320,240,11');
+});
+
+test('moreau render refuses a frame the run does not have (exit 2)', () => {
+  const render = spawnSync(moreau, ['render', out, '--frame', '11'], { encoding: 'utf8' });
+  assert.equal(render.status, 2);
+  assert.match(render.stderr, /frame 11: the run has 11 frames, 0 to 10/);
+  const colour = spawnSync(moreau, ['render', out, '--colour-by', 'temperature'], { encoding: 'utf8' });
+  assert.equal(colour.status, 2);
+  assert.match(colour.stderr, /--colour-by temperature: no object has that point array; the arrays are .*displacement/);
 });

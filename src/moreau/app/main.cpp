@@ -4,6 +4,7 @@
 //   moreau check SCENE.json [--set key=value ...]
 //   moreau compare SCENE.json --solvers xpbd,nmd [--out DIR] [--duration T] [--threads N] [--quiet] [--set ...]
 //   moreau view OUTPUT_DIR [--port P] [--no-browser]
+//   moreau render OUTPUT_DIR [--frame N | --all | --video FILE.mp4] [--out FILE.png] [--colour-by ARRAY] [--size WxH]
 // run and check take --memory-limit GB (what a scene's meshes and particles may need).
 //   moreau --version | --help
 // Exit codes: 0 success, 1 anything else, 2 bad input, 3 numerical failure, 128 + the signal's
@@ -15,9 +16,11 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <sstream>
 #include <string>
 
-#include "moreau/app/view_server.hpp"
+#include "moreau/app/output_server.hpp"
+#include "moreau/app/render_output.hpp"
 #include "moreau/moreau.hpp"
 
 namespace {
@@ -95,12 +98,27 @@ int main(int argc, char** argv) {
   compare->add_flag("--quiet", quiet, "no progress bars");
   compare->add_option("--set", overrides, "override a scene value by its JSON path, for every solver");
 
-  moreau::ViewOptions view_options;
+  std::string output_dir;
+  int port = 0;
   bool no_browser = false;
   CLI::App* view = app.add_subcommand("view", "play a run's output back in the browser (served on this machine only)");
-  view->add_option("output", view_options.output_dir, "a run's output directory, e.g. out/showcase")->required();
-  view->add_option("--port", view_options.port, "port on 127.0.0.1 (default: any free one)")->check(CLI::Range(0, 65535));
+  view->add_option("output", output_dir, "a run's output directory, e.g. out/showcase")->required();
+  view->add_option("--port", port, "port on 127.0.0.1 (default: any free one)")->check(CLI::Range(0, 65535));
   view->add_flag("--no-browser", no_browser, "only print the page's address");
+
+  moreau::RenderOptions render_options;
+  std::string size;
+  CLI::App* render = app.add_subcommand("render", "draw a run's frames as PNG (or an MP4) without a display, in headless Chromium");
+  render->add_option("output", render_options.output_dir, "a run's output directory, e.g. out/showcase")->required();
+  auto* frame_option = render->add_option("--frame", render_options.frame, "the frame to draw: 0 is the first (default: the last)")
+                           ->check(CLI::Range(0, 1 << 30));
+  auto* all_option = render->add_flag("--all", render_options.all_frames, "every frame, as DIR/render/<scene>_NNNNNN.png");
+  auto* video_option = render->add_option("--video", render_options.video, "every frame, encoded into this MP4 at 30 frames/s (needs ffmpeg)");
+  frame_option->excludes(all_option)->excludes(video_option);
+  render->add_option("--out", render_options.out, "the PNG of the one frame (default DIR/render/<scene>_NNNNNN.png)")->excludes(all_option)->excludes(video_option);
+  render->add_option("--colour-by", render_options.colour_by, "a point array to colour by, e.g. velocity (default: each object in its colour)");
+  render->add_option("--size", size, "picture size in pixels, WIDTHxHEIGHT (default 1280x720)");
+  render->add_flag("--quiet", quiet, "print nothing on success");
 
   try {
     app.parse(argc, argv);
@@ -114,8 +132,18 @@ int main(int argc, char** argv) {
   try {
     if (memory_limit_gb > 0) moreau::set_memory_limit(memory_limit_gb * 1e9);
     if (view->parsed()) {
-      view_options.open_browser = !no_browser;
-      moreau::serve_output(view_options);
+      moreau::view_output(output_dir, port, !no_browser);
+      return 0;
+    }
+    if (render->parsed()) {
+      if (!size.empty()) {
+        char x = 0;
+        std::istringstream in(size);
+        if (!(in >> render_options.width >> x >> render_options.height) || x != 'x' || !in.eof())
+          throw moreau::InputError(fmt::format("--size {}: expected WIDTHxHEIGHT in pixels, e.g. 1280x720", size));
+      }
+      const std::string written = moreau::render_output(render_options);
+      if (!quiet) fmt::print("moreau: rendered {}\n", written);
       return 0;
     }
     if (compare->parsed()) {
