@@ -2,7 +2,7 @@
 BUILD_DIR ?= build
 JOBS ?= 2
 
-.PHONY: deps build demo test bench clean sanitize-build test-sanitize fuzz
+.PHONY: deps build demo test bench report clean sanitize-build test-sanitize fuzz
 
 deps:
 	./scripts/install-deps.sh
@@ -24,6 +24,11 @@ test: build
 
 bench: build
 	./$(BUILD_DIR)/bench/moreau_bench
+
+# The validation report (docs/report/index.html and report.md): every case of report/cases/ run
+# whole against its reference, with plots. `make test` runs its fast subset.
+report: build
+	/usr/bin/python3 -B report/make_report.py --moreau ./$(BUILD_DIR)/moreau --out docs/report --readme README.md
 
 # AddressSanitizer + UndefinedBehaviorSanitizer build (clang) of the engine, its tests and the
 # libFuzzer targets, in $(SANITIZE_DIR). test-sanitize runs every test but the slow ones listed in
