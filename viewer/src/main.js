@@ -190,6 +190,35 @@ async function post(name, body) {
   if (!response.ok) throw new Error(`posting ${name}: ${response.status}`);
 }
 
+// The view as PNG with a caption: the scene and the time at the bottom left and, when coloured by
+// an array, its colour bar with its range at the bottom right.
+function captionedPicture(player) {
+  const view = player.view.renderer.domElement;
+  player.view.render();
+  const canvas = document.createElement('canvas');
+  canvas.width = view.width;
+  canvas.height = view.height;
+  const context = canvas.getContext('2d');
+  context.drawImage(view, 0, 0);
+  context.font = '14px system-ui, sans-serif';
+  context.fillStyle = '#e0e0e0';
+  context.textBaseline = 'bottom';
+  const time = player.frames[player.shown].time;
+  context.fillText(`${player.manifest.scene}   t = ${time.toPrecision(4)} s`, 12, canvas.height - 10);
+  if (player.colouring) {
+    const { array, min, max } = player.colouring;
+    const bar = $('colour-bar');
+    const right = canvas.width - 12, top = canvas.height - 22;
+    const maxLabel = max.toPrecision(3);
+    const x = right - context.measureText(maxLabel).width - 6 - bar.width;
+    context.drawImage(bar, x, top, bar.width, 10);
+    context.fillText(maxLabel, x + bar.width + 6, canvas.height - 10);
+    context.textAlign = 'right';
+    context.fillText(`${array}  ${min.toPrecision(3)}`, x - 6, canvas.height - 10);
+  }
+  return new Promise((resolve) => canvas.toBlob(resolve, 'image/png'));
+}
+
 async function renderFrames(player, request) {
   document.body.classList.add('render');
   player.view.fixSize(request.width, request.height);
@@ -209,7 +238,7 @@ async function renderFrames(player, request) {
   }
   for (const i of indices) {
     await player.show(i);
-    await post(`frame_${String(i).padStart(6, '0')}`, await player.view.picture());
+    await post(`frame_${String(i).padStart(6, '0')}`, await captionedPicture(player));
   }
   await post('done', '');
   document.body.dataset.state = 'rendered';

@@ -51,11 +51,6 @@ export class SceneView {
 
   render() { this.renderer.render(this.scene, this.camera); }
 
-  /** The picture shown, as PNG. */
-  picture() {
-    this.render();
-    return new Promise((resolve) => this.renderer.domElement.toBlob(resolve, 'image/png'));
-  }
 
   /**
    * Shows one frame: `files` maps part numbers to {name, data} (readVtk's result); `colouring` is
