@@ -7,6 +7,11 @@ import pathlib
 import subprocess
 import time
 
+import matplotlib
+
+matplotlib.use("Agg")  # pictures to files; no display
+import matplotlib.pyplot as plt  # noqa: E402
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
@@ -71,3 +76,11 @@ def read_csv(path):
 def scene_text(scene, overrides=(), duration=None):
     text = scene + "".join(f" --set {o}" for o in overrides)
     return text + (f" --duration {duration:g}" if duration is not None else "")
+
+
+def save_figure(figure, out, name):
+    """Writes `figure` as out/name (PNG) and returns `name`, as CaseResult.plots lists it."""
+    figure.tight_layout()
+    figure.savefig(pathlib.Path(out) / name, dpi=110)
+    plt.close(figure)
+    return name

@@ -10,12 +10,8 @@ every refinement and be within 2 % at 320 cells along (the fast subset: 80 and 1
 """
 import json
 
-import matplotlib
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-from report_case import CaseResult, Check, read_csv, run_scene  # noqa: E402
+from report_case import CaseResult, Check, plt, read_csv, run_scene, save_figure
 
 L, H, E, NU = 1.0, 0.05, 1e6, 0.3
 E_PLANE = E / (1 - NU * NU)
@@ -60,10 +56,7 @@ def run(moreau, work, out, fast):
     axes.set(xlabel="cells along the beam", ylabel="|δ / δ_EB − 1|", title="cantilever tip deflection")
     axes.grid(alpha=0.3, which="both")
     axes.legend(fontsize=8)
-    figure.tight_layout()
-    plot = "cantilever_convergence.png"
-    figure.savefig(out / plot, dpi=110)
-    plt.close(figure)
+    plot = save_figure(figure, out, "cantilever_convergence.png")
 
     checks = [Check.below(f"|δ/δ_EB − 1|, {checked} cells along", abs(errors[meshes.index(checked)]), 0.02, "",
                           "bilinear locking on this mesh")]

@@ -13,12 +13,8 @@ at 16).
 import json
 import subprocess
 
-import matplotlib
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-from report_case import CaseResult, Check, read_csv, run_scene  # noqa: E402
+from report_case import CaseResult, Check, plt, read_csv, run_scene, save_figure
 
 PUBLISHED = {"CalculiX": 22.59, "Code_Aster": 22.54, "Elmer": 22.60}
 REFERENCE = PUBLISHED["CalculiX"]
@@ -72,10 +68,7 @@ def run(moreau, work, out, fast):
     axes.set_xticks(sizes, [str(n) for n in sizes])
     axes.grid(alpha=0.3)
     axes.legend(fontsize=8)
-    figure.tight_layout()
-    plot = "cooks_membrane.png"
-    figure.savefig(out / plot, dpi=110)
-    plt.close(figure)
+    plot = save_figure(figure, out, "cooks_membrane.png")
 
     tolerance = 0.05 if fast else 0.01
     checks = [Check(f"u E / F at n = {sizes[-1]}", values[-1], REFERENCE, tolerance * REFERENCE, "",

@@ -12,14 +12,10 @@ simulated column, released at once, leads the experiment.
 import json
 import math
 
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from martin_moyce1952 import MEAN, MEAN_HALF_SIZE, T_ALIGN, Z_ALIGN  # noqa: E402
-from report_case import CaseResult, Check, read_csv, run_scene  # noqa: E402
+from martin_moyce1952 import MEAN, MEAN_HALF_SIZE, T_ALIGN, Z_ALIGN
+from report_case import CaseResult, Check, plt, read_csv, run_scene, save_figure
 
 A, G = 0.2, 9.81
 
@@ -61,10 +57,7 @@ def run(moreau, work, out, fast):
              ylim=(1, 4.5))
     axes.grid(alpha=0.3)
     axes.legend(fontsize=8)
-    figure.tight_layout()
-    plot = "dam_break_surge.png"
-    figure.savefig(out / plot, dpi=110)
-    plt.close(figure)
+    plot = save_figure(figure, out, "dam_break_surge.png")
 
     return CaseResult(
         title="Dam-break surge front against Martin & Moyce",

@@ -8,13 +8,9 @@ comparison's). The times at which the spin about the intermediate axis reverses 
 0.2 %, ten times (ωh)²/12 at ωh = 0.05 (the midpoint-type scheme's relative phase error), and the
 kinetic energy stays at its value to 1e-10 relative.
 """
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from report_case import CaseResult, Check, read_csv, run_scene, scene_text  # noqa: E402
+from report_case import CaseResult, Check, plt, read_csv, run_scene, save_figure, scene_text
 
 SCENE = "scenes/fem_dzhanibekov.json"
 # The box's sides along the body axes d1, d2, d3 (m): a director body's directors are its principal
@@ -70,10 +66,7 @@ def run(moreau, work, out, fast):
     axes.set(xlabel="time (s)", ylabel="body-frame angular velocity (rad/s)", title="the intermediate axis flips")
     axes.grid(alpha=0.3)
     axes.legend(fontsize=8, ncol=2)
-    figure.tight_layout()
-    plot = "dzhanibekov.png"
-    figure.savefig(out / plot, dpi=110)
-    plt.close(figure)
+    plot = save_figure(figure, out, "dzhanibekov.png")
 
     checks = [Check("spin reversals in 12 s", float(len(flips)), float(len(flips_ref)), 0.0, "", "same count")]
     for k, (mine, theirs) in enumerate(zip(flips, flips_ref)):

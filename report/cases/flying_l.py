@@ -7,13 +7,9 @@ the total energy and the angular momentum must stay at their values to 1e-10 rel
 conserves both exactly at each step's solution, and Newton stops at a residual of 1e-12.
 The plot also shows the implicit midpoint rule from the same start, whose energy drifts.
 """
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from report_case import CaseResult, Check, read_csv, run_scene, scene_text  # noqa: E402
+from report_case import CaseResult, Check, plt, read_csv, run_scene, save_figure, scene_text
 
 SCENE = "scenes/fem_flying_l.json"
 PUSH_END = 0.5
@@ -43,10 +39,7 @@ def run(moreau, work, out, fast):
         axes.axvspan(0, PUSH_END, color="grey", alpha=0.15)
         axes.grid(alpha=0.3)
         axes.legend()
-    figure.tight_layout()
-    plot = "flying_l.png"
-    figure.savefig(out / plot, dpi=110)
-    plt.close(figure)
+    plot = save_figure(figure, out, "flying_l.png")
 
     why = "exact at each step's solution; Newton's residual 1e-12"
     return CaseResult(

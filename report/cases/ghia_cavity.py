@@ -6,14 +6,10 @@ The largest deviation from Ghia's 17 + 17 points, in units of the lid speed, mus
 0.015 at Re 1000 (FEniCS's P1/P1 reaches 0.0105 on its mesh) and 0.02 at Re 100 on 64 x 64 (the
 mesh error there, halving with each refinement).
 """
-import matplotlib
+import numpy as np
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-
-from ghia1982 import U, V, X, Y  # noqa: E402
-from report_case import CaseResult, Check, read_csv, run_scene, scene_text  # noqa: E402
+from ghia1982 import U, V, X, Y
+from report_case import CaseResult, Check, plt, read_csv, run_scene, save_figure, scene_text
 
 SCENE = "scenes/cavity_re1000.json"
 
@@ -43,10 +39,7 @@ def run(moreau, work, out, fast):
     for axes in (left, right):
         axes.grid(alpha=0.3)
         axes.legend()
-    figure.tight_layout()
-    plot = f"ghia_re{re}.png"
-    figure.savefig(out / plot, dpi=110)
-    plt.close(figure)
+    plot = save_figure(figure, out, f"ghia_re{re}.png")
 
     return CaseResult(
         title=f"Lid-driven cavity, Re {re}: centreline velocities",

@@ -7,12 +7,8 @@ ranges Schäfer & Turek (1996) published. Tolerances at N = 8: drag within the p
 half width (0.01 = 0.2 %), lift within 5 % and Δp within 1.5 % (the mesh error of Q1Q1 there;
 halved at N = 16); at N = 4: 0.2 %, 15 % and 3 %.
 """
-import matplotlib
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-
-from report_case import CaseResult, Check, read_csv, run_scene, scene_text  # noqa: E402
+from report_case import CaseResult, Check, plt, read_csv, run_scene, save_figure, scene_text
 
 SCENE = "scenes/cylinder_re20.json"
 DRAG, LIFT, DP = 5.5795, 0.010618, 0.11752
@@ -37,10 +33,7 @@ def run(moreau, work, out, fast):
         ax.set(title=name, xticks=[])
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=8)
-    figure.tight_layout()
-    plot = f"schafer_turek_2d1_n{level}.png"
-    figure.savefig(out / plot, dpi=110)
-    plt.close(figure)
+    plot = save_figure(figure, out, f"schafer_turek_2d1_n{level}.png")
 
     return CaseResult(
         title=f"Schäfer–Turek 2D-1 (cylinder, Re 20), mesh level N = {level}",

@@ -160,12 +160,8 @@ class PartView {
       this.surface = new THREE.Mesh(new THREE.BufferGeometry(), material);
       this.group.add(this.surface);
     }
-    const g = this.surface.geometry;
-    g.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-    g.setAttribute('color', new THREE.BufferAttribute(colours, 3));
-    g.setIndex(new THREE.BufferAttribute(triangles, 1));
-    g.computeVertexNormals();
-    g.computeBoundingSphere();
+    fillGeometry(this.surface.geometry, positions, colours, triangles);
+    this.surface.geometry.computeVertexNormals();
     this.surface.visible = true;
   }
 
@@ -178,11 +174,7 @@ class PartView {
       this.lines = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ vertexColors: true }));
       this.group.add(this.lines);
     }
-    const g = this.lines.geometry;
-    g.setAttribute('position', new THREE.BufferAttribute(positions, 3));
-    g.setAttribute('color', new THREE.BufferAttribute(colours, 3));
-    g.setIndex(new THREE.BufferAttribute(segments, 1));
-    g.computeBoundingSphere();
+    fillGeometry(this.lines.geometry, positions, colours, segments);
     this.lines.visible = true;
   }
 
@@ -217,6 +209,14 @@ class PartView {
     this.spheres.instanceColor.needsUpdate = true;
     this.spheres.computeBoundingSphere();
   }
+}
+
+// Points, their colours and the index list of the triangles or segments drawn through them.
+function fillGeometry(geometry, positions, colours, index) {
+  geometry.setAttribute('position', new THREE.BufferAttribute(positions, 3));
+  geometry.setAttribute('color', new THREE.BufferAttribute(colours, 3));
+  geometry.setIndex(new THREE.BufferAttribute(index, 1));
+  geometry.computeBoundingSphere();
 }
 
 function defaultRadius(p) {
