@@ -16,7 +16,7 @@ result differ between CPUs (not between thread counts). The runs here pin OpenBL
 (OPENBLAS_CORETYPE=Haswell, which every x86-64 CPU since 2013 runs), so one baseline holds on
 every such machine.
 
-    scripts/scene-hashes.py [--moreau build/moreau] [--threads N] > hashes.txt
+    scripts/scene-hashes.py [--moreau build/moreau] [--threads N] [--only SCENE ...] > hashes.txt
     diff bench/baseline/scene_hashes.txt hashes.txt
 """
 import argparse
@@ -55,8 +55,11 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--moreau", default=str(ROOT / "build" / "moreau"))
     parser.add_argument("--threads", default="1", help="worker threads (the hashes must not depend on it)")
+    parser.add_argument("--only", nargs="*", help="scene names (file stems) to hash; default: all")
     args = parser.parse_args()
     scenes = sorted((ROOT / "scenes").glob("*.json")) + sorted((ROOT / "bench" / "scenes").glob("*.json"))
+    if args.only:
+        scenes = [s for s in scenes if s.stem in args.only]
     failures = 0
     env = dict(os.environ, OPENBLAS_CORETYPE="Haswell")
     with tempfile.TemporaryDirectory() as tmp:

@@ -52,3 +52,27 @@ export function isPlaneSquare(data) {
   return data.points.length === 12 && data.cells.offsets.length === 2 &&
       (!data.cells.types || data.cells.types.every((t) => t === VtkCell.triangle));
 }
+
+/**
+ * Whether the triangles enclose a volume with their normals pointing in: a container (a tank),
+ * whose near walls a viewer should not draw. Closed: every edge belongs to exactly two triangles;
+ * inward: the enclosed signed volume, Σ x₀ · (x₁ × x₂) / 6, is negative.
+ */
+export function isInwardClosedSurface(points, triangles) {
+  if (triangles.length === 0) return false;
+  const edges = new Map();
+  for (let t = 0; t < triangles.length; t += 3)
+    for (let k = 0; k < 3; ++k) {
+      const a = triangles[t + k], b = triangles[t + (k + 1) % 3];
+      const key = a < b ? `${a},${b}` : `${b},${a}`;
+      edges.set(key, (edges.get(key) || 0) + 1);
+    }
+  for (const count of edges.values()) if (count !== 2) return false;
+  let volume = 0;
+  const p = (i, k) => points[triangles[i] * 3 + k];
+  for (let t = 0; t < triangles.length; t += 3) {
+    const [ax, ay, az, bx, by, bz, cx, cy, cz] = [0, 1, 2].flatMap((j) => [p(t + j, 0), p(t + j, 1), p(t + j, 2)]);
+    volume += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
+  }
+  return volume < 0;
+}

@@ -5,7 +5,7 @@
 import * as THREE from 'three';
 import { OrbitControls } from 'three/examples/jsm/controls/OrbitControls.js';
 
-import { drawableCells, isPlaneSquare } from './cell_geometry.js';
+import { drawableCells, isInwardClosedSurface, isPlaneSquare } from './cell_geometry.js';
 import { coolToWarm, GROUND_COLOUR, objectColour, pointScalars } from './colour_map.js';
 
 export class SceneView {
@@ -124,8 +124,14 @@ class PartView {
   update(data, colouring) {
     const { triangles, segments, points } = drawableCells(data.cells);
     const positions = Float32Array.from(data.points);
-    const ground = isPlaneSquare(data);
-    const colours = this.pointColours(data, colouring, ground);
+    // A container's near walls would hide what it holds: it draws only the faces that look at the
+    // camera, which for its inward triangles are the far walls (checked once per topology). It
+    // and planes are scenery, drawn grey.
+    if (this.topology !== triangles.length) {
+      this.topology = triangles.length;
+      this.container = isInwardClosedSurface(positions, triangles);
+    }
+    const colours = this.pointColours(data, colouring, isPlaneSquare(data) || this.container);
     this.updateSurface(positions, triangles, colours);
     this.updateLines(positions, segments, colours);
     this.updateSpheres(data, points, colours);
@@ -136,7 +142,7 @@ class PartView {
   pointColours(data, colouring, ground) {
     const n = data.points.length / 3;
     const colours = new Float32Array(n * 3);
-    // A plane stays in its grey: it is the ground the rest is seen against.
+    // Scenery (planes, containers) stays grey: the ground the rest is seen against.
     const array = colouring && !ground && data.pointData[colouring.array];
     const scalars = array ? pointScalars(array) : null;
     const span = colouring ? colouring.max - colouring.min : 0;
@@ -159,6 +165,11 @@ class PartView {
       const material = new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide });
       this.surface = new THREE.Mesh(new THREE.BufferGeometry(), material);
       this.group.add(this.surface);
+    }
+    const side = this.container ? THREE.FrontSide : THREE.DoubleSide;
+    if (this.surface.material.side !== side) {
+      this.surface.material.side = side;
+      this.surface.material.needsUpdate = true;
     }
     fillGeometry(this.surface.geometry, positions, colours, triangles);
     this.surface.geometry.computeVertexNormals();

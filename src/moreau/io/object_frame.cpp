@@ -1,5 +1,7 @@
 #include "moreau/io/object_frame.hpp"
 
+#include <utility>
+
 #include "moreau/collision/collider_surface.hpp"
 #include "moreau/collision/shape_surface.hpp"
 #include "moreau/io/continuum_frame.hpp"
@@ -75,11 +77,14 @@ ObjectFrame rigid_frame(const Model& model, const ObjectInfo& object, const Stat
 }
 
 // A collider's surface at the frame's time; a removed collider (`until`) has none, so the series
-// keeps its files.
+// keeps its files. A container's (`inside`) triangles face into it, where its contents are, so a
+// viewer that culls back faces sees into a tank.
 ObjectFrame collider_frame(const Model& model, const ObjectInfo& object, const State& state, Real plane_half_size) {
   const Collider& collider = model.colliders[object.collider];
-  const TriangleMesh mesh =
+  TriangleMesh mesh =
       collider.present_at(state.time) ? collider_surface(collider, state.time, plane_half_size) : TriangleMesh{};
+  if (collider.inside)
+    for (auto& t : mesh.triangles) std::swap(t[1], t[2]);
   return triangle_frame(mesh, {{"velocity", std::vector<Vec3>(mesh.vertices.size(), collider.velocity)}});
 }
 
