@@ -139,5 +139,35 @@ TEST(FrameFormats, WithoutVtkThereIsNoPvdButRigidPosesRemain) {
   EXPECT_FALSE(std::filesystem::exists(out + "/frames/water_000005.ply"));
 }
 
+// Σ x₀ · (x₁ × x₂) / 6 over the triangles: the enclosed volume, negative when they face inward.
+double signed_volume(const ObjFile& obj) {
+  double volume = 0;
+  for (const auto& f : obj.faces) {
+    const auto& a = obj.vertices[f[0] - 1];
+    const auto& b = obj.vertices[f[1] - 1];
+    const auto& c = obj.vertices[f[2] - 1];
+    volume += (a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0])) / 6;
+  }
+  return volume;
+}
+
+TEST(FrameFormats, ContainerTrianglesFaceInwardAndSolidTrianglesOutward) {
+  // A tank (an `inside` box) faces its contents, so a viewer culling back faces sees into it; a
+  // solid box collider and a rigid box face out. Their volumes: 1 x 0.6 x 0.4 = 0.24 m³ and 0.3³.
+  const std::string out = test::temp_dir("frame-formats-tank");
+  World world = World::from_json(R"({"name": "tank", "settings": {"dt": 0.01, "duration": 0.01,
+      "output": {"formats": ["obj"]}},
+    "objects": [
+      {"name": "tank", "kind": "collider", "inside": true, "shape": {"type": "box", "center": [0, 0.3, 0], "half_extents": [0.5, 0.3, 0.2]}},
+      {"name": "block", "kind": "collider", "shape": {"type": "box", "center": [0.2, 0.1, 0], "half_extents": [0.05, 0.05, 0.05]}},
+      {"name": "crate", "kind": "rigid_body", "shape": {"type": "box", "size": [0.3, 0.3, 0.3]}, "position": [-0.2, 0.2, 0]}]})");
+  RunOptions options;
+  options.out_dir = out;
+  world.run(options);
+  EXPECT_NEAR(signed_volume(read_obj(out + "/frames/tank_000001.obj")), -0.24, 1e-7);
+  EXPECT_NEAR(signed_volume(read_obj(out + "/frames/block_000001.obj")), 1e-3, 1e-9);
+  EXPECT_NEAR(signed_volume(read_obj(out + "/frames/crate_000001.obj")), 0.027, 1e-7);
+}
+
 }  // namespace
 }  // namespace moreau
