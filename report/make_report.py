@@ -58,6 +58,11 @@ def update_readme(readme, results, header):
     readme.write_text(text[:text.index(begin) + len(begin)] + "\n" + table + "\n" + text[text.index(end):])
 
 
+def cell(text):
+    """Text for a Markdown table cell: a | would end the cell."""
+    return str(text).replace("|", "\\|")
+
+
 def markdown(results, header):
     lines = ["# Validation report", "", header, "",
              "Regenerate with `make report`; every figure below was computed by that run.", ""]
@@ -70,8 +75,9 @@ def markdown(results, header):
             unit = f" {c.unit}" if c.unit else ""
             reference, tolerance = (f"≤ {number(c.reference)}{unit}", "–") if c.is_bound else \
                 (f"{number(c.reference)}{unit}", number(c.tolerance))
-            lines.append(f"| {c.quantity} | {number(c.value)}{unit} | {reference} | {'–' if c.is_bound else number(c.error)} "
-                         f"| {tolerance} | {'pass' if c.passed else '**FAIL**'} | {c.why} |")
+            lines.append(f"| {cell(c.quantity)} | {number(c.value)}{unit} | {reference} | "
+                         f"{'–' if c.is_bound else number(c.error)} | {tolerance} | {'pass' if c.passed else '**FAIL**'} "
+                         f"| {cell(c.why)} |")
         lines += [""] + [f"![{r.title}]({p})" for p in r.plots]
     return "\n".join(lines) + "\n"
 

@@ -23,7 +23,7 @@ GALLERY = [
     ("rod_plectoneme", None, None, ""),
     ("granular_column_collapse", None, None, "velocity"),
     ("fem_flying_l", 6, None, "velocity"),
-    ("cylinder_re100", None, None, "vorticity"),
+    ("cylinder_re100", None, None, "velocity"),
 ]
 
 

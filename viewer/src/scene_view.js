@@ -91,8 +91,10 @@ export class SceneView {
     const centre = box.getCenter(new THREE.Vector3());
     const radius = Math.max(box.getSize(new THREE.Vector3()).length() / 2, 1e-3);
     const distance = radius / Math.sin(THREE.MathUtils.degToRad(this.camera.fov / 2));
-    // Looking from the front, a little from above and from the right (y up, as the scenes are).
-    const direction = new THREE.Vector3(0.35, 0.45, 1).normalize();
+    // Looking from the front, a little from above and from the right (y up, as the scenes are);
+    // a plane model (a 2D flow or solid, all z = 0) straight on.
+    const flat = box.getSize(new THREE.Vector3()).z <= 1e-9 * radius;
+    const direction = flat ? new THREE.Vector3(0, 0, 1) : new THREE.Vector3(0.35, 0.45, 1).normalize();
     this.camera.position.copy(centre).addScaledVector(direction, distance);
     this.camera.near = distance / 100;
     this.camera.far = distance * 100;
