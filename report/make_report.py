@@ -78,7 +78,7 @@ def markdown(results, header):
             lines.append(f"| {cell(c.quantity)} | {number(c.value)}{unit} | {reference} | "
                          f"{'–' if c.is_bound else number(c.error)} | {tolerance} | {'pass' if c.passed else '**FAIL**'} "
                          f"| {cell(c.why)} |")
-        lines += [""] + [f"![{r.title}]({p})" for p in r.plots]
+        lines += [""] + r.notes + ([""] if r.notes else []) + [f"![{r.title}]({p})" for p in r.plots]
     return "\n".join(lines) + "\n"
 
 
@@ -100,7 +100,8 @@ def page(results, header):
             f"<td>{'–' if c.is_bound else number(c.error)}</td><td>{'–' if c.is_bound else number(c.tolerance)}</td>"
             f"<td class='{'pass' if c.passed else 'fail'}'>{'pass' if c.passed else 'FAIL'}</td><td>{e(c.why)}</td></tr>"
             for c in r.checks)
-        figures = "".join(f"<img src='{e(p)}' alt='{e(r.title)}'>" for p in r.plots)
+        figures = "".join(f"<p>{e(n)}</p>" for n in r.notes)
+        figures += "".join(f"<img src='{e(p)}' alt='{e(r.title)}'>" for p in r.plots)
         sections += (f"<section id='{anchor(r.title)}'><h2>{e(r.title)}</h2><p>Reference: {e(r.reference)}.</p>"
                      f"<p>Run: <code>moreau run {e(r.scene)}</code> ({r.wall_s:.1f} s)</p>"
                      "<table><tr><th>quantity</th><th>moreau</th><th>reference</th><th>error</th><th>tolerance</th>"

@@ -48,6 +48,7 @@ class CaseResult:
     checks: list
     plots: list             # PNG files, relative to the report's directory
     wall_s: float = 0.0
+    notes: list = dataclasses.field(default_factory=list)  # measured figures that are not checks
 
     @property
     def passed(self):

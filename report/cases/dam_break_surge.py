@@ -6,8 +6,8 @@ fast subset: 5 mm), dt 1 ms (2 ms) with 2 substeps of 2 iterations. The front is
 particle's edge, Z = (x_max + r)/a. As the paper did with each of its runs, the time is shifted
 so that T = 1.19 where Z = 1.44; the largest |Z − Z_MM| over the table's points up to T = 3.33
 must stay within 0.15, the difference between the paper's own two column sizes at equal T (its
-a = 1.125 in mean lies 0.07–0.09 earlier in T, 0.13 in Z). The shift itself is reported: the
-simulated column, released at once, leads the experiment.
+a = 1.125 in mean lies 0.07–0.09 earlier in T, 0.13 in Z). The shift itself is reported, not
+checked: the simulated column, released at once, leads the experiment.
 """
 import json
 import math
@@ -64,7 +64,7 @@ def run(moreau, work, out, fast):
         reference="Martin & Moyce, Phil. Trans. R. Soc. A 244 (1952), table 2: n² = 2, mean of nine runs at a = 2.25 in",
         scene=f"a 0.2 × 0.4 m column in a 1 m tank, r = {r * 1000:g} mm, written by report/cases/dam_break_surge.py",
         checks=[Check.below("largest |Z − Z_MM|, T ≤ 3.33", deviation, 0.15, "",
-                            "the paper's two column sizes differ by 0.13"),
-                Check.below("time shift ΔT to the paper's alignment, |ΔT|", abs(shift), 0.5, "",
-                            "a release faster than the experiment's, not a different flow")],
-        plots=[plot], wall_s=wall)
+                            "the paper's two column sizes differ by 0.13")],
+        plots=[plot], wall_s=wall,
+        notes=[f"Aligning at Z = 1.44 shifted the simulated time by ΔT = {shift:+.3f}: the column, released at "
+               "once, leads the experiment, whose release took a moment."])

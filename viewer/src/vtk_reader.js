@@ -1,7 +1,7 @@
 // Reads the VTK XML files moreau writes: unstructured grids (.vtu) and poly data (.vtp) whose
 // arrays are raw little-endian binary in an <AppendedData encoding="raw"> section, each block
-// preceded by its byte count (header_type UInt64 or UInt32). Inline ascii arrays are read too, so
-// files from other writers with that layout open as well; compressed and base64 blocks do not.
+// preceded by its byte count (header_type UInt64 or UInt32). Files of other writers in that layout
+// open too; inline (ascii, base64) and compressed arrays do not.
 
 const TYPED = {
   Float64: Float64Array, Float32: Float32Array,
@@ -33,6 +33,8 @@ export function readVtk(buffer, name = 'file') {
   const root = xml.documentElement;
   if (root.getAttribute('byte_order') === 'BigEndian') throw new Error(`${name}: big-endian data is not supported`);
   if (root.getAttribute('compressor')) throw new Error(`${name}: compressed data is not supported`);
+  const appended = root.querySelector('AppendedData');
+  if (appended && appended.getAttribute('encoding') !== 'raw') throw new Error(`${name}: only raw appended data is read`);
   const headerBytes = root.getAttribute('header_type') === 'UInt64' ? 8 : 4;
   const appendedStart = marker + 1;  // after the '_'
 
@@ -41,23 +43,14 @@ export function readVtk(buffer, name = 'file') {
     const Typed = TYPED[type];
     if (!Typed) throw new Error(`${name}: array type ${type} is not supported`);
     const format = element.getAttribute('format');
-    let values;
-    if (format === 'appended') {
-      if (marker < 0) throw new Error(`${name}: appended array without an <AppendedData> section`);
-      const at = appendedStart + Number(element.getAttribute('offset'));
-      const view = new DataView(buffer);
-      const length = headerBytes === 8 ? Number(view.getBigUint64(at, true)) : view.getUint32(at, true);
-      const start = at + headerBytes;
-      // Copy: the block is not aligned to its element size inside the file.
-      values = new Typed(buffer.slice(start, start + length));
-    } else if (format === 'ascii') {
-      const words = element.textContent.trim().split(/\s+/).filter((w) => w.length);
-      values = Typed === BigInt64Array || Typed === BigUint64Array ?
-          Typed.from(words, (w) => BigInt(w)) : Typed.from(words, Number);
-    } else {
-      throw new Error(`${name}: ${format} arrays are not supported (write raw appended or ascii)`);
-    }
-    return values;
+    if (format !== 'appended' || marker < 0)
+      throw new Error(`${name}: ${format} arrays are not supported (the viewer reads raw appended data)`);
+    const at = appendedStart + Number(element.getAttribute('offset'));
+    const view = new DataView(buffer);
+    const length = headerBytes === 8 ? Number(view.getBigUint64(at, true)) : view.getUint32(at, true);
+    const start = at + headerBytes;
+    // Copy: the block is not aligned to its element size inside the file.
+    return new Typed(buffer.slice(start, start + length));
   };
   const toFloat = (v) => (v instanceof Float64Array ? v : Float64Array.from(v, Number));
   const toInt = (v) => Int32Array.from(v, Number);

@@ -79,13 +79,18 @@ function window_(pixel, { x, y }, r = 3) {
 }
 
 // Lighting scales a colour's channels alike, so a surface is recognised by its chromaticity (each
-// channel's share of the sum), which the shading leaves as it is.
+// channel's share of the sum), which the shading leaves as it is. `near` allows 0.04 in each share:
+// the sRGB curve is not exactly a power law (its linear toe), and 8-bit rounding of dark shades
+// moves a share by up to ~0.02; the crate's colour differs from the background's, the floor's and
+// the flag's by 0.15 or more in some share.
 function chromaticity([r, g, b]) {
   const s = r + g + b || 1;
   return [r / s, g / s, b / s];
 }
 const near = (a, b, tolerance) => chromaticity(a).every((c, k) => Math.abs(c - chromaticity(b)[k]) <= tolerance);
-// The colour map's ends: blue (0.23, 0.30, 0.75) and red (0.71, 0.02, 0.15).
+// The colour map's ends: blue (0.23, 0.30, 0.75), b/r = 3.3, and red (0.71, 0.02, 0.15), r/b = 4.7.
+// The thresholds sit halfway (in ratio) between those and the map's grey middle (ratios 1), and
+// keep out the bluish background (b/r = 1.36) and a shaded grey floor.
 const isBlue = ([r, g, b]) => b > 1.6 * r && b > 1.4 * g;
 const isRed = ([r, g, b]) => r > 2.5 * g && r > 2.5 * b;
 

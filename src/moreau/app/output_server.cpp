@@ -38,7 +38,7 @@ nlohmann::json manifest(const fs::path& dir) {
   const std::vector<std::string> collections = collections_in(dir);
   nlohmann::json m;
   m["directory"] = fs::absolute(dir).lexically_normal().string();
-  m["scene"] = collections.empty() ? dir.filename().string() : fs::path(collections[0]).stem().string();
+  m["scene"] = output_scene_name(dir);
   m["collections"] = collections;
   m["probes"] = fs::is_regular_file(dir / "probes.csv") ? nlohmann::json("probes.csv") : nlohmann::json(nullptr);
   return m;
@@ -72,6 +72,12 @@ std::string viewer_page_directory() {
   throw std::runtime_error(fmt::format("the viewer's page (index.html) is not in {}; `make build` builds it into "
                                        "build/viewer (it needs npm), or set MOREAU_VIEWER_DIR",
                                        looked.empty() ? "any known place" : looked));
+}
+
+std::string output_scene_name(const std::string& path) {
+  const fs::path dir = path;
+  const std::vector<std::string> collections = collections_in(dir);
+  return collections.empty() ? dir.filename().string() : fs::path(collections[0]).stem().string();
 }
 
 void check_output_directory(const std::string& path) {

@@ -17,6 +17,10 @@ std::string viewer_page_directory();
 /// Throws InputError unless `dir` is a run's output directory with VTK frames (a .pvd).
 void check_output_directory(const std::string& dir);
 
+/// The scene's name in a run's output directory: its first .pvd's stem (by name), or the
+/// directory's own name when it has none.
+std::string output_scene_name(const std::string& dir);
+
 class OutputServer {
  public:
   /// Serves `output_dir` under /data/ and the page in `page_dir` at /.

@@ -79,13 +79,6 @@ std::string tail_of(const std::string& log, std::size_t lines = 8) {
   return out;
 }
 
-// The scene's name as its .pvd gives it.
-std::string scene_name(const fs::path& dir) {
-  for (const auto& entry : fs::directory_iterator(dir))
-    if (entry.path().extension() == ".pvd") return entry.path().stem().string();
-  return dir.filename().string();
-}
-
 // What the page has posted back.
 struct PageReport {
   std::mutex mutex;
@@ -124,7 +117,7 @@ std::string render_output(const RenderOptions& options) {
   }
   const std::string chromium = chromium_program();
   const fs::path dir = options.output_dir;
-  const std::string name = scene_name(dir);
+  const std::string name = output_scene_name(options.output_dir);
   const fs::path pictures_dir = dir / "render";
 
   if (options.all_frames || video) {
