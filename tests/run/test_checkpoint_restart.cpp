@@ -123,6 +123,10 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"XpbiWheelOnSand", "wheel_on_sand.json", {"objects.sand.spacing=0.01"}, 8},
                       Case{"FemSolidsBodiesJoints", "fem_hinged_beam.json", {}, 6},
                       Case{"TransientFlowDirect", kTransientCavity, {}, 3},
+                      Case{"ImmersedSolids", "two_leaflet_valve.json",
+                           {"objects.blood.mesh.cells=[64,16]", "objects.top_leaflet.mesh.cells=[2,10]",
+                            "objects.bottom_leaflet.mesh.cells=[2,10]", "settings.output.every=2"},
+                           6},
                       Case{"TransientFlowGmres", kTransientCavity, {"settings.linear_solver={\"type\": \"gmres\"}"}, 3}),
     [](const auto& info) { return std::string(info.param.name); });
 

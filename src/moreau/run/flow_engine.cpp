@@ -1,7 +1,8 @@
 // The FEM engine for a fluid: the stabilized Navier-Stokes flow, advanced by one step of its
 // integrator (FlowStepper) per run-loop step, or solved once when steady (each continuation
 // viscosity's solution starting the next, the model's own last). After every solve the pressure is
-// shifted to its reference mean, if the scene sets one.
+// shifted to its reference mean, if the scene sets one. Immersed solids (fem/immersed) take part in
+// every solve of a transient flow as a momentum source and move with it.
 #include "moreau/run/engines.hpp"
 
 #include <fmt/format.h>
@@ -11,6 +12,7 @@
 #include "moreau/errors.hpp"
 #include "moreau/fem/flow/flow_frames.hpp"
 #include "moreau/fem/flow/flow_stepper.hpp"
+#include "moreau/fem/immersed/immersed_coupling.hpp"
 #include "moreau/io/binary_archive.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/probe_csv.hpp"
@@ -35,7 +37,13 @@ class FlowEngine final : public Engine {
  public:
   explicit FlowEngine(Scene& scene)
       : scene_(scene), problem_(*scene.fem->flow), threads_(scene.fem->threads), x_(problem_.initial),
-        stepper_(problem_.integrator), solver_(problem_.linear) {}
+        stepper_(problem_.integrator), solver_(problem_.linear) {
+    if (problem_.immersed) {
+      const Index dofs = problem_.immersed->model.dof_count();
+      solids_.emplace(ImmersedSolidState{VectorX::Zero(dofs), VectorX::Zero(dofs), 0});
+      coupling_.emplace(problem_.model, *problem_.immersed, *solids_);
+    }
+  }
 
   double time() const override { return time_; }
   double dt() const override { return steady() ? 0 : scene_.fem->dt; }
@@ -46,18 +54,20 @@ class FlowEngine final : public Engine {
     return probe_table_columns(problem_.probes, [&](const FlowProbe& p) { return flow_probe_columns(p, problem_.model.dim()); });
   }
   void sample_probes(std::vector<Real>& values) const override {
-    for (const FlowProbe& p : problem_.probes) evaluate_flow_probe(p, problem_, x_, *last_step_, last_iterations_, values);
+    for (const FlowProbe& p : problem_.probes) evaluate_flow_probe(p, problem_, x_, *last_step_, last_iterations_, immersed_state(), values);
   }
   void open_frames(const std::string& out_dir, const std::string& scene_name, FrameSeries resume) override {
-    frames_.emplace(problem_.model, problem_.name, out_dir, scene_name, std::move(resume));
+    frames_.emplace(problem_.model, problem_.name, out_dir, scene_name, std::move(resume),
+                    problem_.immersed ? &*problem_.immersed : nullptr);
   }
-  void write_frame() override { frames_->write(x_, time_); }
+  void write_frame() override { frames_->write(x_, time_, immersed_state()); }
   FrameSeries frame_series() const override { return frames_ ? frames_->series() : FrameSeries{}; }
 
   void save_state(ArchiveWriter& out) const override {
     archive(out, std::tie(x_, time_, steps_, last_iterations_, max_iterations_, total_iterations_, picard_iterations_));
     stepper_.save(out);
     solver_.save(out);
+    if (solids_) archive(out, std::tie(solids_->displacement, solids_->velocity, solids_->time));
   }
   void load_state(ArchiveReader& in) override {
     auto fields = std::tie(x_, time_, steps_, last_iterations_, max_iterations_, total_iterations_, picard_iterations_);
@@ -65,6 +75,12 @@ class FlowEngine final : public Engine {
     if (x_.size() != problem_.initial.size()) throw ArchiveError("the checkpoint's flow has another number of unknowns");
     stepper_.load(in);
     solver_.load(in);
+    if (solids_) {
+      auto solid_fields = std::tie(solids_->displacement, solids_->velocity, solids_->time);
+      unarchive(in, solid_fields);
+      if (solids_->displacement.size() != problem_.immersed->model.dof_count())
+        throw ArchiveError("the checkpoint's immersed solids have another number of nodes");
+    }
     last_step_ = steady() || steps_ == 0 ? &steady_step_ : &stepper_.last_step();
   }
   void write_final_output(const std::string& out_dir) const override {
@@ -77,16 +93,31 @@ class FlowEngine final : public Engine {
 
   std::string name() const override { return "flow"; }
   std::vector<WorldObject> objects() const override {
-    return {{problem_.name, "fluid", 0, static_cast<long>(problem_.model.mesh.node_count())}};
+    std::vector<WorldObject> list{{problem_.name, "fluid", 0, static_cast<long>(problem_.model.mesh.node_count())}};
+    if (problem_.immersed)
+      for (const FemSolid& s : problem_.immersed->model.solids)
+        list.push_back({s.name, "solid", static_cast<long>(s.node_begin), static_cast<long>(s.mesh.node_count())});
+    return list;
   }
   std::vector<StateArray> state_arrays() override {
     const NavierStokesModel& m = problem_.model;
-    return {state_array("flow.solution", "", x_.data(), m.fields(), m.mesh.node_count(), true)};
+    std::vector<StateArray> arrays{state_array("flow.solution", "", x_.data(), m.fields(), m.mesh.node_count(), true)};
+    if (solids_) {
+      const FemModel& solid = problem_.immersed->model;
+      arrays.push_back(state_array("solid.displacement", "m", solids_->displacement.data(), solid.dim, solid.node_count, true));
+      arrays.push_back(state_array("solid.velocity", "m/s", solids_->velocity.data(), solid.dim, solid.node_count, false));
+    }
+    return arrays;
   }
-  std::map<std::string, double> stage_times() const override { return {{"assembly", assembly_s_}, {"solve", solve_s_}}; }
+  std::map<std::string, double> stage_times() const override {
+    // "assembly" is the fluid's cells; "solid_terms" the immersed solids' (a part of the assembly).
+    if (!solids_) return {{"assembly", assembly_s_}, {"solve", solve_s_}};
+    return {{"assembly", assembly_s_ - source_s_}, {"solid_terms", source_s_}, {"solve", solve_s_}};
+  }
 
  private:
   bool steady() const { return problem_.integrator == FlowIntegrator::steady; }
+  const ImmersedSolidState* immersed_state() const { return solids_ ? &*solids_ : nullptr; }
   void solve_steady(int threads);
   void step_transient(int threads);
   void account(const FlowSolveResult& r);
@@ -104,7 +135,9 @@ class FlowEngine final : public Engine {
   const FlowTimeStep* last_step_ = &steady_step_;  // the last step's scheme, for the reactions of boundary_force
   int last_iterations_ = 0, max_iterations_ = 0;
   long total_iterations_ = 0, picard_iterations_ = 0;
-  double assembly_s_ = 0, solve_s_ = 0;
+  double assembly_s_ = 0, solve_s_ = 0, source_s_ = 0;
+  std::optional<ImmersedSolidState> solids_;
+  std::optional<ImmersedCoupling> coupling_;
   nlohmann::json continuation_ = nlohmann::json::array();
   std::optional<FlowFrameWriter> frames_;
 };
@@ -112,6 +145,7 @@ class FlowEngine final : public Engine {
 void FlowEngine::account(const FlowSolveResult& r) {
   assembly_s_ += r.assembly_s;
   solve_s_ += r.solve_s;
+  source_s_ += r.source_s;
   last_iterations_ = r.iterations + r.picard_iterations;
   total_iterations_ += r.iterations;
   picard_iterations_ += r.picard_iterations;
@@ -152,9 +186,10 @@ void FlowEngine::step_transient(int threads) {
   FlowSolveSettings settings = problem_.solve;
   settings.threads = threads;
   const VectorX start = x_;
+  const std::optional<ImmersedSolidState> solids_start = solids_;
   FlowSolveResult r;
-  try {  // a boundary value that is not finite throws NumericalError naming itself and t
-    r = stepper_.step(problem_.model, time_, dt, x_, solver_, settings);
+  try {  // a boundary value that is not finite, or a solid leaving the mesh, throws NumericalError naming it
+    r = stepper_.step(problem_.model, time_, dt, x_, solver_, settings, coupling_ ? &*coupling_ : nullptr);
   } catch (const NumericalError& e) {
     r.converged = false;
     r.failure = e.what();
@@ -162,6 +197,7 @@ void FlowEngine::step_transient(int threads) {
   last_step_ = &stepper_.last_step();
   if (!r.converged || !x_.allFinite()) {
     x_ = start;
+    if (solids_) *solids_ = *solids_start;
     throw NumericalError(fmt::format("step {} (t = {:.6g} s to {:.6g} s) failed: fluid: {}", steps_ + 1, time_, time_ + dt,
                                      r.converged ? "the velocity or pressure is not finite" : r.failure));
   }
@@ -191,6 +227,14 @@ void FlowEngine::add_run_fields(nlohmann::json& j, bool /*completed*/) const {
                                              {"tolerance", problem_.linear.tolerance}});
   }
   if (steady()) j["continuation"] = continuation_;
+  if (problem_.immersed) {
+    const FemModel& solid = problem_.immersed->model;
+    Index cells = 0;
+    for (const FemSolid& s : solid.solids) cells += s.mesh.cell_count();
+    j["counts"]["solid_nodes"] = solid.node_count;
+    j["counts"]["solid_cells"] = cells;
+    j["newton"]["solid_terms_s"] = source_s_;
+  }
 }
 
 std::string FlowEngine::summary() const {
@@ -200,6 +244,13 @@ std::string FlowEngine::summary() const {
   if (!steady()) s += fmt::format(", dt {} s, duration {} s", scene_.fem->dt, scene_.duration);
   s += fmt::format("\n  fluid: {} nodes, {} {} cells, density {} kg/m^3, viscosity {} Pa s\n", m.mesh.node_count(),
                    m.mesh.cell_count(), element_name(m.mesh.element), m.density, m.viscosity);
+  if (problem_.immersed)
+    for (size_t i = 0; i < problem_.immersed->model.solids.size(); ++i) {
+      const FemSolid& solid = problem_.immersed->model.solids[i];
+      s += fmt::format("  immersed solid '{}': {} nodes, {} {} cells, density {} kg/m^3, viscosity {} Pa s\n", solid.name,
+                       solid.mesh.node_count(), solid.mesh.cell_count(), element_name(solid.mesh.element),
+                       solid.material.density, problem_.immersed->viscosity[i]);
+    }
   s += fmt::format("  unknowns {} ({} free), Jacobian nonzeros {}, probes {}\n", m.dof_count(), m.free_count,
                    m.pattern.nonZeros(), problem_.probes.size());
   return s;

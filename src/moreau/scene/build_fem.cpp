@@ -14,8 +14,6 @@
 
 namespace moreau {
 
-namespace {
-
 HyperelasticMaterial read_fem_material(const JsonObject& m) {
   HyperelasticMaterial material;
   material.model = m.choice("model", "neo_hookean", {"neo_hookean", "st_venant_kirchhoff"}) == "neo_hookean"
@@ -35,6 +33,8 @@ HyperelasticMaterial read_fem_material(const JsonObject& m) {
   m.finish();
   return material;
 }
+
+namespace {
 
 void read_loads(const JsonObject& solid_json, FemModel& model, Index solid) {
   for (const JsonObject& load : solid_json.object_list("loads")) {
@@ -67,6 +67,8 @@ void read_loads(const JsonObject& solid_json, FemModel& model, Index solid) {
   }
 }
 
+}  // namespace
+
 void read_dirichlet(const JsonObject& solid_json, FemModel& model, Index solid) {
   for (const JsonObject& bc : solid_json.object_list("dirichlet")) {
     const FemSolid& s = model.solids[solid];
@@ -82,6 +84,8 @@ void read_dirichlet(const JsonObject& solid_json, FemModel& model, Index solid) 
     bc.finish();
   }
 }
+
+namespace {
 
 // One end of a joint: "world", a rigid body or a solid, by name.
 struct EndRef {
@@ -307,11 +311,10 @@ FemObjects read_fem_objects(const JsonObject& top) {
   }
   if (objects.fluids.size() > 1)
     objects.all[objects.fluids[1]].fail("kind", "a FEM scene holds one fluid (one Navier-Stokes mesh)");
-  if (!objects.fluids.empty() && (!objects.solids.empty() || !objects.bodies.empty() || top.has("joints")))
+  if (!objects.fluids.empty() && (!objects.bodies.empty() || top.has("joints")))
     objects.all[objects.fluids[0]].fail(
-        "kind", "a fluid together with solids, rigid bodies or joints needs immersed fluid-structure coupling (the "
-                "solid as a momentum source in the fluid), which the FEM engine does not have; run the fluid and the "
-                "solids as separate scenes");
+        "kind", "a fluid holds deformable solids (immersed in it), but not rigid bodies or joints: the FEM engine "
+                "does not couple those to a fluid; run them as a separate scene");
   return objects;
 }
 
@@ -321,7 +324,9 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
   const std::optional<JsonObject> settings = top.optional_object("settings");
   FemObjects objects = read_fem_objects(top);
   if (!objects.fluids.empty()) {
-    build_flow_scene(top, objects.all[objects.fluids[0]], settings ? &*settings : nullptr, problem, gravity, threads);
+    std::vector<JsonObject> solids;
+    for (size_t i : objects.solids) solids.push_back(objects.all[i]);
+    build_flow_scene(top, objects.all[objects.fluids[0]], solids, settings ? &*settings : nullptr, problem, gravity, threads);
     return;
   }
   if (settings) read_solid_settings(*settings, problem);

@@ -60,18 +60,47 @@ bool velocity_everywhere_on_boundary(const NavierStokesModel& m, const std::map<
   return true;
 }
 
+// {"type": "point", "object": <immersed solid>, "vertex": n | "nearest": [...], "quantity": "position" |
+// "displacement" | "velocity"}: a node of an immersed solid, as the point probes of FEM solids.
+void read_solid_point_probe(const JsonObject& j, const FlowProblem& problem, FlowProbe& p) {
+  const std::string object = j.string("object");
+  const FemSolid* solid = nullptr;
+  if (problem.immersed)
+    for (const FemSolid& s : problem.immersed->model.solids)
+      if (s.name == object) solid = &s;
+  if (!solid) {
+    if (object == problem.name)
+      j.fail("object", "a point of the fluid is given by \"at\" (a position, m), without \"object\"");
+    j.fail("object", fmt::format("no solid named '{}' is immersed in the fluid", object));
+  }
+  if (j.has("vertex") == j.has("nearest"))
+    j.fail("nearest", "give either \"vertex\" (a node index of the solid) or \"nearest\" (a point, m)");
+  if (j.has("vertex")) {
+    p.solid_node = solid->node_begin + j.required_integer("vertex", 0, static_cast<int>(solid->mesh.node_count()) - 1);
+  } else {
+    p.solid_node = solid->node_begin + nearest_node(solid->mesh, read_point(j, "nearest", solid->mesh.dim));
+  }
+  const std::string quantity = j.choice("quantity", "position", {"position", "displacement", "velocity"});
+  p.type = FlowProbeType::solid_point;
+  p.quantity = quantity;
+}
+
 FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
   const NavierStokesModel& m = problem.model;
   FlowProbe p;
   p.name = j.string("name");
   const std::string type = j.choice("type", {"point", "line", "boundary_force", "pressure_difference", "kinetic_energy",
-                                             "newton_iterations"});
+                                             "energy", "newton_iterations"});
   auto inside = [&](const std::string& key, const Vec3& at) {
     Vec3 u;
     Real pressure;
     if (!sample_flow(m, problem.initial, at, u, pressure)) j.fail(key, "the point is outside the fluid mesh");
   };
-  if (type == "point") {
+  if (type == "point" && j.has("object")) {
+    read_solid_point_probe(j, problem, p);
+  } else if (type == "energy") {
+    p.type = FlowProbeType::energy;
+  } else if (type == "point") {
     p.type = FlowProbeType::point;
     p.a = read_point(j, "at", m.dim());
     inside("at", p.a);
@@ -147,8 +176,8 @@ void read_flow_settings(const JsonObject* settings, const JsonObject& fluid, Flo
 
 }  // namespace
 
-void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const JsonObject* settings, FemProblem& fem,
-                      const Vec3& gravity, int threads) {
+void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const std::vector<JsonObject>& solids,
+                      const JsonObject* settings, FemProblem& fem, const Vec3& gravity, int threads) {
   FlowProblem& problem = fem.flow.emplace();
   problem.name = fluid.string("name");
   read_flow_settings(settings, fluid, problem);
@@ -219,6 +248,7 @@ void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const Json
   }
   for (const PrescribedDof& p : m.prescribed) problem.initial[p.dof] = p.value(0);
   fluid.finish();
+  if (!solids.empty()) read_immersed_solids(top, solids, problem);
   for (const JsonObject& probe : top.object_list("probes")) {
     problem.probes.push_back(read_flow_probe(probe, problem));
     for (size_t i = 0; i + 1 < problem.probes.size(); ++i)

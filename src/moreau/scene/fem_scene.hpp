@@ -19,11 +19,22 @@ void allow_fem_settings(const JsonObject& settings);
 /// every rigid body.
 void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gravity, int threads);
 
-/// The fluid object of a FEM scene (settings: the scene's "settings", if any).
-void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const JsonObject* settings, FemProblem& problem,
-                      const Vec3& gravity, int threads);
+/// The fluid object of a FEM scene and the solids immersed in it (settings: the scene's
+/// "settings", if any).
+void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const std::vector<JsonObject>& solids,
+                      const JsonObject* settings, FemProblem& problem, const Vec3& gravity, int threads);
+
+/// The "solid" objects of a scene with a fluid: deformable solids immersed in it (build_immersed.cpp).
+void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& solids, FlowProblem& problem);
 
 // --- shared readers ---
+
+/// A solid's "material": a hyperelastic model with Young's modulus and Poisson's ratio or Lame's
+/// parameters, and its density.
+HyperelasticMaterial read_fem_material(const JsonObject& material);
+
+/// A solid's "dirichlet" list: prescribed displacement components of the nodes a "where" selects.
+void read_dirichlet(const JsonObject& solid_json, FemModel& model, Index solid);
 
 /// A point of `dim` numbers (z = 0 in 2D).
 Vec3 read_point(const JsonObject& j, const std::string& key, int dim);

@@ -244,10 +244,29 @@ TEST(FlowScenes, BadInputNamesItsKey) {
   const std::string unknown_solver = R"("integrator": "steady", "linear_solver": {"type": "cg"})";
   expect_bad("flow_linear_type", scene("", open).replace(scene("", open).find("\"integrator\": \"steady\""), 22, unknown_solver),
              {"settings.linear_solver.type", "'cg'", "gmres"});
-  expect_bad("flow_with_solid",
-             scene("", open, "", R"(, {"name": "s", "kind": "solid", "mesh": {"type": "rectangle", "min": [0, 0], "max": [1, 1], "cells": [1, 1]},
-                                  "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000}})"),
-             {"objects[0].kind", "immersed fluid-structure coupling"});
+  expect_bad("flow_with_rigid_body",
+             scene("", open, "", R"(, {"name": "b", "kind": "rigid_body", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]},
+                                  "density": 1000})"),
+             {"objects[0].kind", "rigid bodies or joints"});
+  // Immersed solids: a steady fluid cannot carry them, and each must lie inside the fluid and take
+  // neither a velocity nor loads of its own.
+  auto solid = [](const std::string& extra, const std::string& max = "[0.6, 0.6]") {
+    return R"(, {"name": "s", "kind": "solid", "mesh": {"type": "rectangle", "min": [0.4, 0.4], "max": )" + max +
+           R"(, "cells": [2, 2]}, "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000})" + extra + "}";
+  };
+  const std::string transient = R"("integrator": "midpoint", "dt": 0.01)";
+  auto stepped = [&](const std::string& text) {
+    std::string t = text;
+    return t.replace(t.find("\"integrator\": \"steady\""), 22, transient);
+  };
+  expect_bad("immersed_steady", scene("", open, "", solid("")), {"objects[1].kind", "midpoint"});
+  expect_bad("immersed_outside", stepped(scene("", open, "", solid("", "[1.2, 0.6]"))),
+             {"objects[1].mesh", "outside the fluid's mesh"});
+  expect_bad("immersed_velocity", stepped(scene("", open, "", solid(R"(, "velocity": [1, 0])"))),
+             {"objects[1].velocity", "initial_velocity"});
+  expect_bad("immersed_loads", stepped(scene("", open, "", solid(R"(, "loads": [])"))), {"objects[1].loads", "density"});
+  expect_bad("immersed_probe", stepped(scene("", open, R"(, "probes": [{"name": "p", "type": "point", "object": "t", "vertex": 0}])", solid(""))),
+             {"probes[0].object", "no solid named 't'"});
 }
 
 }  // namespace

@@ -1,5 +1,7 @@
 #include "moreau/fem/core/linear_solver.hpp"
 
+#include <algorithm>
+
 namespace moreau {
 
 SparseSymmetricSolver::SparseSymmetricSolver() {
@@ -29,9 +31,21 @@ SparseLuSolver::SparseLuSolver() {
 }
 
 bool SparseLuSolver::factorize(const SparseMatrix& A) {
-  if (!analyzed_) {
+  // Comparing the pattern costs one pass over the indices, far less than the factorization.
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  const size_t columns = static_cast<size_t>(A.outerSize()) + 1, entries = static_cast<size_t>(A.nonZeros());
+  const bool same = A.isCompressed() && analyzed_outer_.size() == columns && analyzed_inner_.size() == entries &&
+                    std::equal(outer, outer + columns, analyzed_outer_.begin()) &&
+                    std::equal(inner, inner + entries, analyzed_inner_.begin());
+  if (!same) {
     lu_.analyzePattern(A);
-    analyzed_ = true;
+    if (A.isCompressed()) {
+      analyzed_outer_.assign(outer, outer + columns);
+      analyzed_inner_.assign(inner, inner + entries);
+    } else {
+      analyzed_outer_.clear();
+    }
   }
   lu_.factorize(A);
   return lu_.info() == Eigen::Success;

@@ -9,13 +9,15 @@
 #include <Eigen/UmfPackSupport>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "moreau/fem/solids/fem_model.hpp"
 
 namespace moreau {
 
 /// UMFPACK's LU of a square sparse matrix; the symbolic analysis is done for the first matrix and
-/// reused for every later one, which must have the same sparsity.
+/// reused for every later one with the same sparsity (a matrix with another pattern, such as a
+/// flow's with an immersed solid that moved to other cells, is analysed again).
 class SparseLuSolver {
  public:
   SparseLuSolver();
@@ -25,7 +27,7 @@ class SparseLuSolver {
 
  private:
   Eigen::UmfPackLU<SparseMatrix> lu_;
-  bool analyzed_ = false;
+  std::vector<int> analyzed_outer_, analyzed_inner_;  // the analysed pattern (compressed column starts, rows)
 };
 
 class SparseSymmetricSolver {

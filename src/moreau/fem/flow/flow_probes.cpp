@@ -4,6 +4,7 @@
 
 #include "moreau/errors.hpp"
 #include "moreau/fem/flow/flow_problem.hpp"
+#include "moreau/fem/immersed/immersed_coupling.hpp"
 
 namespace moreau {
 
@@ -23,6 +24,13 @@ std::vector<std::string> flow_probe_columns(const FlowProbe& p, int dim) {
     case FlowProbeType::pressure_difference:
     case FlowProbeType::kinetic_energy:
     case FlowProbeType::newton_iterations: columns.push_back(p.name); break;
+    case FlowProbeType::solid_point:
+      for (int k = 0; k < dim; ++k) columns.push_back(p.name + "." + p.quantity + axes[k]);
+      break;
+    case FlowProbeType::energy:
+      for (const char* part : {".fluid_kinetic", ".solid_excess_kinetic", ".solid_elastic", ".total"})
+        columns.push_back(p.name + part);
+      break;
     case FlowProbeType::line: break;
   }
   return columns;
@@ -89,7 +97,7 @@ std::vector<Vec3> nodal_vorticity(const NavierStokesModel& m, const VectorX& x) 
 }
 
 void evaluate_flow_probe(const FlowProbe& p, const FlowProblem& problem, const VectorX& x, const FlowTimeStep& step,
-                         int newton_iterations, std::vector<Real>& values) {
+                         int newton_iterations, const ImmersedSolidState* solids, std::vector<Real>& values) {
   const NavierStokesModel& m = problem.model;
   switch (p.type) {
     case FlowProbeType::point: {
@@ -119,6 +127,26 @@ void evaluate_flow_probe(const FlowProbe& p, const FlowProblem& problem, const V
     }
     case FlowProbeType::kinetic_energy: values.push_back(flow_kinetic_energy(m, x)); break;
     case FlowProbeType::newton_iterations: values.push_back(newton_iterations); break;
+    case FlowProbeType::solid_point: {
+      const FemModel& solid = problem.immersed->model;
+      const Vec3 X = solid.reference_position(p.solid_node);
+      for (int k = 0; k < m.dim(); ++k) {
+        const Index d = solid.dof(p.solid_node, k);
+        values.push_back(p.quantity == "velocity"       ? solids->velocity[d]
+                         : p.quantity == "displacement" ? solids->displacement[d]
+                                                        : X[k] + solids->displacement[d]);
+      }
+      break;
+    }
+    case FlowProbeType::energy: {
+      // Fluid kinetic energy over the whole domain (the solid's included at the fluid's density),
+      // what the solid's density adds, and the solid's stored elastic energy.
+      const Real fluid = flow_kinetic_energy(m, x);
+      const Real excess = solids ? immersed_excess_kinetic_energy(*problem.immersed, m, *solids) : 0;
+      const Real elastic = solids ? immersed_elastic_energy(*problem.immersed, *solids) : 0;
+      for (Real e : {fluid, excess, elastic, fluid + excess + elastic}) values.push_back(e);
+      break;
+    }
     case FlowProbeType::line: break;
   }
 }

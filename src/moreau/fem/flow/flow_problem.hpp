@@ -6,10 +6,15 @@
 #include <vector>
 
 #include "moreau/fem/flow/navier_stokes.hpp"
+#include "moreau/fem/immersed/immersed_solids.hpp"
 
 namespace moreau {
 
-enum class FlowProbeType { point, line, boundary_force, pressure_difference, kinetic_energy, newton_iterations };
+enum class FlowProbeType {
+  point, line, boundary_force, pressure_difference, kinetic_energy, newton_iterations,
+  solid_point,  // an immersed solid's node: its position, displacement or velocity
+  energy        // the fluid's kinetic energy, the solids' excess kinetic and elastic energies, their sum
+};
 
 struct FlowProbe {
   std::string name;
@@ -18,6 +23,8 @@ struct FlowProbe {
   int samples = 0;                          // line: points along the segment, ends included
   std::vector<Index> nodes;                 // boundary_force: the boundary's nodes
   Real coefficient_scale = 0;               // boundary_force: 2 / (rho U^2 L) (2D) or 2 / (rho U^2 A) (3D); 0: none
+  Index solid_node = -1;                    // solid_point: the node in the immersed solids' numbering
+  std::string quantity;                     // solid_point: position | displacement | velocity
 };
 
 struct FlowProblem {
@@ -37,15 +44,18 @@ struct FlowProblem {
   std::optional<Real> mean_pressure;
   VectorX initial;  // per dof: the initial velocity (and 0 pressure)
   std::vector<FlowProbe> probes;
+  // Deformable solids immersed in the fluid (a scene's "solid" objects beside its fluid).
+  std::optional<ImmersedSolids> immersed;
 };
 
 /// Column names of a probe in probes.csv (a line probe has none: it writes line_<name>.csv).
 std::vector<std::string> flow_probe_columns(const FlowProbe& probe, int dim);
 
 /// Appends a probe's values at x (the state at the end of a step of `step`, whose residual gives
-/// the reactions of boundary_force); `newton_iterations` is the last step's count.
+/// the reactions of boundary_force); `newton_iterations` is the last step's count; `solids` the
+/// immersed solids' state (null without them).
 void evaluate_flow_probe(const FlowProbe& probe, const FlowProblem& problem, const VectorX& x, const FlowTimeStep& step,
-                         int newton_iterations, std::vector<Real>& values);
+                         int newton_iterations, const ImmersedSolidState* solids, std::vector<Real>& values);
 
 /// Writes a line probe's samples as CSV: x,y[,z],velocity.x,velocity.y[,velocity.z],pressure.
 void write_line_probe(const FlowProbe& probe, const FlowProblem& problem, const VectorX& x, const std::string& path);

@@ -1,38 +1,44 @@
 #include "moreau/fem/flow/flow_stepper.hpp"
 
+#include <stdexcept>
+
 #include "moreau/io/binary_archive.hpp"
 
 namespace moreau {
 
 FlowSolveResult FlowStepper::single(const NavierStokesModel& model, FlowIntegrator scheme, Real t, Real dt, VectorX& x,
-                                    FlowLinearSolver& solver, const FlowSolveSettings& settings) {
+                                    FlowLinearSolver& solver, const FlowSolveSettings& settings, FlowSource* source) {
   before_previous_ = previous_.size() ? previous_ : x;
   previous_ = x;
   last_ = {scheme, dt, &previous_, &before_previous_};
-  return solve_navier_stokes(model, t + dt, last_, x, solver, settings);
+  FlowSolveResult result = solve_navier_stokes(model, t + dt, last_, x, solver, settings, source);
+  if (result.converged && source) source->accept(x, last_);
+  return result;
 }
 
 FlowSolveResult FlowStepper::step(const NavierStokesModel& model, Real t, Real dt, VectorX& x, FlowLinearSolver& solver,
-                                  const FlowSolveSettings& settings) {
+                                  const FlowSolveSettings& settings, FlowSource* source) {
   if (integrator_ == FlowIntegrator::steady) {
+    if (source) throw std::logic_error("FlowStepper: a source (an immersed solid) needs a transient integrator");
     last_ = {};
     return solve_navier_stokes(model, t, last_, x, solver, settings);
   }
   const bool first = steps_++ == 0;
   if (first && integrator_ == FlowIntegrator::midpoint) {
-    FlowSolveResult a = single(model, FlowIntegrator::backward_euler, t, dt / 2, x, solver, settings);
+    FlowSolveResult a = single(model, FlowIntegrator::backward_euler, t, dt / 2, x, solver, settings, source);
     if (!a.converged) return a;
-    const FlowSolveResult b = single(model, FlowIntegrator::backward_euler, t + dt / 2, dt / 2, x, solver, settings);
+    const FlowSolveResult b = single(model, FlowIntegrator::backward_euler, t + dt / 2, dt / 2, x, solver, settings, source);
     a.converged = b.converged;
     a.failure = b.failure;
     a.iterations += b.iterations;
     a.picard_iterations += b.picard_iterations;
     a.assembly_s += b.assembly_s;
     a.solve_s += b.solve_s;
+    a.source_s += b.source_s;
     return a;
   }
   const FlowIntegrator scheme = first && integrator_ == FlowIntegrator::bdf2 ? FlowIntegrator::backward_euler : integrator_;
-  return single(model, scheme, t, dt, x, solver, settings);
+  return single(model, scheme, t, dt, x, solver, settings, source);
 }
 
 void FlowStepper::save(ArchiveWriter& out) const {

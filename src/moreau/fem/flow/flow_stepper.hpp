@@ -19,9 +19,10 @@ class FlowStepper {
   explicit FlowStepper(FlowIntegrator integrator) : integrator_(integrator) {}
 
   /// Advances x (the state at t) to t + dt. On failure x is left at the failed iterate and the
-  /// stepper can be discarded.
+  /// stepper can be discarded. A `source` (an immersed solid) takes part in every solve and
+  /// accepts each converged one (the midpoint rule's start is two solves).
   FlowSolveResult step(const NavierStokesModel& model, Real t, Real dt, VectorX& x, FlowLinearSolver& solver,
-                       const FlowSolveSettings& settings);
+                       const FlowSolveSettings& settings, FlowSource* source = nullptr);
 
   /// The last step's scheme (with its previous states), for residual-based probes.
   const FlowTimeStep& last_step() const { return last_; }
@@ -33,7 +34,7 @@ class FlowStepper {
 
  private:
   FlowSolveResult single(const NavierStokesModel& model, FlowIntegrator scheme, Real t, Real dt, VectorX& x,
-                         FlowLinearSolver& solver, const FlowSolveSettings& settings);
+                         FlowLinearSolver& solver, const FlowSolveSettings& settings, FlowSource* source);
 
   FlowIntegrator integrator_;
   long steps_ = 0;

@@ -77,8 +77,7 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
     }
     // tau = (tau1^-2 + tau2^-2 + tau3^-2)^-1/2 with tau1^-1 = sum_a |u . grad N_a|, tau2 = dt/2
     // (transient only: ct = 1/dt, 0 when steady), tau3 = h^2 / (4 nu).
-    const Real inv = s1 * s1 + 4 * c.ct * c.ct + std::pow(4 * nu / (h * h), 2);
-    const Real tau = m.fixed_tau > 0 ? m.fixed_tau : 1 / std::sqrt(inv);
+    const Real tau = m.fixed_tau > 0 ? m.fixed_tau : stabilization_tau(s1, h, nu, c.ct);
     const Real nu_lsic = m.fixed_tau > 0 ? m.fixed_lsic : tau * u.squaredNorm();
     for (int a = 0; a < nodes; ++a) {
       for (int i = 0; i < dim; ++i) {
@@ -115,6 +114,10 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
 }
 
 }  // namespace
+
+Real stabilization_tau(Real advective_rate, Real h, Real nu, Real inverse_dt) {
+  return 1 / std::sqrt(advective_rate * advective_rate + 4 * inverse_dt * inverse_dt + std::pow(4 * nu / (h * h), 2));
+}
 
 void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeStep& step, VectorX& R, SparseMatrix* J,
                    const FlowAssembly& how) {
@@ -211,8 +214,8 @@ struct FlowIterate {
 class FlowSystem final : public NewtonIterates<FlowIterate> {
  public:
   FlowSystem(const NavierStokesModel& m, const FlowTimeStep& step, const VectorX& x, FlowLinearSolver& solver,
-             const FlowAssembly& how, Real stop, NewtonResult& result)
-      : m_(m), step_(step), solver_(solver), how_(how), stop_(stop), result_(result) {
+             const FlowAssembly& how, Real stop, NewtonResult& result, const FlowSource* source)
+      : m_(m), step_(step), solver_(solver), how_(how), stop_(stop), result_(result), source_(source) {
     now_.x = x;
   }
 
@@ -240,6 +243,8 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
   }
 
   const VectorX& solution() const { return now_.x; }
+  /// Wall time spent in the source's terms (part of the assembly time).
+  double source_s() const { return source_s_; }
 
  private:
   // The residual on the free dofs and the Jacobian at x.
@@ -247,7 +252,18 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
     VectorX full;
     timed(result_.assembly_s, [&] {
       assemble_flow(m_, x, step_, full, &J, how_);
-      return 0;
+      if (!source_) return 0;
+      // The source's entries join the cells' pattern (their union: an immersed solid's nodes move
+      // between fluid cells, so the pattern may change from one evaluation to the next).
+      return timed(source_s_, [&] {
+        source_entries_.clear();
+        source_->add(x, step_, full, &source_entries_);
+        SparseMatrix extra(J.rows(), J.cols());
+        extra.setFromTriplets(source_entries_.begin(), source_entries_.end());
+        J += extra;
+        J.makeCompressed();
+        return 0;
+      });
     });
     R = gather_free(m_.free_index, m_.free_count, full);
   }
@@ -266,13 +282,16 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
   FlowAssembly how_;
   Real stop_;
   NewtonResult& result_;
+  const FlowSource* source_;
+  double source_s_ = 0;
+  std::vector<Eigen::Triplet<Real, int>> source_entries_;
   Real first_ = 1;
 };
 
 }  // namespace
 
 FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const FlowTimeStep& step, VectorX& x,
-                                    FlowLinearSolver& solver, const FlowSolveSettings& settings) {
+                                    FlowLinearSolver& solver, const FlowSolveSettings& settings, const FlowSource* source) {
   FlowSolveResult result;
   for (const PrescribedDof& p : m.prescribed) x[p.dof] = p.value(t);
   const VectorX start = x;
@@ -282,9 +301,10 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
   newton.threads = settings.threads;
   const FlowAssembly how{false, settings.viscosity, settings.threads};
   {
-    FlowSystem system(m, step, x, solver, how, settings.tolerance, result);
+    FlowSystem system(m, step, x, solver, how, settings.tolerance, result, source);
     const bool converged = newton_solve(system, newton, "Newton's method", result);
     x = system.solution();
+    result.source_s += system.source_s();
     if (converged) {
       result.converged = true;
       return result;
@@ -298,20 +318,22 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
   NewtonSettings picard_settings = newton;
   picard_settings.max_iterations = settings.max_picard_iterations;
   picard_settings.line_search = false;  // Picard's direction need not decrease |R|
-  FlowSystem picard_system(m, step, x, solver, {true, settings.viscosity, settings.threads}, settings.picard_reduction, picard);
+  FlowSystem picard_system(m, step, x, solver, {true, settings.viscosity, settings.threads}, settings.picard_reduction, picard, source);
   const bool picard_converged = newton_solve(picard_system, picard_settings, "Picard's iteration", picard);
   x = picard_system.solution();
   result.picard_iterations += picard.iterations;
   result.assembly_s += picard.assembly_s;
   result.solve_s += picard.solve_s;
+  result.source_s += picard_system.source_s();
   result.residual_norms.insert(result.residual_norms.end(), picard.residual_norms.begin(), picard.residual_norms.end());
   result.failure = picard.failure;
   if (picard_converged) {
     // Newton again, to the tolerance relative to the first residual of the solve.
     const Real stop = settings.tolerance * picard.residual_norms.front() / std::max(picard.residual_norms.back(), Real(1e-300));
-    FlowSystem system(m, step, x, solver, how, stop, result);
+    FlowSystem system(m, step, x, solver, how, stop, result, source);
     const bool converged = newton_solve(system, newton, "Newton's method after Picard's", result);
     x = system.solution();
+    result.source_s += system.source_s();
     if (converged) {
       result.converged = true;
       return result;

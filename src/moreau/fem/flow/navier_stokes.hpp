@@ -88,6 +88,11 @@ struct NavierStokesModel {
   Index dof(Index node, int field) const { return node * fields() + field; }
 };
 
+/// The SUPG/PSPG parameter at a point, tau = (s^2 + (2/dt)^2 + (4 nu / h^2)^2)^-1/2, with
+/// s = sum_a |u . grad N_a| the advective rate (1/s), h the cell's size (m), nu the kinematic
+/// viscosity (m^2/s) and 1/dt (0 when steady).
+Real stabilization_tau(Real advective_rate, Real h, Real nu, Real inverse_dt);
+
 /// Quadrature, colours, the free dofs and the Jacobian's sparsity; after `prescribed` is set.
 void setup_navier_stokes(NavierStokesModel& model);
 
@@ -97,15 +102,33 @@ void setup_navier_stokes(NavierStokesModel& model);
 void assemble_flow(const NavierStokesModel& model, const VectorX& x, const FlowTimeStep& step, VectorX& R,
                    SparseMatrix* J, const FlowAssembly& how = {});
 
+/// Terms of the momentum balance beyond the fluid's cells that depend on the whole state, such as
+/// an immersed solid (fem/immersed). They are added to the cells' (Galerkin) residual and Jacobian
+/// in every evaluation; the stabilization's strong residual does not see them.
+class FlowSource {
+ public:
+  virtual ~FlowSource() = default;
+  /// Adds the source's residual at x (the state at t_{n+1} of `step`) to R (all dofs) and, if
+  /// `jacobian` is given, its Jacobian entries on the free dofs as triplets (free row, free column).
+  virtual void add(const VectorX& x, const FlowTimeStep& step, VectorX& R,
+                   std::vector<Eigen::Triplet<Real, int>>* jacobian) const = 0;
+  /// A step of `step` has converged at x: the source advances its own state to t_{n+1}.
+  virtual void accept(const VectorX& x, const FlowTimeStep& step) = 0;
+};
+
 struct FlowSolveResult : NewtonResult {
   int picard_iterations = 0;
+  double source_s = 0;  // wall time in the source's terms (included in assembly_s)
 };
 
 /// Solves one step (or the steady equations) starting from x, whose prescribed dofs are first set
 /// to their values at t. Converged when |R| <= tolerance * |R_0| or the correction is below
 /// tolerance * |x|.
+/// `source`, if given, adds its terms to every evaluation (it is not told of the result: the caller
+/// accepts a converged step).
 FlowSolveResult solve_navier_stokes(const NavierStokesModel& model, Real t, const FlowTimeStep& step, VectorX& x,
-                                    FlowLinearSolver& solver, const FlowSolveSettings& settings = {});
+                                    FlowLinearSolver& solver, const FlowSolveSettings& settings = {},
+                                    const FlowSource* source = nullptr);
 
 /// Velocity and pressure at a point (the cell containing it is found by inverting the
 /// isoparametric map); false if the point is outside the mesh.

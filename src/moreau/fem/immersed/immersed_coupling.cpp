@@ -1,0 +1,300 @@
+#include "moreau/fem/immersed/immersed_coupling.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+#include "moreau/errors.hpp"
+
+namespace moreau {
+
+namespace {
+
+// theta of the fluid's scheme: the time level of the momentum terms.
+Real scheme_theta(const FlowTimeStep& step) {
+  switch (step.integrator) {
+    case FlowIntegrator::midpoint: return 0.5;
+    case FlowIntegrator::backward_euler: return 1;
+    default: throw std::logic_error("immersed solids need the midpoint rule or backward Euler");
+  }
+}
+
+// The fluid's velocity at a located point: sum_A N_A(x) v_A, component k.
+Real interpolate(const NavierStokesModel& fluid, const MeshPoint& at, const VectorX& x, int k) {
+  const Index* cell = fluid.mesh.cell(at.cell);
+  Real v = 0;
+  for (int a = 0; a < fluid.mesh.nodes_per_cell(); ++a) v += at.shape[a] * x[fluid.dof(cell[a], k)];
+  return v;
+}
+
+// The cell's solid dofs gathered node-major (dim per node) from a vector over all solid dofs.
+void gather_cell(const FemModel& model, const FemSolid& solid, Index e, const VectorX& all, Real* local) {
+  const Index* cell = solid.mesh.cell(e);
+  for (int a = 0; a < solid.mesh.nodes_per_cell(); ++a)
+    for (int k = 0; k < model.dim; ++k) local[a * model.dim + k] = all[model.dof(solid.node_begin + cell[a], k)];
+}
+
+// The mass of rho_s - rho_f between two of a cell's nodes (the solid's consistent mass rescaled).
+Real excess_mass(const FemSolid& solid, Real fluid_density, Index e, int a, int b) {
+  const int nodes = solid.mesh.nodes_per_cell();
+  const Real scale = (solid.material.density - fluid_density) / solid.material.density;
+  return scale * solid.cell_mass[static_cast<size_t>(e) * nodes * nodes + a * nodes + b];
+}
+
+// Adds the viscous force of the stress 2 mu d(V) at the cell's configuration u (Kelvin-Voigt) and,
+// if K is given, scale times its derivative in V (F frozen):
+//   f_a = int J sigma g_a dV,  g_a = F^-T grad_X N_a,  sigma = mu (L + L^T),  L = sum_b V_b (x) g_b,
+//   d f_ai / d V_bj = int J mu (delta_ij g_a . g_b + g_aj g_bi).
+bool add_viscous_force(const FemSolid& solid, Index e, int dim, Real mu, const Real* u, const Real* V, ElementVector& f,
+                       ElementMatrix* K, Real scale) {
+  const CellQuadrature q = solid.cell_quadrature(e);
+  Vec3 g[kMaxElementNodes];
+  for (int p = 0; p < q.points; ++p) {
+    const Vec3* G = q.gradient + static_cast<size_t>(p) * q.nodes;
+    const Mat3 F = Mat3::Identity() + displacement_gradient(G, q.nodes, dim, u);
+    const Real J = F.determinant();
+    if (!(J > 0)) return false;
+    const Mat3 F_inv_t = F.inverse().transpose();
+    Mat3 L = Mat3::Zero();
+    for (int a = 0; a < q.nodes; ++a) {
+      g[a] = F_inv_t * G[a];
+      for (int k = dim; k < 3; ++k) g[a][k] = 0;
+      for (int k = 0; k < dim; ++k) L.row(k) += V[a * dim + k] * g[a].transpose();
+    }
+    const Real wJ = q.weight[p] * J;
+    const Mat3 sigma = mu * (L + L.transpose());
+    for (int a = 0; a < q.nodes; ++a) {
+      const Vec3 t = sigma * g[a];
+      for (int i = 0; i < dim; ++i) f[a * dim + i] += wJ * t[i];
+      if (!K) continue;
+      for (int b = 0; b < q.nodes; ++b) {
+        const Real gg = g[a].dot(g[b]);
+        for (int i = 0; i < dim; ++i)
+          for (int j = 0; j < dim; ++j)
+            (*K)(a * dim + i, b * dim + j) += scale * wJ * mu * ((i == j ? gg : 0) + g[a][j] * g[b][i]);
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+ImmersedCoupling::ImmersedCoupling(const NavierStokesModel& fluid, const ImmersedSolids& solids, ImmersedSolidState& state)
+    : fluid_(fluid), solids_(solids), state_(state), locator_(fluid.mesh) {
+  if (solids.model.dim != fluid.dim()) throw std::logic_error("immersed solids and the fluid differ in dimension");
+}
+
+ImmersedKinematics ImmersedCoupling::kinematics(const VectorX& x, const FlowTimeStep& step) const {
+  const FemModel& model = solids_.model;
+  const int dim = model.dim;
+  const Real theta = scheme_theta(step), dt = step.dt, t_next = state_.time + dt;
+  const VectorX& x_n = *step.previous;
+  ImmersedKinematics k;
+  k.displacement = state_.displacement;
+  k.velocity = state_.velocity;
+  k.velocity_theta = state_.velocity;
+  k.located.assign(model.node_count, MeshPoint{});
+  // Prescribed components follow their own law; they need no fluid.
+  std::vector<char> prescribed(model.dof_count(), 0);
+  for (const PrescribedDof& p : model.prescribed) {
+    prescribed[p.dof] = 1;
+    const Real du = p.value(t_next) - state_.displacement[p.dof];
+    k.displacement[p.dof] = p.value(t_next);
+    k.velocity[p.dof] = k.velocity_theta[p.dof] = du / dt;
+  }
+  // x* = X + u_n + theta dt V_theta, with V_theta = M(x*) v_theta: a fixed point, started from
+  // the solid's own velocity at t_n.
+  const Real smallest_cell = *std::min_element(fluid_.cell_size.begin(), fluid_.cell_size.end());
+  const Real tolerance = 1e-12 * smallest_cell;
+  std::vector<Vec3> x_star(model.node_count);
+  for (Index n = 0; n < model.node_count; ++n) {
+    x_star[n] = model.reference_position(n);
+    for (int c = 0; c < dim; ++c) {
+      const Index d = model.dof(n, c);
+      x_star[n][c] += state_.displacement[d] + theta * dt * k.velocity_theta[d];
+    }
+  }
+  // A node whose every component is prescribed (clamped) follows its law alone: it need not lie
+  // in the fluid (a base on a curved wall may sit just outside the fluid's polygonal boundary).
+  std::vector<char> held(model.node_count, 1);
+  for (Index n = 0; n < model.node_count; ++n)
+    for (int c = 0; c < dim; ++c) held[n] = held[n] && prescribed[model.dof(n, c)];
+  for (int it = 0; it < 50; ++it) {
+    Real change = 0;
+    ++k.fixed_point_iterations;
+    for (Index n = 0; n < model.node_count; ++n) {
+      if (held[n]) continue;
+      const std::optional<MeshPoint> at = locator_.locate(x_star[n], k.located[n].cell);
+      if (!at) {
+        const auto [solid, local] = model.owner(n);
+        throw NumericalError(fmt::format("immersed solid '{}': node {} at ({:.6g}, {:.6g}, {:.6g}) m left the fluid's mesh",
+                                         solid->name, local, x_star[n].x(), x_star[n].y(), x_star[n].z()));
+      }
+      k.located[n] = *at;
+      Vec3 moved = model.reference_position(n);
+      for (int c = 0; c < dim; ++c) {
+        const Index d = model.dof(n, c);
+        if (!prescribed[d]) {
+          const Real v_next = interpolate(fluid_, *at, x, c), v_before = interpolate(fluid_, *at, x_n, c);
+          k.velocity[d] = v_next;
+          k.velocity_theta[d] = theta * v_next + (1 - theta) * v_before;
+          k.displacement[d] = state_.displacement[d] + dt * k.velocity_theta[d];
+        }
+        moved[c] += state_.displacement[d] + theta * (k.displacement[d] - state_.displacement[d]);
+      }
+      change = std::max(change, (moved - x_star[n]).cwiseAbs().maxCoeff());
+      x_star[n] = moved;
+    }
+    if (change <= tolerance) break;
+  }
+  return k;
+}
+
+SparseMatrix ImmersedCoupling::velocity_map(const ImmersedKinematics& k, bool free_columns) const {
+  const FemModel& model = solids_.model;
+  std::vector<Eigen::Triplet<Real, int>> entries;
+  for (Index n = 0; n < model.node_count; ++n) {
+    const MeshPoint& at = k.located[n];
+    for (int i = 0; i < model.dim; ++i) {
+      const Index row = model.dof(n, i);
+      if (model.free_index[row] < 0) continue;
+      const Index* cell = fluid_.mesh.cell(at.cell);
+      for (int a = 0; a < fluid_.mesh.nodes_per_cell(); ++a) {
+        const Index dof = fluid_.dof(cell[a], i), column = free_columns ? fluid_.free_index[dof] : dof;
+        if (column >= 0 && at.shape[a] != 0) entries.emplace_back(static_cast<int>(row), static_cast<int>(column), at.shape[a]);
+      }
+    }
+  }
+  SparseMatrix M(model.dof_count(), free_columns ? fluid_.free_count : fluid_.dof_count());
+  M.setFromTriplets(entries.begin(), entries.end());
+  return M;
+}
+
+void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& R,
+                           std::vector<Eigen::Triplet<Real, int>>* jacobian) const {
+  const FemModel& model = solids_.model;
+  const int dim = model.dim;
+  const Real theta = scheme_theta(step), dt = step.dt;
+  ImmersedKinematics k;
+  try {
+    k = kinematics(x, step);
+  } catch (const NumericalError&) {
+    // A trial iterate that carries a solid node out of the fluid: an infinite residual makes
+    // Newton's line search shorten the step (a converged step that does so fails in accept()).
+    R.setConstant(std::numeric_limits<Real>::infinity());
+    return;
+  }
+  const VectorX u_theta = state_.displacement + theta * (k.displacement - state_.displacement);
+  VectorX r = VectorX::Zero(model.dof_count());
+  // d r / d V_n+1 per cell, gathered into one matrix over the solid's dofs.
+  std::vector<Eigen::Triplet<Real, int>> stiffness;
+  for (size_t s = 0; s < model.solids.size(); ++s) {
+    const FemSolid& solid = model.solids[s];
+    const int nodes = solid.mesh.nodes_per_cell();
+    const Real viscosity_difference = solids_.viscosity[s] - fluid_.viscosity;
+    for (Index e = 0; e < solid.mesh.cell_count(); ++e) {
+      Real u_n[kMaxElementDofs], u_next[kMaxElementDofs], u_mid[kMaxElementDofs], V[kMaxElementDofs],
+          V_next[kMaxElementDofs], V_n[kMaxElementDofs];
+      gather_cell(model, solid, e, state_.displacement, u_n);
+      gather_cell(model, solid, e, k.displacement, u_next);
+      gather_cell(model, solid, e, u_theta, u_mid);
+      gather_cell(model, solid, e, k.velocity_theta, V);
+      gather_cell(model, solid, e, k.velocity, V_next);
+      gather_cell(model, solid, e, state_.velocity, V_n);
+      // Elastic: the discrete gradient (midpoint rule) or the force at u_n+1 (backward Euler);
+      // its tangent is d f / d u_n+1, and d u_n+1 / d V_n+1 = theta dt.
+      ElementOutput out;
+      if (theta == 1)
+        solid_element(solid.material, solid.cell_quadrature(e), dim, u_next, jacobian != nullptr, out);
+      else
+        solid_element_step(solid.material, solid.cell_quadrature(e), dim, u_n, u_next, StepRule::energy_momentum,
+                           jacobian != nullptr, out);
+      ElementMatrix K;
+      if (jacobian) K = theta * dt * out.tangent;
+      bool valid = out.valid;
+      if (valid && viscosity_difference != 0)
+        valid = add_viscous_force(solid, e, dim, viscosity_difference, u_mid, V, out.force, jacobian ? &K : nullptr, theta);
+      if (!valid) {
+        // An inverted solid cell: an infinite residual makes Newton's line search shorten the step.
+        R.setConstant(std::numeric_limits<Real>::infinity());
+        return;
+      }
+      const Vec3 b = fluid_.body_force;
+      for (int a = 0; a < nodes; ++a)
+        for (int c = 0; c < nodes; ++c) {
+          const Real m = excess_mass(solid, fluid_.density, e, a, c);
+          if (m == 0) continue;
+          for (int i = 0; i < dim; ++i) {
+            out.force[a * dim + i] += m * ((V_next[c * dim + i] - V_n[c * dim + i]) / dt - b[i]);
+            if (jacobian) K(a * dim + i, c * dim + i) += m / dt;
+          }
+        }
+      const Index* cell = solid.mesh.cell(e);
+      auto dof = [&](int a, int i) { return model.dof(solid.node_begin + cell[a], i); };
+      for (int a = 0; a < nodes; ++a)
+        for (int i = 0; i < dim; ++i) {
+          r[dof(a, i)] += out.force[a * dim + i];
+          if (!jacobian) continue;
+          for (int c = 0; c < nodes; ++c)
+            for (int j = 0; j < dim; ++j)
+              if (K(a * dim + i, c * dim + j) != 0)
+                stiffness.emplace_back(static_cast<int>(dof(a, i)), static_cast<int>(dof(c, j)), K(a * dim + i, c * dim + j));
+        }
+    }
+  }
+  // R += M^T r (prescribed components' rows of M are empty: their forces are reactions).
+  R += velocity_map(k, false).transpose() * r;
+  if (!jacobian) return;
+  // J += M^T (d r / d V_n+1) M, with V_n+1 = M v_n+1.
+  SparseMatrix K(model.dof_count(), model.dof_count());
+  K.setFromTriplets(stiffness.begin(), stiffness.end());
+  const SparseMatrix M = velocity_map(k, true);
+  const SparseMatrix coupling = SparseMatrix(M.transpose()) * (K * M);
+  for (int column = 0; column < coupling.outerSize(); ++column)
+    for (SparseMatrix::InnerIterator it(coupling, column); it; ++it) jacobian->emplace_back(it.row(), it.col(), it.value());
+}
+
+void ImmersedCoupling::accept(const VectorX& x, const FlowTimeStep& step) {
+  const ImmersedKinematics k = kinematics(x, step);
+  state_.displacement = k.displacement;
+  state_.velocity = k.velocity;
+  state_.time += step.dt;
+}
+
+Real immersed_elastic_energy(const ImmersedSolids& solids, const ImmersedSolidState& state) {
+  const FemModel& model = solids.model;
+  Real energy = 0;
+  for (const FemSolid& solid : model.solids)
+    for (Index e = 0; e < solid.mesh.cell_count(); ++e) {
+      Real u[kMaxElementDofs];
+      gather_cell(model, solid, e, state.displacement, u);
+      ElementOutput out;
+      solid_element(solid.material, solid.cell_quadrature(e), model.dim, u, false, out);
+      energy += out.energy;
+    }
+  return energy;
+}
+
+Real immersed_excess_kinetic_energy(const ImmersedSolids& solids, const NavierStokesModel& fluid,
+                                    const ImmersedSolidState& state) {
+  const FemModel& model = solids.model;
+  Real energy = 0;
+  for (const FemSolid& solid : model.solids) {
+    const int nodes = solid.mesh.nodes_per_cell();
+    for (Index e = 0; e < solid.mesh.cell_count(); ++e) {
+      Real V[kMaxElementDofs];
+      gather_cell(model, solid, e, state.velocity, V);
+      for (int a = 0; a < nodes; ++a)
+        for (int b = 0; b < nodes; ++b)
+          for (int i = 0; i < model.dim; ++i)
+            energy += 0.5 * excess_mass(solid, fluid.density, e, a, b) * V[a * model.dim + i] * V[b * model.dim + i];
+    }
+  }
+  return energy;
+}
+
+}  // namespace moreau

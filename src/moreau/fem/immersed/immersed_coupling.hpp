@@ -1,0 +1,109 @@
+#pragma once
+// The immersed solids' momentum source in the fluid (the seed paper's "Interaction between fluid
+// and structure"; Zhang, Gerstenberger, Wang & Liu 2004, "Immersed finite element method", CMAME
+// 193; Wang, Jimack & Walkley 2017, "A one-field monolithic fictitious domain method for
+// fluid-structure interactions", CMAME 317, for the interpolation with the fluid's own shape
+// functions and its energy argument).
+//
+// The fluid fills the whole domain B and the solid occupies B_s. The fluid's momentum balance
+// gets, inside B_s, the force F = (rho_f - rho_s)(dv/dt - b) + div(sigma_s - sigma_f~), so that
+// there the balance is the solid's own, rho_s (dv/dt - b) = div sigma_s + div(fluid stress kept).
+// Tested with the fluid's shape functions N_A, the terms added to the fluid's residual at node A are
+//   R_A += sum_C N_A(x_C) r_C,
+//   r_C  = int_B0 P(F) grad_X N~_C dV                                  (elastic: the solid's nodal force)
+//        + int_B0 J 2 (mu_s - mu_f) d(V) F^-T grad_X N~_C dV            (viscous difference)
+//        + sum_D M~_CD ((V_D,n+1 - V_D,n)/dt - b)                     (inertia difference, M~ with rho_s - rho_f)
+// where C, D run over the solid's nodes, N~ are the solid's shape functions on its reference
+// configuration B0, x_C the node's current position and V its velocity: the solid has no momentum
+// equation of its own, its nodes move with the fluid's velocity interpolated at them,
+//   V_C = sum_A N_A(x_C) v_A                    (the IFEM mapping I(v) of the seed),
+// so that the same matrix M_CA = N_A(x_C) maps velocities to the solid and forces to the fluid,
+// and the power the fluid spends on the solid, v . M^T r, is exactly r . V.
+// The stabilization (SUPG, PSPG) of the fluid's cells does not see this force: their strong
+// momentum residual lacks it. Where the solid's stress balances a pressure gradient, PSPG's
+// continuity then lets the fluid through the solid at a speed of order tau/rho |grad p|, which is
+// negligible where tau is set by dt/2 and rho is large (blood, water at the usual steps) and
+// largest in creeping flow, where tau/rho ~ h^2/(4 mu). (Adding the spread force to that residual
+// as a nodal density, with its derivative lagged, changed the sheared ring's result by less than
+// 1e-5 and tripled Newton's iterations on the two leaflets; testing the nodal forces with the
+// stabilized test functions puts grad N_A at the solid's nodes, which jumps when a node crosses
+// a fluid cell's edge, and Newton stalled on it.)
+//
+// What is kept of the fluid's stress inside the solid (sigma_f~): the pressure, always. It is the
+// multiplier of the fluid's continuity equation, which holds over the whole domain, so the solid's
+// motion is incompressible like the fluid's and the pressure is shared (the immersed structural
+// potential method of Gil, Arranz Carreno, Bonet & Hassan 2010, JCP 229, does the same). The fluid's
+// viscous stress is replaced by the solid's own, 2 mu_s d: with the default mu_s = mu_f the solid is
+// a Kelvin-Voigt material with the fluid's viscosity and nothing is subtracted; mu_s = 0 removes
+// the fluid's viscous stress from the solid entirely, as the seed's formula writes.
+//
+// Time (the fluid's scheme with theta = 1/2, the midpoint rule, or 1, backward Euler): with
+// v_theta = theta v_n+1 + (1 - theta) v_n,
+//   u_n+1 = u_n + dt V_theta,   V_theta = M(x*) v_theta,   V_n+1 = M(x*) v_n+1,
+//   x* = X + u_n + theta (u_n+1 - u_n)          (the solid at t_n+theta),
+// a fixed point in x* solved to round-off in every evaluation (it contracts by about
+// theta dt |grad v|). The elastic force is Gonzalez's discrete gradient between u_n and u_n+1 for
+// the midpoint rule (solid_element_step, energy_momentum), so r_elastic . (u_n+1 - u_n) =
+// W(u_n+1) - W(u_n) exactly and the solid's stored energy enters the fluid's energy balance without
+// error; for backward Euler it is the force at u_n+1. The viscous term is evaluated at x* with
+// V_theta.
+//
+// Jacobian: exact in the velocities with the mapping M and the viscous term's F frozen at the
+// current x*: d r / d v_n+1 = (theta dt K + theta K_visc + M~ / dt) M, spread as M^T (...) M. The
+// dependence of M on x* (the nodes moving within the fluid's cells during the iterations) is
+// lagged, so Newton converges linearly at a rate of about theta dt |grad v| instead of
+// quadratically; the residual is always the full one, so the converged step is the exact solution.
+//
+// Dirichlet conditions of a solid (a clamped base) prescribe its displacement: those components
+// follow u(t) instead of the fluid, and their nodal forces (the reactions) are not spread.
+#include <optional>
+#include <vector>
+
+#include "moreau/fem/core/mesh_locator.hpp"
+#include "moreau/fem/flow/navier_stokes.hpp"
+#include "moreau/fem/immersed/immersed_solids.hpp"
+
+namespace moreau {
+
+/// Where a step leaves the solids: positions, velocities and the fluid cells they lie in.
+struct ImmersedKinematics {
+  VectorX displacement;   // u_n+1, per solid dof
+  VectorX velocity;       // V_n+1
+  VectorX velocity_theta; // V_theta
+  std::vector<MeshPoint> located;  // per solid node: the fluid cell at x* (cell -1 for a clamped node)
+  int fixed_point_iterations = 0;
+};
+
+class ImmersedCoupling final : public FlowSource {
+ public:
+  /// Keeps references to the fluid, the solids and the state, which must outlive the coupling;
+  /// `state` is advanced by accept().
+  ImmersedCoupling(const NavierStokesModel& fluid, const ImmersedSolids& solids, ImmersedSolidState& state);
+
+  void add(const VectorX& x, const FlowTimeStep& step, VectorX& R,
+           std::vector<Eigen::Triplet<Real, int>>* jacobian) const override;
+  void accept(const VectorX& x, const FlowTimeStep& step) override;
+
+  /// The solids' kinematics at fluid state x of `step` (throws NumericalError if a solid node
+  /// leaves the fluid's mesh).
+  ImmersedKinematics kinematics(const VectorX& x, const FlowTimeStep& step) const;
+
+ private:
+  // M: V = M v, per free solid dof and fluid velocity dof (all, or only the free ones), N_A(x_C).
+  SparseMatrix velocity_map(const ImmersedKinematics& k, bool free_columns) const;
+
+  const NavierStokesModel& fluid_;
+  const ImmersedSolids& solids_;
+  ImmersedSolidState& state_;
+  MeshLocator locator_;
+};
+
+/// The solids' stored elastic energy at their current displacement, J (2D: J/m).
+Real immersed_elastic_energy(const ImmersedSolids& solids, const ImmersedSolidState& state);
+
+/// The kinetic energy the solids add to the fluid's, 1/2 V^T M~ V with M~ the mass of
+/// rho_s - rho_f, J (2D: J/m).
+Real immersed_excess_kinetic_energy(const ImmersedSolids& solids, const NavierStokesModel& fluid,
+                                    const ImmersedSolidState& state);
+
+}  // namespace moreau
