@@ -21,6 +21,7 @@
 // as one block and applies dynamic friction and restitution in a velocity pass
 // (solvers/xpbd/rigid_contact_projection.hpp).
 // Coefficients combine as the mean of the two bodies' (Mueller 2020).
+#include <tuple>
 #include <vector>
 
 #include "moreau/collision/narrow_phase.hpp"
@@ -65,6 +66,13 @@ struct RigidBroadPhaseScratch {
   std::vector<std::vector<ContactManifold>> pair_manifolds;  // per pair: one, or one per mesh triangle
   std::vector<RigidManifold> previous_manifolds;  // last step's, to carry stuck slip over
   std::vector<RigidContactPoint> previous_points;
+
+  // Checkpoints hold everything but the per-thread lists, whose number is the last step's thread
+  // count (it follows the machine's load) and whose contents are merged into `pairs` anyway.
+  auto archive_members() { return std::tie(lower, upper, order, margin, pairs, pair_manifolds, previous_manifolds, previous_points); }
+  auto archive_members() const {
+    return std::tie(lower, upper, order, margin, pairs, pair_manifolds, previous_manifolds, previous_points);
+  }
 };
 
 struct RigidContacts {

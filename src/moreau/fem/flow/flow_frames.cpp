@@ -33,21 +33,8 @@ void FlowFrameWriter::write(const VectorX& x, Real time, const ImmersedSolidStat
   if (solids_ && solids) {
     const FemModel& model = solids_->model;
     for (size_t i = 0; i < model.solids.size(); ++i) {
-      const FemSolid& s = model.solids[i];
-      const Index count = s.mesh.node_count();
-      std::vector<Vec3> position(count), u(count, Vec3::Zero()), v(count, Vec3::Zero());
-      for (Index a = 0; a < count; ++a) {
-        for (int k = 0; k < model.dim; ++k) {
-          u[a][k] = solids->displacement[model.dof(s.node_begin + a, k)];
-          v[a][k] = solids->velocity[model.dof(s.node_begin + a, k)];
-        }
-        position[a] = s.mesh.nodes[a] + u[a];
-      }
-      std::vector<Real> cauchy, von_mises;
-      cell_stresses(model, s, solids->displacement, cauchy, von_mises);
-      const std::string solid_file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(s.name), frames_);
-      write_vtu(out_dir_ + "/" + solid_file, position, s.mesh.cells, s.mesh.nodes_per_cell(), vtk_cell(s.mesh.element),
-                {{"displacement", u}, {"velocity", v}}, {{"cauchy_stress", 6, cauchy}, {"von_mises", 1, von_mises}});
+      const std::string solid_file =
+          write_solid_frame(model, model.solids[i], solids->displacement, solids->velocity, out_dir_, frames_);
       entries.push_back({time, static_cast<int>(i) + 1, solid_file});
     }
   }

@@ -46,25 +46,31 @@ VtkCell vtk_cell(ElementType type) {
   return VtkCell::triangle;
 }
 
+std::string write_solid_frame(const FemModel& model, const FemSolid& s, const VectorX& u, const VectorX& v,
+                              const std::string& out_dir, int frame) {
+  const Index n = s.mesh.node_count();
+  std::vector<Vec3> x(n), displacement(n, Vec3::Zero()), velocity(n, Vec3::Zero());
+  for (Index a = 0; a < n; ++a) {
+    for (int k = 0; k < model.dim; ++k) {
+      displacement[a][k] = u[model.dof(s.node_begin + a, k)];
+      velocity[a][k] = v[model.dof(s.node_begin + a, k)];
+    }
+    x[a] = s.mesh.nodes[a] + displacement[a];
+  }
+  std::vector<Real> cauchy, von_mises;
+  cell_stresses(model, s, u, cauchy, von_mises);
+  const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(s.name), frame);
+  write_vtu(out_dir + "/" + file, x, s.mesh.cells, s.mesh.nodes_per_cell(), vtk_cell(s.mesh.element),
+            {{"displacement", displacement}, {"velocity", velocity}},
+            {{"cauchy_stress", 6, cauchy}, {"von_mises", 1, von_mises}});
+  return file;
+}
+
 void FemFrameWriter::write(const FemRunState& run) {
   const FemDynamicState& state = run.solids;
   std::vector<PvdEntry> entries;
   for (size_t i = 0; i < model_.solids.size(); ++i) {
-    const FemSolid& s = model_.solids[i];
-    const Index n = s.mesh.node_count();
-    std::vector<Vec3> x(n), u(n, Vec3::Zero()), v(n, Vec3::Zero());
-    for (Index a = 0; a < n; ++a) {
-      for (int k = 0; k < model_.dim; ++k) {
-        u[a][k] = state.u[model_.dof(s.node_begin + a, k)];
-        v[a][k] = state.v[model_.dof(s.node_begin + a, k)];
-      }
-      x[a] = s.mesh.nodes[a] + u[a];
-    }
-    std::vector<Real> cauchy, von_mises;
-    cell_stresses(model_, s, state.u, cauchy, von_mises);
-    const std::string file = fmt::format("frames/{}_{:06d}.vtu", safe_file_name(s.name), frames_);
-    write_vtu(out_dir_ + "/" + file, x, s.mesh.cells, s.mesh.nodes_per_cell(), vtk_cell(s.mesh.element),
-              {{"displacement", u}, {"velocity", v}}, {{"cauchy_stress", 6, cauchy}, {"von_mises", 1, von_mises}});
+    const std::string file = write_solid_frame(model_, model_.solids[i], state.u, state.v, out_dir_, frames_);
     entries.push_back({state.time, static_cast<int>(i), file});
   }
   for (size_t b = 0; b < problem_.rigid_bodies.size(); ++b) {

@@ -21,6 +21,12 @@ VtkCell vtk_cell(ElementType type);
 void cell_stresses(const FemModel& model, const FemSolid& solid, const VectorX& u, std::vector<Real>& cauchy,
                    std::vector<Real>& von_mises);
 
+/// Writes a solid's frame (frames/<solid>_<frame>.vtu in out_dir, returned): its deformed mesh
+/// with point arrays displacement and velocity and cell arrays cauchy_stress and von_mises, from
+/// the displacements u and velocities v over the model's dofs.
+std::string write_solid_frame(const FemModel& model, const FemSolid& solid, const VectorX& u, const VectorX& v,
+                              const std::string& out_dir, int frame);
+
 class FemFrameWriter {
  public:
   /// Starts a series in out_dir, or continues `resume` (a restarted run).
