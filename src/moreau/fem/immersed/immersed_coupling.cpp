@@ -125,7 +125,6 @@ ImmersedKinematics ImmersedCoupling::kinematics(const VectorX& x, const FlowTime
     for (int c = 0; c < dim; ++c) held[n] = held[n] && prescribed[model.dof(n, c)];
   for (int it = 0; it < 50; ++it) {
     Real change = 0;
-    ++k.fixed_point_iterations;
     for (Index n = 0; n < model.node_count; ++n) {
       if (held[n]) continue;
       const std::optional<MeshPoint> at = locator_.locate(x_star[n], k.located[n].cell);

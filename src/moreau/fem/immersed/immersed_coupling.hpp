@@ -71,7 +71,6 @@ struct ImmersedKinematics {
   VectorX velocity;       // V_n+1
   VectorX velocity_theta; // V_theta
   std::vector<MeshPoint> located;  // per solid node: the fluid cell at x* (cell -1 for a clamped node)
-  int fixed_point_iterations = 0;
 };
 
 class ImmersedCoupling final : public FlowSource {
