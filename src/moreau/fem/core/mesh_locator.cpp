@@ -105,6 +105,8 @@ bool MeshLocator::inside_cell(Index e, const Vec3& point, MeshPoint& found) cons
   found.cell = e;
   found.xi = xi;
   shape_functions(mesh_.element, xi, found.shape, dN);
+  const Mat3 inverse_transpose = cell_jacobian(mesh_, e, dN).inverse().transpose();
+  for (int a = 0; a < nodes; ++a) found.gradient[a] = inverse_transpose * dN[a];
   return true;
 }
 

@@ -12,11 +12,13 @@
 
 namespace moreau {
 
-/// A point inside a cell: the cell, its reference coordinates and the cell's shape functions there.
+/// A point inside a cell: the cell, its reference coordinates and the cell's shape functions and
+/// their gradients in x there.
 struct MeshPoint {
   Index cell = -1;
   Vec3 xi = Vec3::Zero();
   Real shape[kMaxElementNodes] = {};
+  Vec3 gradient[kMaxElementNodes] = {};  // grad_x N_a = J^-T grad_xi N_a (J = dx/dxi); 0 beyond the mesh's dimension
 };
 
 class MeshLocator {

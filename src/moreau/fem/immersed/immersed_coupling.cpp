@@ -189,8 +189,9 @@ void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& 
   }
   const VectorX u_theta = state_.displacement + theta * (k.displacement - state_.displacement);
   VectorX r = VectorX::Zero(model.dof_count());
-  // d r / d V_n+1 per cell, gathered into one matrix over the solid's dofs.
-  std::vector<Eigen::Triplet<Real, int>> stiffness;
+  // Per cell, gathered over the solid's dofs: d r / d V_theta (elastic through u_n+1 = u_n +
+  // dt V_theta, and viscous) and d r / d V_n+1 (the excess inertia).
+  std::vector<Eigen::Triplet<Real, int>> by_theta_velocity, by_next_velocity;
   for (size_t s = 0; s < model.solids.size(); ++s) {
     const FemSolid& solid = model.solids[s];
     const int nodes = solid.mesh.nodes_per_cell();
@@ -205,18 +206,21 @@ void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& 
       gather_cell(model, solid, e, k.velocity, V_next);
       gather_cell(model, solid, e, state_.velocity, V_n);
       // Elastic: the discrete gradient (midpoint rule) or the force at u_n+1 (backward Euler);
-      // its tangent is d f / d u_n+1, and d u_n+1 / d V_n+1 = theta dt.
+      // its tangent is d f / d u_n+1, and d u_n+1 / d V_theta = dt.
       ElementOutput out;
       if (theta == 1)
         solid_element(solid.material, solid.cell_quadrature(e), dim, u_next, jacobian != nullptr, out);
       else
         solid_element_step(solid.material, solid.cell_quadrature(e), dim, u_n, u_next, StepRule::energy_momentum,
                            jacobian != nullptr, out);
-      ElementMatrix K;
-      if (jacobian) K = theta * dt * out.tangent;
+      ElementMatrix K_theta, K_next;
+      if (jacobian) {
+        K_theta = dt * out.tangent;
+        K_next.setZero(out.tangent.rows(), out.tangent.cols());
+      }
       bool valid = out.valid;
       if (valid && viscosity_difference != 0)
-        valid = add_viscous_force(solid, e, dim, viscosity_difference, u_mid, V, out.force, jacobian ? &K : nullptr, theta);
+        valid = add_viscous_force(solid, e, dim, viscosity_difference, u_mid, V, out.force, jacobian ? &K_theta : nullptr, 1);
       if (!valid) {
         // An inverted solid cell: an infinite residual makes Newton's line search shorten the step.
         R.setConstant(std::numeric_limits<Real>::infinity());
@@ -229,32 +233,98 @@ void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& 
           if (m == 0) continue;
           for (int i = 0; i < dim; ++i) {
             out.force[a * dim + i] += m * ((V_next[c * dim + i] - V_n[c * dim + i]) / dt - b[i]);
-            if (jacobian) K(a * dim + i, c * dim + i) += m / dt;
+            if (jacobian) K_next(a * dim + i, c * dim + i) += m / dt;
           }
         }
       const Index* cell = solid.mesh.cell(e);
-      auto dof = [&](int a, int i) { return model.dof(solid.node_begin + cell[a], i); };
+      auto dof = [&](int a, int i) { return static_cast<int>(model.dof(solid.node_begin + cell[a], i)); };
       for (int a = 0; a < nodes; ++a)
         for (int i = 0; i < dim; ++i) {
           r[dof(a, i)] += out.force[a * dim + i];
           if (!jacobian) continue;
           for (int c = 0; c < nodes; ++c)
-            for (int j = 0; j < dim; ++j)
-              if (K(a * dim + i, c * dim + j) != 0)
-                stiffness.emplace_back(static_cast<int>(dof(a, i)), static_cast<int>(dof(c, j)), K(a * dim + i, c * dim + j));
+            for (int j = 0; j < dim; ++j) {
+              const int row = a * dim + i, column = c * dim + j;
+              if (K_theta(row, column) != 0) by_theta_velocity.emplace_back(dof(a, i), dof(c, j), K_theta(row, column));
+              if (K_next(row, column) != 0) by_next_velocity.emplace_back(dof(a, i), dof(c, j), K_next(row, column));
+            }
         }
     }
   }
   // R += M^T r (prescribed components' rows of M are empty: their forces are reactions).
   R += velocity_map(k, false).transpose() * r;
-  if (!jacobian) return;
-  // J += M^T (d r / d V_n+1) M, with V_n+1 = M v_n+1.
-  SparseMatrix K(model.dof_count(), model.dof_count());
-  K.setFromTriplets(stiffness.begin(), stiffness.end());
+  if (jacobian) add_jacobian(k, x, *step.previous, theta, dt, r, by_theta_velocity, by_next_velocity, *jacobian);
+}
+
+// The mapped velocities' derivatives in the fluid's velocities v = v_n+1 (free dofs), with the
+// motion of the solid's nodes inside the fluid's cells included. Per solid node C, with
+// G = grad v at x*_C (G_ij = sum_A v_Ai dN_A/dx_j) and M_C its rows of M:
+//   V_theta = M(x*) v_theta,  x* = X + u_n + theta dt V_theta
+//     => dV_theta = theta M_C dv + G_theta dx*,  dx* = theta dt dV_theta
+//     => dV_theta / dv = D_C = theta (I - theta dt G_theta)^-1 M_C,   dx* / dv = theta dt D_C,
+//   dV_n+1 / dv = M_C + theta dt G_n+1 D_C,
+// and the spread force R_Ai = sum_C N_A(x*_C) r_Ci adds r_Ci grad N_A(x*_C) . dx*_C. Prescribed
+// components follow their law: their rows of G, M and D vanish, and their r (a reaction) is not
+// spread. So
+//   J += M^T (K_theta D + K_next (M + theta dt G_n+1 D)) + theta dt E D,
+//   E_(Ai),(Cj) = r_Ci dN_A/dx_j (x*_C),
+// exact but for the viscous difference's dependence on the displacement (its F is frozen).
+void ImmersedCoupling::add_jacobian(const ImmersedKinematics& k, const VectorX& x, const VectorX& x_n, Real theta, Real dt,
+                                    const VectorX& r, const std::vector<Eigen::Triplet<Real, int>>& by_theta_velocity,
+                                    const std::vector<Eigen::Triplet<Real, int>>& by_next_velocity,
+                                    std::vector<Eigen::Triplet<Real, int>>& jacobian) const {
+  const FemModel& model = solids_.model;
+  const int dim = model.dim, nodes_per_cell = fluid_.mesh.nodes_per_cell();
+  const Index solid_dofs = model.dof_count();
+  const Real theta_dt = theta * dt;
+  std::vector<Eigen::Triplet<Real, int>> moved_entries, gradient_entries, spread_entries;
+  for (Index n = 0; n < model.node_count; ++n) {
+    const MeshPoint& at = k.located[n];
+    if (at.cell < 0) continue;
+    const Index* cell = fluid_.mesh.cell(at.cell);
+    Mat3 G_theta = Mat3::Zero(), G_next = Mat3::Zero();
+    for (int i = 0; i < dim; ++i) {
+      if (model.free_index[model.dof(n, i)] < 0) continue;
+      for (int a = 0; a < nodes_per_cell; ++a) {
+        const Real v_next = x[fluid_.dof(cell[a], i)], v_before = x_n[fluid_.dof(cell[a], i)];
+        G_next.row(i) += v_next * at.gradient[a].transpose();
+        G_theta.row(i) += (theta * v_next + (1 - theta) * v_before) * at.gradient[a].transpose();
+      }
+    }
+    const Mat3 A = theta * (Mat3::Identity() - theta_dt * G_theta).inverse();
+    for (int i = 0; i < dim; ++i)
+      for (int j = 0; j < dim; ++j) {
+        const int row = static_cast<int>(model.dof(n, i)), column = static_cast<int>(model.dof(n, j));
+        if (A(i, j) != 0) moved_entries.emplace_back(row, column, A(i, j));
+        if (G_next(i, j) != 0) gradient_entries.emplace_back(row, column, theta_dt * G_next(i, j));
+      }
+    for (int i = 0; i < dim; ++i) {
+      const Index solid_dof = model.dof(n, i);
+      if (model.free_index[solid_dof] < 0 || r[solid_dof] == 0) continue;
+      for (int a = 0; a < nodes_per_cell; ++a) {
+        const Index fluid_row = fluid_.free_index[fluid_.dof(cell[a], i)];
+        if (fluid_row < 0) continue;
+        for (int j = 0; j < dim; ++j)
+          if (at.gradient[a][j] != 0)
+            spread_entries.emplace_back(static_cast<int>(fluid_row), static_cast<int>(model.dof(n, j)),
+                                        theta_dt * r[solid_dof] * at.gradient[a][j]);
+      }
+    }
+  }
+  auto matrix = [](Index rows, Index columns, const std::vector<Eigen::Triplet<Real, int>>& entries) {
+    SparseMatrix m(rows, columns);
+    m.setFromTriplets(entries.begin(), entries.end());
+    return m;
+  };
   const SparseMatrix M = velocity_map(k, true);
-  const SparseMatrix coupling = SparseMatrix(M.transpose()) * (K * M);
+  const SparseMatrix D = matrix(solid_dofs, solid_dofs, moved_entries) * M;
+  const SparseMatrix next_velocity = M + matrix(solid_dofs, solid_dofs, gradient_entries) * D;
+  const SparseMatrix force_change = matrix(solid_dofs, solid_dofs, by_theta_velocity) * D +
+                                    matrix(solid_dofs, solid_dofs, by_next_velocity) * next_velocity;
+  const SparseMatrix coupling = SparseMatrix(M.transpose()) * force_change +
+                                matrix(fluid_.free_count, solid_dofs, spread_entries) * D;
   for (int column = 0; column < coupling.outerSize(); ++column)
-    for (SparseMatrix::InnerIterator it(coupling, column); it; ++it) jacobian->emplace_back(it.row(), it.col(), it.value());
+    for (SparseMatrix::InnerIterator it(coupling, column); it; ++it) jacobian.emplace_back(it.row(), it.col(), it.value());
 }
 
 void ImmersedCoupling::accept(const VectorX& x, const FlowTimeStep& step) {
