@@ -7,11 +7,15 @@ analytic reference, and writes an HTML page and its Markdown twin with the plots
 
 `make report` writes docs/report/ and the summary table in README.md (between its "report
 summary" markers); `--fast` is the subset `make test` runs (smaller meshes and shorter runs, with
-the tolerances that suit them). Exits with 1 when a check fails.
+the tolerances that suit them). With `--only`, the named cases are run again and the other cases'
+sections are kept from the last run (results.json in the output directory; each section says
+which commit computed it). Exits with 1 when a check fails.
 """
 import argparse
+import dataclasses
 import datetime
 import html
+import json
 import pathlib
 import platform
 import subprocess
@@ -20,7 +24,7 @@ import tempfile
 
 sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
 from cases import CASES  # noqa: E402
-from report_case import ROOT  # noqa: E402
+from report_case import ROOT, CaseResult, Check  # noqa: E402
 
 
 def number(x):
@@ -69,6 +73,7 @@ def markdown(results, header):
     lines += summary_table(results)
     for r in results:
         lines += ["", f"## {r.title}", "", f"Reference: {r.reference}.", "", f"Run: `moreau run {r.scene}`", "",
+                  f"Computed by {r.provenance}.", "",
                   "| quantity | moreau | reference | error | tolerance | result | tolerance allows for |",
                   "|---|---|---|---|---|---|---|"]
         for c in r.checks:
@@ -103,7 +108,8 @@ def page(results, header):
         figures = "".join(f"<p>{e(n)}</p>" for n in r.notes)
         figures += "".join(f"<img src='{e(p)}' alt='{e(r.title)}'>" for p in r.plots)
         sections += (f"<section id='{anchor(r.title)}'><h2>{e(r.title)}</h2><p>Reference: {e(r.reference)}.</p>"
-                     f"<p>Run: <code>moreau run {e(r.scene)}</code> ({r.wall_s:.1f} s)</p>"
+                     f"<p>Run: <code>moreau run {e(r.scene)}</code> ({r.wall_s:.1f} s); computed by "
+                     f"{e(r.provenance)}.</p>"
                      "<table><tr><th>quantity</th><th>moreau</th><th>reference</th><th>error</th><th>tolerance</th>"
                      f"<th>result</th><th>tolerance allows for</th></tr>{checks}</table>{figures}</section>")
     return f"""<!doctype html>
@@ -122,6 +128,15 @@ img {{ max-width: 100%; display: block; margin: 0.5em 0; }} code {{ background: 
 """
 
 
+def load_results(path):
+    """The cases of an earlier run, {module name: CaseResult}, from its results.json (none if absent)."""
+    if not path.exists():
+        return {}
+    saved = json.loads(path.read_text())
+    return {name: CaseResult(**{**fields, "checks": [Check(**c) for c in fields["checks"]]})
+            for name, fields in saved.items()}
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--moreau", default=str(ROOT / "build" / "moreau"))
@@ -133,24 +148,36 @@ def main():
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     cases = [c for c in CASES if not args.only or c.__name__.split(".")[-1] in args.only]
-    results = []
+    header = provenance(args.fast)
+    # A partial run of the whole report keeps the other cases' last results.
+    kept = load_results(out / "results.json") if args.only and not args.fast else {}
+    by_name = {}
     with tempfile.TemporaryDirectory(prefix="moreau-report-") as work:
         for case in cases:
             name = case.__name__.split(".")[-1]
             case_work = pathlib.Path(work) / name
             case_work.mkdir()
             result = case.run(args.moreau, case_work, out, args.fast)
-            results.append(result)
+            result.provenance = header
+            by_name[name] = result
             failed = [c.quantity for c in result.checks if not c.passed]
             print(f"{name}: {'pass' if not failed else 'FAIL (' + ', '.join(failed) + ')'} in {result.wall_s:.1f} s",
                   flush=True)
-    header = provenance(args.fast)
+    for name, result in kept.items():
+        by_name.setdefault(name, result)
+    names = [c.__name__.split(".")[-1] for c in CASES if c.__name__.split(".")[-1] in by_name]
+    results = [by_name[n] for n in names]
+    if kept:
+        header = "cases computed by different runs: each section says which"
+    (out / "results.json").write_text(json.dumps({n: dataclasses.asdict(by_name[n]) for n in names}, indent=1,
+                                                 ensure_ascii=False))
     (out / "index.html").write_text(page(results, header))
     (out / "report.md").write_text(markdown(results, header))
     if args.readme:
         update_readme(pathlib.Path(args.readme), results, header)
     print(f"report written to {out / 'index.html'} and {out / 'report.md'}")
-    return 0 if all(r.passed for r in results) else 1
+    ran = [c.__name__.split(".")[-1] for c in cases]
+    return 0 if all(by_name[n].passed for n in ran) else 1
 
 
 if __name__ == "__main__":

@@ -49,6 +49,7 @@ class CaseResult:
     plots: list             # PNG files, relative to the report's directory
     wall_s: float = 0.0
     notes: list = dataclasses.field(default_factory=list)  # measured figures that are not checks
+    provenance: str = ""    # which commit, when and where computed it (make_report sets it)
 
     @property
     def passed(self):

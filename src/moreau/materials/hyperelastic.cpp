@@ -41,15 +41,12 @@ Mat3 from_voigt(const Vec6& v) {
 
 Mat3 green_lagrange_strain(const Mat3& H) { return 0.5 * (H + H.transpose() + H.transpose() * H); }
 
-namespace {
-
-// det(I + X) - 1 = tr X + ((tr X)^2 - tr X^2)/2 + det X, without cancellation for small X.
 Real det_identity_plus_minus_one(const Mat3& X) {
   const Real t = X.trace();
   return t + 0.5 * (t * t - (X * X).trace()) + X.determinant();
 }
 
-}  // namespace
+Mat6 pressure_stress_tangent(const Mat3& C_inverse, Real pJ) { return product_plus_symmetric(C_inverse, pJ, -pJ); }
 
 HyperelasticResponse HyperelasticMaterial::respond(const Mat3& E, bool with_tangent) const {
   const Real lambda = lame.lambda, mu = lame.mu;
@@ -75,6 +72,18 @@ HyperelasticResponse HyperelasticMaterial::respond(const Mat3& E, bool with_tang
   r.stress = to_voigt(2 * mu * Cinv * E + lambda * lnJ * Cinv);
   if (with_tangent) r.tangent = product_plus_symmetric(Cinv, lambda, mu - lambda * lnJ);
   return r;
+}
+
+HyperelasticMaterial HyperelasticMaterial::without_volumetric_energy() const {
+  HyperelasticMaterial rest = *this;
+  rest.lame.lambda = 0;
+  return rest;
+}
+
+// U = lambda/2 (ln J)^2,  U' = lambda ln J / J,  U'' = lambda (1 - ln J) / J^2.
+HyperelasticMaterial::Volumetric HyperelasticMaterial::volumetric_energy(Real J_minus_one) const {
+  const Real J = 1 + J_minus_one, lnJ = std::log1p(J_minus_one), lambda = lame.lambda;
+  return {0.5 * lambda * lnJ * lnJ, lambda * lnJ / J, lambda * (1 - lnJ) / (J * J)};
 }
 
 Real HyperelasticMaterial::energy(const Mat3& E) const { return respond(E, false).energy; }

@@ -56,7 +56,24 @@ struct HyperelasticMaterial {
   Mat3 stress(const Mat3& E) const;
   /// W, S and, if `with_tangent`, CC at the Green-Lagrange strain E.
   HyperelasticResponse respond(const Mat3& E, bool with_tangent = true) const;
+
+  // The Neo-Hookean energy split W = W_rest(C) + U(J), U(J) = lambda/2 (ln J)^2, for elements that
+  // evaluate U at a cell's mean J (mean dilatation). Neo-Hookean only.
+  /// The material without U: lambda = 0, so respond() gives W_rest = mu/2 (tr C - 3) - mu ln J.
+  HyperelasticMaterial without_volumetric_energy() const;
+  /// U(J) and its derivatives dU/dJ, d2U/dJ2, from J - 1 (kept apart for its digits).
+  struct Volumetric {
+    Real energy = 0, pressure = 0, stiffness = 0;
+  };
+  Volumetric volumetric_energy(Real J_minus_one) const;
 };
+
+/// det(I + X) - 1 = tr X + ((tr X)^2 - tr X^2)/2 + det X, without cancellation for small X.
+Real det_identity_plus_minus_one(const Mat3& X);
+
+/// d(J C^-1)/dE scaled by p: p J (C^-1 (x) C^-1 - 2 II_C^-1) in Voigt order (the tangent of the
+/// stress p J C^-1 of a pressure p held fixed), with II_C^-1_IJKL = (C^-1_IK C^-1_JL + C^-1_IL C^-1_JK)/2.
+Mat6 pressure_stress_tangent(const Mat3& C_inverse, Real pJ);
 
 /// The Green-Lagrange strain of F = I + H without forming C - I: E = (H + H^T + H^T H)/2.
 Mat3 green_lagrange_strain(const Mat3& H);

@@ -34,6 +34,18 @@ HyperelasticMaterial read_fem_material(const JsonObject& m) {
   return material;
 }
 
+VolumeTreatment read_volume_treatment(const JsonObject& sj, const FemSolid& solid) {
+  if (sj.choice("formulation", "displacement", {"displacement", "mean_dilatation"}) == "displacement")
+    return VolumeTreatment::pointwise;
+  if (solid.material.model != HyperelasticModel::neo_hookean)
+    sj.fail("formulation", "\"mean_dilatation\" evaluates the Neo-Hookean volumetric energy lambda/2 (ln J)^2 at each "
+                           "cell's mean J; give the solid \"model\": \"neo_hookean\"");
+  if (solid.mesh.element != ElementType::quad4 && solid.mesh.element != ElementType::hex8)
+    sj.fail("formulation", fmt::format("\"mean_dilatation\" needs quad4 or hex8 cells (a {} cell has one quadrature "
+                                       "point, whose J is already the mean)", element_name(solid.mesh.element)));
+  return VolumeTreatment::mean_dilatation;
+}
+
 namespace {
 
 void read_loads(const JsonObject& solid_json, FemModel& model, Index solid) {
@@ -342,6 +354,7 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
     if (model.solids.empty()) model.dim = solid.mesh.dim;
     if (solid.mesh.dim != model.dim) sj.fail("mesh", "all solids of a scene must be 2D (rectangle) or all 3D (box)");
     solid.material = read_fem_material(sj.object("material"));
+    solid.volume = read_volume_treatment(sj, solid);
     velocities.push_back(sj.has("velocity") ? read_point(sj, "velocity", model.dim) : Vec3::Zero());
     add_fem_solid(model, std::move(solid));
     const Index index = static_cast<Index>(model.solids.size()) - 1;

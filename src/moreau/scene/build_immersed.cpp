@@ -30,6 +30,7 @@ void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& 
       sj.fail("mesh", fmt::format("the fluid is {}D, so its immersed solids are too (\"type\": \"{}\")", fluid.dim(),
                                   fluid.dim() == 2 ? "rectangle" : "box"));
     solid.material = read_fem_material(sj.object("material"));
+    solid.volume = read_volume_treatment(sj, solid);
     immersed.viscosity.push_back(sj.number("viscosity", fluid.viscosity, Range::non_negative()));
     add_fem_solid(immersed.model, std::move(solid));
     const FemSolid& added = immersed.model.solids.back();

@@ -32,6 +32,9 @@ void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& 
 /// A solid's "material": a hyperelastic model with Young's modulus and Poisson's ratio or Lame's
 /// parameters, and its density.
 HyperelasticMaterial read_fem_material(const JsonObject& material);
+/// A solid object's "formulation" ("displacement" or "mean_dilatation"), checked against its
+/// material and cells (mean dilatation: Neo-Hookean on quad4/hex8).
+VolumeTreatment read_volume_treatment(const JsonObject& solid_json, const FemSolid& solid);
 
 /// A solid's "dirichlet" list: prescribed displacement components of the nodes a "where" selects.
 void read_dirichlet(const JsonObject& solid_json, FemModel& model, Index solid);

@@ -372,6 +372,14 @@ TEST(FemScenes, BadInputNamesItsKey) {
   expect_bad("fem_material", scene(R"(, "dirichlet": [])").replace(scene("").find("\"youngs_modulus\""), 0, "\"lame_mu\": 1, "),
              {"objects[0].material", "either"});
   expect_bad("fem_integrator", scene("", R"(, "integrator": "rk4")"), {"settings.integrator", "energy_momentum"});
+  expect_bad("fem_formulation", scene(R"(, "formulation": "mixed")"), {"objects[0].formulation", "mean_dilatation"});
+  expect_bad("fem_formulation_material",
+             scene(R"(, "formulation": "mean_dilatation")").replace(scene("").find("\"youngs_modulus\""), 0,
+                                                                  "\"model\": \"st_venant_kirchhoff\", "),
+             {"objects[0].formulation", "neo_hookean"});
+  expect_bad("fem_formulation_cells",
+             scene(R"(, "formulation": "mean_dilatation")").replace(scene("").find("\"cells\""), 0, "\"element\": \"tet4\", "),
+             {"objects[0].formulation", "quad4 or hex8", "tet4"});
   expect_bad("fem_linear_solver", scene("", R"(, "linear_solver": {"type": "gmres"})"), {"settings.linear_solver", "fluids"});
   const std::string body = R"({"name": "f", "settings": {"solver": "fem", "integrator": "static"},
       "objects": [{"name": "b", "kind": "rigid_body", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}, "density": 1000}]})";

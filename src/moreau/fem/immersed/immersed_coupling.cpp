@@ -209,9 +209,9 @@ void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& 
       // its tangent is d f / d u_n+1, and d u_n+1 / d V_theta = dt.
       ElementOutput out;
       if (theta == 1)
-        solid_element(solid.material, solid.cell_quadrature(e), dim, u_next, jacobian != nullptr, out);
+        solid_element(solid.material, solid.volume, solid.cell_quadrature(e), dim, u_next, jacobian != nullptr, out);
       else
-        solid_element_step(solid.material, solid.cell_quadrature(e), dim, u_n, u_next, StepRule::energy_momentum,
+        solid_element_step(solid.material, solid.volume, solid.cell_quadrature(e), dim, u_n, u_next, StepRule::energy_momentum,
                            jacobian != nullptr, out);
       ElementMatrix K_theta, K_next;
       if (jacobian) {
@@ -342,7 +342,7 @@ Real immersed_elastic_energy(const ImmersedSolids& solids, const ImmersedSolidSt
       Real u[kMaxElementDofs];
       gather_cell(model, solid, e, state.displacement, u);
       ElementOutput out;
-      solid_element(solid.material, solid.cell_quadrature(e), model.dim, u, false, out);
+      solid_element(solid.material, solid.volume, solid.cell_quadrature(e), model.dim, u, false, out);
       energy += out.energy;
     }
   return energy;

@@ -81,7 +81,7 @@ InternalForceResult assemble_internal_forces(const FemModel& model, const Vector
   const bool with_tangent = tangent != nullptr;
   return scatter_cells(model, u, nullptr, with_tangent, force, tangent, threads,
                        [&](const FemSolid& s, Index e, const Real* local_u, const Real*, ElementOutput& out) {
-                         solid_element(s.material, s.cell_quadrature(e), model.dim, local_u, with_tangent, out);
+                         solid_element(s.material, s.volume, s.cell_quadrature(e), model.dim, local_u, with_tangent, out);
                        });
 }
 
@@ -90,7 +90,7 @@ InternalForceResult assemble_step_forces(const FemModel& model, const VectorX& u
   const bool with_tangent = tangent != nullptr;
   return scatter_cells(model, u_n, &u_next, with_tangent, force, tangent, threads,
                        [&](const FemSolid& s, Index e, const Real* a, const Real* b, ElementOutput& out) {
-                         solid_element_step(s.material, s.cell_quadrature(e), model.dim, a, b, rule, with_tangent, out);
+                         solid_element_step(s.material, s.volume, s.cell_quadrature(e), model.dim, a, b, rule, with_tangent, out);
                        });
 }
 
@@ -102,7 +102,7 @@ VectorX tangent_times(const FemModel& model, const VectorX& u, const VectorX& di
     for_each_cell(
         model, s, u, nullptr, 0,
         [&](Index e, const Real* local_u, const Real*, ElementOutput& out) {
-          solid_element(s.material, s.cell_quadrature(e), dim, local_u, true, out);
+          solid_element(s.material, s.volume, s.cell_quadrature(e), dim, local_u, true, out);
         },
         [&](Index e, const ElementOutput& out) {
           if (!out.valid) return;

@@ -22,6 +22,7 @@ struct FemSolid {
   std::string name;
   FemMesh mesh;
   HyperelasticMaterial material;
+  VolumeTreatment volume = VolumeTreatment::pointwise;  // mean_dilatation: Neo-Hookean, quad4/hex8
   Index node_begin = 0;
   // Stiffness quadrature (degree 2: 2x2(x2) Gauss on quads and hexes, one point on simplices).
   int points_per_cell = 0;

@@ -37,10 +37,15 @@ struct ElementOutput {
   bool valid = true;     // false if a point is inverted (det F <= 0) or W is undefined there
 };
 
+/// How a cell treats its volume change: at every quadrature point (the displacement element), or
+/// through its mean dilatation (mean_dilatation.hpp: locking-free for nearly incompressible
+/// Neo-Hookean solids, quad4/hex8).
+enum class VolumeTreatment { pointwise, mean_dilatation };
+
 /// Internal force, energy and (if `with_tangent`) tangent of a cell; `u` holds the nodal
 /// displacements (dim per node, node-major); `dim` is 2 or 3.
-void solid_element(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u,
-                   bool with_tangent, ElementOutput& out);
+void solid_element(const HyperelasticMaterial& material, VolumeTreatment volume, const CellQuadrature& q, int dim,
+                   const Real* u, bool with_tangent, ElementOutput& out);
 
 /// How the internal force of a time step is evaluated between u_n and u_n+1 (midpoint rule, or Gonzalez's discrete gradient).
 enum class StepRule {
@@ -61,8 +66,9 @@ enum class StepRule {
 /// (dE_avg/du_n+1 = B_n+1 / 2). (The symmetric B_m^T CC B_m in its place is off by
 /// O(|H_n+1 - H_n|) times the stiffness: Newton then diverged on a stiff spinning body; without the
 /// correction's derivative it converged only linearly, 8 iterations per step on the flying L.)
-void solid_element_step(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u_n,
-                        const Real* u_next, StepRule rule, bool with_tangent, ElementOutput& out);
+void solid_element_step(const HyperelasticMaterial& material, VolumeTreatment volume, const CellQuadrature& q,
+                        int dim, const Real* u_n, const Real* u_next, StepRule rule, bool with_tangent,
+                        ElementOutput& out);
 
 /// The displacement gradient H = F - I at one quadrature point (dim per node displacements),
 /// summed directly so that small strains keep their digits.
