@@ -72,8 +72,9 @@ PointDiscreteGradient discrete_gradient(const HyperelasticMaterial& material, co
   Vec6 dE_engineering = dE_v;
   dE_engineering.tail<3>() *= 2;
   const Vec6 g = r1.stress - r.stress - 0.5 * r.tangent * dE_engineering - 2 * kappa * dE_v;
-  d.tangent += 2 * dE_v * g.transpose() / dE2;
-  d.tangent.diagonal() += 2 * kappa * (Vec6() << 1, 1, 1, 0.5, 0.5, 0.5).finished();
+  Mat6 correction = dE_v * g.transpose() / dE2;
+  correction.diagonal() += kappa * (Vec6() << 1, 1, 1, 0.5, 0.5, 0.5).finished();
+  d.tangent = r.tangent + 2 * correction;
   return d;
 }
 
