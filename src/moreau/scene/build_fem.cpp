@@ -39,7 +39,7 @@ VolumeTreatment read_volume_treatment(const JsonObject& sj, const FemSolid& soli
     return VolumeTreatment::pointwise;
   if (solid.material.model != HyperelasticModel::neo_hookean)
     sj.fail("formulation", "\"mean_dilatation\" evaluates the Neo-Hookean volumetric energy lambda/2 (ln J)^2 at each "
-                           "cell's mean J; give the solid \"model\": \"neo_hookean\"");
+                           "cell's mean J; give the solid's \"material\" \"model\": \"neo_hookean\"");
   if (solid.mesh.element != ElementType::quad4 && solid.mesh.element != ElementType::hex8)
     sj.fail("formulation", fmt::format("\"mean_dilatation\" needs quad4 or hex8 cells (a {} cell has one quadrature "
                                        "point, whose J is already the mean)", element_name(solid.mesh.element)));

@@ -110,7 +110,7 @@ TEST(MeanDilatation, StepTangentsAreTheDerivativesOfTheStepForces) {
 TEST(MeanDilatation, AnEnergyMomentumStepDoesTheWorkOfTheEnergyChangeAndKeepsAngularMomentum) {
   // f . (u_n+1 - u_n) = Pi(u_n+1) - Pi(u_n) to round-off (the discrete gradient), and the moment
   // of the forces about the origin at the midpoint configuration, sum x_mid x f, vanishes (S is
-  // symmetric): both to 1e-12 of |f| |u|.
+  // symmetric): both to 1e-12 of |f| (displacements and coordinates are of order 1).
   for (int dim : {2, 3}) {
     const FemSolid s = distorted_cell(dim);
     const int nodes = s.mesh.nodes_per_cell(), n = nodes * dim;
@@ -135,6 +135,21 @@ TEST(MeanDilatation, AnEnergyMomentumStepDoesTheWorkOfTheEnergyChangeAndKeepsAng
                 change, moment.norm());
     EXPECT_NEAR(work, change, 1e-12 * out.force.norm());
     EXPECT_LT(moment.norm(), 1e-12 * out.force.norm());
+  }
+}
+
+TEST(MeanDilatation, AStepThatDoesNotMoveGivesTheStaticForce) {
+  // u_n+1 = u_n: no discrete-gradient correction (dE = 0), and both step rules give the static
+  // force at u_n.
+  for (int dim : {2, 3}) {
+    const FemSolid s = distorted_cell(dim);
+    const std::vector<Real> u = random_displacement(s.mesh.nodes_per_cell() * dim, 0.1, 4);
+    const ElementOutput still = at(s, dim, u, false);
+    for (StepRule rule : {StepRule::midpoint, StepRule::energy_momentum}) {
+      const ElementOutput out = step(s, dim, u, u, rule, false);
+      EXPECT_LT((out.force - still.force).norm(), 1e-12 * still.force.norm());
+      EXPECT_NEAR(out.energy, still.energy, 1e-12 * still.energy);
+    }
   }
 }
 

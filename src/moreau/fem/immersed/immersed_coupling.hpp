@@ -58,6 +58,7 @@
 // M(x*) was lagged (frozen at the current x*, the Jacobian M^T (d r / d V) M alone); 2.5 ms
 // steps converge in 5.3 iterations, 5 ms steps fail after about 0.05 s (Newton's first
 // corrections invert the thin leaflets' cells).
+//
 // Dirichlet conditions of a solid (a clamped base) prescribe its displacement: those components
 // follow u(t) instead of the fluid, and their nodal forces (the reactions) are not spread.
 #include <optional>

@@ -12,22 +12,28 @@ void cell_stresses(const FemModel& model, const FemSolid& s, const VectorX& u, s
   cauchy.assign(static_cast<size_t>(s.mesh.cell_count()) * 6, 0.0);
   von_mises.assign(s.mesh.cell_count(), 0.0);
   Real local[kMaxElementDofs];
+  const bool mean_dilatation = s.volume == VolumeTreatment::mean_dilatation;
+  const HyperelasticMaterial rest = s.material.without_volumetric_energy();
   for (Index e = 0; e < s.mesh.cell_count(); ++e) {
     const Index* c = s.mesh.cell(e);
     for (int a = 0; a < nodes; ++a)
       for (int k = 0; k < dim; ++k) local[a * dim + k] = u[model.dof(s.node_begin + c[a], k)];
     const CellQuadrature q = s.cell_quadrature(e);
     Mat3 sigma = Mat3::Zero();
-    Real volume = 0;
+    Real volume = 0, theta_minus_one = 0;
     for (int p = 0; p < q.points; ++p) {
       const Mat3 H = displacement_gradient(q.gradient + static_cast<size_t>(p) * nodes, nodes, dim, local);
       const Mat3 F = Mat3::Identity() + H;
       const Real J = F.determinant();
-      const Mat3 S = s.material.stress(green_lagrange_strain(H));
+      const Mat3 S = (mean_dilatation ? rest : s.material).stress(green_lagrange_strain(H));
       sigma += q.weight[p] * (F * S * F.transpose() / J);
       volume += q.weight[p];
+      theta_minus_one += q.weight[p] * det_identity_plus_minus_one(H);
     }
     sigma /= volume;
+    // Mean dilatation: the volumetric stress is the cell's pressure U'(theta), the same at every
+    // point (F (p J C^-1) F^T / J = p I).
+    if (mean_dilatation) sigma.diagonal().array() += s.material.volumetric_energy(theta_minus_one / volume).pressure;
     const Mat3 dev = sigma - sigma.trace() / 3 * Mat3::Identity();
     const Real v[6] = {sigma(0, 0), sigma(1, 1), sigma(2, 2), sigma(0, 1), sigma(1, 2), sigma(0, 2)};
     std::copy(v, v + 6, cauchy.begin() + 6 * e);

@@ -30,6 +30,10 @@ std::pair<const FemSolid*, Index> FemModel::owner(Index node) const {
 
 void add_fem_solid(FemModel& model, FemSolid solid) {
   if (solid.mesh.dim != model.dim) throw std::logic_error("a solid's mesh dimension differs from the model's");
+  if (solid.volume == VolumeTreatment::mean_dilatation &&
+      (solid.material.model != HyperelasticModel::neo_hookean ||
+       (solid.mesh.element != ElementType::quad4 && solid.mesh.element != ElementType::hex8)))
+    throw std::logic_error("mean dilatation needs a Neo-Hookean material on quad4 or hex8 cells");
   const FemMesh& mesh = solid.mesh;
   const auto rule = gauss_rule(mesh.element, stiffness_degree(mesh.element));
   const int nodes = mesh.nodes_per_cell();

@@ -22,8 +22,11 @@ struct CellDilatation {
   bool valid = true;
 };
 
+void check_points(const CellQuadrature& q) {
+  if (q.points > kMaxPoints) throw std::logic_error("mean dilatation: more quadrature points than a hex8 cell has");
+}
+
 CellDilatation dilatation(const CellQuadrature& q, const Mat3* E) {
-  if (q.points > kMaxPoints) throw std::logic_error("mean dilatation: too many quadrature points");
   CellDilatation d;
   for (int p = 0; p < q.points; ++p) {
     // J - 1 = sqrt(1 + (det C - 1)) - 1, with det C - 1 expanded for its digits.
@@ -53,6 +56,7 @@ Real volumetric_energy(const HyperelasticMaterial& material, const CellDilatatio
 
 void mean_dilatation_element(const HyperelasticMaterial& material, const CellQuadrature& q, int dim, const Real* u,
                              bool with_tangent, ElementOutput& out) {
+  check_points(q);
   const int n = q.nodes * dim;
   start_output(n, with_tangent, out);
   const HyperelasticMaterial rest = material.without_volumetric_energy();
@@ -102,6 +106,7 @@ void mean_dilatation_element(const HyperelasticMaterial& material, const CellQua
 void mean_dilatation_element_step(const HyperelasticMaterial& material, const CellQuadrature& q, int dim,
                                   const Real* u_n, const Real* u_next, StepRule rule, bool with_tangent,
                                   ElementOutput& out) {
+  check_points(q);
   const int n = q.nodes * dim;
   if (rule == StepRule::midpoint) {
     // The static force at u_n+1/2 (d u_n+1/2 / d u_n+1 = 1/2); the energy at u_n+1.
@@ -110,7 +115,7 @@ void mean_dilatation_element_step(const HyperelasticMaterial& material, const Ce
     ElementOutput end;
     mean_dilatation_element(material, q, dim, u_next, false, end);
     mean_dilatation_element(material, q, dim, u_mid.data(), with_tangent, out);
-    if (!end.valid) return mark_inverted(out);
+    if (!end.valid || !out.valid) return mark_inverted(out);
     out.energy = end.energy;
     if (with_tangent) out.tangent *= 0.5;
     return;

@@ -3,11 +3,7 @@
 #include "moreau/fem/solids/mean_dilatation.hpp"
 #include "moreau/fem/solids/solid_element_kernels.hpp"
 
-#include <cmath>
-#include <limits>
-
 namespace moreau {
-
 
 Mat3 displacement_gradient(const Vec3* G, int nodes, int dim, const Real* u) {
   Mat3 H = Mat3::Zero();
@@ -15,7 +11,6 @@ Mat3 displacement_gradient(const Vec3* G, int nodes, int dim, const Real* u) {
     for (int k = 0; k < dim; ++k) H.row(k) += u[a * dim + k] * G[a].transpose();
   return H;
 }
-
 
 void solid_element(const HyperelasticMaterial& material, VolumeTreatment volume, const CellQuadrature& q, int dim,
                    const Real* u, bool with_tangent, ElementOutput& out) {
