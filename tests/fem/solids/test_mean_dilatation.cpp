@@ -1,11 +1,13 @@
 // The mean-dilatation element (fem/solids/mean_dilatation): its force is the derivative of its
 // energy and its tangent the derivative of its force (static, midpoint and energy-momentum steps),
 // an energy-momentum step's force does exactly the work of the energy change and keeps angular
-// momentum, and a homogeneous deformation gives the displacement element's result (patch test).
+// momentum, a homogeneous deformation gives the displacement element's result (patch test), and the
+// output stresses carry the cell's pressure.
 #include <gtest/gtest.h>
 
 #include <random>
 
+#include "moreau/fem/scene/fem_output.hpp"
 #include "moreau/fem/solids/fem_model.hpp"
 #include "moreau/fem/solids/solid_element.hpp"
 
@@ -173,6 +175,59 @@ TEST(MeanDilatation, AHomogeneousDeformationGivesTheDisplacementElementsResult) 
     EXPECT_NEAR(mean.energy, pointwise.energy, 1e-12 * pointwise.energy);
     EXPECT_LT((mean.force - pointwise.force).norm(), 1e-12 * pointwise.force.norm());
   }
+}
+
+TEST(MeanDilatation, OutputStressesUseTheCellsPressure) {
+  // A 2 x 2 block whose cells are stretched differently: the mean-dilatation cell's Cauchy stress
+  // is the rest of the energy's stress averaged over the cell plus the cell's pressure U'(theta)
+  // on the diagonal; under a homogeneous deformation it equals the displacement element's.
+  FemModel model;
+  model.dim = 2;
+  FemSolid solid;
+  solid.name = "block";
+  solid.mesh = make_rectangle_mesh(Vec2(0, 0), Vec2(2, 2), {2, 2}, ElementType::quad4);
+  solid.material.lame = {5e3, 1.0};
+  solid.material.density = 1;
+  solid.volume = VolumeTreatment::mean_dilatation;
+  add_fem_solid(model, std::move(solid));
+  finalize_fem_model(model);
+  FemSolid& s = model.solids[0];
+  VectorX u(model.dof_count());
+  for (Index n = 0; n < s.mesh.node_count(); ++n) {
+    const Vec3& X = s.mesh.nodes[n];
+    u[model.dof(n, 0)] = 0.01 * X.x() + 0.02 * X.y();
+    u[model.dof(n, 1)] = -0.015 * X.y();
+  }
+  std::vector<Real> mean, mean_vm, pointwise, pointwise_vm;
+  cell_stresses(model, s, u, mean, mean_vm);
+  s.volume = VolumeTreatment::pointwise;
+  cell_stresses(model, s, u, pointwise, pointwise_vm);
+  for (size_t i = 0; i < mean.size(); ++i) EXPECT_NEAR(mean[i], pointwise[i], 1e-9 * std::abs(pointwise[0]));
+  // A non-homogeneous field: within a cell, J varies; the pressure part is U'(theta) for the cell.
+  for (Index n = 0; n < s.mesh.node_count(); ++n) u[model.dof(n, 0)] += 0.01 * s.mesh.nodes[n].x() * s.mesh.nodes[n].y();
+  s.volume = VolumeTreatment::mean_dilatation;
+  cell_stresses(model, s, u, mean, mean_vm);
+  const FemSolid& cell = model.solids[0];
+  const Index* c = cell.mesh.cell(0);
+  Real local[kMaxElementDofs];
+  for (int a = 0; a < 4; ++a)
+    for (int k = 0; k < 2; ++k) local[a * 2 + k] = u[model.dof(c[a], k)];
+  const CellQuadrature q = cell.cell_quadrature(0);
+  const HyperelasticMaterial rest = cell.material.without_volumetric_energy();
+  Mat3 expected = Mat3::Zero();
+  Real volume = 0, theta_minus_one = 0;
+  for (int p = 0; p < q.points; ++p) {
+    const Mat3 H = displacement_gradient(q.gradient + 4 * p, 4, 2, local);
+    const Mat3 F = Mat3::Identity() + H;
+    expected += q.weight[p] * F * rest.stress(green_lagrange_strain(H)) * F.transpose() / F.determinant();
+    volume += q.weight[p];
+    theta_minus_one += q.weight[p] * (F.determinant() - 1);
+  }
+  expected /= volume;
+  expected.diagonal().array() += cell.material.volumetric_energy(theta_minus_one / volume).pressure;
+  EXPECT_NEAR(mean[0], expected(0, 0), 1e-9 * expected.norm());
+  EXPECT_NEAR(mean[1], expected(1, 1), 1e-9 * expected.norm());
+  EXPECT_NEAR(mean[3], expected(0, 1), 1e-9 * expected.norm());
 }
 
 }  // namespace
