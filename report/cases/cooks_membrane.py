@@ -33,14 +33,20 @@ Physical Curve("left") = {{4}}; Physical Curve("right") = {{2}}; Physical Surfac
     subprocess.run(["gmsh", "-2", str(geo), "-format", "msh41", "-o", str(path), "-v", "0"], check=True)
 
 
-def scene(mesh_file):
+def scene(mesh_file, youngs_modulus=E, poisson_ratio=NU, force=F, load_steps=1, formulation="displacement",
+          tolerance=1e-12):
+    """The membrane under a vertical shear of resultant `force` on its right edge, applied in
+    `load_steps` equal static steps."""
+    traction = force / 16 if load_steps == 1 else f"{force / 16} * t"
     return {
         "name": "cooks_membrane",
-        "settings": {"solver": "fem", "integrator": "static", "dt": 1, "duration": 1, "gravity": [0, 0, 0],
-                     "newton": {"tolerance": 1e-12}},
+        "settings": {"solver": "fem", "integrator": "static", "dt": 1 / load_steps, "duration": 1,
+                     "gravity": [0, 0, 0], "newton": {"tolerance": tolerance}},
         "objects": [{"name": "plate", "kind": "solid", "mesh": {"type": "msh", "file": str(mesh_file)},
-                     "material": {"model": "neo_hookean", "youngs_modulus": E, "poisson_ratio": NU, "density": 1},
-                     "loads": [{"type": "traction", "where": {"boundary": "right"}, "value": [0, F / 16]}],
+                     "formulation": formulation,
+                     "material": {"model": "neo_hookean", "youngs_modulus": youngs_modulus,
+                                  "poisson_ratio": poisson_ratio, "density": 1},
+                     "loads": [{"type": "traction", "where": {"boundary": "right"}, "value": [0, traction]}],
                      "dirichlet": [{"where": {"boundary": "left"}, "value": [0, 0]}]}],
         "probes": [{"name": "corner", "type": "point", "object": "plate", "nearest": [48, 60],
                     "quantity": "displacement"}],

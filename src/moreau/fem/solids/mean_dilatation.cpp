@@ -11,7 +11,7 @@ namespace moreau {
 
 namespace {
 
-constexpr int kMaxPoints = 27;
+constexpr int kMaxPoints = 8;  // the stiffness rule of a hex8 cell, 2 x 2 x 2
 
 // The volume change of a cell at a set of point strains: per point J - 1 and C^-1, and the cell's
 // reference volume V and mean dilatation theta - 1 = sum_q w_q (J_q - 1) / V.
