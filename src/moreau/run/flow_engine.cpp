@@ -39,8 +39,7 @@ class FlowEngine final : public Engine {
       : scene_(scene), problem_(*scene.fem->flow), threads_(scene.fem->threads), x_(problem_.initial),
         stepper_(problem_.integrator), solver_(problem_.linear) {
     if (problem_.immersed) {
-      const Index dofs = problem_.immersed->model.dof_count();
-      solids_.emplace(ImmersedSolidState{VectorX::Zero(dofs), VectorX::Zero(dofs), 0});
+      solids_.emplace(initial_immersed_state(*problem_.immersed));
       coupling_.emplace(problem_.model, *problem_.immersed, *solids_);
     }
   }
@@ -67,7 +66,8 @@ class FlowEngine final : public Engine {
     archive(out, std::tie(x_, time_, steps_, last_iterations_, max_iterations_, total_iterations_, picard_iterations_));
     stepper_.save(out);
     solver_.save(out);
-    if (solids_) archive(out, std::tie(solids_->displacement, solids_->velocity, solids_->time));
+    if (solids_)
+      archive(out, std::tie(solids_->displacement, solids_->velocity, solids_->time, solids_->frame, solids_->frame_velocity));
   }
   void load_state(ArchiveReader& in) override {
     auto fields = std::tie(x_, time_, steps_, last_iterations_, max_iterations_, total_iterations_, picard_iterations_);
@@ -76,10 +76,13 @@ class FlowEngine final : public Engine {
     stepper_.load(in);
     solver_.load(in);
     if (solids_) {
-      auto solid_fields = std::tie(solids_->displacement, solids_->velocity, solids_->time);
+      auto solid_fields =
+          std::tie(solids_->displacement, solids_->velocity, solids_->time, solids_->frame, solids_->frame_velocity);
       unarchive(in, solid_fields);
       if (solids_->displacement.size() != problem_.immersed->model.dof_count())
         throw ArchiveError("the checkpoint's immersed solids have another number of nodes");
+      if (solids_->frame.size() != problem_.immersed->rigid_bodies.size())
+        throw ArchiveError("the checkpoint has another number of immersed rigid bodies");
     }
     last_step_ = steady() || steps_ == 0 ? &steady_step_ : &stepper_.last_step();
   }
@@ -95,8 +98,11 @@ class FlowEngine final : public Engine {
   std::vector<WorldObject> objects() const override {
     std::vector<WorldObject> list{{problem_.name, "fluid", 0, static_cast<long>(problem_.model.mesh.node_count())}};
     if (problem_.immersed)
-      for (const FemSolid& s : problem_.immersed->model.solids)
-        list.push_back({s.name, "solid", static_cast<long>(s.node_begin), static_cast<long>(s.mesh.node_count())});
+      for (size_t i = 0; i < problem_.immersed->model.solids.size(); ++i) {
+        const FemSolid& s = problem_.immersed->model.solids[i];
+        list.push_back({s.name, problem_.immersed->rigid_body_of(i) ? "rigid_body" : "solid", static_cast<long>(s.node_begin),
+                        static_cast<long>(s.mesh.node_count())});
+      }
     return list;
   }
   std::vector<StateArray> state_arrays() override {
@@ -247,9 +253,15 @@ std::string FlowEngine::summary() const {
   if (problem_.immersed)
     for (size_t i = 0; i < problem_.immersed->model.solids.size(); ++i) {
       const FemSolid& solid = problem_.immersed->model.solids[i];
-      s += fmt::format("  immersed solid '{}': {} nodes, {} {} cells, density {} kg/m^3, viscosity {} Pa s\n", solid.name,
-                       solid.mesh.node_count(), solid.mesh.cell_count(), element_name(solid.mesh.element),
-                       solid.material.density, problem_.immersed->viscosity[i]);
+      if (const ImmersedRigidBody* body = problem_.immersed->rigid_body_of(i))
+        s += fmt::format("  immersed rigid body '{}': {} nodes, {} {} cells, density {} kg/m^3, coupling stiffness {:.4g} "
+                         "Pa s/m^2\n",
+                         solid.name, solid.mesh.node_count(), solid.mesh.cell_count(), element_name(solid.mesh.element),
+                         solid.material.density, body->coupling_stiffness);
+      else
+        s += fmt::format("  immersed solid '{}': {} nodes, {} {} cells, density {} kg/m^3, viscosity {} Pa s\n", solid.name,
+                         solid.mesh.node_count(), solid.mesh.cell_count(), element_name(solid.mesh.element),
+                         solid.material.density, problem_.immersed->viscosity[i]);
     }
   s += fmt::format("  unknowns {} ({} free), Jacobian nonzeros {}, probes {}\n", m.dof_count(), m.free_count,
                    m.pattern.nonZeros(), problem_.probes.size());

@@ -323,10 +323,9 @@ FemObjects read_fem_objects(const JsonObject& top) {
   }
   if (objects.fluids.size() > 1)
     objects.all[objects.fluids[1]].fail("kind", "a FEM scene holds one fluid (one Navier-Stokes mesh)");
-  if (!objects.fluids.empty() && (!objects.bodies.empty() || top.has("joints")))
-    objects.all[objects.fluids[0]].fail(
-        "kind", "a fluid holds deformable solids (immersed in it), but not rigid bodies or joints: the FEM engine "
-                "does not couple those to a fluid; run them as a separate scene");
+  if (!objects.fluids.empty() && top.has("joints"))
+    top.fail("joints", "a fluid holds solids and rigid bodies (immersed in it), but not joints: the FEM engine does not "
+                       "couple joints to a fluid; run them as a separate scene");
   return objects;
 }
 
@@ -336,9 +335,11 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
   const std::optional<JsonObject> settings = top.optional_object("settings");
   FemObjects objects = read_fem_objects(top);
   if (!objects.fluids.empty()) {
-    std::vector<JsonObject> solids;
+    std::vector<JsonObject> solids, bodies;
     for (size_t i : objects.solids) solids.push_back(objects.all[i]);
-    build_flow_scene(top, objects.all[objects.fluids[0]], solids, settings ? &*settings : nullptr, problem, gravity, threads);
+    for (size_t i : objects.bodies) bodies.push_back(objects.all[i]);
+    build_flow_scene(top, objects.all[objects.fluids[0]], solids, bodies, settings ? &*settings : nullptr, problem, gravity,
+                     threads);
     return;
   }
   if (settings) read_solid_settings(*settings, problem);

@@ -85,12 +85,26 @@ void read_solid_point_probe(const JsonObject& j, const FlowProblem& problem, Flo
   p.quantity = quantity;
 }
 
+// {"type": "center_of_mass" | "velocity" | "angular_velocity", "object": <immersed rigid body>}:
+// its frame's centre, that centre's velocity, or its angular velocity (2D: about z).
+void read_rigid_body_probe(const JsonObject& j, const std::string& type, const FlowProblem& problem, FlowProbe& p) {
+  const std::string object = j.string("object");
+  if (problem.immersed)
+    for (size_t b = 0; b < problem.immersed->rigid_bodies.size(); ++b)
+      if (problem.immersed->model.solids[problem.immersed->rigid_bodies[b].solid].name == object)
+        p.body = static_cast<Index>(b);
+  if (p.body < 0) j.fail("object", fmt::format("no rigid body named '{}' is immersed in the fluid", object));
+  p.type = FlowProbeType::rigid_body;
+  p.quantity = type;
+}
+
 FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
   const NavierStokesModel& m = problem.model;
   FlowProbe p;
   p.name = j.string("name");
   const std::string type = j.choice("type", {"point", "line", "boundary_force", "pressure_difference", "kinetic_energy",
-                                             "energy", "newton_iterations"});
+                                             "energy", "newton_iterations", "center_of_mass", "velocity",
+                                             "angular_velocity"});
   auto inside = [&](const std::string& key, const Vec3& at) {
     Vec3 u;
     Real pressure;
@@ -98,6 +112,8 @@ FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
   };
   if (type == "point" && j.has("object")) {
     read_solid_point_probe(j, problem, p);
+  } else if (type == "center_of_mass" || type == "velocity" || type == "angular_velocity") {
+    read_rigid_body_probe(j, type, problem, p);
   } else if (type == "energy") {
     p.type = FlowProbeType::energy;
   } else if (type == "point") {
@@ -177,7 +193,8 @@ void read_flow_settings(const JsonObject* settings, const JsonObject& fluid, Flo
 }  // namespace
 
 void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const std::vector<JsonObject>& solids,
-                      const JsonObject* settings, FemProblem& fem, const Vec3& gravity, int threads) {
+                      const std::vector<JsonObject>& rigid_bodies, const JsonObject* settings, FemProblem& fem,
+                      const Vec3& gravity, int threads) {
   FlowProblem& problem = fem.flow.emplace();
   problem.name = fluid.string("name");
   read_flow_settings(settings, fluid, problem);
@@ -248,7 +265,7 @@ void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const std:
   }
   for (const PrescribedDof& p : m.prescribed) problem.initial[p.dof] = p.value(0);
   fluid.finish();
-  if (!solids.empty()) read_immersed_solids(top, solids, problem);
+  if (!solids.empty() || !rigid_bodies.empty()) read_immersed_solids(top, solids, rigid_bodies, fem.dt, problem);
   for (const JsonObject& probe : top.object_list("probes")) {
     problem.probes.push_back(read_flow_probe(probe, problem));
     for (size_t i = 0; i + 1 < problem.probes.size(); ++i)

@@ -1,18 +1,68 @@
-// The "solid" objects of a "solver": "fem" scene that has a fluid: deformable solids immersed in it
-// (fem/immersed; docs/fem-scenes.md, "Solids in a fluid"). They move with the fluid's velocity,
-// so they take no initial velocity or loads of their own; gravity acts through the difference of
+// The "solid" and "rigid_body" objects of a "solver": "fem" scene that has a fluid: deformable
+// solids and rigid bodies immersed in it (fem/immersed; docs/fem-scenes.md, "Solids in a fluid").
+// Solids move with the fluid's velocity, rigid bodies with the fluid that their frame holds, so
+// neither takes an initial velocity or loads of its own; gravity acts through the difference of
 // their density and the fluid's.
 #include <fmt/format.h>
 
 #include "moreau/fem/core/mesh_locator.hpp"
+#include "moreau/fem/immersed/immersed_rigid_body.hpp"
 #include "moreau/scene/fem_scene.hpp"
 
 namespace moreau {
 
-void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& solids, FlowProblem& problem) {
+namespace {
+
+// Every node the fluid carries must start inside it (`held`: per node, how many of its components
+// a "dirichlet" prescribes; a node held in every component need not).
+void require_inside_fluid(const JsonObject& j, const FemMesh& mesh, const MeshLocator& locator, const std::vector<int>& held,
+                          int dim, const char* what) {
+  for (Index n = 0; n < mesh.node_count(); ++n)
+    if (held[n] < dim && !locator.locate(mesh.nodes[n])) {
+      const Vec3& p = mesh.nodes[n];
+      j.fail("mesh", fmt::format("node {} at ({:.6g}, {:.6g}, {:.6g}) m lies outside the fluid's mesh; {}", n, p.x(), p.y(),
+                                 p.z(), what));
+    }
+}
+
+// A rigid body beside a fluid: its mesh, density and the coupling's stiffness.
+void read_immersed_rigid_body(const JsonObject& top, const JsonObject& bj, Real dt, const MeshLocator& locator,
+                              FlowProblem& problem) {
+  const NavierStokesModel& fluid = problem.model;
+  ImmersedSolids& immersed = *problem.immersed;
+  for (const char* key : {"velocity", "angular_velocity"})
+    if (bj.has(key))
+      bj.fail(key, "a rigid body in a fluid starts at rest with the fluid around it: give the fluid an "
+                   "\"initial_velocity\" instead");
+  FemSolid solid;
+  solid.name = bj.string("name");
+  solid.mesh = read_fem_mesh(bj.object("mesh"), top.file() + ": " + bj.path_of("mesh"), MeshUse::solid);
+  if (solid.mesh.dim != fluid.dim())
+    bj.fail("mesh", fmt::format("the fluid is {}D, so the rigid bodies in it are too (\"type\": \"{}\", or a {}D Gmsh mesh)",
+                                fluid.dim(), fluid.dim() == 2 ? "rectangle" : "box", fluid.dim()));
+  solid.material.density = bj.number("density", Range::positive());  // no stiffness: its stress is zero
+  add_fem_solid(immersed.model, std::move(solid));
+  const Index index = static_cast<Index>(immersed.model.solids.size()) - 1;
+  immersed.viscosity.push_back(fluid.viscosity);
+  ImmersedRigidBody body;
+  body.solid = index;
+  body.coupling_stiffness =
+      bj.number("coupling_stiffness", default_rigid_coupling_stiffness(fluid, dt), Range::positive());
+  immersed.rigid_bodies.push_back(body);
+  require_inside_fluid(bj, immersed.model.solids.back().mesh, locator,
+                       std::vector<int>(immersed.model.solids.back().mesh.node_count(), 0), fluid.dim(),
+                       "a rigid body must lie inside the fluid");
+  bj.finish();
+}
+
+}  // namespace
+
+void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& solids,
+                          const std::vector<JsonObject>& rigid_bodies, Real dt, FlowProblem& problem) {
+  const std::vector<JsonObject>& first = solids.empty() ? rigid_bodies : solids;
   const NavierStokesModel& fluid = problem.model;
   if (problem.integrator != FlowIntegrator::midpoint && problem.integrator != FlowIntegrator::backward_euler)
-    solids[0].fail("kind", "a fluid with immersed solids is stepped in time with \"integrator\": \"midpoint\" or "
+    first[0].fail("kind", "a fluid with immersed solids or rigid bodies is stepped in time with \"integrator\": \"midpoint\" or "
                            "\"backward_euler\" (a steady state is reached by stepping)");
   ImmersedSolids& immersed = problem.immersed.emplace();
   immersed.model.dim = fluid.dim();
@@ -36,20 +86,21 @@ void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& 
     const FemSolid& added = immersed.model.solids.back();
     const size_t before = immersed.model.prescribed.size();
     read_dirichlet(sj, immersed.model, static_cast<Index>(immersed.model.solids.size()) - 1);
-    // Every node the fluid carries must start inside it (a node held in every component need not).
     std::vector<int> held(added.mesh.node_count(), 0);
     for (size_t i = before; i < immersed.model.prescribed.size(); ++i)
       ++held[immersed.model.prescribed[i].dof / fluid.dim() - added.node_begin];
-    for (Index n = 0; n < added.mesh.node_count(); ++n)
-      if (held[n] < fluid.dim() && !locator.locate(added.mesh.nodes[n])) {
-        const Vec3& p = added.mesh.nodes[n];
-        sj.fail("mesh", fmt::format("node {} at ({:.6g}, {:.6g}, {:.6g}) m lies outside the fluid's mesh; an immersed "
-                                    "solid must lie inside the fluid (only nodes clamped by \"dirichlet\" may not)",
-                                    n, p.x(), p.y(), p.z()));
-      }
+    require_inside_fluid(sj, added.mesh, locator, held, fluid.dim(),
+                         "an immersed solid must lie inside the fluid (only nodes clamped by \"dirichlet\" may not)");
     sj.finish();
   }
+  for (const JsonObject& bj : rigid_bodies) read_immersed_rigid_body(top, bj, dt, locator, problem);
   finalize_fem_model(immersed.model);
+  // The frames' mass and nodal volumes need the solids' consistent mass, which finalize computes.
+  for (ImmersedRigidBody& body : immersed.rigid_bodies) {
+    const Real stiffness = body.coupling_stiffness;
+    body = make_immersed_rigid_body(immersed.model, body.solid, fluid.density);
+    body.coupling_stiffness = stiffness;
+  }
 }
 
 }  // namespace moreau

@@ -19,13 +19,16 @@ void allow_fem_settings(const JsonObject& settings);
 /// every rigid body.
 void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gravity, int threads);
 
-/// The fluid object of a FEM scene and the solids immersed in it (settings: the scene's
-/// "settings", if any).
+/// The fluid object of a FEM scene and the solids and rigid bodies immersed in it (settings: the
+/// scene's "settings", if any).
 void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const std::vector<JsonObject>& solids,
-                      const JsonObject* settings, FemProblem& problem, const Vec3& gravity, int threads);
+                      const std::vector<JsonObject>& rigid_bodies, const JsonObject* settings, FemProblem& problem,
+                      const Vec3& gravity, int threads);
 
-/// The "solid" objects of a scene with a fluid: deformable solids immersed in it (build_immersed.cpp).
-void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& solids, FlowProblem& problem);
+/// The "solid" and "rigid_body" objects of a scene with a fluid: deformable solids and rigid bodies
+/// immersed in it (build_immersed.cpp); dt is the scene's step (s).
+void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& solids,
+                          const std::vector<JsonObject>& rigid_bodies, Real dt, FlowProblem& problem);
 
 // --- shared readers ---
 

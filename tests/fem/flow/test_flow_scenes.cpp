@@ -244,10 +244,7 @@ TEST(FlowScenes, BadInputNamesItsKey) {
   const std::string unknown_solver = R"("integrator": "steady", "linear_solver": {"type": "cg"})";
   expect_bad("flow_linear_type", scene("", open).replace(scene("", open).find("\"integrator\": \"steady\""), 22, unknown_solver),
              {"settings.linear_solver.type", "'cg'", "gmres"});
-  expect_bad("flow_with_rigid_body",
-             scene("", open, "", R"(, {"name": "b", "kind": "rigid_body", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]},
-                                  "density": 1000})"),
-             {"objects[0].kind", "rigid bodies or joints"});
+  expect_bad("flow_with_joints", scene("", open, R"(, "joints": [])"), {"joints", "not joints"});
   // Immersed solids: a steady fluid cannot carry them, and each must lie inside the fluid and take
   // neither a velocity nor loads of its own.
   auto solid = [](const std::string& extra, const std::string& max = "[0.6, 0.6]") {
@@ -267,6 +264,23 @@ TEST(FlowScenes, BadInputNamesItsKey) {
   expect_bad("immersed_loads", stepped(scene("", open, "", solid(R"(, "loads": [])"))), {"objects[1].loads", "density"});
   expect_bad("immersed_probe", stepped(scene("", open, R"(, "probes": [{"name": "p", "type": "point", "object": "t", "vertex": 0}])", solid(""))),
              {"probes[0].object", "no solid named 't'"});
+  // Immersed rigid bodies: the fluid's dimension, no initial velocity of their own, probes name them.
+  auto body = [](const std::string& extra, const std::string& mesh = R"("type": "rectangle", "min": [0.4, 0.4], "max": [0.6, 0.6], "cells": [4, 4])") {
+    return R"(, {"name": "b", "kind": "rigid_body", "mesh": {)" + mesh + R"(}, "density": 1200)" + extra + "}";
+  };
+  expect_bad("immersed_rigid_steady", scene("", open, "", body("")), {"objects[1].kind", "midpoint"});
+  expect_bad("immersed_rigid_dimension",
+             stepped(scene("", open, "", body("", R"("type": "box", "min": [0.4, 0.4, 0], "max": [0.6, 0.6, 0.1], "cells": [1, 1, 1])"))),
+             {"objects[1].mesh", "2D"});
+  expect_bad("immersed_rigid_spin", stepped(scene("", open, "", body(R"(, "angular_velocity": [0, 0, 1])"))),
+             {"objects[1].angular_velocity", "initial_velocity"});
+  expect_bad("immersed_rigid_outside", stepped(scene("", open, "", body("", R"("type": "rectangle", "min": [0.9, 0.4], "max": [1.1, 0.6], "cells": [2, 2])"))),
+             {"objects[1].mesh", "outside the fluid's mesh"});
+  expect_bad("immersed_rigid_stiffness", stepped(scene("", open, "", body(R"(, "coupling_stiffness": -1)"))),
+             {"objects[1].coupling_stiffness"});
+  expect_bad("immersed_rigid_probe",
+             stepped(scene("", open, R"(, "probes": [{"name": "p", "type": "angular_velocity", "object": "s"}])", solid("") + body(""))),
+             {"probes[0].object", "no rigid body named 's'"});
 }
 
 }  // namespace

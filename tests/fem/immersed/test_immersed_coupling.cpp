@@ -10,6 +10,7 @@
 #include <random>
 
 #include "flow_test_helpers.hpp"
+#include "immersed_test_meshes.hpp"
 #include "moreau/fem/core/mesh_locator.hpp"
 #include "moreau/fem/flow/flow_problem.hpp"
 #include "moreau/fem/flow/flow_stepper.hpp"
@@ -18,6 +19,7 @@
 namespace moreau {
 namespace {
 
+using test::annulus_mesh;
 using test::fix_pressure;
 using test::prescribe_velocity;
 
@@ -112,30 +114,6 @@ TEST(ImmersedSolid, WithTheFluidsDensityAndNoLoadNothingMoves) {
   EXPECT_LT(largest_speed(m, x), 1e-9);
   EXPECT_LT(state.displacement.lpNorm<Eigen::Infinity>(), 1e-11);
   EXPECT_NEAR(state.time, 0.1, 1e-14);
-}
-
-// An annulus r_in <= r <= r_out of quad4 cells, `radial` by `around` (node (i, j) is
-// j (radial + 1) + i, i outward, j counter-clockwise), with boundaries "inner" and "outer".
-FemMesh annulus_mesh(Real r_in, Real r_out, int radial, int around) {
-  FemMesh mesh;
-  mesh.dim = 2;
-  mesh.element = ElementType::quad4;
-  const Real pi = std::acos(-1.0);
-  for (int j = 0; j < around; ++j)
-    for (int i = 0; i <= radial; ++i) {
-      const Real r = r_in + (r_out - r_in) * i / radial, angle = 2 * pi * j / around;
-      mesh.nodes.emplace_back(r * std::cos(angle), r * std::sin(angle), 0);
-    }
-  auto node = [&](int i, int j) { return static_cast<Index>((j % around) * (radial + 1) + i); };
-  FemBoundary inner{"inner", {}}, outer{"outer", {}};
-  for (int j = 0; j < around; ++j) {
-    for (int i = 0; i < radial; ++i)
-      for (Index n : {node(i, j), node(i + 1, j), node(i + 1, j + 1), node(i, j + 1)}) mesh.cells.push_back(n);
-    inner.facets.insert(inner.facets.end(), {node(0, j + 1), node(0, j)});
-    outer.facets.insert(outer.facets.end(), {node(radial, j), node(radial, j + 1)});
-  }
-  mesh.boundaries = {inner, outer};
-  return mesh;
 }
 
 TEST(ImmersedSolid, AnElasticRingShearedByACouetteFlowTurnsAsTheClosedFormSays) {

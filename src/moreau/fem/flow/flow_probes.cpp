@@ -27,6 +27,11 @@ std::vector<std::string> flow_probe_columns(const FlowProbe& p, int dim) {
     case FlowProbeType::solid_point:
       for (int k = 0; k < dim; ++k) columns.push_back(p.name + "." + p.quantity + axes[k]);
       break;
+    case FlowProbeType::rigid_body:
+      if (p.quantity == "angular_velocity" && dim == 2) columns.push_back(p.name + ".z");
+      else
+        for (int k = 0; k < dim; ++k) columns.push_back(p.name + axes[k]);
+      break;
     case FlowProbeType::energy:
       for (const char* part : {".fluid_kinetic", ".solid_excess_kinetic", ".solid_elastic", ".total"})
         columns.push_back(p.name + part);
@@ -135,6 +140,21 @@ void evaluate_flow_probe(const FlowProbe& p, const FlowProblem& problem, const V
         values.push_back(p.quantity == "velocity"       ? solids->velocity[d]
                          : p.quantity == "displacement" ? solids->displacement[d]
                                                         : X[k] + solids->displacement[d]);
+      }
+      break;
+    }
+    case FlowProbeType::rigid_body: {
+      const int dim = m.dim();
+      const VectorX& q = solids->frame[p.body];
+      const VectorX& dq = solids->frame_velocity[p.body];
+      if (p.quantity == "angular_velocity") {
+        const Vec3 w = rigid_frame_angular_velocity(q, dq, dim);
+        if (dim == 2) values.push_back(w.z());
+        else
+          for (int k = 0; k < 3; ++k) values.push_back(w[k]);
+      } else {
+        const VectorX& v = p.quantity == "velocity" ? dq : q;  // phi: the centre of mass
+        for (int k = 0; k < dim; ++k) values.push_back(v[k]);
       }
       break;
     }

@@ -13,6 +13,7 @@ namespace moreau {
 enum class FlowProbeType {
   point, line, boundary_force, pressure_difference, kinetic_energy, newton_iterations,
   solid_point,  // an immersed solid's node: its position, displacement or velocity
+  rigid_body,   // an immersed rigid body's center_of_mass, velocity or angular_velocity
   energy        // the fluid's kinetic energy, the solids' excess kinetic and elastic energies, their sum
 };
 
@@ -24,7 +25,8 @@ struct FlowProbe {
   std::vector<Index> nodes;                 // boundary_force: the boundary's nodes
   Real coefficient_scale = 0;               // boundary_force: 2 / (rho U^2 L) (2D) or 2 / (rho U^2 A) (3D); 0: none
   Index solid_node = -1;                    // solid_point: the node in the immersed solids' numbering
-  std::string quantity;                     // solid_point: position | displacement | velocity
+  std::string quantity;                     // solid_point: position | displacement | velocity; rigid_body: the type
+  Index body = -1;                          // rigid_body: its index in immersed->rigid_bodies
 };
 
 struct FlowProblem {
@@ -44,7 +46,8 @@ struct FlowProblem {
   std::optional<Real> mean_pressure;
   VectorX initial;  // per dof: the initial velocity (and 0 pressure)
   std::vector<FlowProbe> probes;
-  // Deformable solids immersed in the fluid (a scene's "solid" objects beside its fluid).
+  // Deformable solids and rigid bodies immersed in the fluid (a scene's "solid" and "rigid_body"
+  // objects beside its fluid).
   std::optional<ImmersedSolids> immersed;
 };
 

@@ -208,7 +208,8 @@ namespace {
 // |R| <= stop * |R_0| (R_0 the residual at the start of this iteration).
 struct FlowIterate {
   VectorX x, R;    // the solution and the residual on its free dofs
-  SparseMatrix J;  // the Jacobian there
+  SparseMatrix J;  // the Jacobian there, but for
+  FlowLowRank low_rank;  // a source's low-rank part
 };
 
 class FlowSystem final : public NewtonIterates<FlowIterate> {
@@ -221,19 +222,19 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
 
   NewtonEvaluation evaluate(const VectorX* dx, Real alpha) override {
     if (!dx) {
-      assemble(now_.x, now_.R, now_.J);
+      assemble(now_);
       first_ = std::max(now_.R.norm(), Real(1e-300));
       return measure(now_.R);
     }
     trial_.x = now_.x;
     add_free(m_.free_index, alpha * *dx, trial_.x);
-    assemble(trial_.x, trial_.R, trial_.J);
+    assemble(trial_);
     return measure(trial_.R);
   }
   bool solve(VectorX& dx, std::string& failure) override {
     const VectorX rhs = -now_.R;
-    if (!timed(result_.solve_s, [&] { return solver_.factorize(now_.J) && solver_.solve(rhs, dx); })) {
-      failure = solver_.failure();
+    if (!timed(result_.solve_s, [&] { return solver_.factorize(now_.J) && solver_.solve(rhs, dx) && add_low_rank(dx); })) {
+      failure = solver_.failure().empty() ? "the low-rank update of the Jacobian is singular" : solver_.failure();
       return false;
     }
     return true;
@@ -242,14 +243,33 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
     return alpha * dx.norm() / std::max(gather_free(m_.free_index, m_.free_count, now_.x).norm(), Real(1e-300));
   }
 
+  // dx = A^-1 b on entry; the solution of (A + U V^T) dx = b on return (FlowLowRank).
+  bool add_low_rank(VectorX& dx) {
+    const FlowLowRank& l = now_.low_rank;
+    if (l.U.cols() == 0) return true;
+    Eigen::MatrixXd Z(l.U.rows(), l.U.cols());
+    for (Eigen::Index k = 0; k < l.U.cols(); ++k) {
+      VectorX z;
+      if (!solver_.solve(l.U.col(k), z)) return false;
+      Z.col(k) = z;
+    }
+    const Eigen::MatrixXd S = Eigen::MatrixXd::Identity(l.U.cols(), l.U.cols()) + l.V.transpose() * Z;
+    const Eigen::PartialPivLU<Eigen::MatrixXd> lu(S);
+    dx -= Z * lu.solve(l.V.transpose() * dx);
+    return dx.allFinite();
+  }
+
   const VectorX& solution() const { return now_.x; }
   /// Wall time spent in the source's terms (part of the assembly time).
   double source_s() const { return source_s_; }
 
  private:
-  // The residual on the free dofs and the Jacobian at x.
-  void assemble(const VectorX& x, VectorX& R, SparseMatrix& J) {
+  // The residual on the free dofs and the Jacobian at the iterate's x.
+  void assemble(FlowIterate& at) {
+    const VectorX& x = at.x;
+    SparseMatrix& J = at.J;
     VectorX full;
+    at.low_rank = {};
     timed(result_.assembly_s, [&] {
       assemble_flow(m_, x, step_, full, &J, how_);
       if (!source_) return 0;
@@ -257,7 +277,7 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
       // between fluid cells, so the pattern may change from one evaluation to the next).
       return timed(source_s_, [&] {
         source_entries_.clear();
-        source_->add(x, step_, full, &source_entries_);
+        source_->add(x, step_, full, &source_entries_, &at.low_rank);
         SparseMatrix extra(J.rows(), J.cols());
         extra.setFromTriplets(source_entries_.begin(), source_entries_.end());
         J += extra;
@@ -265,7 +285,7 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
         return 0;
       });
     });
-    R = gather_free(m_.free_index, m_.free_count, full);
+    at.R = gather_free(m_.free_index, m_.free_count, full);
   }
   NewtonEvaluation measure(const VectorX& R) const {
     NewtonEvaluation e;

@@ -105,13 +105,23 @@ void assemble_flow(const NavierStokesModel& model, const VectorX& x, const FlowT
 /// Terms of the momentum balance beyond the fluid's cells that depend on the whole state, such as
 /// an immersed solid (fem/immersed). They are added to the cells' (Galerkin) residual and Jacobian
 /// in every evaluation; the stabilization's strong residual does not see them.
+/// A low-rank part of a source's Jacobian on the free dofs, J += U V^T (U, V: free dofs x rank).
+/// Kept out of the sparse matrix, where it would fill a dense block, and applied in the linear
+/// solve by the Sherman-Morrison-Woodbury identity:
+///   (A + U V^T)^-1 b = A^-1 b - Z (I + V^T Z)^-1 V^T A^-1 b,   Z = A^-1 U (rank more solves).
+struct FlowLowRank {
+  Eigen::MatrixXd U, V;
+};
+
 class FlowSource {
  public:
   virtual ~FlowSource() = default;
   /// Adds the source's residual at x (the state at t_{n+1} of `step`) to R (all dofs) and, if
   /// `jacobian` is given, its Jacobian entries on the free dofs as triplets (free row, free column).
-  virtual void add(const VectorX& x, const FlowTimeStep& step, VectorX& R,
-                   std::vector<Eigen::Triplet<Real, int>>* jacobian) const = 0;
+  /// If `low_rank` is given too, the source may put a low-rank part of its Jacobian there instead
+  /// of in the triplets (appending columns to U and V); without it the triplets hold the whole.
+  virtual void add(const VectorX& x, const FlowTimeStep& step, VectorX& R, std::vector<Eigen::Triplet<Real, int>>* jacobian,
+                   FlowLowRank* low_rank = nullptr) const = 0;
   /// A step of `step` has converged at x: the source advances its own state to t_{n+1}.
   virtual void accept(const VectorX& x, const FlowTimeStep& step) = 0;
 };

@@ -84,8 +84,13 @@ bool add_viscous_force(const FemSolid& solid, Index e, int dim, Real mu, const R
 }  // namespace
 
 ImmersedCoupling::ImmersedCoupling(const NavierStokesModel& fluid, const ImmersedSolids& solids, ImmersedSolidState& state)
-    : fluid_(fluid), solids_(solids), state_(state), locator_(fluid.mesh) {
+    : fluid_(fluid), solids_(solids), state_(state), locator_(fluid.mesh), rigid_(fluid, solids, locator_),
+      rigid_node_(solids.model.node_count, 0) {
   if (solids.model.dim != fluid.dim()) throw std::logic_error("immersed solids and the fluid differ in dimension");
+  for (const ImmersedRigidBody& body : solids.rigid_bodies) {
+    const FemSolid& solid = solids.model.solids[body.solid];
+    std::fill_n(rigid_node_.begin() + solid.node_begin, solid.mesh.node_count(), 1);
+  }
 }
 
 ImmersedKinematics ImmersedCoupling::kinematics(const VectorX& x, const FlowTimeStep& step) const {
@@ -126,7 +131,7 @@ ImmersedKinematics ImmersedCoupling::kinematics(const VectorX& x, const FlowTime
   for (int it = 0; it < 50; ++it) {
     Real change = 0;
     for (Index n = 0; n < model.node_count; ++n) {
-      if (held[n]) continue;
+      if (held[n] || rigid_node_[n]) continue;
       const std::optional<MeshPoint> at = locator_.locate(x_star[n], k.located[n].cell);
       if (!at) {
         const auto [solid, local] = model.owner(n);
@@ -158,6 +163,7 @@ SparseMatrix ImmersedCoupling::velocity_map(const ImmersedKinematics& k, bool fr
   std::vector<Eigen::Triplet<Real, int>> entries;
   for (Index n = 0; n < model.node_count; ++n) {
     const MeshPoint& at = k.located[n];
+    if (at.cell < 0) continue;  // a clamped node, or a rigid body's
     for (int i = 0; i < model.dim; ++i) {
       const Index row = model.dof(n, i);
       if (model.free_index[row] < 0) continue;
@@ -174,7 +180,7 @@ SparseMatrix ImmersedCoupling::velocity_map(const ImmersedKinematics& k, bool fr
 }
 
 void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& R,
-                           std::vector<Eigen::Triplet<Real, int>>* jacobian) const {
+                           std::vector<Eigen::Triplet<Real, int>>* jacobian, FlowLowRank* low_rank) const {
   const FemModel& model = solids_.model;
   const int dim = model.dim;
   const Real theta = scheme_theta(step), dt = step.dt;
@@ -193,6 +199,7 @@ void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& 
   // dt V_theta, and viscous) and d r / d V_n+1 (the excess inertia).
   std::vector<Eigen::Triplet<Real, int>> by_theta_velocity, by_next_velocity;
   for (size_t s = 0; s < model.solids.size(); ++s) {
+    if (solids_.rigid_body_of(s)) continue;
     const FemSolid& solid = model.solids[s];
     const int nodes = solid.mesh.nodes_per_cell();
     const Real viscosity_difference = solids_.viscosity[s] - fluid_.viscosity;
@@ -254,6 +261,8 @@ void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& 
   // R += M^T r (prescribed components' rows of M are empty: their forces are reactions).
   R += velocity_map(k, false).transpose() * r;
   if (jacobian) add_jacobian(k, x, *step.previous, theta, dt, r, by_theta_velocity, by_next_velocity, *jacobian);
+  if (!solids_.rigid_bodies.empty() && !rigid_.add(x, step, theta, state_, R, jacobian, low_rank).empty())
+    R.setConstant(std::numeric_limits<Real>::infinity());  // as for a node leaving the mesh
 }
 
 // The mapped velocities' derivatives in the fluid's velocities v = v_n+1 (free dofs), with the
@@ -331,6 +340,7 @@ void ImmersedCoupling::accept(const VectorX& x, const FlowTimeStep& step) {
   const ImmersedKinematics k = kinematics(x, step);
   state_.displacement = k.displacement;
   state_.velocity = k.velocity;
+  rigid_.accept(x, step, scheme_theta(step), state_);
   state_.time += step.dt;
 }
 

@@ -61,11 +61,15 @@
 //
 // Dirichlet conditions of a solid (a clamped base) prescribe its displacement: those components
 // follow u(t) instead of the fluid, and their nodal forces (the reactions) are not spread.
+//
+// Rigid bodies (immersed_rigid_body.hpp) are solids whose nodes follow their frame instead of the
+// fluid: this coupling leaves their nodes to ImmersedRigidCoupling and adds its forces.
 #include <optional>
 #include <vector>
 
 #include "moreau/fem/core/mesh_locator.hpp"
 #include "moreau/fem/flow/navier_stokes.hpp"
+#include "moreau/fem/immersed/immersed_rigid_body.hpp"
 #include "moreau/fem/immersed/immersed_solids.hpp"
 
 namespace moreau {
@@ -84,8 +88,8 @@ class ImmersedCoupling final : public FlowSource {
   /// `state` is advanced by accept().
   ImmersedCoupling(const NavierStokesModel& fluid, const ImmersedSolids& solids, ImmersedSolidState& state);
 
-  void add(const VectorX& x, const FlowTimeStep& step, VectorX& R,
-           std::vector<Eigen::Triplet<Real, int>>* jacobian) const override;
+  void add(const VectorX& x, const FlowTimeStep& step, VectorX& R, std::vector<Eigen::Triplet<Real, int>>* jacobian,
+           FlowLowRank* low_rank = nullptr) const override;
   void accept(const VectorX& x, const FlowTimeStep& step) override;
 
   /// The solids' kinematics at fluid state x of `step` (throws NumericalError if a solid node
@@ -106,6 +110,8 @@ class ImmersedCoupling final : public FlowSource {
   const ImmersedSolids& solids_;
   ImmersedSolidState& state_;
   MeshLocator locator_;
+  ImmersedRigidCoupling rigid_;
+  std::vector<char> rigid_node_;  // per solid node: it belongs to a rigid body
 };
 
 /// The solids' stored elastic energy at their current displacement, J (2D: J/m).

@@ -1,10 +1,13 @@
 #pragma once
-// Deformable solids immersed in a FEM fluid (a "fluid" and "solid" objects in one "solver": "fem"
-// scene). The fluid fills the whole domain and its mesh never moves; each solid is a Lagrangian
-// mesh carried by the fluid's velocity and acting on the fluid as a momentum source
+// Solids immersed in a FEM fluid (a "fluid" beside "solid" and "rigid_body" objects in one
+// "solver": "fem" scene). The fluid fills the whole domain and its mesh never moves; each solid is
+// a Lagrangian mesh carried by the fluid's velocity and acting on the fluid as a momentum source
 // (immersed_coupling.hpp has the equations). The solids reuse the FEM solids' model: meshes,
 // hyperelastic materials, reference quadrature and consistent mass, and Dirichlet conditions
 // (a clamped leaflet base) as prescribed displacements.
+// A rigid body is one of those meshes moved rigidly by a director frame instead of by the fluid
+// (immersed_rigid_body.hpp): its nodes are where it meets the fluid, and its material has no
+// stiffness (its stress is zero: it cannot deform).
 #include <string>
 #include <vector>
 
@@ -12,16 +15,38 @@
 
 namespace moreau {
 
+/// A rigid body's frame: q = (phi, d_1, ..., d_dim), its centre of mass and directors that start
+/// along the world axes, so a node at X sits at x = phi + sum_i (X - centre)_i d_i.
+struct ImmersedRigidBody {
+  Index solid = -1;           // its mesh: model.solids[solid]
+  Vec3 centre = Vec3::Zero(); // reference centre of mass, m
+  Eigen::MatrixXd excess_mass;// the frame's mass matrix for the density rho_s - rho_f (kg, kg m, kg m^2)
+  VectorX nodal_volume;       // per node of its mesh: the volume it stands for, m^3 (2D: m^2 per m)
+  Real coupling_stiffness = 0;// k, Pa s/m^2: force per volume per unit slip between the fluid and the body
+};
+
 struct ImmersedSolids {
   FemModel model;                // the solids (material.density is the solid's density), never changed by a run
   std::vector<Real> viscosity;   // per solid, Pa s: the solid's own (Kelvin-Voigt) viscosity
+  std::vector<ImmersedRigidBody> rigid_bodies;
+
+  /// The rigid body that moves solid s, or null if the fluid carries it.
+  const ImmersedRigidBody* rigid_body_of(size_t s) const {
+    for (const ImmersedRigidBody& b : rigid_bodies)
+      if (static_cast<size_t>(b.solid) == s) return &b;
+    return nullptr;
+  }
 };
 
 /// What a step advances: per solid dof, the displacement u_n (m) and the material velocity V_n
-/// (m/s) of the last accepted step, at its time.
+/// (m/s) of the last accepted step, at its time; per rigid body its frame q and velocity dq/dt.
 struct ImmersedSolidState {
   VectorX displacement, velocity;
   Real time = 0;  // s, the time of u_n (Dirichlet conditions are functions of it)
+  std::vector<VectorX> frame, frame_velocity;
 };
+
+/// The solids at rest in their reference configuration at t = 0.
+ImmersedSolidState initial_immersed_state(const ImmersedSolids& solids);
 
 }  // namespace moreau
