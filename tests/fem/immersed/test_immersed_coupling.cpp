@@ -9,6 +9,7 @@
 #include <cstring>
 #include <random>
 
+#include "flow_source_jacobian.hpp"
 #include "flow_test_helpers.hpp"
 #include "immersed_test_meshes.hpp"
 #include "moreau/fem/core/mesh_locator.hpp"
@@ -271,33 +272,7 @@ TEST(ImmersedSolid, TheSourcesJacobianIsTheDerivativeOfItsResidual) {
     x_n[m.dof(n, 1)] = 0.4 * std::sin(3 * p.x());
   }
   const FlowTimeStep step{FlowIntegrator::midpoint, 0.01, &x_n, &x_n};
-  auto residual = [&](const VectorX& at) {
-    VectorX R = VectorX::Zero(m.dof_count());
-    coupling.add(at, step, R, nullptr);
-    VectorX free(m.free_count);
-    for (Index d = 0; d < m.dof_count(); ++d)
-      if (m.free_index[d] >= 0) free[m.free_index[d]] = R[d];
-    return free;
-  };
-  VectorX R = VectorX::Zero(m.dof_count());
-  std::vector<Eigen::Triplet<Real, int>> entries;
-  coupling.add(x, step, R, &entries);
-  SparseMatrix J(m.free_count, m.free_count);
-  J.setFromTriplets(entries.begin(), entries.end());
-  const Real h = 1e-6;
-  int columns = 0;
-  Real worst = 0;
-  for (Index d = 0; d < m.dof_count(); ++d) {
-    const Index column = m.free_index[d];
-    if (column < 0 || J.col(column).norm() == 0) continue;
-    VectorX plus = x, minus = x;
-    plus[d] += h;
-    minus[d] -= h;
-    const VectorX difference = (residual(plus) - residual(minus)) / (2 * h);
-    const VectorX exact = J.col(column);
-    worst = std::max(worst, (exact - difference).norm() / exact.norm());
-    ++columns;
-  }
+  const auto [worst, columns] = test::source_jacobian_against_differences(coupling, m, x, step, 1e-6);
   std::printf("immersed source Jacobian: %d columns, largest relative difference from central differences %.2e\n",
               columns, worst);
   EXPECT_GT(columns, 100);
