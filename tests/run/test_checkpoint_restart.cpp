@@ -127,6 +127,8 @@ INSTANTIATE_TEST_SUITE_P(
                            {"objects.blood.mesh.cells=[64,16]", "objects.top_leaflet.mesh.cells=[2,10]",
                             "objects.bottom_leaflet.mesh.cells=[2,10]", "settings.output.every=2"},
                            6},
+                      Case{"ImmersedRigidBody", "sedimenting_disc.json",
+                           {"objects.water.mesh.cells=[16,48]", "settings.output.every=2"}, 6},
                       Case{"TransientFlowGmres", kTransientCavity, {"settings.linear_solver={\"type\": \"gmres\"}"}, 3}),
     [](const auto& info) { return std::string(info.param.name); });
 

@@ -2,6 +2,7 @@
 // Checking a flow source's Jacobian (an immersed solid's or rigid body's coupling) against central
 // differences of its residual.
 #include <algorithm>
+#include <cmath>
 #include <utility>
 #include <vector>
 
@@ -46,6 +47,20 @@ inline std::pair<Real, int> source_jacobian_against_differences(const FlowSource
     ++columns;
   }
   return {worst, columns};
+}
+
+/// A 2D fluid state x at t_n+1 and x_n at t_n with smooth, swirling velocities of order 1 m/s (and
+/// zero pressure), for checking a source's Jacobian away from any special state.
+inline void swirling_velocities_2d(const NavierStokesModel& m, VectorX& x, VectorX& x_n) {
+  x = VectorX::Zero(m.dof_count());
+  x_n = VectorX::Zero(m.dof_count());
+  for (Index n = 0; n < m.mesh.node_count(); ++n) {
+    const Vec3& p = m.mesh.nodes[n];
+    x[m.dof(n, 0)] = std::sin(3 * p.x() + 1) * std::cos(2 * p.y());
+    x[m.dof(n, 1)] = 0.7 * std::cos(4 * p.x()) * std::sin(3 * p.y() + 0.5);
+    x_n[m.dof(n, 0)] = 0.5 * std::cos(2 * p.y() + 0.3);
+    x_n[m.dof(n, 1)] = 0.4 * std::sin(3 * p.x());
+  }
 }
 
 }  // namespace moreau::test

@@ -41,6 +41,11 @@ void read_immersed_rigid_body(const JsonObject& top, const JsonObject& bj, Real 
     bj.fail("mesh", fmt::format("the fluid is {}D, so the rigid bodies in it are too (\"type\": \"{}\", or a {}D Gmsh mesh)",
                                 fluid.dim(), fluid.dim() == 2 ? "rectangle" : "box", fluid.dim()));
   solid.material.density = bj.number("density", Range::positive());  // no stiffness: its stress is zero
+  if (problem.linear.method != FlowLinearMethod::direct)
+    bj.fail("kind", "a fluid with rigid bodies needs the direct linear solver (\"linear_solver\": {\"type\": \"direct\"}): "
+                    "the bodies' part of the Jacobian is applied through extra solves that GMRES, solving each only "
+                    "to its tolerance, cannot make accurate enough");
+  const Real density = solid.material.density;
   add_fem_solid(immersed.model, std::move(solid));
   const Index index = static_cast<Index>(immersed.model.solids.size()) - 1;
   immersed.viscosity.push_back(fluid.viscosity);
@@ -48,6 +53,12 @@ void read_immersed_rigid_body(const JsonObject& top, const JsonObject& bj, Real 
   body.solid = index;
   body.coupling_stiffness =
       bj.number("coupling_stiffness", default_rigid_coupling_stiffness(fluid, dt), Range::positive());
+  // A body lighter than the fluid has a negative excess mass; its frame's equations stay
+  // well-posed while theta k outweighs (rho_f - rho_s)/dt (theta = 1/2 at worst), with a margin.
+  const Real lightest = 20 * (fluid.density - density) / dt;
+  if (body.coupling_stiffness < lightest)
+    bj.fail("coupling_stiffness", fmt::format("a body lighter than the fluid needs a coupling stiffness of at least "
+                                              "20 (rho_f - rho_s) / dt = {:.4g} Pa s/m^2", lightest));
   immersed.rigid_bodies.push_back(body);
   require_inside_fluid(bj, immersed.model.solids.back().mesh, locator,
                        std::vector<int>(immersed.model.solids.back().mesh.node_count(), 0), fluid.dim(),

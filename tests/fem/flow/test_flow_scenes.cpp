@@ -278,6 +278,12 @@ TEST(FlowScenes, BadInputNamesItsKey) {
              {"objects[1].mesh", "outside the fluid's mesh"});
   expect_bad("immersed_rigid_stiffness", stepped(scene("", open, "", body(R"(, "coupling_stiffness": -1)"))),
              {"objects[1].coupling_stiffness"});
+  std::string light = stepped(scene("", open, "", body(R"(, "coupling_stiffness": 100)")));
+  light.replace(light.find("\"density\": 1200"), 15, "\"density\": 0.5");
+  expect_bad("immersed_rigid_light", light, {"objects[1].coupling_stiffness", "lighter than the fluid"});
+  std::string gmres = stepped(scene("", open, "", body("")));
+  gmres.replace(gmres.find("\"dt\": 0.01"), 10, "\"dt\": 0.01, \"linear_solver\": {\"type\": \"gmres\"}");
+  expect_bad("immersed_rigid_gmres", gmres, {"objects[1].kind", "direct linear solver"});
   expect_bad("immersed_rigid_probe",
              stepped(scene("", open, R"(, "probes": [{"name": "p", "type": "angular_velocity", "object": "s"}])", solid("") + body(""))),
              {"probes[0].object", "no rigid body named 's'"});

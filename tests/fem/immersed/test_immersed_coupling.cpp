@@ -263,14 +263,8 @@ TEST(ImmersedSolid, TheSourcesJacobianIsTheDerivativeOfItsResidual) {
   b.solids = rectangle_solid(Vec2(0.3, 0.4), Vec2(0.7, 0.6), {16, 8}, 10, 3, 0.01);  // same mesh, denser
   ImmersedCoupling coupling(b.fluid, b.solids, b.state);
   const NavierStokesModel& m = b.fluid;
-  VectorX x = VectorX::Zero(m.dof_count()), x_n = VectorX::Zero(m.dof_count());
-  for (Index n = 0; n < m.mesh.node_count(); ++n) {
-    const Vec3& p = m.mesh.nodes[n];
-    x[m.dof(n, 0)] = std::sin(3 * p.x() + 1) * std::cos(2 * p.y());
-    x[m.dof(n, 1)] = 0.7 * std::cos(4 * p.x()) * std::sin(3 * p.y() + 0.5);
-    x_n[m.dof(n, 0)] = 0.5 * std::cos(2 * p.y() + 0.3);
-    x_n[m.dof(n, 1)] = 0.4 * std::sin(3 * p.x());
-  }
+  VectorX x, x_n;
+  test::swirling_velocities_2d(m, x, x_n);
   const FlowTimeStep step{FlowIntegrator::midpoint, 0.01, &x_n, &x_n};
   const auto [worst, columns] = test::source_jacobian_against_differences(coupling, m, x, step, 1e-6);
   std::printf("immersed source Jacobian: %d columns, largest relative difference from central differences %.2e\n",

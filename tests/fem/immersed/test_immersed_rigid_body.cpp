@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <functional>
 
 #include "flow_source_jacobian.hpp"
 #include "flow_test_helpers.hpp"
@@ -150,6 +151,23 @@ DiscInABox disc_in_a_box(Real density, Real dt) {
   return b;
 }
 
+// Midpoint steps of 0.01 s of the disc's box from x (`after_each` runs after each); false, with the
+// failure reported, if one does not converge.
+bool fall(DiscInABox& b, VectorX& x, int steps, Real tolerance, const std::function<void()>& after_each = {}) {
+  ImmersedCoupling coupling(b.fluid, b.solids, b.state);
+  FlowStepper stepper(FlowIntegrator::midpoint);
+  FlowLinearSolver solver;
+  for (int step = 0; step < steps; ++step) {
+    const FlowSolveResult r = stepper.step(b.fluid, 0.01 * step, 0.01, x, solver, {.tolerance = tolerance}, &coupling);
+    if (!r.converged) {
+      ADD_FAILURE() << "step " << step << ": " << r.failure;
+      return false;
+    }
+    if (after_each) after_each();
+  }
+  return true;
+}
+
 // Fluid kinetic energy + the body's excess kinetic energy + the excess mass's potential energy.
 Real total_energy(const DiscInABox& b, const VectorX& x) {
   const Real excess_mass = b.solids.rigid_bodies[0].excess_mass(0, 0);
@@ -163,14 +181,8 @@ TEST(ImmersedRigidBody, WithTheFluidsDensityNothingMoves) {
   // linear in depth, exact in Q1), so after ten steps the velocity is round-off (of a pressure of
   // 15 Pa over 0.04 m cells, divided by the step's mass: 1e-12 m/s) and the disc has not moved.
   DiscInABox b = disc_in_a_box(1, 0.01);
-  ImmersedCoupling coupling(b.fluid, b.solids, b.state);
   VectorX x = VectorX::Zero(b.fluid.dof_count());
-  FlowStepper stepper(FlowIntegrator::midpoint);
-  FlowLinearSolver solver;
-  for (int step = 0; step < 10; ++step) {
-    const FlowSolveResult r = stepper.step(b.fluid, 0.01 * step, 0.01, x, solver, {.tolerance = 1e-10}, &coupling);
-    ASSERT_TRUE(r.converged) << r.failure;
-  }
+  ASSERT_TRUE(fall(b, x, 10, 1e-10));
   Real speed = 0;
   for (Index n = 0; n < b.fluid.mesh.node_count(); ++n)
     for (int k = 0; k < 2; ++k) speed = std::max(speed, std::abs(x[b.fluid.dof(n, k)]));
@@ -187,19 +199,14 @@ TEST(ImmersedRigidBody, AFallingDiscInAClosedBoxNeverGainsEnergy) {
   // forces workless and the coupling's power dt k W |slip|^2 >= 0). Per step the total may rise by
   // no more than the Newton tolerance allows (1e-12 of the residual: 1e-9 of the energy).
   DiscInABox b = disc_in_a_box(2, 0.01);
-  ImmersedCoupling coupling(b.fluid, b.solids, b.state);
   VectorX x = VectorX::Zero(b.fluid.dof_count());
-  FlowStepper stepper(FlowIntegrator::midpoint);
-  FlowLinearSolver solver;
   const Real E0 = total_energy(b, x);
   Real previous = E0, largest_rise = -kInfinity;
-  for (int step = 0; step < 30; ++step) {
-    const FlowSolveResult r = stepper.step(b.fluid, 0.01 * step, 0.01, x, solver, {.tolerance = 1e-12}, &coupling);
-    ASSERT_TRUE(r.converged) << r.failure;
+  ASSERT_TRUE(fall(b, x, 30, 1e-12, [&] {
     const Real E = total_energy(b, x);
     largest_rise = std::max(largest_rise, E - previous);
     previous = E;
-  }
+  }));
   const Real fall = 1 - b.state.frame[0][1], speed = -b.state.frame_velocity[0][1];
   std::printf("falling disc: fell %.4f m, speed %.4f m/s; energy %.6e -> %.6e J/m, largest rise in a step %.2e J/m\n",
               fall, speed, E0, previous, largest_rise);
@@ -208,18 +215,9 @@ TEST(ImmersedRigidBody, AFallingDiscInAClosedBoxNeverGainsEnergy) {
   EXPECT_LE(largest_rise, 1e-9 * E0);
 }
 
-TEST(ImmersedRigidBody, TheSourcesJacobianIsTheDerivativeOfItsResidual) {
-  // The falling disc's box with a swirling fluid velocity and a disc three times denser than the
-  // fluid, one midpoint step of 0.01 s from a frame already moving and turned: every column of the
-  // source's Jacobian that the body touches matches central differences of its residual. The
-  // columns include the frame's response (the implicit function's derivative) and the points'
-  // motion inside the fluid's cells. The penalty forces k W slip (k = 1e5 Pa s/m^2) carry the
-  // frame's round-off, which central differences divide by h: in the columns of fluid dofs at the
-  // body's edge, which the body barely touches, that swamps the column (per column, the difference
-  // fell as 1/h: 8.6e-5 at h = 1e-7, 1.2e-5 at 1e-6, 7.8e-7 at 1e-5, 1.4e-7 at 1e-4, in 3D 9.5e-5,
-  // 1.1e-5 and 1.0e-6 at 1e-5, 1e-4 and 1e-3: the quotient's error, not the Jacobian's). So the
-  // differences are measured against the largest column, with h = 1e-4 m/s (the residual is
-  // nearly linear: truncation is below 1e-8; measured 9e-11 in 2D, 1.5e-10 in 3D).
+// The falling disc's box with a disc three times denser than the fluid, its frame already moving
+// and turned by 0.3 rad, ready for a step of 0.01 s.
+DiscInABox moving_turned_disc() {
   DiscInABox b = disc_in_a_box(3, 0.01);
   const Real turn = 0.3;
   VectorX& q = b.state.frame[0];
@@ -227,22 +225,63 @@ TEST(ImmersedRigidBody, TheSourcesJacobianIsTheDerivativeOfItsResidual) {
   q.segment(4, 2) = Vec2(-std::sin(turn), std::cos(turn));
   b.state.frame_velocity[0] << 0.1, -0.2, -0.5 * std::sin(turn), 0.5 * std::cos(turn), -0.5 * std::cos(turn),
       -0.5 * std::sin(turn);
+  return b;
+}
+
+TEST(ImmersedRigidBody, TheSourcesJacobianIsTheDerivativeOfItsResidual) {
+  // The moving, turned disc in a swirling fluid velocity, one step of the midpoint rule and one of
+  // backward Euler (which also starts the midpoint rule): every column of the source's Jacobian
+  // that the body touches matches central differences of its residual. The columns include the
+  // frame's response (the implicit function's derivative) and the points' motion inside the
+  // fluid's cells. The penalty forces k W slip (k = 1e5 Pa s/m^2) carry the frame's round-off,
+  // which central differences divide by h: in the columns of fluid dofs at the body's edge, which
+  // the body barely touches, that swamps the column (per column, the difference fell as 1/h:
+  // 8.6e-5 at h = 1e-7, 1.2e-5 at 1e-6, 7.8e-7 at 1e-5, 1.4e-7 at 1e-4, in 3D 9.5e-5, 1.1e-5 and
+  // 1.0e-6 at 1e-5, 1e-4 and 1e-3: the quotient's error, not the Jacobian's). So the differences
+  // are measured against the largest column, with h = 1e-4 m/s (the residual is nearly linear:
+  // truncation is below 1e-8; measured 9e-11 in 2D, 1.5e-10 in 3D).
+  for (FlowIntegrator scheme : {FlowIntegrator::midpoint, FlowIntegrator::backward_euler}) {
+    DiscInABox b = moving_turned_disc();
+    ImmersedCoupling coupling(b.fluid, b.solids, b.state);
+    const NavierStokesModel& m = b.fluid;
+    VectorX x, x_n;
+    test::swirling_velocities_2d(m, x, x_n);
+    const FlowTimeStep step{scheme, 0.01, &x_n, &x_n};
+    const auto [worst, columns] = test::source_jacobian_against_differences(coupling, m, x, step, 1e-4, true);
+    std::printf("rigid body source Jacobian (%s): %d columns, largest difference from central differences %.2e of the "
+                "largest column\n",
+                scheme == FlowIntegrator::midpoint ? "midpoint" : "backward Euler", columns, worst);
+    EXPECT_GT(columns, 50);
+    EXPECT_LT(worst, 1e-8);
+  }
+}
+
+TEST(ImmersedRigidBody, ItsLowRankJacobianIsTheDenseOne) {
+  // What the flow's linear solve receives (sparse entries plus U V^T, applied by Woodbury) is the
+  // same matrix as the dense Jacobian the differences check, to round-off.
+  DiscInABox b = moving_turned_disc();
   ImmersedCoupling coupling(b.fluid, b.solids, b.state);
   const NavierStokesModel& m = b.fluid;
-  VectorX x = VectorX::Zero(m.dof_count()), x_n = VectorX::Zero(m.dof_count());
-  for (Index n = 0; n < m.mesh.node_count(); ++n) {
-    const Vec3& p = m.mesh.nodes[n];
-    x[m.dof(n, 0)] = std::sin(3 * p.x() + 1) * std::cos(2 * p.y());
-    x[m.dof(n, 1)] = 0.7 * std::cos(4 * p.x()) * std::sin(3 * p.y() + 0.5);
-    x_n[m.dof(n, 0)] = 0.5 * std::cos(2 * p.y() + 0.3);
-    x_n[m.dof(n, 1)] = 0.4 * std::sin(3 * p.x());
-  }
+  VectorX x, x_n;
+  test::swirling_velocities_2d(m, x, x_n);
   const FlowTimeStep step{FlowIntegrator::midpoint, 0.01, &x_n, &x_n};
-  const auto [worst, columns] = test::source_jacobian_against_differences(coupling, m, x, step, 1e-4, true);
-  std::printf("rigid body source Jacobian: %d columns, largest difference from central differences %.2e of the largest column\n",
-              columns, worst);
-  EXPECT_GT(columns, 50);
-  EXPECT_LT(worst, 1e-8);
+  auto jacobian = [&](FlowLowRank* low_rank) {
+    VectorX R = VectorX::Zero(m.dof_count());
+    std::vector<Eigen::Triplet<Real, int>> entries;
+    coupling.add(x, step, R, &entries, low_rank);
+    SparseMatrix J(m.free_count, m.free_count);
+    J.setFromTriplets(entries.begin(), entries.end());
+    return Eigen::MatrixXd(J);
+  };
+  FlowLowRank low_rank;
+  const Eigen::MatrixXd dense = jacobian(nullptr), split = jacobian(&low_rank);
+  ASSERT_EQ(low_rank.U.cols(), 6);
+  const Real difference = (split + low_rank.U * low_rank.V.transpose() - dense).norm() / dense.norm();
+  const Real low_rank_share = (low_rank.U * low_rank.V.transpose()).norm() / dense.norm();
+  std::printf("low-rank Jacobian: rank %d, %.2f of the dense Jacobian's norm, sparse + U V^T differs by %.1e\n",
+              static_cast<int>(low_rank.U.cols()), low_rank_share, difference);
+  EXPECT_GT(low_rank_share, 1e-3);  // the frame's response matters
+  EXPECT_LT(difference, 1e-13);
 }
 
 TEST(ImmersedRigidBody, TheSourcesJacobianIsTheDerivativeOfItsResidualIn3D) {

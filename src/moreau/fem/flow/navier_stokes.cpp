@@ -290,7 +290,9 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
   NewtonEvaluation measure(const VectorX& R) const {
     NewtonEvaluation e;
     e.norm = R.norm();
-    e.converged = e.norm <= stop_ * first_ || e.norm == 0;
+    // A residual that is not finite (a solid node left the mesh) never counts as converged, even
+    // when the first one was not finite either.
+    e.converged = std::isfinite(e.norm) && (e.norm <= stop_ * first_ || e.norm == 0);
     e.relative = e.norm / first_;
     e.describe = fmt::format("|R| = {:.3e}, first {:.3e}", e.norm, first_);
     return e;

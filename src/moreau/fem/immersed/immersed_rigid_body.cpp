@@ -182,7 +182,8 @@ std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_fram
   const VectorX& q0 = state.frame[b];
   const VectorX& dq0 = state.frame_velocity[b];
   const VectorX& x_n = *step.previous;
-  // Velocity scale for the convergence test: the fastest fluid velocity or frame velocity.
+  // Velocity scale for the convergence test: the fastest fluid velocity or frame velocity (its
+  // directors' rates are per unit length, so this is a scale, not a node's speed).
   Real speed = dq0.lpNorm<Eigen::Infinity>();
   for (Index n = 0; n < fluid_.mesh.node_count(); ++n)
     for (int i = 0; i < dim; ++i) speed = std::max(speed, std::abs(x[fluid_.dof(n, i)]));
@@ -255,8 +256,13 @@ std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_fram
     if (!correction.allFinite()) break;
     s.velocity += correction.head(nq);
     mu += correction.tail(ng);
+    // The correction's size: the largest change of a node's velocity (m/s, whatever the body's size).
     change_before = last_change;
-    last_change = correction.head(nq).lpNorm<Eigen::Infinity>();
+    last_change = 0;
+    for (Index c = 0; c < nodes; ++c) {
+      const Vec3 change = apply_node_map(node_weights(solid.mesh.nodes[c] - body.centre, dim), correction.head(nq), dim);
+      last_change = std::max(last_change, change.cwiseAbs().maxCoeff());
+    }
   }
   failure = fmt::format("rigid body '{}': its frame's Newton iterations did not converge", solid.name);
   return std::nullopt;
@@ -296,8 +302,9 @@ std::string ImmersedRigidCoupling::add(const VectorX& x, const FlowTimeStep& ste
     auto local_index = [&](Index free) {
       return static_cast<Index>(std::lower_bound(local.begin(), local.end(), free) - local.begin());
     };
-    // direct = theta M^T K M; coupling = dF_body/dv (the body rows); response = dR/d(dq_n+1).
-    MatrixXd direct = MatrixXd::Zero(n, n), coupling = MatrixXd::Zero(nq + ng, n), response = MatrixXd::Zero(n, nq);
+    // The direct term theta M^T K M goes straight into the triplets; coupling = dF_body/dv (the
+    // body rows) and response = dR/d(dq_n+1) are dense in the body's few frame dofs.
+    MatrixXd coupling = MatrixXd::Zero(nq + ng, n), response = MatrixXd::Zero(n, nq);
     for (Index c = 0; c < nodes; ++c) {
       const MeshPoint& at = s->at[c];
       const Index* cell = fluid_.mesh.cell(at.cell);
@@ -316,7 +323,8 @@ std::string ImmersedRigidCoupling::add(const VectorX& x, const FlowTimeStep& ste
           const Index ra = local_index(row);
           for (int a2 = 0; a2 < cell_nodes; ++a2) {
             const Index column = fluid_.free_index[fluid_.dof(cell[a2], i)];
-            if (column >= 0) direct(ra, local_index(column)) += theta * kW * at.shape[a] * at.shape[a2];
+            const Real entry = theta * kW * at.shape[a] * at.shape[a2];
+            if (column >= 0 && entry != 0) jacobian->emplace_back(static_cast<int>(row), static_cast<int>(column), entry);
           }
           // The spread force's change: N_A d lambda_C + lambda_C grad N_A . dx_C, dx_C = theta^2 dt Q_C d(dq).
           for (int r = 0; r <= dim; ++r)
@@ -335,11 +343,12 @@ std::string ImmersedRigidCoupling::add(const VectorX& x, const FlowTimeStep& ste
     }
     // d(dq_n+1)/dv = -[A^-1 coupling] (its frame rows); J = direct + response d(dq_n+1)/dv.
     const MatrixXd frame_change = -s->jacobian.partialPivLu().solve(coupling).topRows(nq);
-    const MatrixXd J = low_rank ? direct : MatrixXd(direct + response * frame_change);
-    for (Index j = 0; j < n; ++j)
-      for (Index i = 0; i < n; ++i)
-        if (J(i, j) != 0) jacobian->emplace_back(static_cast<int>(local[i]), static_cast<int>(local[j]), J(i, j));
-    if (low_rank) {
+    if (!low_rank) {
+      const MatrixXd J = response * frame_change;
+      for (Index j = 0; j < n; ++j)
+        for (Index i = 0; i < n; ++i)
+          if (J(i, j) != 0) jacobian->emplace_back(static_cast<int>(local[i]), static_cast<int>(local[j]), J(i, j));
+    } else {
       // U = response, V^T = frame_change, scattered to the free dofs.
       const Eigen::Index first = low_rank->U.cols();
       if (first == 0) {
