@@ -13,18 +13,18 @@ namespace {
 
 using MatrixXd = Eigen::MatrixXd;
 
-int frame_size(int dim) { return dim * (dim + 1); }
-int constraint_count(int dim) { return dim * (dim + 1) / 2; }
+int rigid_frame_size(int dim) { return dim * (dim + 1); }
+int rigid_constraint_count(int dim) { return dim * (dim + 1) / 2; }
 
 // The weights of node C's map Q_C = [s_0 I, s_1 I, ..]: s_0 = 1 (phi), s_j = xi_j (director j).
-std::array<Real, 4> node_weights(const Vec3& xi, int dim) {
+std::array<Real, 4> rigid_node_weights(const Vec3& xi, int dim) {
   std::array<Real, 4> s{1, 0, 0, 0};
   for (int j = 0; j < dim; ++j) s[j + 1] = xi[j];
   return s;
 }
 
 // Q_C q: the point (or velocity) of node C.
-Vec3 apply_node_map(const std::array<Real, 4>& s, const VectorX& q, int dim) {
+Vec3 apply_rigid_node_map(const std::array<Real, 4>& s, const VectorX& q, int dim) {
   Vec3 x = Vec3::Zero();
   for (int block = 0; block <= dim; ++block)
     for (int k = 0; k < dim; ++k) x[k] += s[block] * q[block * dim + k];
@@ -32,7 +32,7 @@ Vec3 apply_node_map(const std::array<Real, 4>& s, const VectorX& q, int dim) {
 }
 
 // The director d_i of a frame (i from 0).
-Vec3 director(const VectorX& q, int i, int dim) {
+Vec3 frame_director(const VectorX& q, int i, int dim) {
   Vec3 d = Vec3::Zero();
   for (int k = 0; k < dim; ++k) d[k] = q[(i + 1) * dim + k];
   return d;
@@ -40,7 +40,7 @@ Vec3 director(const VectorX& q, int i, int dim) {
 
 // The internal constraints' pairs (i <= j): g_ij = d_i . d_j - delta_ij (halved on the diagonal,
 // so that G is the plain derivative d_j on d_i and d_i on d_j).
-std::vector<std::pair<int, int>> constraint_pairs(int dim) {
+std::vector<std::pair<int, int>> frame_constraint_pairs(int dim) {
   std::vector<std::pair<int, int>> pairs;
   for (int i = 0; i < dim; ++i) pairs.emplace_back(i, i);
   for (int i = 0; i < dim; ++i)
@@ -48,20 +48,20 @@ std::vector<std::pair<int, int>> constraint_pairs(int dim) {
   return pairs;
 }
 
-VectorX constraints(const VectorX& q, int dim) {
-  const auto pairs = constraint_pairs(dim);
+VectorX frame_constraints(const VectorX& q, int dim) {
+  const auto pairs = frame_constraint_pairs(dim);
   VectorX g(pairs.size());
   for (size_t r = 0; r < pairs.size(); ++r) {
     const auto [i, j] = pairs[r];
-    const Real dot = director(q, i, dim).dot(director(q, j, dim));
+    const Real dot = frame_director(q, i, dim).dot(frame_director(q, j, dim));
     g[r] = i == j ? (dot - 1) / 2 : dot;
   }
   return g;
 }
 
-MatrixXd constraint_jacobian(const VectorX& q, int dim) {
-  const auto pairs = constraint_pairs(dim);
-  MatrixXd G = MatrixXd::Zero(pairs.size(), frame_size(dim));
+MatrixXd frame_constraint_jacobian(const VectorX& q, int dim) {
+  const auto pairs = frame_constraint_pairs(dim);
+  MatrixXd G = MatrixXd::Zero(pairs.size(), rigid_frame_size(dim));
   for (size_t r = 0; r < pairs.size(); ++r) {
     const auto [i, j] = pairs[r];
     for (int k = 0; k < dim; ++k) {
@@ -78,8 +78,8 @@ MatrixXd constraint_jacobian(const VectorX& q, int dim) {
 
 // A += scale sum_r mu_r Hess g_r: I on the director blocks (i, i) for the diagonal pairs, on
 // (i, j) and (j, i) for the others.
-void add_constraint_hessian(const VectorX& mu, Real scale, int dim, MatrixXd& A) {
-  const auto pairs = constraint_pairs(dim);
+void add_frame_constraint_hessian(const VectorX& mu, Real scale, int dim, MatrixXd& A) {
+  const auto pairs = frame_constraint_pairs(dim);
   for (size_t r = 0; r < pairs.size(); ++r) {
     const auto [i, j] = pairs[r];
     for (int k = 0; k < dim; ++k) {
@@ -104,7 +104,7 @@ struct ImmersedRigidCoupling::BodyStep {
 };
 
 VectorX rigid_frame_at_rest(const ImmersedRigidBody& body, int dim) {
-  VectorX q = VectorX::Zero(frame_size(dim));
+  VectorX q = VectorX::Zero(rigid_frame_size(dim));
   for (int k = 0; k < dim; ++k) q[k] = body.centre[k];
   for (int i = 0; i < dim; ++i) q[(i + 1) * dim + i] = 1;
   return q;
@@ -140,13 +140,13 @@ ImmersedRigidBody make_immersed_rigid_body(const FemModel& model, Index solid_in
     for (int a = 0; a < nodes; ++a)
       for (int c = 0; c < nodes; ++c) {
         const Real m = scale * solid.cell_mass[static_cast<size_t>(e) * nodes * nodes + a * nodes + c];
-        const auto sa = node_weights(solid.mesh.nodes[cell[a]] - body.centre, dim);
-        const auto sc = node_weights(solid.mesh.nodes[cell[c]] - body.centre, dim);
+        const auto sa = rigid_node_weights(solid.mesh.nodes[cell[a]] - body.centre, dim);
+        const auto sc = rigid_node_weights(solid.mesh.nodes[cell[c]] - body.centre, dim);
         for (int i = 0; i <= dim; ++i)
           for (int j = 0; j <= dim; ++j) blocks(i, j) += m * sa[i] * sc[j];
       }
   }
-  body.excess_mass = MatrixXd::Zero(frame_size(dim), frame_size(dim));
+  body.excess_mass = MatrixXd::Zero(rigid_frame_size(dim), rigid_frame_size(dim));
   for (int i = 0; i <= dim; ++i)
     for (int j = 0; j <= dim; ++j)
       for (int k = 0; k < dim; ++k) body.excess_mass(i * dim + k, j * dim + k) = blocks(i, j);
@@ -160,7 +160,7 @@ Real default_rigid_coupling_stiffness(const NavierStokesModel& fluid, Real dt) {
 
 Vec3 rigid_frame_angular_velocity(const VectorX& frame, const VectorX& frame_velocity, int dim) {
   Vec3 w = Vec3::Zero();
-  for (int i = 0; i < dim; ++i) w += 0.5 * director(frame, i, dim).cross(director(frame_velocity, i, dim));
+  for (int i = 0; i < dim; ++i) w += 0.5 * frame_director(frame, i, dim).cross(frame_director(frame_velocity, i, dim));
   return w;
 }
 
@@ -176,7 +176,7 @@ std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_fram
                                                                                   std::string& failure) const {
   const ImmersedRigidBody& body = solids_.rigid_bodies[b];
   const FemSolid& solid = solids_.model.solids[body.solid];
-  const int dim = solids_.model.dim, nq = frame_size(dim), ng = constraint_count(dim);
+  const int dim = solids_.model.dim, nq = rigid_frame_size(dim), ng = rigid_constraint_count(dim);
   const Index nodes = solid.mesh.node_count();
   const Real dt = step.dt, k = body.coupling_stiffness;
   const VectorX& q0 = state.frame[b];
@@ -208,8 +208,8 @@ std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_fram
     MatrixXd& A = s.jacobian;
     A = MatrixXd::Zero(nq + ng, nq + ng);
     for (Index c = 0; c < nodes; ++c) {
-      const auto w = node_weights(solid.mesh.nodes[c] - body.centre, dim);
-      const Vec3 point = apply_node_map(w, q_theta, dim);
+      const auto w = rigid_node_weights(solid.mesh.nodes[c] - body.centre, dim);
+      const Vec3 point = apply_rigid_node_map(w, q_theta, dim);
       const std::optional<MeshPoint> at = locator_.locate(point, s.at[c].cell);
       if (!at) {
         failure = fmt::format("rigid body '{}': node {} at ({:.6g}, {:.6g}, {:.6g}) m left the fluid's mesh", solid.name,
@@ -229,7 +229,7 @@ std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_fram
         }
       s.gradient[c] = G;
       const Real kW = k * body.nodal_volume[c];
-      const Vec3 lambda = kW * (fluid_velocity - apply_node_map(w, s.velocity_theta, dim));
+      const Vec3 lambda = kW * (fluid_velocity - apply_rigid_node_map(w, s.velocity_theta, dim));
       s.force[c] = lambda;
       // F_body -= Q_C^T lambda;  A_body += k W theta Q_C^T (I - theta dt G) Q_C.
       const Mat3 S = kW * theta * (Mat3::Identity() - theta * dt * G);
@@ -242,15 +242,15 @@ std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_fram
     }
     VectorX excess_gravity = VectorX::Zero(nq);
     for (int i = 0; i < dim; ++i) excess_gravity[i] = gravity[i];
-    const MatrixXd G_theta = constraint_jacobian(q_theta, dim);
+    const MatrixXd G_theta = frame_constraint_jacobian(q_theta, dim);
     F.head(nq) += body.excess_mass * ((s.velocity - dq0) / dt - excess_gravity) + G_theta.transpose() * mu;
-    F.tail(ng) = constraints(s.next, dim);
+    F.tail(ng) = frame_constraints(s.next, dim);
     A.topLeftCorner(nq, nq) += body.excess_mass / dt;
     MatrixXd hessian = MatrixXd::Zero(nq, nq);
-    add_constraint_hessian(mu, theta * theta * dt, dim, hessian);
+    add_frame_constraint_hessian(mu, theta * theta * dt, dim, hessian);
     A.topLeftCorner(nq, nq) += hessian;
     A.topRightCorner(nq, ng) = G_theta.transpose();
-    A.bottomLeftCorner(ng, nq) = theta * dt * constraint_jacobian(s.next, dim);
+    A.bottomLeftCorner(ng, nq) = theta * dt * frame_constraint_jacobian(s.next, dim);
     if (last_change <= tolerance || (last_change <= floor && last_change > 0.25 * change_before)) return s;
     const VectorX correction = A.partialPivLu().solve(-F);
     if (!correction.allFinite()) break;
@@ -260,7 +260,7 @@ std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_fram
     change_before = last_change;
     last_change = 0;
     for (Index c = 0; c < nodes; ++c) {
-      const Vec3 change = apply_node_map(node_weights(solid.mesh.nodes[c] - body.centre, dim), correction.head(nq), dim);
+      const Vec3 change = apply_rigid_node_map(rigid_node_weights(solid.mesh.nodes[c] - body.centre, dim), correction.head(nq), dim);
       last_change = std::max(last_change, change.cwiseAbs().maxCoeff());
     }
   }
@@ -271,7 +271,7 @@ std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_fram
 std::string ImmersedRigidCoupling::add(const VectorX& x, const FlowTimeStep& step, Real theta,
                                        const ImmersedSolidState& state, VectorX& R,
                                        std::vector<Eigen::Triplet<Real, int>>* jacobian, FlowLowRank* low_rank) const {
-  const int dim = solids_.model.dim, nq = frame_size(dim), ng = constraint_count(dim);
+  const int dim = solids_.model.dim, nq = rigid_frame_size(dim), ng = rigid_constraint_count(dim);
   const int cell_nodes = fluid_.mesh.nodes_per_cell();
   const Real dt = step.dt;
   for (size_t b = 0; b < solids_.rigid_bodies.size(); ++b) {
@@ -308,7 +308,7 @@ std::string ImmersedRigidCoupling::add(const VectorX& x, const FlowTimeStep& ste
     for (Index c = 0; c < nodes; ++c) {
       const MeshPoint& at = s->at[c];
       const Index* cell = fluid_.mesh.cell(at.cell);
-      const auto w = node_weights(solid.mesh.nodes[c] - body.centre, dim);
+      const auto w = rigid_node_weights(solid.mesh.nodes[c] - body.centre, dim);
       const Real kW = body.coupling_stiffness * body.nodal_volume[c];
       // d lambda_C / d dq_n+1 = k W theta (theta dt G - I) Q_C, as a dim x nq block.
       MatrixXd slip_change = MatrixXd::Zero(dim, nq);
@@ -377,8 +377,8 @@ void ImmersedRigidCoupling::accept(const VectorX& x, const FlowTimeStep& step, R
     const ImmersedRigidBody& body = solids_.rigid_bodies[b];
     const FemSolid& solid = solids_.model.solids[body.solid];
     for (Index c = 0; c < solid.mesh.node_count(); ++c) {
-      const auto w = node_weights(solid.mesh.nodes[c] - body.centre, dim);
-      const Vec3 position = apply_node_map(w, s->next, dim), velocity = apply_node_map(w, s->velocity, dim);
+      const auto w = rigid_node_weights(solid.mesh.nodes[c] - body.centre, dim);
+      const Vec3 position = apply_rigid_node_map(w, s->next, dim), velocity = apply_rigid_node_map(w, s->velocity, dim);
       for (int i = 0; i < dim; ++i) {
         const Index d = solids_.model.dof(solid.node_begin + c, i);
         state.displacement[d] = position[i] - solid.mesh.nodes[c][i];
@@ -395,7 +395,7 @@ ImmersedSolidState initial_immersed_state(const ImmersedSolids& solids) {
   ImmersedSolidState state{VectorX::Zero(dofs), VectorX::Zero(dofs), 0, {}, {}};
   for (const ImmersedRigidBody& body : solids.rigid_bodies) {
     state.frame.push_back(rigid_frame_at_rest(body, solids.model.dim));
-    state.frame_velocity.push_back(VectorX::Zero(frame_size(solids.model.dim)));
+    state.frame_velocity.push_back(VectorX::Zero(rigid_frame_size(solids.model.dim)));
   }
   return state;
 }
