@@ -45,6 +45,7 @@ const std::map<std::string, std::vector<std::string>> kSmaller = {
     {"scenes/cylinder_re20.json", {"objects.fluid.mesh.parameters.N=1"}},
     {"scenes/cylinder_re100.json", {"objects.fluid.mesh.parameters.N=1"}},
     {"bench/scenes/fem_block_20.json", {"objects.block.mesh.cells=[4,4,4]"}},
+    {"scenes/fluttering_plate.json", {"objects.water.mesh.cells=[24,64]"}},
     {"scenes/sedimenting_disc.json", {"objects.water.mesh.cells=[32,96]"}},
     {"scenes/two_leaflet_valve.json",
      {"objects.blood.mesh.cells=[64,16]", "objects.top_leaflet.mesh.cells=[2,10]", "objects.bottom_leaflet.mesh.cells=[2,10]"}},
