@@ -45,21 +45,17 @@ void read_immersed_rigid_body(const JsonObject& top, const JsonObject& bj, Real 
     bj.fail("kind", "a fluid with rigid bodies needs the direct linear solver (\"linear_solver\": {\"type\": \"direct\"}): "
                     "the bodies' part of the Jacobian is applied through extra solves that GMRES, solving each only "
                     "to its tolerance, cannot make accurate enough");
-  const Real density = solid.material.density;
-  add_fem_solid(immersed.model, std::move(solid));
-  const Index index = static_cast<Index>(immersed.model.solids.size()) - 1;
-  immersed.viscosity.push_back(fluid.viscosity);
-  ImmersedRigidBody body;
-  body.solid = index;
-  body.coupling_stiffness =
-      bj.number("coupling_stiffness", default_rigid_coupling_stiffness(fluid, dt), Range::positive());
+  const Real stiffness = bj.number("coupling_stiffness", default_rigid_coupling_stiffness(fluid, dt), Range::positive());
   // A body lighter than the fluid has a negative excess mass; its frame's equations stay
   // well-posed while theta k outweighs (rho_f - rho_s)/dt (theta = 1/2 at worst), with a margin.
-  const Real lightest = 20 * (fluid.density - density) / dt;
-  if (body.coupling_stiffness < lightest)
+  const Real lightest = 20 * (fluid.density - solid.material.density) / dt;
+  if (stiffness < lightest)
     bj.fail("coupling_stiffness", fmt::format("a body lighter than the fluid needs a coupling stiffness of at least "
                                               "20 (rho_f - rho_s) / dt = {:.4g} Pa s/m^2", lightest));
-  immersed.rigid_bodies.push_back(body);
+  add_fem_solid(immersed.model, std::move(solid));
+  immersed.viscosity.push_back(fluid.viscosity);
+  const Index index = static_cast<Index>(immersed.model.solids.size()) - 1;
+  immersed.rigid_bodies.push_back(make_immersed_rigid_body(immersed.model, index, fluid.density, stiffness));
   require_inside_fluid(bj, immersed.model.solids.back().mesh, locator,
                        std::vector<int>(immersed.model.solids.back().mesh.node_count(), 0), fluid.dim(),
                        "a rigid body must lie inside the fluid");
@@ -106,12 +102,6 @@ void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& 
   }
   for (const JsonObject& bj : rigid_bodies) read_immersed_rigid_body(top, bj, dt, locator, problem);
   finalize_fem_model(immersed.model);
-  // The frames' mass and nodal volumes need the solids' consistent mass, which finalize computes.
-  for (ImmersedRigidBody& body : immersed.rigid_bodies) {
-    const Real stiffness = body.coupling_stiffness;
-    body = make_immersed_rigid_body(immersed.model, body.solid, fluid.density);
-    body.coupling_stiffness = stiffness;
-  }
 }
 
 }  // namespace moreau

@@ -36,8 +36,8 @@ ImmersedSolids rigid_body(FemMesh mesh, Real density, const NavierStokesModel& f
   add_fem_solid(solids.model, std::move(solid));
   finalize_fem_model(solids.model);
   solids.viscosity.push_back(fluid.viscosity);
-  solids.rigid_bodies.push_back(make_immersed_rigid_body(solids.model, 0, fluid.density));
-  solids.rigid_bodies[0].coupling_stiffness = default_rigid_coupling_stiffness(fluid, dt);
+  solids.rigid_bodies.push_back(
+      make_immersed_rigid_body(solids.model, 0, fluid.density, default_rigid_coupling_stiffness(fluid, dt)));
   return solids;
 }
 

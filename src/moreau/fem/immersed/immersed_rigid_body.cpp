@@ -110,11 +110,13 @@ VectorX rigid_frame_at_rest(const ImmersedRigidBody& body, int dim) {
   return q;
 }
 
-ImmersedRigidBody make_immersed_rigid_body(const FemModel& model, Index solid_index, Real fluid_density) {
+ImmersedRigidBody make_immersed_rigid_body(const FemModel& model, Index solid_index, Real fluid_density,
+                                           Real coupling_stiffness) {
   const FemSolid& solid = model.solids[solid_index];
   const int dim = model.dim, nodes = solid.mesh.nodes_per_cell();
   ImmersedRigidBody body;
   body.solid = solid_index;
+  body.coupling_stiffness = coupling_stiffness;
   // Consistent mass per node pair, summed: the mass, its first moment (the centre) and the
   // nodal volumes (row sums / rho_s).
   const Real rho = solid.material.density;
@@ -187,10 +189,9 @@ std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_fram
   Real speed = dq0.lpNorm<Eigen::Infinity>();
   for (Index n = 0; n < fluid_.mesh.node_count(); ++n)
     for (int i = 0; i < dim; ++i) speed = std::max(speed, std::abs(x[fluid_.dof(n, i)]));
-  const Real size = *std::min_element(fluid_.cell_size.begin(), fluid_.cell_size.end());
   // Converged when the correction is at round-off: below 1e-15 of the scale, or no longer
   // shrinking once below 1e-10 of it (the located points' round-off sets the floor).
-  const Real scale = std::max(speed, size / dt), tolerance = 1e-15 * scale, floor = 1e-10 * scale;
+  const Real scale = std::max(speed, smallest_cell_ / dt), tolerance = 1e-15 * scale, floor = 1e-10 * scale;
 
   BodyStep s;
   s.velocity = dq0;

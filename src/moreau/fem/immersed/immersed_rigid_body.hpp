@@ -40,6 +40,7 @@
 // fluid's Jacobian is then exact: the direct term theta M^T K M plus the frame's response,
 // dR/dv = dR/dv|_q + dR/d(dq) d(dq)/dv with d(dq)/dv from the implicit function theorem (a dense
 // block over the fluid dofs around the body, of rank dim (dim + 1)).
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -53,9 +54,10 @@ namespace moreau {
 /// The frame of a body at rest in its reference pose: phi = centre, d_i = e_i.
 VectorX rigid_frame_at_rest(const ImmersedRigidBody& body, int dim);
 
-/// A rigid body's frame data from its mesh (model.solids[solid], density rho_s) in a fluid of
-/// density rho_f: centre of mass, excess mass and nodal volumes (coupling_stiffness is left 0).
-ImmersedRigidBody make_immersed_rigid_body(const FemModel& model, Index solid, Real fluid_density);
+/// A rigid body's frame data from its mesh (model.solids[solid], density rho_s, added with its
+/// consistent mass) in a fluid of density rho_f: centre of mass, excess mass and nodal volumes,
+/// coupled with stiffness k (Pa s/m^2).
+ImmersedRigidBody make_immersed_rigid_body(const FemModel& model, Index solid, Real fluid_density, Real coupling_stiffness);
 
 /// The default coupling stiffness k = 1000 (rho_f / dt + mu_f / h^2), h the smallest fluid cell.
 Real default_rigid_coupling_stiffness(const NavierStokesModel& fluid, Real dt);
@@ -67,7 +69,8 @@ class ImmersedRigidCoupling {
  public:
   /// Keeps references to the fluid, the solids and the locator, which must outlive it.
   ImmersedRigidCoupling(const NavierStokesModel& fluid, const ImmersedSolids& solids, const MeshLocator& locator)
-      : fluid_(fluid), solids_(solids), locator_(locator) {}
+      : fluid_(fluid), solids_(solids), locator_(locator),
+        smallest_cell_(*std::min_element(fluid.cell_size.begin(), fluid.cell_size.end())) {}
 
   /// Adds the bodies' forces on the fluid at x to R and, if `jacobian` is given, their Jacobian on
   /// the fluid's free dofs: the frame's response (rank dim (dim + 1) per body) goes to `low_rank`
@@ -88,6 +91,7 @@ class ImmersedRigidCoupling {
   const NavierStokesModel& fluid_;
   const ImmersedSolids& solids_;
   const MeshLocator& locator_;
+  Real smallest_cell_;  // m, the scale of the frame's convergence test
 };
 
 }  // namespace moreau
