@@ -21,7 +21,8 @@ namespace {
 constexpr char kMagic[] = "moreau-checkpoint\n";
 constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
 // 2: a flow with immersed solids also stores its rigid bodies' frames and their velocities.
-constexpr std::uint32_t kFormatVersion = 2;
+// 3: and the fluid's force and torque on each rigid body over the last step.
+constexpr std::uint32_t kFormatVersion = 3;
 
 // The checksum of a checkpoint's header and state.
 std::uint64_t checksum(const std::string& header, const std::string& state) { return fnv1a(state, fnv1a(header)); }

@@ -67,7 +67,8 @@ class FlowEngine final : public Engine {
     stepper_.save(out);
     solver_.save(out);
     if (solids_)
-      archive(out, std::tie(solids_->displacement, solids_->velocity, solids_->time, solids_->frame, solids_->frame_velocity));
+      archive(out, std::tie(solids_->displacement, solids_->velocity, solids_->time, solids_->frame, solids_->frame_velocity,
+                            solids_->fluid_force, solids_->fluid_torque));
   }
   void load_state(ArchiveReader& in) override {
     auto fields = std::tie(x_, time_, steps_, last_iterations_, max_iterations_, total_iterations_, picard_iterations_);
@@ -76,8 +77,8 @@ class FlowEngine final : public Engine {
     stepper_.load(in);
     solver_.load(in);
     if (solids_) {
-      auto solid_fields =
-          std::tie(solids_->displacement, solids_->velocity, solids_->time, solids_->frame, solids_->frame_velocity);
+      auto solid_fields = std::tie(solids_->displacement, solids_->velocity, solids_->time, solids_->frame,
+                                   solids_->frame_velocity, solids_->fluid_force, solids_->fluid_torque);
       unarchive(in, solid_fields);
       if (solids_->displacement.size() != problem_.immersed->model.dof_count())
         throw ArchiveError("the checkpoint's immersed solids have another number of nodes");

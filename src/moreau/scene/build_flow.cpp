@@ -85,8 +85,21 @@ void read_solid_point_probe(const JsonObject& j, const FlowProblem& problem, Flo
   p.quantity = quantity;
 }
 
-// {"type": "center_of_mass" | "velocity" | "angular_velocity", "object": <immersed rigid body>}:
-// its frame's centre, that centre's velocity, or its angular velocity (2D: about z).
+// Coefficients 2 F / (rho U^2 L) per unit depth in 2D, 2 F / (rho U^2 A) in 3D, from a probe's
+// "reference": {"velocity": U, "length": L | "area": A}; 0 without one.
+Real read_force_coefficient_scale(const JsonObject& j, const NavierStokesModel& m) {
+  const auto reference = j.optional_object("reference");
+  if (!reference) return 0;
+  const Real speed = reference->number("velocity", Range::positive());
+  const Real size = m.dim() == 2 ? reference->number("length", Range::positive()) : reference->number("area", Range::positive());
+  reference->finish();
+  return 2 / (m.density * speed * speed * size);
+}
+
+// {"type": "center_of_mass" | "velocity" | "angular_velocity" | "force" | "torque", "object":
+// <immersed rigid body>}: its frame's centre, that centre's velocity, its angular velocity (2D:
+// about z), or the fluid's force on it (with coefficients if given a "reference") and torque
+// about its centre over the last step.
 void read_rigid_body_probe(const JsonObject& j, const std::string& type, const FlowProblem& problem, FlowProbe& p) {
   const std::string object = j.string("object");
   if (problem.immersed)
@@ -96,6 +109,7 @@ void read_rigid_body_probe(const JsonObject& j, const std::string& type, const F
   if (p.body < 0) j.fail("object", fmt::format("no rigid body named '{}' is immersed in the fluid", object));
   p.type = FlowProbeType::rigid_body;
   p.quantity = type;
+  if (type == "force") p.coefficient_scale = read_force_coefficient_scale(j, problem.model);
 }
 
 FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
@@ -104,7 +118,7 @@ FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
   p.name = j.string("name");
   const std::string type = j.choice("type", {"point", "line", "boundary_force", "pressure_difference", "kinetic_energy",
                                              "energy", "newton_iterations", "center_of_mass", "velocity",
-                                             "angular_velocity"});
+                                             "angular_velocity", "force", "torque"});
   auto inside = [&](const std::string& key, const Vec3& at) {
     Vec3 u;
     Real pressure;
@@ -112,7 +126,8 @@ FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
   };
   if (type == "point" && j.has("object")) {
     read_solid_point_probe(j, problem, p);
-  } else if (type == "center_of_mass" || type == "velocity" || type == "angular_velocity") {
+  } else if (type == "center_of_mass" || type == "velocity" || type == "angular_velocity" || type == "force" ||
+             type == "torque") {
     read_rigid_body_probe(j, type, problem, p);
   } else if (type == "energy") {
     p.type = FlowProbeType::energy;
@@ -134,13 +149,7 @@ FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
   } else if (type == "boundary_force") {
     p.type = FlowProbeType::boundary_force;
     p.nodes = select_nodes(j.object("where"), m.mesh, nullptr);
-    if (auto reference = j.optional_object("reference")) {
-      // Coefficients 2 F / (rho U^2 L) per unit depth in 2D, 2 F / (rho U^2 A) in 3D.
-      const Real speed = reference->number("velocity", Range::positive());
-      const Real size = m.dim() == 2 ? reference->number("length", Range::positive()) : reference->number("area", Range::positive());
-      reference->finish();
-      p.coefficient_scale = 2 / (m.density * speed * speed * size);
-    }
+    p.coefficient_scale = read_force_coefficient_scale(j, m);
   } else if (type == "kinetic_energy") {
     p.type = FlowProbeType::kinetic_energy;
   } else {

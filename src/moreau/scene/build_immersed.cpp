@@ -1,9 +1,12 @@
 // The "solid" and "rigid_body" objects of a "solver": "fem" scene that has a fluid: deformable
 // solids and rigid bodies immersed in it (fem/immersed; docs/fem-scenes.md, "Solids in a fluid").
-// Solids move with the fluid's velocity, rigid bodies with the fluid that their frame holds, so
-// neither takes an initial velocity or loads of its own; gravity acts through the difference of
-// their density and the fluid's.
+// Solids move with the fluid's velocity, free rigid bodies with the fluid that their frame holds,
+// so neither takes an initial velocity or loads of its own; gravity acts through the difference of
+// their density and the fluid's. A driven rigid body follows its prescribed "motion".
 #include <fmt/format.h>
+
+#include <memory>
+#include <optional>
 
 #include "moreau/fem/core/mesh_locator.hpp"
 #include "moreau/fem/immersed/immersed_rigid_body.hpp"
@@ -25,22 +28,62 @@ void require_inside_fluid(const JsonObject& j, const FemMesh& mesh, const MeshLo
     }
 }
 
-// A rigid body beside a fluid: its mesh, density and the coupling's stiffness.
+// "motion": {"velocity": [..], "angular_velocity": [x, y, z]}, each entry a number or an expression
+// of t; either may be left out (zero). 2D: the angular velocity is about z.
+PrescribedRigidMotion read_rigid_motion(const JsonObject& j, int dim) {
+  using Components = std::shared_ptr<std::vector<std::unique_ptr<Expression>>>;
+  auto components = [&](const char* key, int count) {
+    Components c = std::make_shared<std::vector<std::unique_ptr<Expression>>>();
+    if (j.has(key)) *c = read_components(j, key, count, false);
+    for (const auto& e : *c)
+      if (e->uses_position())
+        j.fail(key, fmt::format("\"{}\": a body's motion is a function of t only (x, y, z are for boundary values)", e->text()));
+    return c;
+  };
+  const Components velocity = components("velocity", dim), turning = components("angular_velocity", 3);
+  if (dim == 2 && j.has("angular_velocity"))
+    for (int k = 0; k < 2; ++k) {
+      const auto& entry = j.raw("angular_velocity")[k];
+      if (!entry.is_number() || entry.get<Real>() != 0)
+        j.fail("angular_velocity", "a 2D body turns about z only: give [0, 0, w] (w a number or an expression of t)");
+    }
+  j.finish();
+  auto at = [](const Components& c) {
+    return [c](Real t) {
+      Vec3 v = Vec3::Zero();
+      for (size_t k = 0; k < c->size(); ++k) v[k] = (*(*c)[k])(t);
+      return v;
+    };
+  };
+  return {at(velocity), at(turning)};
+}
+
+// A rigid body beside a fluid: its mesh, density (a free body) or motion (a driven one) and the
+// coupling's stiffness.
 void read_immersed_rigid_body(const JsonObject& top, const JsonObject& bj, Real dt, const MeshLocator& locator,
                               FlowProblem& problem) {
   const NavierStokesModel& fluid = problem.model;
   ImmersedSolids& immersed = *problem.immersed;
   for (const char* key : {"velocity", "angular_velocity"})
     if (bj.has(key))
-      bj.fail(key, "a rigid body in a fluid starts at rest with the fluid around it: give the fluid an "
-                   "\"initial_velocity\" instead");
+      bj.fail(key, "a free rigid body in a fluid starts at rest with the fluid around it: give the fluid an "
+                   "\"initial_velocity\" instead, or drive the body with \"motion\": {\"velocity\": [..], "
+                   "\"angular_velocity\": [..]}");
   FemSolid solid;
   solid.name = bj.string("name");
   solid.mesh = read_fem_mesh(bj.object("mesh"), top.file() + ": " + bj.path_of("mesh"), MeshUse::solid);
   if (solid.mesh.dim != fluid.dim())
     bj.fail("mesh", fmt::format("the fluid is {}D, so the rigid bodies in it are too (\"type\": \"{}\", or a {}D Gmsh mesh)",
                                 fluid.dim(), fluid.dim() == 2 ? "rectangle" : "box", fluid.dim()));
-  solid.material.density = bj.number("density", Range::positive());  // no stiffness: its stress is zero
+  std::optional<PrescribedRigidMotion> motion;
+  if (const auto motion_json = bj.optional_object("motion")) {
+    if (bj.has("density"))
+      bj.fail("density", "a driven body (with \"motion\") moves as prescribed whatever its mass: leave out \"density\"");
+    motion = read_rigid_motion(*motion_json, fluid.dim());
+    solid.material.density = fluid.density;  // its mesh's mass only gives its nodes' volumes
+  } else {
+    solid.material.density = bj.number("density", Range::positive());  // no stiffness: its stress is zero
+  }
   if (problem.linear.method != FlowLinearMethod::direct)
     bj.fail("kind", "a fluid with rigid bodies needs the direct linear solver (\"linear_solver\": {\"type\": \"direct\"}): "
                     "the bodies' part of the Jacobian is applied through extra solves that GMRES, solving each only "
@@ -49,13 +92,14 @@ void read_immersed_rigid_body(const JsonObject& top, const JsonObject& bj, Real 
   // A body lighter than the fluid has a negative excess mass; its frame's equations stay
   // well-posed while theta k outweighs (rho_f - rho_s)/dt (theta = 1/2 at worst), with a margin.
   const Real lightest = 20 * (fluid.density - solid.material.density) / dt;
-  if (stiffness < lightest)
+  if (!motion && stiffness < lightest)
     bj.fail("coupling_stiffness", fmt::format("a body lighter than the fluid needs a coupling stiffness of at least "
                                               "20 (rho_f - rho_s) / dt = {:.4g} Pa s/m^2", lightest));
   add_fem_solid(immersed.model, std::move(solid));
   immersed.viscosity.push_back(fluid.viscosity);
   const Index index = static_cast<Index>(immersed.model.solids.size()) - 1;
   immersed.rigid_bodies.push_back(make_immersed_rigid_body(immersed.model, index, fluid.density, stiffness));
+  immersed.rigid_bodies.back().motion = std::move(motion);
   require_inside_fluid(bj, immersed.model.solids.back().mesh, locator,
                        std::vector<int>(immersed.model.solids.back().mesh.node_count(), 0), fluid.dim(),
                        "a rigid body must lie inside the fluid");

@@ -287,6 +287,22 @@ TEST(FlowScenes, BadInputNamesItsKey) {
   expect_bad("immersed_rigid_probe",
              stepped(scene("", open, R"(, "probes": [{"name": "p", "type": "angular_velocity", "object": "s"}])", solid("") + body(""))),
              {"probes[0].object", "no rigid body named 's'"});
+  // Driven rigid bodies: a motion of t alone, no density, 2D turning about z only.
+  auto driven = [](const std::string& motion) {
+    return R"(, {"name": "d", "kind": "rigid_body", "mesh": {"type": "rectangle", "min": [0.4, 0.4], "max": [0.6, 0.6], "cells": [4, 4]}, "motion": )" +
+           motion + "}";
+  };
+  expect_bad("immersed_driven_density", stepped(scene("", open, "", body(R"(, "motion": {"velocity": [0.1, 0]})"))),
+             {"objects[1].density", "leave out"});
+  expect_bad("immersed_driven_position", stepped(scene("", open, "", driven(R"({"velocity": ["x", 0]})"))),
+             {"objects[1].motion.velocity", "function of t only"});
+  expect_bad("immersed_driven_axis", stepped(scene("", open, "", driven(R"({"angular_velocity": [1, 0, 0]})"))),
+             {"objects[1].motion.angular_velocity", "about z only"});
+  expect_bad("immersed_driven_key", stepped(scene("", open, "", driven(R"({"speed": 1})"))), {"objects[1].motion.speed"});
+  expect_bad("immersed_driven_probe_reference",
+             stepped(scene("", open, R"(, "probes": [{"name": "p", "type": "force", "object": "d", "reference": {"velocity": 1}}])",
+                           driven(R"({"velocity": [0, 0]})"))),
+             {"probes[0].reference.length"});
 }
 
 }  // namespace

@@ -28,9 +28,11 @@ std::vector<std::string> flow_probe_columns(const FlowProbe& p, int dim) {
       for (int k = 0; k < dim; ++k) columns.push_back(p.name + "." + p.quantity + axes[k]);
       break;
     case FlowProbeType::rigid_body:
-      if (p.quantity == "angular_velocity" && dim == 2) columns.push_back(p.name + ".z");
+      if ((p.quantity == "angular_velocity" || p.quantity == "torque") && dim == 2) columns.push_back(p.name + ".z");
       else
         for (int k = 0; k < dim; ++k) columns.push_back(p.name + axes[k]);
+      if (p.coefficient_scale > 0)
+        for (int k = 0; k < dim; ++k) columns.push_back(p.name + ".coefficient" + axes[k]);
       break;
     case FlowProbeType::energy:
       for (const char* part : {".fluid_kinetic", ".solid_excess_kinetic", ".solid_elastic", ".total"})
@@ -147,11 +149,16 @@ void evaluate_flow_probe(const FlowProbe& p, const FlowProblem& problem, const V
       const int dim = m.dim();
       const VectorX& q = solids->frame[p.body];
       const VectorX& dq = solids->frame_velocity[p.body];
-      if (p.quantity == "angular_velocity") {
-        const Vec3 w = rigid_frame_angular_velocity(q, dq, dim);
+      if (p.quantity == "angular_velocity" || p.quantity == "torque") {
+        const Vec3 w = p.quantity == "torque" ? solids->fluid_torque[p.body] : rigid_frame_angular_velocity(q, dq, dim);
         if (dim == 2) values.push_back(w.z());
         else
           for (int k = 0; k < 3; ++k) values.push_back(w[k]);
+      } else if (p.quantity == "force") {
+        const Vec3& f = solids->fluid_force[p.body];
+        for (int k = 0; k < dim; ++k) values.push_back(f[k]);
+        if (p.coefficient_scale > 0)
+          for (int k = 0; k < dim; ++k) values.push_back(p.coefficient_scale * f[k]);
       } else {
         const VectorX& v = p.quantity == "velocity" ? dq : q;  // phi: the centre of mass
         for (int k = 0; k < dim; ++k) values.push_back(v[k]);

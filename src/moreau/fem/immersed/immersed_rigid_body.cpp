@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "moreau/errors.hpp"
+#include "moreau/fem/immersed/prescribed_rigid_motion.hpp"
 
 namespace moreau {
 
@@ -134,24 +135,31 @@ ImmersedRigidBody make_immersed_rigid_body(const FemModel& model, Index solid_in
       }
   }
   body.centre = moment / mass;
-  // M = sum_CD M~_CD Q_C^T Q_D for rho_s - rho_f: block (a, b) = sum M~_CD s_a(C) s_b(D) I.
-  const Real scale = (rho - fluid_density) / rho;
-  MatrixXd blocks = MatrixXd::Zero(dim + 1, dim + 1);
-  for (Index e = 0; e < solid.mesh.cell_count(); ++e) {
-    const Index* cell = solid.mesh.cell(e);
-    for (int a = 0; a < nodes; ++a)
-      for (int c = 0; c < nodes; ++c) {
-        const Real m = scale * solid.cell_mass[static_cast<size_t>(e) * nodes * nodes + a * nodes + c];
-        const auto sa = rigid_node_weights(solid.mesh.nodes[cell[a]] - body.centre, dim);
-        const auto sc = rigid_node_weights(solid.mesh.nodes[cell[c]] - body.centre, dim);
-        for (int i = 0; i <= dim; ++i)
-          for (int j = 0; j <= dim; ++j) blocks(i, j) += m * sa[i] * sc[j];
-      }
-  }
-  body.excess_mass = MatrixXd::Zero(rigid_frame_size(dim), rigid_frame_size(dim));
-  for (int i = 0; i <= dim; ++i)
-    for (int j = 0; j <= dim; ++j)
-      for (int k = 0; k < dim; ++k) body.excess_mass(i * dim + k, j * dim + k) = blocks(i, j);
+  // M = sum_CD M~_CD Q_C^T Q_D for a density: block (a, b) = sum M~_CD s_a(C) s_b(D) I with the
+  // mesh's consistent mass M~ scaled by density / rho_s. The body's excess mass is the frame's mass
+  // for rho_s - rho_f, the fluid it holds inside for rho_f.
+  auto frame_mass = [&](Real density) {
+    const Real scale = density / rho;
+    MatrixXd blocks = MatrixXd::Zero(dim + 1, dim + 1);
+    for (Index e = 0; e < solid.mesh.cell_count(); ++e) {
+      const Index* cell = solid.mesh.cell(e);
+      for (int a = 0; a < nodes; ++a)
+        for (int c = 0; c < nodes; ++c) {
+          const Real m = scale * solid.cell_mass[static_cast<size_t>(e) * nodes * nodes + a * nodes + c];
+          const auto sa = rigid_node_weights(solid.mesh.nodes[cell[a]] - body.centre, dim);
+          const auto sc = rigid_node_weights(solid.mesh.nodes[cell[c]] - body.centre, dim);
+          for (int i = 0; i <= dim; ++i)
+            for (int j = 0; j <= dim; ++j) blocks(i, j) += m * sa[i] * sc[j];
+        }
+    }
+    MatrixXd M = MatrixXd::Zero(rigid_frame_size(dim), rigid_frame_size(dim));
+    for (int i = 0; i <= dim; ++i)
+      for (int j = 0; j <= dim; ++j)
+        for (int k = 0; k < dim; ++k) M(i * dim + k, j * dim + k) = blocks(i, j);
+    return M;
+  };
+  body.excess_mass = frame_mass(rho - fluid_density);
+  body.fluid_mass = frame_mass(fluid_density);
   return body;
 }
 
@@ -166,12 +174,48 @@ Vec3 rigid_frame_angular_velocity(const VectorX& frame, const VectorX& frame_vel
   return w;
 }
 
+// The body's nodes at q_theta in the fluid: where each lies, the fluid's velocity gradient there
+// and the coupling force lambda_C = k W_C (I(v_theta)(x_C) - Q_C dq_theta). False (with the
+// reason in `failure`) if a node has left the fluid's mesh.
+bool ImmersedRigidCoupling::evaluate_nodes(size_t b, const VectorX& x, const VectorX& x_n, Real theta, const VectorX& q_theta,
+                                           BodyStep& s, std::string& failure) const {
+  const ImmersedRigidBody& body = solids_.rigid_bodies[b];
+  const FemSolid& solid = solids_.model.solids[body.solid];
+  const int dim = solids_.model.dim;
+  for (Index c = 0; c < solid.mesh.node_count(); ++c) {
+    const auto w = rigid_node_weights(solid.mesh.nodes[c] - body.centre, dim);
+    const Vec3 point = apply_rigid_node_map(w, q_theta, dim);
+    const std::optional<MeshPoint> at = locator_.locate(point, s.at[c].cell);
+    if (!at) {
+      failure = fmt::format("rigid body '{}': node {} at ({:.6g}, {:.6g}, {:.6g}) m left the fluid's mesh", solid.name, c,
+                            point.x(), point.y(), point.z());
+      return false;
+    }
+    s.at[c] = *at;
+    const Index* cell = fluid_.mesh.cell(at->cell);
+    Vec3 fluid_velocity = Vec3::Zero();
+    Mat3 G = Mat3::Zero();
+    for (int a = 0; a < fluid_.mesh.nodes_per_cell(); ++a)
+      for (int i = 0; i < dim; ++i) {
+        const Index d = fluid_.dof(cell[a], i);
+        const Real v = theta * x[d] + (1 - theta) * x_n[d];
+        fluid_velocity[i] += at->shape[a] * v;
+        G.row(i) += v * at->gradient[a].transpose();
+      }
+    s.gradient[c] = G;
+    s.force[c] = body.coupling_stiffness * body.nodal_volume[c] * (fluid_velocity - apply_rigid_node_map(w, s.velocity_theta, dim));
+  }
+  return true;
+}
+
 // Newton's method on the body's equations F(dq_n+1, mu) = 0 at fixed fluid velocities (see the
 // header), started from the frame's velocity at t_n. With y = dq_n+1, dq_theta = theta y +
 // (1 - theta) dq_n, q_theta = q_n + theta dt dq_theta, x_C = Q_C q_theta and G_C = grad v_theta(x_C):
 //   d lambda_C / dy = k W_C theta (theta dt G_C - I) Q_C,
 //   dF_body/dy = M_e/dt + theta^2 dt mu . Hess g - sum_C Q_C^T d lambda_C/dy,   dF_body/d mu = G(q_theta)^T,
 //   d g(q_n+1)/dy = theta dt G(q_n+1).
+// A driven body's frame is its prescribed motion's (prescribed_rigid_motion.hpp), whatever the
+// fluid does: dq_theta = (q_n+1 - q_n) / dt, dq_n+1 the motion's at t_n+1.
 std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_frame(size_t b, const VectorX& x,
                                                                                   const FlowTimeStep& step, Real theta,
                                                                                   const ImmersedSolidState& state,
@@ -180,10 +224,21 @@ std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_fram
   const FemSolid& solid = solids_.model.solids[body.solid];
   const int dim = solids_.model.dim, nq = rigid_frame_size(dim), ng = rigid_constraint_count(dim);
   const Index nodes = solid.mesh.node_count();
-  const Real dt = step.dt, k = body.coupling_stiffness;
+  const Real dt = step.dt;
   const VectorX& q0 = state.frame[b];
   const VectorX& dq0 = state.frame_velocity[b];
   const VectorX& x_n = *step.previous;
+  BodyStep s;
+  s.at.assign(nodes, MeshPoint{});
+  s.force.assign(nodes, Vec3::Zero());
+  s.gradient.assign(nodes, Mat3::Zero());
+  if (body.motion) {
+    s.next = advance_prescribed_frame(*body.motion, q0, state.time, dt, dim);
+    s.velocity = prescribed_frame_velocity(*body.motion, s.next, state.time + dt, dim);
+    s.velocity_theta = (s.next - q0) / dt;
+    if (!evaluate_nodes(b, x, x_n, theta, q0 + theta * (s.next - q0), s, failure)) return std::nullopt;
+    return s;
+  }
   // Velocity scale for the convergence test: the fastest fluid velocity or frame velocity (its
   // directors' rates are per unit length, so this is a scale, not a node's speed).
   Real speed = dq0.lpNorm<Eigen::Infinity>();
@@ -193,49 +248,24 @@ std::optional<ImmersedRigidCoupling::BodyStep> ImmersedRigidCoupling::solve_fram
   // shrinking once below 1e-10 of it (the located points' round-off sets the floor).
   const Real scale = std::max(speed, smallest_cell_ / dt), tolerance = 1e-15 * scale, floor = 1e-10 * scale;
 
-  BodyStep s;
   s.velocity = dq0;
   VectorX mu = VectorX::Zero(ng);
-  s.at.assign(nodes, MeshPoint{});
-  s.force.assign(nodes, Vec3::Zero());
-  s.gradient.assign(nodes, Mat3::Zero());
   const Vec3 gravity = fluid_.body_force;
   Real last_change = kInfinity, change_before = kInfinity;
   for (int iteration = 0; iteration < 30; ++iteration) {
     s.velocity_theta = theta * s.velocity + (1 - theta) * dq0;
     s.next = q0 + dt * s.velocity_theta;
     const VectorX q_theta = q0 + theta * dt * s.velocity_theta;
+    if (!evaluate_nodes(b, x, x_n, theta, q_theta, s, failure)) return std::nullopt;
     VectorX F = VectorX::Zero(nq + ng);
     MatrixXd& A = s.jacobian;
     A = MatrixXd::Zero(nq + ng, nq + ng);
     for (Index c = 0; c < nodes; ++c) {
       const auto w = rigid_node_weights(solid.mesh.nodes[c] - body.centre, dim);
-      const Vec3 point = apply_rigid_node_map(w, q_theta, dim);
-      const std::optional<MeshPoint> at = locator_.locate(point, s.at[c].cell);
-      if (!at) {
-        failure = fmt::format("rigid body '{}': node {} at ({:.6g}, {:.6g}, {:.6g}) m left the fluid's mesh", solid.name,
-                              c, point.x(), point.y(), point.z());
-        return std::nullopt;
-      }
-      s.at[c] = *at;
-      const Index* cell = fluid_.mesh.cell(at->cell);
-      Vec3 fluid_velocity = Vec3::Zero();
-      Mat3 G = Mat3::Zero();
-      for (int a = 0; a < fluid_.mesh.nodes_per_cell(); ++a)
-        for (int i = 0; i < dim; ++i) {
-          const Index d = fluid_.dof(cell[a], i);
-          const Real v = theta * x[d] + (1 - theta) * x_n[d];
-          fluid_velocity[i] += at->shape[a] * v;
-          G.row(i) += v * at->gradient[a].transpose();
-        }
-      s.gradient[c] = G;
-      const Real kW = k * body.nodal_volume[c];
-      const Vec3 lambda = kW * (fluid_velocity - apply_rigid_node_map(w, s.velocity_theta, dim));
-      s.force[c] = lambda;
       // F_body -= Q_C^T lambda;  A_body += k W theta Q_C^T (I - theta dt G) Q_C.
-      const Mat3 S = kW * theta * (Mat3::Identity() - theta * dt * G);
+      const Mat3 S = body.coupling_stiffness * body.nodal_volume[c] * theta * (Mat3::Identity() - theta * dt * s.gradient[c]);
       for (int p = 0; p <= dim; ++p) {
-        for (int i = 0; i < dim; ++i) F[p * dim + i] -= w[p] * lambda[i];
+        for (int i = 0; i < dim; ++i) F[p * dim + i] -= w[p] * s.force[c][i];
         for (int r = 0; r <= dim; ++r)
           for (int i = 0; i < dim; ++i)
             for (int j = 0; j < dim; ++j) A(p * dim + i, r * dim + j) += w[p] * w[r] * S(i, j);
@@ -304,7 +334,9 @@ std::string ImmersedRigidCoupling::add(const VectorX& x, const FlowTimeStep& ste
       return static_cast<Index>(std::lower_bound(local.begin(), local.end(), free) - local.begin());
     };
     // The direct term theta M^T K M goes straight into the triplets; coupling = dF_body/dv (the
-    // body rows) and response = dR/d(dq_n+1) are dense in the body's few frame dofs.
+    // body rows) and response = dR/d(dq_n+1) are dense in the body's few frame dofs (a free body's
+    // only: a driven body's frame does not depend on the fluid).
+    const bool free = !body.motion;
     MatrixXd coupling = MatrixXd::Zero(nq + ng, n), response = MatrixXd::Zero(n, nq);
     for (Index c = 0; c < nodes; ++c) {
       const MeshPoint& at = s->at[c];
@@ -328,11 +360,13 @@ std::string ImmersedRigidCoupling::add(const VectorX& x, const FlowTimeStep& ste
             if (column >= 0 && entry != 0) jacobian->emplace_back(static_cast<int>(row), static_cast<int>(column), entry);
           }
           // The spread force's change: N_A d lambda_C + lambda_C grad N_A . dx_C, dx_C = theta^2 dt Q_C d(dq).
-          for (int r = 0; r <= dim; ++r)
+          if (free)
+            for (int r = 0; r <= dim; ++r)
             for (int j = 0; j < dim; ++j)
-              response(ra, r * dim + j) += at.shape[a] * slip_change(i, r * dim + j) +
-                                           s->force[c][i] * at.gradient[a][j] * theta * theta * dt * w[r];
+                response(ra, r * dim + j) += at.shape[a] * slip_change(i, r * dim + j) +
+                                             s->force[c][i] * at.gradient[a][j] * theta * theta * dt * w[r];
         }
+      if (!free) continue;
       // The body rows' dependence on the fluid: -Q_C^T k W theta M_C.
       for (int a = 0; a < cell_nodes; ++a)
         for (int i = 0; i < dim; ++i) {
@@ -342,6 +376,7 @@ std::string ImmersedRigidCoupling::add(const VectorX& x, const FlowTimeStep& ste
           for (int p = 0; p <= dim; ++p) coupling(p * dim + i, ca) -= w[p] * kW * theta * at.shape[a];
         }
     }
+    if (!free) continue;
     // d(dq_n+1)/dv = -[A^-1 coupling] (its frame rows); J = direct + response d(dq_n+1)/dv.
     const MatrixXd frame_change = -s->jacobian.partialPivLu().solve(coupling).topRows(nq);
     if (!low_rank) {
@@ -386,17 +421,54 @@ void ImmersedRigidCoupling::accept(const VectorX& x, const FlowTimeStep& step, R
         state.velocity[d] = velocity[i];
       }
     }
+    const auto [force, torque] = fluid_load(b, *s, step.dt, theta, state);
+    state.fluid_force[b] = force;
+    state.fluid_torque[b] = torque;
     state.frame[b] = s->next;
     state.frame_velocity[b] = s->velocity;
   }
 }
 
+// The fluid's force on a body over a step, from the balance of the fluid the body holds inside it:
+// that fluid (density rho_f, moving with the body) feels the surrounding fluid's traction on the
+// body's surface, its weight and the coupling's -lambda, so the traction's resultant, in the
+// frame's generalized forces, is
+//   f = sum_C Q_C^T lambda_C + M_f ((dq_n+1 - dq_n) / dt - (b, 0, ..)),
+// with M_f the frame's mass at the fluid's density. Its phi block is the force (drag, lift and
+// buoyancy); the torque about the centre is sum_i d_i x f_di (d_i at q_theta, where the body's
+// points were), since sum_C (x_C - phi) x lambda_C = sum_i d_i x sum_C xi_Ci lambda_C. For a free
+// body the balance gives f = M_s (acceleration - gravity) + G^T mu: Newton's law for the body.
+std::pair<Vec3, Vec3> ImmersedRigidCoupling::fluid_load(size_t b, const BodyStep& s, Real dt, Real theta,
+                                                        const ImmersedSolidState& state) const {
+  const ImmersedRigidBody& body = solids_.rigid_bodies[b];
+  const FemSolid& solid = solids_.model.solids[body.solid];
+  const int dim = solids_.model.dim, nq = rigid_frame_size(dim);
+  VectorX f = VectorX::Zero(nq);
+  for (Index c = 0; c < solid.mesh.node_count(); ++c) {
+    const auto w = rigid_node_weights(solid.mesh.nodes[c] - body.centre, dim);
+    for (int p = 0; p <= dim; ++p)
+      for (int i = 0; i < dim; ++i) f[p * dim + i] += w[p] * s.force[c][i];
+  }
+  VectorX acceleration = (s.velocity - state.frame_velocity[b]) / dt;
+  for (int i = 0; i < dim; ++i) acceleration[i] -= fluid_.body_force[i];
+  f += body.fluid_mass * acceleration;
+  const VectorX q_theta = state.frame[b] + theta * dt * s.velocity_theta;
+  Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+  for (int k = 0; k < dim; ++k) force[k] = f[k];
+  for (int i = 0; i < dim; ++i) torque += frame_director(q_theta, i, dim).cross(frame_director(f, i, dim));
+  return {force, torque};
+}
+
 ImmersedSolidState initial_immersed_state(const ImmersedSolids& solids) {
   const Index dofs = solids.model.dof_count();
-  ImmersedSolidState state{VectorX::Zero(dofs), VectorX::Zero(dofs), 0, {}, {}};
+  const int dim = solids.model.dim;
+  ImmersedSolidState state{VectorX::Zero(dofs), VectorX::Zero(dofs), 0, {}, {}, {}, {}};
   for (const ImmersedRigidBody& body : solids.rigid_bodies) {
-    state.frame.push_back(rigid_frame_at_rest(body, solids.model.dim));
-    state.frame_velocity.push_back(VectorX::Zero(rigid_frame_size(solids.model.dim)));
+    state.frame.push_back(rigid_frame_at_rest(body, dim));
+    state.frame_velocity.push_back(body.motion ? prescribed_frame_velocity(*body.motion, state.frame.back(), 0, dim)
+                                               : VectorX::Zero(rigid_frame_size(dim)));
+    state.fluid_force.push_back(Vec3::Zero());
+    state.fluid_torque.push_back(Vec3::Zero());
   }
   return state;
 }

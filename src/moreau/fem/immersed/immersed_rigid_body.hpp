@@ -40,9 +40,15 @@
 // fluid's Jacobian is then exact: the direct term theta M^T K M plus the frame's response,
 // dR/dv = dR/dv|_q + dR/d(dq) d(dq)/dv with d(dq)/dv from the implicit function theorem (a dense
 // block over the fluid dofs around the body, of rank dim (dim + 1)).
+//
+// A driven body (its `motion` set: a rigid paddle, a rotor, an obstacle held still) follows its
+// prescribed motion instead (prescribed_rigid_motion.hpp); its frame does not depend on the fluid,
+// and its only Jacobian term is the direct one. Either kind records, at each accepted step, the
+// force and torque the fluid exerted on it (fluid_load in the source has the balance they come from).
 #include <algorithm>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "moreau/fem/core/mesh_locator.hpp"
@@ -80,11 +86,15 @@ class ImmersedRigidCoupling {
                   std::vector<Eigen::Triplet<Real, int>>* jacobian, FlowLowRank* low_rank = nullptr) const;
 
   /// Advances the bodies' frames and their nodes' displacements and velocities to the end of a
-  /// converged step at x (throws NumericalError naming the body if a frame has no solution).
+  /// converged step at x, and records the fluid's force and torque on each body over the step
+  /// (throws NumericalError naming the body if a frame has no solution).
   void accept(const VectorX& x, const FlowTimeStep& step, Real theta, ImmersedSolidState& state) const;
 
  private:
   struct BodyStep;
+  bool evaluate_nodes(size_t b, const VectorX& x, const VectorX& x_n, Real theta, const VectorX& q_theta, BodyStep& s,
+                      std::string& failure) const;
+  std::pair<Vec3, Vec3> fluid_load(size_t b, const BodyStep& s, Real dt, Real theta, const ImmersedSolidState& state) const;
   std::optional<BodyStep> solve_frame(size_t b, const VectorX& x, const FlowTimeStep& step, Real theta,
                                       const ImmersedSolidState& state, std::string& failure) const;
 

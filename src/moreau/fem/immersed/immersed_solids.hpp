@@ -8,6 +8,8 @@
 // A rigid body is one of those meshes moved rigidly by a director frame instead of by the fluid
 // (immersed_rigid_body.hpp): its nodes are where it meets the fluid, and its material has no
 // stiffness (its stress is zero: it cannot deform).
+#include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,14 +17,22 @@
 
 namespace moreau {
 
+/// A driven body's motion, functions of time t (s): its centre's velocity (m/s) and its angular
+/// velocity (rad/s, world axes; 2D: only z).
+struct PrescribedRigidMotion {
+  std::function<Vec3(Real)> velocity, angular_velocity;
+};
+
 /// A rigid body's frame: q = (phi, d_1, ..., d_dim), its centre of mass and directors that start
 /// along the world axes, so a node at X sits at x = phi + sum_i (X - centre)_i d_i.
 struct ImmersedRigidBody {
   Index solid = -1;           // its mesh: model.solids[solid]
   Vec3 centre = Vec3::Zero(); // reference centre of mass, m
   Eigen::MatrixXd excess_mass;// the frame's mass matrix for the density rho_s - rho_f (kg, kg m, kg m^2)
+  Eigen::MatrixXd fluid_mass; // the same for the fluid's density: the fluid the body holds inside it
   VectorX nodal_volume;       // per node of its mesh: the volume it stands for, m^3 (2D: m^2 per m)
   Real coupling_stiffness = 0;// k, Pa s/m^2: force per volume per unit slip between the fluid and the body
+  std::optional<PrescribedRigidMotion> motion;  // set: a driven body, its motion given; empty: free
 };
 
 struct ImmersedSolids {
@@ -39,11 +49,13 @@ struct ImmersedSolids {
 };
 
 /// What a step advances: per solid dof, the displacement u_n (m) and the material velocity V_n
-/// (m/s) of the last accepted step, at its time; per rigid body its frame q and velocity dq/dt.
+/// (m/s) of the last accepted step, at its time; per rigid body its frame q and velocity dq/dt,
+/// and the force and torque (about its centre) the fluid exerted on it over that step.
 struct ImmersedSolidState {
   VectorX displacement, velocity;
   Real time = 0;  // s, the time of u_n (Dirichlet conditions are functions of it)
   std::vector<VectorX> frame, frame_velocity;
+  std::vector<Vec3> fluid_force, fluid_torque;  // N and N m (2D: per m of depth)
 };
 
 /// The solids at rest in their reference configuration at t = 0.
