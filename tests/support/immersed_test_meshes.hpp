@@ -30,8 +30,9 @@ inline FemMesh annulus_mesh(Real r_in, Real r_out, int radial, int around) {
 }
 
 /// A disc of radius R about `centre` as an O-grid of quad4 cells: a square core of half-width R/2
-/// with n x n cells, and `layers` rings of 4n cells blending its edge into the circle. The mesh is
-/// symmetric under the reflections in the axes and the diagonals through the centre.
+/// with n x n cells, and `layers` rings of 4n cells blending its edge into the circle, its edge the
+/// boundary "rim". The mesh is symmetric under the reflections in the axes and the diagonals
+/// through the centre.
 inline FemMesh disc_mesh(const Vec3& centre, Real R, int n, int layers) {
   const Real a = R / 2;
   FemMesh mesh = make_rectangle_mesh(Vec2(-a, -a), Vec2(a, a), {n, n}, ElementType::quad4);
@@ -56,6 +57,9 @@ inline FemMesh disc_mesh(const Vec3& centre, Real R, int n, int layers) {
       for (Index v : {previous[j], ring[j], ring[(j + 1) % around], previous[(j + 1) % around]}) mesh.cells.push_back(v);
     previous = ring;
   }
+  FemBoundary rim{"rim", {}};
+  for (int j = 0; j < around; ++j) rim.facets.insert(rim.facets.end(), {previous[j], previous[(j + 1) % around]});
+  mesh.boundaries = {rim};
   for (Vec3& p : mesh.nodes) p += centre;
   return mesh;
 }

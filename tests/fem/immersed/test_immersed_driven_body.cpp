@@ -156,6 +156,30 @@ TEST(ImmersedDrivenBody, TheSourcesJacobianIsTheDerivativeOfItsResidual) {
   }
 }
 
+TEST(ImmersedDrivenBody, ABodyDrivenOutOfTheFluidStopsTheStepSayingSo) {
+  // A disc driven at 50 m/s leaves the 1 m box within a 0.01 s step: the step fails, and its
+  // message names the body and the node that left, not only a residual that is not finite.
+  NavierStokesModel m;
+  m.mesh = make_rectangle_mesh(Vec2(0, 0), Vec2(1, 1), {8, 8}, ElementType::quad4);
+  m.density = 1;
+  m.viscosity = 0.01;
+  for (const char* side : {"left", "right", "bottom", "top"}) prescribe_velocity(m, side, [](const Vec3&) { return Vec3::Zero(); });
+  fix_pressure(m, 0);
+  setup_navier_stokes(m);
+  const PrescribedRigidMotion motion{[](Real) { return Vec3(50, 0, 0); }, [](Real) { return Vec3::Zero(); }};
+  const ImmersedSolids solids = immersed_body(disc_mesh(Vec3(0.5, 0.5, 0), 0.1, 4, 2), m.density, motion, m, 0.01);
+  ImmersedSolidState state = initial_immersed_state(solids);
+  ImmersedCoupling coupling(m, solids, state);
+  VectorX x = VectorX::Zero(m.dof_count());
+  FlowStepper stepper(FlowIntegrator::backward_euler);
+  FlowLinearSolver solver;
+  const FlowSolveResult r = stepper.step(m, 0, 0.01, x, solver, {}, &coupling);
+  std::printf("failure: %s\n", r.failure.c_str());
+  EXPECT_FALSE(r.converged);
+  EXPECT_NE(r.failure.find("rigid body 'body': node"), std::string::npos);
+  EXPECT_NE(r.failure.find("left the fluid's mesh"), std::string::npos);
+}
+
 TEST(ImmersedDrivenBody, TheLoadOnAFreeBodyIsItsMassTimesAccelerationLessGravity) {
   // The load is computed from the coupling's forces and the inertia of the fluid the body holds;
   // for a free body its equations make it M_s (acceleration - g) (Newton's law; the constraint

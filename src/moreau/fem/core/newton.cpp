@@ -9,6 +9,11 @@ namespace moreau {
 
 namespace {
 
+// A trial's residual that is not finite, in words, with the system's reason if it gave one.
+std::string not_finite_residual(const NewtonEvaluation& trial) {
+  return trial.not_finite.empty() ? "a residual that is not finite" : "a residual that is not finite (" + trial.not_finite + ")";
+}
+
 // Below this size against the solution a full correction is taken without the line-search test.
 constexpr Real kAsymptoticCorrection = 1e-6;
 
@@ -102,13 +107,13 @@ bool newton_solve(NewtonSystem& system, const NewtonSettings& settings, const st
         watching = false;
       }
     } else {
-      inverted = trial.valid ? "a residual that is not finite" : trial.invalid;
+      inverted = trial.valid ? not_finite_residual(trial) : trial.invalid;
     }
     for (int halving = 1; !accepted && halving <= settings.max_halvings; ++halving) {
       alpha *= 0.5;
       trial = system.evaluate(&dz, alpha);
       if (!trial.valid || !std::isfinite(trial.norm)) {
-        inverted = trial.valid ? "a residual that is not finite" : trial.invalid;
+        inverted = trial.valid ? not_finite_residual(trial) : trial.invalid;
         continue;
       }
       any_valid = true;
@@ -121,7 +126,7 @@ bool newton_solve(NewtonSystem& system, const NewtonSettings& settings, const st
       if (any_valid && correction <= settings.tolerance) return true;
       if (!any_valid)
         result.failure = fmt::format("every Newton correction, down to 1/{} of it, gives {} ({}); {}", 1 << settings.max_halvings,
-                                     inverted == "a residual that is not finite" ? inverted : "an inverted " + inverted,
+                                     inverted.starts_with("a residual that is not finite") ? inverted : "an inverted " + inverted,
                                      now.describe, smaller_steps_advice(settings));
       else
         result.failure = fmt::format("the line search found no step that reduces the residual of {} ({}, last correction "

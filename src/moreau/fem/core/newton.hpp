@@ -76,6 +76,7 @@ struct NewtonEvaluation {
   bool converged = false; // the residual meets the system's tolerance
   Real relative = 0;      // the residual against its convergence scale (for the advice)
   std::string describe;   // the residual in words, for messages ("|R| = 1.2e-03, scale 4.5e+02")
+  std::string not_finite; // why the residual is not finite, when the system knows ("node 3 of 'disc' left the mesh")
   Real potential = std::numeric_limits<Real>::quiet_NaN();  // Pi(z) if the system has one
 };
 

@@ -295,6 +295,10 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
     e.converged = std::isfinite(e.norm) && (e.norm <= stop_ * first_ || e.norm == 0);
     e.relative = e.norm / first_;
     e.describe = fmt::format("|R| = {:.3e}, first {:.3e}", e.norm, first_);
+    if (!std::isfinite(e.norm) && source_) {
+      e.not_finite = source_->last_failure();
+      if (!e.not_finite.empty()) e.describe += ": " + e.not_finite;
+    }
     return e;
   }
 

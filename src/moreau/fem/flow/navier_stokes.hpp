@@ -124,6 +124,9 @@ class FlowSource {
                    FlowLowRank* low_rank = nullptr) const = 0;
   /// A step of `step` has converged at x: the source advances its own state to t_{n+1}.
   virtual void accept(const VectorX& x, const FlowTimeStep& step) = 0;
+  /// Why the last add() made the residual not finite (a solid's node left the fluid's mesh), or
+  /// empty if it did not or the source cannot tell.
+  virtual std::string last_failure() const { return {}; }
 };
 
 struct FlowSolveResult : NewtonResult {

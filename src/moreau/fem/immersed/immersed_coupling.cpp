@@ -184,12 +184,14 @@ void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& 
   const FemModel& model = solids_.model;
   const int dim = model.dim;
   const Real theta = scheme_theta(step), dt = step.dt;
+  last_failure_.clear();
   ImmersedKinematics k;
   try {
     k = kinematics(x, step);
-  } catch (const NumericalError&) {
+  } catch (const NumericalError& e) {
     // A trial iterate that carries a solid node out of the fluid: an infinite residual makes
     // Newton's line search shorten the step (a converged step that does so fails in accept()).
+    last_failure_ = e.what();
     R.setConstant(std::numeric_limits<Real>::infinity());
     return;
   }
@@ -261,8 +263,10 @@ void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& 
   // R += M^T r (prescribed components' rows of M are empty: their forces are reactions).
   R += velocity_map(k, false).transpose() * r;
   if (jacobian) add_jacobian(k, x, *step.previous, theta, dt, r, by_theta_velocity, by_next_velocity, *jacobian);
-  if (!solids_.rigid_bodies.empty() && !rigid_.add(x, step, theta, state_, R, jacobian, low_rank).empty())
-    R.setConstant(std::numeric_limits<Real>::infinity());  // as for a node leaving the mesh
+  if (!solids_.rigid_bodies.empty()) {
+    last_failure_ = rigid_.add(x, step, theta, state_, R, jacobian, low_rank);
+    if (!last_failure_.empty()) R.setConstant(std::numeric_limits<Real>::infinity());  // as for a node leaving the mesh
+  }
 }
 
 // The mapped velocities' derivatives in the fluid's velocities v = v_n+1 (free dofs), with the

@@ -91,6 +91,7 @@ class ImmersedCoupling final : public FlowSource {
   void add(const VectorX& x, const FlowTimeStep& step, VectorX& R, std::vector<Eigen::Triplet<Real, int>>* jacobian,
            FlowLowRank* low_rank = nullptr) const override;
   void accept(const VectorX& x, const FlowTimeStep& step) override;
+  std::string last_failure() const override { return last_failure_; }
 
   /// The solids' kinematics at fluid state x of `step` (throws NumericalError if a solid node
   /// leaves the fluid's mesh).
@@ -112,6 +113,7 @@ class ImmersedCoupling final : public FlowSource {
   MeshLocator locator_;
   ImmersedRigidCoupling rigid_;
   std::vector<char> rigid_node_;  // per solid node: it belongs to a rigid body
+  mutable std::string last_failure_;  // why the last add() gave an infinite residual
 };
 
 /// The solids' stored elastic energy at their current displacement, J (2D: J/m).
