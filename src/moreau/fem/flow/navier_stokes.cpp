@@ -8,6 +8,7 @@
 
 #include "moreau/errors.hpp"
 #include "moreau/fem/core/newton.hpp"
+#include "moreau/fem/flow/flow_source_assembly.hpp"
 
 namespace moreau {
 
@@ -36,13 +37,17 @@ SchemeCoefficients scheme_coefficients(const FlowTimeStep& step) {
 
 // The residual and the Jacobian (tau frozen; `picard`: advecting velocity frozen too) of one
 // cell; local dofs node-major, fields (velocity components, pressure). x: u_{n+1}, x1: u_n, x2:
-// u_{n-1} (null when their coefficients vanish).
-void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x1, const Real* x2,
-               const SchemeCoefficients& c, bool with_jacobian, bool picard, Real mu, CellVector& R, CellMatrix& J) {
+// u_{n-1} (null when their coefficients vanish). f: the sources' force density at the nodes
+// (null: none), which the stabilization's strong residual includes; S (with the Jacobian, if f is
+// given): the residual's derivative in f.
+void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x1, const Real* x2, const Real* f,
+               const SchemeCoefficients& c, bool with_jacobian, bool picard, Real mu, CellVector& R, CellMatrix& J,
+               CellMatrix& S) {
   const int dim = m.dim(), F = m.fields(), nodes = m.mesh.nodes_per_cell(), n = F * nodes;
   const Real rho = m.density, nu = mu / rho, theta = c.theta;
   R.setZero(n);
   if (with_jacobian) J.setZero(n, n);
+  if (with_jacobian && f) S.setZero(n, n);
   const Real h = m.cell_size[e];
   Real adv[kMaxElementNodes];
   for (int q = 0; q < m.points; ++q) {
@@ -68,8 +73,15 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
       gp += x[a * F + dim] * dN[a];
     }
     // Strong momentum residual (gradients have zero components past dim, so 3-vector dot
-    // products below are the dim-dimensional ones).
+    // products below are the dim-dimensional ones). The stabilization's, rs, also has the
+    // sources' force density f_h = sum_a N_a f_a: where an immersed body holds the fluid, rs is the
+    // small residual of the whole balance, not the large force that holds it (without f_h, PSPG
+    // would read that force as a pressure-gradient error and let the fluid through the body).
     const Vec3 r = rho * (ut + G * u - m.body_force) + gp;
+    Vec3 rs = r;
+    if (f)
+      for (int a = 0; a < nodes; ++a)
+        for (int i = 0; i < dim; ++i) rs[i] -= N[a] * f[a * F + i];
     Real s1 = 0;
     for (int a = 0; a < nodes; ++a) {
       adv[a] = u.dot(dN[a]);
@@ -83,12 +95,19 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
       for (int i = 0; i < dim; ++i) {
         Real viscous = 0;
         for (int k = 0; k < dim; ++k) viscous += (G(i, k) + G(k, i)) * dN[a][k];
-        R[a * F + i] += w * (N[a] * (r[i] - gp[i]) + mu * viscous - p * dN[a][i] + tau * adv[a] * r[i] +
+        R[a * F + i] += w * (N[a] * (r[i] - gp[i]) + mu * viscous - p * dN[a][i] + tau * adv[a] * rs[i] +
                              nu_lsic * rho * dN[a][i] * div);
       }
-      R[a * F + dim] += w * (N[a] * div + tau / rho * dN[a].dot(r));
+      R[a * F + dim] += w * (N[a] * div + tau / rho * dN[a].dot(rs));
     }
     if (!with_jacobian) continue;
+    if (f)  // d rs / d f_bj = -N_b e_j
+      for (int a = 0; a < nodes; ++a)
+        for (int b = 0; b < nodes; ++b)
+          for (int j = 0; j < dim; ++j) {
+            S(a * F + j, b * F + j) -= w * tau * adv[a] * N[b];
+            S(a * F + dim, b * F + j) -= w * tau / rho * dN[a][j] * N[b];
+          }
     // Newton: d u_theta / d u_{n+1} = theta, d ut / d u_{n+1} = a0 / dt. Picard drops the
     // derivatives through the advecting velocity (the G N_b term and the SUPG test function's).
     const Real frozen = picard ? 0 : 1;
@@ -102,7 +121,7 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
           dr[j] += rho * mass_adv;
           for (int i = 0; i < dim; ++i) {
             Real v = N[a] * dr[i] + theta * mu * ((i == j ? grad_dot : 0) + dN[a][j] * dN[b][i]) + tau * adv[a] * dr[i] +
-                     frozen * theta * tau * N[b] * dN[a][j] * r[i] + theta * nu_lsic * rho * dN[a][i] * dN[b][j];
+                     frozen * theta * tau * N[b] * dN[a][j] * rs[i] + theta * nu_lsic * rho * dN[a][i] * dN[b][j];
             J(a * F + i, b * F + j) += w * v;
           }
           J(a * F + dim, b * F + j) += w * (theta * N[a] * dN[b][j] + tau / rho * dN[a].dot(dr));
@@ -120,7 +139,7 @@ Real stabilization_tau(Real advective_rate, Real h, Real nu, Real inverse_dt) {
 }
 
 void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeStep& step, VectorX& R, SparseMatrix* J,
-                   const FlowAssembly& how) {
+                   const FlowAssembly& how, const FlowForceDensity& density) {
   const Real mu = how.viscosity > 0 ? how.viscosity : m.viscosity;
   const int F = m.fields(), nodes = m.mesh.nodes_per_cell(), n = F * nodes;
   const SchemeCoefficients coefficients = scheme_coefficients(step);
@@ -130,30 +149,38 @@ void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeS
   const VectorX* x1 = step.transient() ? step.previous : nullptr;
   const VectorX* x2 = coefficients.a2 != 0 ? step.before_previous : nullptr;
   R.setZero(m.dof_count());
-  if (J) {
-    *J = m.pattern;
-    std::fill(J->valuePtr(), J->valuePtr() + J->nonZeros(), 0.0);
-  }
+  const VectorX* f = density.values;
+  SparseMatrix* S = J && f ? density.jacobian : nullptr;
+  for (SparseMatrix* matrix : {J, S})
+    if (matrix) {
+      *matrix = m.pattern;
+      std::fill(matrix->valuePtr(), matrix->valuePtr() + matrix->nonZeros(), 0.0);
+    }
   for_each_cell_by_colour(m.colours, how.threads, [&](Index e) {
     CellVector Re;
-    CellMatrix Je;
-    Real local[kMaxCellDofs], local1[kMaxCellDofs], local2[kMaxCellDofs];
+    CellMatrix Je, Se;
+    Real local[kMaxCellDofs], local1[kMaxCellDofs], local2[kMaxCellDofs], local_f[kMaxCellDofs];
     const Index* cell = m.mesh.cell(e);
     for (int a = 0; a < nodes; ++a)
-      for (int f = 0; f < F; ++f) {
-        const Index d = m.dof(cell[a], f);
-        local[a * F + f] = x[d];
-        if (x1) local1[a * F + f] = (*x1)[d];
-        if (x2) local2[a * F + f] = (*x2)[d];
+      for (int k = 0; k < F; ++k) {
+        const Index d = m.dof(cell[a], k);
+        local[a * F + k] = x[d];
+        if (x1) local1[a * F + k] = (*x1)[d];
+        if (x2) local2[a * F + k] = (*x2)[d];
+        if (f) local_f[a * F + k] = (*f)[d];
       }
-    flow_cell(m, e, local, x1 ? local1 : nullptr, x2 ? local2 : nullptr, coefficients, J != nullptr, how.picard, mu, Re, Je);
+    flow_cell(m, e, local, x1 ? local1 : nullptr, x2 ? local2 : nullptr, f ? local_f : nullptr, coefficients, J != nullptr,
+              how.picard, mu, Re, Je, Se);
     for (int a = 0; a < nodes; ++a)
-      for (int f = 0; f < F; ++f) R[m.dof(cell[a], f)] += Re[a * F + f];
+      for (int k = 0; k < F; ++k) R[m.dof(cell[a], k)] += Re[a * F + k];
     if (!J) return;
     const Index* slots = m.slots.data() + static_cast<size_t>(e) * n * n;
     for (int r = 0; r < n; ++r)
       for (int q = 0; q < n; ++q)
-        if (slots[r * n + q] >= 0) J->valuePtr()[slots[r * n + q]] += Je(r, q);
+        if (slots[r * n + q] >= 0) {
+          J->valuePtr()[slots[r * n + q]] += Je(r, q);
+          if (S) S->valuePtr()[slots[r * n + q]] += Se(r, q);
+        }
   });
 }
 
@@ -192,6 +219,12 @@ void setup_navier_stokes(NavierStokesModel& m) {
     }
     m.cell_size[e] = std::pow(measure, 1.0 / m.dim());
   }
+  m.node_volume.assign(mesh.node_count(), 0);
+  for (Index e = 0; e < mesh.cell_count(); ++e)
+    for (int q = 0; q < m.points; ++q) {
+      const size_t qp = static_cast<size_t>(e) * m.points + q;
+      for (int a = 0; a < nodes; ++a) m.node_volume[mesh.cell(e)[a]] += m.weight[qp] * m.shape[qp * nodes + a];
+    }
   m.colours = colour_cells(mesh);
   m.free_count = number_free_dofs(m.dof_count(), m.prescribed, m.free_index);
   std::vector<Eigen::Triplet<Real, int>> entries;
@@ -271,19 +304,9 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
     VectorX full;
     at.low_rank = {};
     timed(result_.assembly_s, [&] {
-      assemble_flow(m_, x, step_, full, &J, how_);
-      if (!source_) return 0;
-      // The source's entries join the cells' pattern (their union: an immersed solid's nodes move
-      // between fluid cells, so the pattern may change from one evaluation to the next).
-      return timed(source_s_, [&] {
-        source_entries_.clear();
-        source_->add(x, step_, full, &source_entries_, &at.low_rank);
-        SparseMatrix extra(J.rows(), J.cols());
-        extra.setFromTriplets(source_entries_.begin(), source_entries_.end());
-        J += extra;
-        J.makeCompressed();
-        return 0;
-      });
+      if (source_) assemble_flow_with_source(m_, x, step_, *source_, how_, full, &J, &at.low_rank, source_s_);
+      else assemble_flow(m_, x, step_, full, &J, how_);
+      return 0;
     });
     at.R = gather_free(m_.free_index, m_.free_count, full);
   }
@@ -310,7 +333,6 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
   NewtonResult& result_;
   const FlowSource* source_;
   double source_s_ = 0;
-  std::vector<Eigen::Triplet<Real, int>> source_entries_;
   Real first_ = 1;
 };
 

@@ -77,6 +77,7 @@ struct NavierStokesModel {
   std::vector<Real> weight, shape;   // [cell][point], [cell][point][node]
   std::vector<Vec3> gradient;        // [cell][point][node]
   std::vector<Real> cell_size;       // m
+  std::vector<Real> node_volume;     // per node, the integral of its shape function, m^3 (2D: m^2)
   std::vector<std::vector<Index>> colours;
   std::vector<Index> free_index, slots;
   Index free_count = 0;
@@ -96,15 +97,26 @@ Real stabilization_tau(Real advective_rate, Real h, Real nu, Real inverse_dt);
 /// Quadrature, colours, the free dofs and the Jacobian's sparsity; after `prescribed` is set.
 void setup_navier_stokes(NavierStokesModel& model);
 
+/// A force density on the fluid beyond its cells' own (a source's, N/m^3): `values` per dof, at
+/// the velocity dofs of each node (pressure entries unused), interpolated by the shape functions.
+/// The stabilization's strong residual includes it. If `jacobian` is given too, the assembly
+/// writes there the residual's derivative in `values` (free rows and, as the values are zero on
+/// prescribed dofs, free columns).
+struct FlowForceDensity {
+  const VectorX* values = nullptr;
+  SparseMatrix* jacobian = nullptr;
+};
+
 /// The residual on all dofs at x (the state at t_{n+1}) and, if `J` is given, its Jacobian (tau
 /// frozen; `how.picard`: the advecting velocity frozen too) on the free dofs. Cells in parallel by
 /// colours, deterministic.
 void assemble_flow(const NavierStokesModel& model, const VectorX& x, const FlowTimeStep& step, VectorX& R,
-                   SparseMatrix* J, const FlowAssembly& how = {});
+                   SparseMatrix* J, const FlowAssembly& how = {}, const FlowForceDensity& density = {});
 
 /// Terms of the momentum balance beyond the fluid's cells that depend on the whole state, such as
 /// an immersed solid (fem/immersed). They are added to the cells' (Galerkin) residual and Jacobian
-/// in every evaluation; the stabilization's strong residual does not see them.
+/// in every evaluation, and their force density (the residual per node over the node's lumped
+/// volume) joins the stabilization's strong residual (flow_source_assembly.hpp).
 /// A low-rank part of a source's Jacobian on the free dofs, J += U V^T (U, V: free dofs x rank).
 /// Kept out of the sparse matrix, where it would fill a dense block, and applied in the linear
 /// solve by the Sherman-Morrison-Woodbury identity:
