@@ -13,8 +13,8 @@ larger than it is and the drag converges from above at about first order in h. T
 error falls at each refinement, and on the finest mesh (N = 48) the drag lies within 5 %, the
 tolerance set for immersed drag. The lift coefficient (0.0106, 0.2 % of the drag: the cylinder
 sits 5 mm below the channel's axis) is below what a diffuse boundary resolves on these meshes; it
-is reported, not checked. The fast subset runs N = 16 to t = 5 s and checks the drag within 13 %
-(the first-order error at 16 cells per diameter, 11.1 % when measured).
+is reported, not checked. The fast subset runs N = 16 to t = 5 s and checks the drag within 10 %
+(the diffuse boundary's error at 16 cells per diameter, +6.5 % when measured).
 """
 import math
 
@@ -41,8 +41,8 @@ def run(moreau, work, out, fast):
              for n, drag, lift, seconds in results]
     if fast:
         n, drag, _, _ = results[0]
-        checks = [Check(f"drag coefficient, N = {n}", drag, DRAG, 0.13 * DRAG, "",
-                        "13 %: the diffuse boundary's first-order error at 16 cells per diameter")]
+        checks = [Check(f"drag coefficient, N = {n}", drag, DRAG, 0.10 * DRAG, "",
+                        "10 %: the diffuse boundary's error at 16 cells per diameter")]
     else:
         errors = [abs(drag - DRAG) for _, drag, _, _ in results]
         for (n1, d1, *_), (n2, d2, *_) in zip(results, results[1:]):
