@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "flow_test_helpers.hpp"
+#include "immersed_rigid_body_fixtures.hpp"
 #include "immersed_test_meshes.hpp"
 #include "moreau/fem/flow/flow_stepper.hpp"
 #include "moreau/fem/immersed/immersed_coupling.hpp"
@@ -33,16 +34,7 @@ Real first_acceleration(Real rho_s, int n, Real dt) {
   prescribe_velocity(m, "rim", [](const Vec3&) { return Vec3::Zero(); });
   fix_pressure(m, 0);
   setup_navier_stokes(m);
-  ImmersedSolids solids;
-  solids.model.dim = 2;
-  FemSolid solid;
-  solid.name = "body";
-  solid.mesh = disc_mesh(Vec3::Zero(), a, n, n / 4);
-  solid.material.density = rho_s;
-  add_fem_solid(solids.model, std::move(solid));
-  finalize_fem_model(solids.model);
-  solids.viscosity.push_back(m.viscosity);
-  solids.rigid_bodies.push_back(make_immersed_rigid_body(solids.model, 0, m.density, default_rigid_coupling_stiffness(m, dt)));
+  const ImmersedSolids solids = test::one_rigid_body(disc_mesh(Vec3::Zero(), a, n, n / 4), rho_s, m, dt);
   ImmersedSolidState state = initial_immersed_state(solids);
   ImmersedCoupling coupling(m, solids, state);
   VectorX x = VectorX::Zero(m.dof_count());

@@ -273,6 +273,27 @@ TEST(ImmersedSolid, TheSourcesJacobianIsTheDerivativeOfItsResidual) {
   EXPECT_LT(worst, 1e-6);
 }
 
+TEST(ImmersedSolid, TheWholeFlowJacobianWithTheSolidIsTheDerivativeOfTheResidual) {
+  // As the source's test, for the whole flow (flow_source_assembly): the cells' terms, with the
+  // solid's force density in the stabilization's residual, and the solid's. tau and nu_LSIC are
+  // held fixed, as the assembly's Jacobian treats them; the columns are the velocities of the
+  // fluid nodes within 0.3 m of the block's centre, measured against the largest column (h = 1e-6).
+  ReleasedBlock b = released_block(0.01);
+  b.solids = rectangle_solid(Vec2(0.3, 0.4), Vec2(0.7, 0.6), {16, 8}, 10, 3, 0.01);
+  b.fluid.fixed_tau = 2e-3;
+  b.fluid.fixed_lsic = 1e-3;
+  ImmersedCoupling coupling(b.fluid, b.solids, b.state);
+  VectorX x, x_n;
+  test::swirling_velocities_2d(b.fluid, x, x_n);
+  const FlowTimeStep step{FlowIntegrator::midpoint, 0.01, &x_n, &x_n};
+  const auto [worst, columns] =
+      test::flow_with_source_jacobian_against_differences(b.fluid, coupling, x, step, 1e-6, Vec3(0.5, 0.5, 0), 0.3);
+  std::printf("flow with an immersed solid: %d columns, largest difference from central differences %.2e of the largest column\n",
+              columns, worst);
+  EXPECT_GT(columns, 200);
+  EXPECT_LT(worst, 1e-7);
+}
+
 TEST(ImmersedSolid, StepsAreBitIdenticalForAnyThreadCount) {
   VectorX results[2], displacements[2];
   for (int threads : {1, 2}) {

@@ -10,6 +10,7 @@
 
 #include "flow_source_jacobian.hpp"
 #include "flow_test_helpers.hpp"
+#include "immersed_rigid_body_fixtures.hpp"
 #include "immersed_test_meshes.hpp"
 #include "moreau/fem/flow/flow_stepper.hpp"
 #include "moreau/fem/immersed/immersed_coupling.hpp"
@@ -22,26 +23,6 @@ using test::annulus_mesh;
 using test::disc_mesh;
 using test::fix_pressure;
 using test::prescribe_velocity;
-
-// A rigid body with mesh `mesh` in `fluid`: driven by `motion` if given (its density then only
-// sets its nodes' volumes: give the fluid's, as scenes do), else free with density rho_s; its
-// coupling stiffness the default for steps of dt.
-ImmersedSolids immersed_body(FemMesh mesh, Real density, std::optional<PrescribedRigidMotion> motion,
-                             const NavierStokesModel& fluid, Real dt) {
-  ImmersedSolids solids;
-  solids.model.dim = fluid.dim();
-  FemSolid solid;
-  solid.name = "body";
-  solid.mesh = std::move(mesh);
-  solid.material.density = density;
-  add_fem_solid(solids.model, std::move(solid));
-  finalize_fem_model(solids.model);
-  solids.viscosity.push_back(fluid.viscosity);
-  solids.rigid_bodies.push_back(
-      make_immersed_rigid_body(solids.model, 0, fluid.density, default_rigid_coupling_stiffness(fluid, dt)));
-  solids.rigid_bodies[0].motion = std::move(motion);
-  return solids;
-}
 
 TEST(PrescribedRigidMotion, TurnsExactlyAndMovesToSecondOrder) {
   // A 3D frame turning at a constant rate about an oblique axis: each step's rotation is exact, so
@@ -93,7 +74,7 @@ TEST(ImmersedDrivenBody, ARingTurningBetweenFixedCylindersFeelsTheCouetteTorques
   fix_pressure(m, 0);
   setup_navier_stokes(m);
   const PrescribedRigidMotion turning{[](Real) { return Vec3::Zero(); }, [&](Real) { return Vec3(0, 0, Omega); }};
-  const ImmersedSolids solids = immersed_body(annulus_mesh(r3, r4, 8, 256), m.density, turning, m, dt);
+  const ImmersedSolids solids = test::one_rigid_body(annulus_mesh(r3, r4, 8, 256), m.density, m, dt, turning);
   ImmersedSolidState state = initial_immersed_state(solids);
   ImmersedCoupling coupling(m, solids, state);
   VectorX x = VectorX::Zero(m.dof_count());
@@ -132,16 +113,10 @@ TEST(ImmersedDrivenBody, TheSourcesJacobianIsTheDerivativeOfItsResidual) {
   // A disc driven across a swirling fluid velocity while turning: its frame does not depend on the
   // fluid, so the Jacobian is the direct term alone; every column the body touches matches central
   // differences of the residual (measured as the free body's, against the largest column, h = 1e-4).
-  NavierStokesModel m;
-  m.mesh = make_rectangle_mesh(Vec2(0, 0), Vec2(1, 1.5), {24, 36}, ElementType::quad4);
-  m.density = 1;
-  m.viscosity = 0.01;
-  for (const char* side : {"left", "right", "bottom", "top"}) prescribe_velocity(m, side, [](const Vec3&) { return Vec3::Zero(); });
-  fix_pressure(m, 0);
-  setup_navier_stokes(m);
+  const NavierStokesModel m = test::closed_box_fluid(false);
   const PrescribedRigidMotion motion{[](Real t) { return Vec3(0.1, -0.2 * std::cos(t), 0); },
                                      [](Real t) { return Vec3(0, 0, 0.5 + t); }};
-  const ImmersedSolids solids = immersed_body(disc_mesh(Vec3(0.5, 1, 0), 0.1, 8, 3), m.density, motion, m, 0.01);
+  const ImmersedSolids solids = test::one_rigid_body(disc_mesh(Vec3(0.5, 1, 0), 0.1, 8, 3), m.density, m, 0.01, motion);
   ImmersedSolidState state = initial_immersed_state(solids);
   state.time = 0.3;
   ImmersedCoupling coupling(m, solids, state);
@@ -167,7 +142,7 @@ TEST(ImmersedDrivenBody, ABodyDrivenOutOfTheFluidStopsTheStepSayingSo) {
   fix_pressure(m, 0);
   setup_navier_stokes(m);
   const PrescribedRigidMotion motion{[](Real) { return Vec3(50, 0, 0); }, [](Real) { return Vec3::Zero(); }};
-  const ImmersedSolids solids = immersed_body(disc_mesh(Vec3(0.5, 0.5, 0), 0.1, 4, 2), m.density, motion, m, 0.01);
+  const ImmersedSolids solids = test::one_rigid_body(disc_mesh(Vec3(0.5, 0.5, 0), 0.1, 4, 2), m.density, m, 0.01, motion);
   ImmersedSolidState state = initial_immersed_state(solids);
   ImmersedCoupling coupling(m, solids, state);
   VectorX x = VectorX::Zero(m.dof_count());
@@ -187,16 +162,9 @@ TEST(ImmersedDrivenBody, TheLoadOnAFreeBodyIsItsMassTimesAccelerationLessGravity
   // rest in a closed box for 20 steps of 0.01 s: per step the load matches m ((v_n+1 - v_n)/dt - g)
   // to round-off: the frame's equations are solved to round-off for the step's final fluid velocity
   // (the tolerance, 1e-9, leaves room for the fluid inertia's and the coupling's cancellation).
-  NavierStokesModel m;
-  m.mesh = make_rectangle_mesh(Vec2(0, 0), Vec2(1, 1.5), {24, 36}, ElementType::quad4);
-  m.density = 1;
-  m.viscosity = 0.01;
-  m.body_force = Vec3(0, -9.81, 0);
-  for (const char* side : {"left", "right", "bottom", "top"}) prescribe_velocity(m, side, [](const Vec3&) { return Vec3::Zero(); });
-  fix_pressure(m, 0);
-  setup_navier_stokes(m);
+  const NavierStokesModel m = test::closed_box_fluid(true);
   const Real dt = 0.01, rho_s = 3;
-  const ImmersedSolids solids = immersed_body(disc_mesh(Vec3(0.4, 1, 0), 0.1, 8, 3), rho_s, std::nullopt, m, dt);
+  const ImmersedSolids solids = test::one_rigid_body(disc_mesh(Vec3(0.4, 1, 0), 0.1, 8, 3), rho_s, m, dt);
   const Eigen::MatrixXd body_mass = solids.rigid_bodies[0].excess_mass + solids.rigid_bodies[0].fluid_mass;
   const Real mass = body_mass(0, 0);
   ImmersedSolidState state = initial_immersed_state(solids);

@@ -11,6 +11,7 @@
 
 #include "flow_source_jacobian.hpp"
 #include "flow_test_helpers.hpp"
+#include "immersed_rigid_body_fixtures.hpp"
 #include "immersed_test_meshes.hpp"
 #include "moreau/fem/flow/flow_problem.hpp"
 #include "moreau/fem/flow/flow_stepper.hpp"
@@ -24,21 +25,8 @@ using test::disc_mesh;
 using test::fix_pressure;
 using test::prescribe_velocity;
 
-// One rigid body of density rho_s with mesh `mesh` in `fluid`, its coupling stiffness the default
-// for steps of dt.
 ImmersedSolids rigid_body(FemMesh mesh, Real density, const NavierStokesModel& fluid, Real dt) {
-  ImmersedSolids solids;
-  solids.model.dim = fluid.dim();
-  FemSolid solid;
-  solid.name = "body";
-  solid.mesh = std::move(mesh);
-  solid.material.density = density;
-  add_fem_solid(solids.model, std::move(solid));
-  finalize_fem_model(solids.model);
-  solids.viscosity.push_back(fluid.viscosity);
-  solids.rigid_bodies.push_back(
-      make_immersed_rigid_body(solids.model, 0, fluid.density, default_rigid_coupling_stiffness(fluid, dt)));
-  return solids;
+  return test::one_rigid_body(std::move(mesh), density, fluid, dt);
 }
 
 Real angular_velocity(const ImmersedSolidState& state) {
@@ -138,15 +126,8 @@ struct DiscInABox {
 
 DiscInABox disc_in_a_box(Real density, Real dt) {
   DiscInABox b;
-  NavierStokesModel& m = b.fluid;
-  m.mesh = make_rectangle_mesh(Vec2(0, 0), Vec2(1, 1.5), {24, 36}, ElementType::quad4);
-  m.density = 1;
-  m.viscosity = 0.01;
-  m.body_force = Vec3(0, -9.81, 0);
-  for (const char* side : {"left", "right", "bottom", "top"}) prescribe_velocity(m, side, [](const Vec3&) { return Vec3::Zero(); });
-  fix_pressure(m, 0);
-  setup_navier_stokes(m);
-  b.solids = rigid_body(disc_mesh(Vec3(0.5, 1, 0), 0.1, 8, 3), density, m, dt);
+  b.fluid = test::closed_box_fluid(true);
+  b.solids = rigid_body(disc_mesh(Vec3(0.5, 1, 0), 0.1, 8, 3), density, b.fluid, dt);
   b.state = initial_immersed_state(b.solids);
   return b;
 }
