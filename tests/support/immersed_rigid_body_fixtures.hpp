@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "flow_test_helpers.hpp"
+#include "immersed_test_meshes.hpp"
 #include "moreau/fem/immersed/immersed_rigid_body.hpp"
 
 namespace moreau::test {
@@ -18,6 +19,20 @@ inline NavierStokesModel closed_box_fluid(bool gravity) {
   m.viscosity = 0.01;
   if (gravity) m.body_force = Vec3(0, -9.81, 0);
   for (const char* side : {"left", "right", "bottom", "top"}) prescribe_velocity(m, side, [](const Vec3&) { return Vec3::Zero(); });
+  fix_pressure(m, 0);
+  setup_navier_stokes(m);
+  return m;
+}
+
+/// Circular Couette flow's gap: the annulus 0.5 <= r <= 1 m of 16 x 128 fluid cells (rho 1,
+/// mu 1 Pa s), its inner wall turning at `inner_rate` (rad/s), its outer wall fixed.
+inline NavierStokesModel couette_gap_fluid(Real inner_rate) {
+  NavierStokesModel m;
+  m.mesh = annulus_mesh(0.5, 1.0, 16, 128);
+  m.density = 1;
+  m.viscosity = 1;
+  prescribe_velocity(m, "inner", [&](const Vec3& p) { return Vec3(-inner_rate * p.y(), inner_rate * p.x(), 0); });
+  prescribe_velocity(m, "outer", [](const Vec3&) { return Vec3::Zero(); });
   fix_pressure(m, 0);
   setup_navier_stokes(m);
   return m;

@@ -66,13 +66,7 @@ TEST(ImmersedDrivenBody, ARingTurningBetweenFixedCylindersFeelsTheCouetteTorques
   // fields across the gaps about 1e-3, slip 1e-4. Tolerance 0.5 %. Its centre stays put: the
   // force is zero to round-off of the torque's size.
   const Real r1 = 0.5, r2 = 1.0, r3 = 0.6875, r4 = 0.8125, Omega = 0.1, mu = 1, dt = 0.05;
-  NavierStokesModel m;
-  m.mesh = annulus_mesh(r1, r2, 16, 128);
-  m.density = 1;
-  m.viscosity = mu;
-  for (const char* wall : {"inner", "outer"}) prescribe_velocity(m, wall, [](const Vec3&) { return Vec3::Zero(); });
-  fix_pressure(m, 0);
-  setup_navier_stokes(m);
+  const NavierStokesModel m = test::couette_gap_fluid(0);  // r1, r2 and mu as above, both walls fixed
   const PrescribedRigidMotion turning{[](Real) { return Vec3::Zero(); }, [&](Real) { return Vec3(0, 0, Omega); }};
   const ImmersedSolids solids = test::one_rigid_body(annulus_mesh(r3, r4, 8, 256), m.density, m, dt, turning);
   ImmersedSolidState state = initial_immersed_state(solids);

@@ -45,15 +45,8 @@ TEST(ImmersedRigidBody, AFreeRingBetweenTurningCylindersTurnsAtTheRateItsTorques
   // circles (1 - cos(pi/128), 3e-4), the Q1 fields across the gaps (the Couette profile A r + B/r
   // is not bilinear, O(h^2), about 1e-3) and the ring's slip (about 1e-3 h / width, 1e-4): the
   // tolerance is 0.5 %.
-  const Real r1 = 0.5, r2 = 1.0, r3 = 0.6875, r4 = 0.8125, Omega = 0.1, mu = 1, dt = 0.05;
-  NavierStokesModel m;
-  m.mesh = annulus_mesh(r1, r2, 16, 128);
-  m.density = 1;
-  m.viscosity = mu;
-  prescribe_velocity(m, "inner", [&](const Vec3& p) { return Vec3(-Omega * p.y(), Omega * p.x(), 0); });
-  prescribe_velocity(m, "outer", [](const Vec3&) { return Vec3::Zero(); });
-  fix_pressure(m, 0);
-  setup_navier_stokes(m);
+  const Real r1 = 0.5, r2 = 1.0, r3 = 0.6875, r4 = 0.8125, Omega = 0.1, dt = 0.05;
+  const NavierStokesModel m = test::couette_gap_fluid(Omega);  // r1, r2 as above, mu = 1 Pa s
   const ImmersedSolids solids = rigid_body(annulus_mesh(r3, r4, 8, 256), 1, m, dt);
   ImmersedSolidState state = initial_immersed_state(solids);
   ImmersedCoupling coupling(m, solids, state);
