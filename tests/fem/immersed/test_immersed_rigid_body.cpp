@@ -25,10 +25,6 @@ using test::disc_mesh;
 using test::fix_pressure;
 using test::prescribe_velocity;
 
-ImmersedSolids rigid_body(FemMesh mesh, Real density, const NavierStokesModel& fluid, Real dt) {
-  return test::one_rigid_body(std::move(mesh), density, fluid, dt);
-}
-
 Real angular_velocity(const ImmersedSolidState& state) {
   return rigid_frame_angular_velocity(state.frame[0], state.frame_velocity[0], 2).z();
 }
@@ -47,7 +43,7 @@ TEST(ImmersedRigidBody, AFreeRingBetweenTurningCylindersTurnsAtTheRateItsTorques
   // tolerance is 0.5 %.
   const Real r1 = 0.5, r2 = 1.0, r3 = 0.6875, r4 = 0.8125, Omega = 0.1, dt = 0.05;
   const NavierStokesModel m = test::couette_gap_fluid(Omega);  // r1, r2 as above, mu = 1 Pa s
-  const ImmersedSolids solids = rigid_body(annulus_mesh(r3, r4, 8, 256), 1, m, dt);
+  const ImmersedSolids solids = test::one_rigid_body(annulus_mesh(r3, r4, 8, 256), 1, m, dt);
   ImmersedSolidState state = initial_immersed_state(solids);
   ImmersedCoupling coupling(m, solids, state);
   VectorX x = VectorX::Zero(m.dof_count());
@@ -92,7 +88,7 @@ TEST(ImmersedRigidBody, ANeutrallyBuoyantCylinderInSimpleShearTurnsAtHalfTheShea
     prescribe_velocity(m, side, [&](const Vec3& p) { return Vec3(gamma * p.y(), 0, 0); });
   fix_pressure(m, 0);
   setup_navier_stokes(m);
-  const ImmersedSolids solids = rigid_body(disc_mesh(Vec3::Zero(), 0.25, 12, 4), 1, m, dt);
+  const ImmersedSolids solids = test::one_rigid_body(disc_mesh(Vec3::Zero(), 0.25, 12, 4), 1, m, dt);
   ImmersedSolidState state = initial_immersed_state(solids);
   ImmersedCoupling coupling(m, solids, state);
   VectorX x = VectorX::Zero(m.dof_count());
@@ -120,7 +116,7 @@ struct DiscInABox {
 DiscInABox disc_in_a_box(Real density, Real dt) {
   DiscInABox b;
   b.fluid = test::closed_box_fluid(true);
-  b.solids = rigid_body(disc_mesh(Vec3(0.5, 1, 0), 0.1, 8, 3), density, b.fluid, dt);
+  b.solids = test::one_rigid_body(disc_mesh(Vec3(0.5, 1, 0), 0.1, 8, 3), density, b.fluid, dt);
   b.state = initial_immersed_state(b.solids);
   return b;
 }
@@ -272,7 +268,7 @@ TEST(ImmersedRigidBody, TheSourcesJacobianIsTheDerivativeOfItsResidualIn3D) {
   fix_pressure(m, 0);
   setup_navier_stokes(m);
   const Real dt = 0.01;
-  ImmersedSolids solids = rigid_body(make_box_mesh(Vec3(0.35, 0.35, 0.35), Vec3(0.65, 0.65, 0.65), {6, 6, 6},
+  ImmersedSolids solids = test::one_rigid_body(make_box_mesh(Vec3(0.35, 0.35, 0.35), Vec3(0.65, 0.65, 0.65), {6, 6, 6},
                                                    ElementType::hex8), 3, m, dt);
   ImmersedSolidState state = initial_immersed_state(solids);
   const Eigen::Matrix3d turn = Eigen::AngleAxisd(0.3, Vec3(1, 2, 3).normalized()).toRotationMatrix();
