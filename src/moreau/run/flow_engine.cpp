@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <limits>
 #include <optional>
 
 #include "moreau/errors.hpp"
@@ -63,22 +65,25 @@ class FlowEngine final : public Engine {
   FrameSeries frame_series() const override { return frames_ ? frames_->series() : FrameSeries{}; }
 
   void save_state(ArchiveWriter& out) const override {
-    archive(out, std::tie(x_, time_, steps_, last_iterations_, max_iterations_, total_iterations_, picard_iterations_));
+    archive(out, std::tie(x_, time_, steps_, last_iterations_, max_iterations_, total_iterations_, picard_iterations_,
+                          retried_steps_, smallest_step_));
     stepper_.save(out);
     solver_.save(out);
     if (solids_)
       archive(out, std::tie(solids_->displacement, solids_->velocity, solids_->time, solids_->frame, solids_->frame_velocity,
-                            solids_->fluid_force, solids_->fluid_torque));
+                            solids_->fluid_force, solids_->fluid_torque, solids_->fluid_source));
   }
   void load_state(ArchiveReader& in) override {
-    auto fields = std::tie(x_, time_, steps_, last_iterations_, max_iterations_, total_iterations_, picard_iterations_);
+    auto fields = std::tie(x_, time_, steps_, last_iterations_, max_iterations_, total_iterations_, picard_iterations_,
+                           retried_steps_, smallest_step_);
     unarchive(in, fields);
     if (x_.size() != problem_.initial.size()) throw ArchiveError("the checkpoint's flow has another number of unknowns");
     stepper_.load(in);
     solver_.load(in);
     if (solids_) {
       auto solid_fields = std::tie(solids_->displacement, solids_->velocity, solids_->time, solids_->frame,
-                                   solids_->frame_velocity, solids_->fluid_force, solids_->fluid_torque);
+                                   solids_->frame_velocity, solids_->fluid_force, solids_->fluid_torque,
+                                   solids_->fluid_source);
       unarchive(in, solid_fields);
       if (solids_->displacement.size() != problem_.immersed->model.dof_count())
         throw ArchiveError("the checkpoint's immersed solids have another number of nodes");
@@ -143,6 +148,8 @@ class FlowEngine final : public Engine {
   int last_iterations_ = 0, max_iterations_ = 0;
   long total_iterations_ = 0, picard_iterations_ = 0;
   double assembly_s_ = 0, solve_s_ = 0, source_s_ = 0;
+  long retried_steps_ = 0;                                        // steps that needed substeps
+  Real smallest_step_ = std::numeric_limits<Real>::infinity();  // s, the smallest substep taken
   std::optional<ImmersedSolidState> solids_;
   std::optional<ImmersedCoupling> coupling_;
   nlohmann::json continuation_ = nlohmann::json::array();
@@ -188,27 +195,57 @@ void FlowEngine::solve_steady(int threads) {
   ++steps_;
 }
 
+// One run-loop step. If its solve fails (Newton and Picard, or a solid leaving the mesh on the
+// way), it is retried from the same start as 2, 4, ..., 2^max_step_halvings equal substeps: the
+// immersed solids' and the stepper's states are restored with the fluid's. Every attempt's
+// iterations and times are counted.
 void FlowEngine::step_transient(int threads) {
   const Real dt = scene_.fem->dt;
   FlowSolveSettings settings = problem_.solve;
   settings.threads = threads;
   const VectorX start = x_;
   const std::optional<ImmersedSolidState> solids_start = solids_;
-  FlowSolveResult r;
-  try {  // a boundary value that is not finite, or a solid leaving the mesh, throws NumericalError naming it
-    r = stepper_.step(problem_.model, time_, dt, x_, solver_, settings, coupling_ ? &*coupling_ : nullptr);
-  } catch (const NumericalError& e) {
-    r.converged = false;
-    r.failure = e.what();
-  }
-  last_step_ = &stepper_.last_step();
-  if (!r.converged || !x_.allFinite()) {
+  const FlowStepper stepper_start = stepper_;
+  FlowSolveResult total;
+  int substeps = 1;
+  for (int halvings = 0;; ++halvings, substeps *= 2) {
+    std::string failure;
+    for (int k = 0; k < substeps && failure.empty(); ++k) {
+      FlowSolveResult r;
+      try {  // a boundary value that is not finite, or a solid leaving the mesh, throws NumericalError naming it
+        r = stepper_.step(problem_.model, time_ + k * dt / substeps, dt / substeps, x_, solver_, settings,
+                          coupling_ ? &*coupling_ : nullptr);
+      } catch (const NumericalError& e) {
+        r.converged = false;
+        r.failure = e.what();
+      }
+      total.iterations += r.iterations;
+      total.picard_iterations += r.picard_iterations;
+      total.assembly_s += r.assembly_s;
+      total.solve_s += r.solve_s;
+      total.source_s += r.source_s;
+      if (!r.converged) failure = r.failure;
+      else if (!x_.allFinite()) failure = "the velocity or pressure is not finite";
+    }
+    last_step_ = &stepper_.last_step();
+    if (failure.empty()) break;
     x_ = start;
     if (solids_) *solids_ = *solids_start;
-    throw NumericalError(fmt::format("step {} (t = {:.6g} s to {:.6g} s) failed: fluid: {}", steps_ + 1, time_, time_ + dt,
-                                     r.converged ? "the velocity or pressure is not finite" : r.failure));
+    stepper_ = stepper_start;
+    last_step_ = &stepper_.last_step();
+    if (halvings == problem_.max_step_halvings) {
+      account(total);
+      const std::string retried = substeps > 1 ? fmt::format(" (also in {} substeps of {:.6g} s)", substeps, dt / substeps) : "";
+      throw NumericalError(
+          fmt::format("step {} (t = {:.6g} s to {:.6g} s) failed{}: fluid: {}", steps_ + 1, time_, time_ + dt, retried, failure));
+    }
   }
-  account(r);
+  if (substeps > 1) {
+    ++retried_steps_;
+    smallest_step_ = std::min(smallest_step_, dt / substeps);
+  }
+  total.converged = true;
+  account(total);
   shift_to_mean_pressure();
   time_ += dt;
   ++steps_;
@@ -222,6 +259,10 @@ void FlowEngine::add_run_fields(nlohmann::json& j, bool /*completed*/) const {
   j["newton"] = {{"iterations", total_iterations_},    {"picard_iterations", picard_iterations_},
                  {"max_iterations_per_step", max_iterations_}, {"tolerance", problem_.solve.tolerance},
                  {"assembly_s", assembly_s_},           {"solve_s", solve_s_}};
+  if (!steady()) {
+    j["newton"]["retried_steps"] = retried_steps_;
+    j["newton"]["smallest_step_s"] = retried_steps_ > 0 ? smallest_step_ : scene_.fem->dt;
+  }
   j["linear_solver"] = {{"type", solver_.name()}};
   if (problem_.linear.method == FlowLinearMethod::gmres) {
     const FlowLinearStatistics& ls = solver_.statistics();

@@ -96,10 +96,21 @@ Real read_force_coefficient_scale(const JsonObject& j, const NavierStokesModel& 
   return 2 / (m.density * speed * speed * size);
 }
 
-// {"type": "center_of_mass" | "velocity" | "angular_velocity" | "force" | "torque", "object":
-// <immersed rigid body>}: its frame's centre, that centre's velocity, its angular velocity (2D:
-// about z), or the fluid's force on it (with coefficients if given a "reference") and torque
-// about its centre over the last step.
+// {"type": "force", "object": <immersed solid or rigid body>}: the fluid's force on it over the
+// last step, with coefficients if given a "reference".
+void read_solid_force_probe(const JsonObject& j, const FlowProblem& problem, FlowProbe& p) {
+  const std::string object = j.string("object");
+  if (problem.immersed)
+    for (size_t s = 0; s < problem.immersed->model.solids.size(); ++s)
+      if (problem.immersed->model.solids[s].name == object) p.solid = static_cast<Index>(s);
+  if (p.solid < 0) j.fail("object", fmt::format("no solid or rigid body named '{}' is immersed in the fluid", object));
+  p.type = FlowProbeType::solid_force;
+  p.coefficient_scale = read_force_coefficient_scale(j, problem.model);
+}
+
+// {"type": "center_of_mass" | "velocity" | "angular_velocity" | "torque", "object": <immersed
+// rigid body>}: its frame's centre, that centre's velocity, its angular velocity (2D: about z),
+// or the fluid's torque on it about its centre over the last step.
 void read_rigid_body_probe(const JsonObject& j, const std::string& type, const FlowProblem& problem, FlowProbe& p) {
   const std::string object = j.string("object");
   if (problem.immersed)
@@ -109,7 +120,6 @@ void read_rigid_body_probe(const JsonObject& j, const std::string& type, const F
   if (p.body < 0) j.fail("object", fmt::format("no rigid body named '{}' is immersed in the fluid", object));
   p.type = FlowProbeType::rigid_body;
   p.quantity = type;
-  if (type == "force") p.coefficient_scale = read_force_coefficient_scale(j, problem.model);
 }
 
 FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
@@ -126,8 +136,9 @@ FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
   };
   if (type == "point" && j.has("object")) {
     read_solid_point_probe(j, problem, p);
-  } else if (type == "center_of_mass" || type == "velocity" || type == "angular_velocity" || type == "force" ||
-             type == "torque") {
+  } else if (type == "force") {
+    read_solid_force_probe(j, problem, p);
+  } else if (type == "center_of_mass" || type == "velocity" || type == "angular_velocity" || type == "torque") {
     read_rigid_body_probe(j, type, problem, p);
   } else if (type == "energy") {
     p.type = FlowProbeType::energy;
@@ -171,6 +182,7 @@ void read_flow_settings(const JsonObject* settings, const JsonObject& fluid, Flo
                        : integrator == "backward_euler" ? FlowIntegrator::backward_euler
                        : integrator == "bdf2"           ? FlowIntegrator::bdf2
                                                         : FlowIntegrator::midpoint;
+  if (problem.integrator == FlowIntegrator::bdf2) problem.max_step_halvings = 0;  // its formula needs equal steps
   if (!settings) return;
   if (auto newton = settings->optional_object("newton")) {
     FlowSolveSettings& s = problem.solve;
@@ -178,6 +190,13 @@ void read_flow_settings(const JsonObject* settings, const JsonObject& fluid, Flo
     s.max_iterations = newton->integer("max_iterations", s.max_iterations, 1, 1000);
     s.picard_fallback = newton->boolean("picard_fallback", s.picard_fallback);
     s.max_picard_iterations = newton->integer("max_picard_iterations", s.max_picard_iterations, 1, 100000);
+    if (problem.integrator == FlowIntegrator::bdf2) {
+      if (newton->has("max_step_halvings") && newton->integer("max_step_halvings", 0, 0, 10) != 0)
+        newton->fail("max_step_halvings", "\"bdf2\" needs equal steps: a failed step cannot be retried in substeps; "
+                                          "use 0, or \"integrator\": \"midpoint\" or \"backward_euler\"");
+    } else {
+      problem.max_step_halvings = newton->integer("max_step_halvings", problem.max_step_halvings, 0, 10);
+    }
     newton->finish();
   }
   if (auto linear = settings->optional_object("linear_solver")) {

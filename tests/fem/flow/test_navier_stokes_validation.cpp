@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "flow_test_helpers.hpp"
 #include "moreau/fem/flow/flow_problem.hpp"
@@ -185,6 +186,32 @@ TEST(NavierStokesValidation, TaylorGreenVortexDecaysAtTheViscousRate) {
   }
   EXPECT_LT(std::abs(excess[0]), 0.015);
   EXPECT_LT(std::abs(excess[1]), 0.015);
+}
+
+TEST(NavierStokesValidation, AStepperCopiedBeforeAStepUndoesItWhenAssignedBack) {
+  // How a failed step is retried in substeps: a copy taken before the step, assigned back, must
+  // leave the stepper as it was, its last step pointing at its own previous states (not the
+  // copy's). Taylor-Green on 12^2, the midpoint rule: step, copy, step, restore, step again; the
+  // two second steps must agree bit for bit, and with BDF2 (which reads two previous states) too.
+  for (FlowIntegrator integrator : {FlowIntegrator::midpoint, FlowIntegrator::bdf2}) {
+    NavierStokesModel m;
+    run_taylor_green(12, 0.1, integrator, 0.05, 0, 0, m);
+    VectorX x = test::exact_state(m, taylor_green(0.1), 0);
+    FlowLinearSolver solver;
+    FlowStepper stepper(integrator);
+    ASSERT_TRUE(stepper.step(m, 0, 0.05, x, solver, {.tolerance = 1e-11}).converged);
+    const VectorX after_one = x;
+    std::optional<FlowStepper> saved(stepper);
+    ASSERT_TRUE(stepper.step(m, 0.05, 0.05, x, solver, {.tolerance = 1e-11}).converged);
+    const VectorX first_try = x;
+    stepper = *saved;
+    saved.reset();  // the restored stepper must not read the copy's storage
+    x = after_one;
+    ASSERT_TRUE(stepper.step(m, 0.05, 0.05, x, solver, {.tolerance = 1e-11}).converged);
+    EXPECT_EQ((x - first_try).lpNorm<Eigen::Infinity>(), 0.0);
+    ASSERT_NE(stepper.last_step().previous, nullptr);
+    EXPECT_EQ(*stepper.last_step().previous, after_one);
+  }
 }
 
 TEST(NavierStokesValidation, TimeIntegratorsConvergeAtTheirOrders) {

@@ -11,6 +11,7 @@
 
 #include "flow_source_jacobian.hpp"
 #include "flow_test_helpers.hpp"
+#include "immersed_rigid_body_fixtures.hpp"
 #include "immersed_test_meshes.hpp"
 #include "moreau/fem/core/mesh_locator.hpp"
 #include "moreau/fem/flow/flow_problem.hpp"
@@ -74,11 +75,6 @@ ImmersedSolids rectangle_solid(const Vec2& lo, const Vec2& hi, std::array<int, 2
   return solids;
 }
 
-ImmersedSolidState rest_state(const ImmersedSolids& solids) {
-  const Index n = solids.model.dof_count();
-  return {VectorX::Zero(n), VectorX::Zero(n), 0};
-}
-
 // The fluid's velocity components, as a vector over nodes.
 Real largest_speed(const NavierStokesModel& m, const VectorX& x) {
   Real v = 0;
@@ -100,7 +96,7 @@ TEST(ImmersedSolid, WithTheFluidsDensityAndNoLoadNothingMoves) {
   fix_pressure(m, 0);
   setup_navier_stokes(m);
   const ImmersedSolids solids = rectangle_solid(Vec2(0.3, 0.4), Vec2(0.7, 0.6), {16, 8}, 1e4, 1000, 1e-3);
-  ImmersedSolidState state = rest_state(solids);
+  ImmersedSolidState state = initial_immersed_state(solids);
   ImmersedCoupling coupling(m, solids, state);
   VectorX x = VectorX::Zero(m.dof_count());
   FlowStepper stepper(FlowIntegrator::midpoint);
@@ -153,7 +149,7 @@ TEST(ImmersedSolid, AnElasticRingShearedByACouetteFlowTurnsAsTheClosedFormSays) 
     for (int k = 0; k < 2; ++k) solids.model.prescribed.push_back({solids.model.dof(n, k), [](Real) { return 0.0; }});
   finalize_fem_model(solids.model);
   solids.viscosity.push_back(mu);
-  ImmersedSolidState state = rest_state(solids);
+  ImmersedSolidState state = initial_immersed_state(solids);
   ImmersedCoupling coupling(m, solids, state);
   VectorX x = VectorX::Zero(m.dof_count());
   FlowStepper stepper(FlowIntegrator::backward_euler);
@@ -205,7 +201,7 @@ ReleasedBlock released_block(Real solid_viscosity) {
   fix_pressure(m, 0);
   setup_navier_stokes(m);
   b.solids = rectangle_solid(Vec2(0.3, 0.4), Vec2(0.7, 0.6), {16, 8}, 10, 1, solid_viscosity);
-  b.state = rest_state(b.solids);
+  b.state = initial_immersed_state(b.solids);
   const Real s = 1.15;
   const FemMesh& mesh = b.solids.model.solids[0].mesh;
   for (Index n = 0; n < mesh.node_count(); ++n) {
@@ -249,6 +245,53 @@ TEST(ImmersedSolid, AReleasedBlockInAClosedBoxNeverGainsEnergy) {
     EXPECT_LT(previous, 0.9 * E0);
     EXPECT_LE(largest_rise, 1e-9 * E0);
   }
+}
+
+TEST(ImmersedSolid, TheLoadOnAFreeSolidIsItsMassTimesAccelerationLessGravity) {
+  // The fluid's load on a deformable solid is its nodal forces (what it applies to the fluid) plus
+  // the inertia and weight of the fluid it displaces. With no clamp, the elastic and viscous
+  // forces have no resultant, so the load must be Newton's law for the solid,
+  // sum_C,D M^s_CD ((V_D,n+1 - V_D,n) / dt - g), whatever the deformation. A soft block three times
+  // denser than the fluid falls from rest in a closed box for 20 midpoint steps of 0.01 s; it
+  // deforms as it goes. Tolerance 1e-9 of the load: round-off in sums of forces of size 1 N/m.
+  const NavierStokesModel m = test::closed_box_fluid(true);
+  const ImmersedSolids solids = rectangle_solid(Vec2(0.4, 0.9), Vec2(0.6, 1.1), {8, 8}, 100, 3, 0.01);
+  ImmersedSolidState state = initial_immersed_state(solids);
+  ImmersedCoupling coupling(m, solids, state);
+  VectorX x = VectorX::Zero(m.dof_count());
+  FlowStepper stepper(FlowIntegrator::midpoint);
+  FlowLinearSolver solver;
+  const FemSolid& block = solids.model.solids[0];
+  const int nodes = block.mesh.nodes_per_cell(), steps = 20;
+  const Real dt = 0.01;
+  Real worst = 0, weight = 0;
+  for (Index e = 0; e < block.mesh.cell_count(); ++e)
+    for (int k = 0; k < nodes * nodes; ++k) weight += 9.81 * block.cell_mass[static_cast<size_t>(e) * nodes * nodes + k];
+  for (int step = 0; step < steps; ++step) {
+    const VectorX before = state.velocity;
+    const FlowSolveResult r = stepper.step(m, dt * step, dt, x, solver, {.tolerance = 1e-12}, &coupling);
+    ASSERT_TRUE(r.converged) << r.failure;
+    if (step == 0) continue;  // the midpoint rule starts with two half steps: the load is the second's
+    Vec3 newton = Vec3::Zero();
+    for (Index e = 0; e < block.mesh.cell_count(); ++e) {
+      const Index* cell = block.mesh.cell(e);
+      for (int a = 0; a < nodes; ++a)
+        for (int c = 0; c < nodes; ++c)
+          for (int i = 0; i < 2; ++i) {
+            const Index d = solids.model.dof(block.node_begin + cell[c], i);
+            newton[i] += block.cell_mass[static_cast<size_t>(e) * nodes * nodes + a * nodes + c] *
+                         ((state.velocity[d] - before[d]) / dt - m.body_force[i]);
+          }
+    }
+    worst = std::max(worst, (state.fluid_force[0] - newton).norm() / newton.norm());
+  }
+  std::printf("free block's load: %.6f N/m upwards against its weight %.6f N/m; largest difference from Newton's law %.1e; "
+              "largest displacement %.3e m\n",
+              state.fluid_force[0].y(), weight, worst, state.displacement.lpNorm<Eigen::Infinity>());
+  EXPECT_LT(worst, 1e-9);
+  EXPECT_GT(state.fluid_force[0].y(), 0);          // drag and buoyancy hold it up
+  EXPECT_LT(state.fluid_force[0].y(), weight);     // but less than its weight: it falls faster and faster
+  EXPECT_GT(state.displacement.lpNorm<Eigen::Infinity>(), 1e-3);
 }
 
 TEST(ImmersedSolid, TheSourcesJacobianIsTheDerivativeOfItsResidual) {

@@ -4,6 +4,7 @@
 
 #include "moreau/errors.hpp"
 #include "moreau/fem/flow/flow_problem.hpp"
+#include "moreau/fem/flow/flow_source_assembly.hpp"
 #include "moreau/fem/immersed/immersed_coupling.hpp"
 
 namespace moreau {
@@ -31,6 +32,9 @@ std::vector<std::string> flow_probe_columns(const FlowProbe& p, int dim) {
       if ((p.quantity == "angular_velocity" || p.quantity == "torque") && dim == 2) columns.push_back(p.name + ".z");
       else
         for (int k = 0; k < dim; ++k) columns.push_back(p.name + axes[k]);
+      break;
+    case FlowProbeType::solid_force:
+      for (int k = 0; k < dim; ++k) columns.push_back(p.name + axes[k]);
       if (p.coefficient_scale > 0)
         for (int k = 0; k < dim; ++k) columns.push_back(p.name + ".coefficient" + axes[k]);
       break;
@@ -124,8 +128,11 @@ void evaluate_flow_probe(const FlowProbe& p, const FlowProblem& problem, const V
       break;
     }
     case FlowProbeType::boundary_force: {
+      // With immersed solids, the reactions hold them too where their forces fall on the
+      // boundary's nodes (and their force density enters the stabilization, as in the solve).
       VectorX R;
-      assemble_flow(m, x, step, R, nullptr);
+      if (solids && solids->fluid_source.size() == m.dof_count()) flow_residual_with_source(m, x, step, solids->fluid_source, R);
+      else assemble_flow(m, x, step, R, nullptr);
       const Vec3 f = boundary_force(m, R, p.nodes);
       for (int k = 0; k < m.dim(); ++k) values.push_back(f[k]);
       if (p.coefficient_scale > 0)
@@ -150,19 +157,22 @@ void evaluate_flow_probe(const FlowProbe& p, const FlowProblem& problem, const V
       const VectorX& q = solids->frame[p.body];
       const VectorX& dq = solids->frame_velocity[p.body];
       if (p.quantity == "angular_velocity" || p.quantity == "torque") {
-        const Vec3 w = p.quantity == "torque" ? solids->fluid_torque[p.body] : rigid_frame_angular_velocity(q, dq, dim);
+        const Vec3 w = p.quantity == "torque" ? solids->fluid_torque[problem.immersed->rigid_bodies[p.body].solid]
+                                              : rigid_frame_angular_velocity(q, dq, dim);
         if (dim == 2) values.push_back(w.z());
         else
           for (int k = 0; k < 3; ++k) values.push_back(w[k]);
-      } else if (p.quantity == "force") {
-        const Vec3& f = solids->fluid_force[p.body];
-        for (int k = 0; k < dim; ++k) values.push_back(f[k]);
-        if (p.coefficient_scale > 0)
-          for (int k = 0; k < dim; ++k) values.push_back(p.coefficient_scale * f[k]);
       } else {
         const VectorX& v = p.quantity == "velocity" ? dq : q;  // phi: the centre of mass
         for (int k = 0; k < dim; ++k) values.push_back(v[k]);
       }
+      break;
+    }
+    case FlowProbeType::solid_force: {
+      const Vec3& f = solids->fluid_force[p.solid];
+      for (int k = 0; k < m.dim(); ++k) values.push_back(f[k]);
+      if (p.coefficient_scale > 0)
+        for (int k = 0; k < m.dim(); ++k) values.push_back(p.coefficient_scale * f[k]);
       break;
     }
     case FlowProbeType::energy: {

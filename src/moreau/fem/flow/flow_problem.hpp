@@ -13,7 +13,8 @@ namespace moreau {
 enum class FlowProbeType {
   point, line, boundary_force, pressure_difference, kinetic_energy, newton_iterations,
   solid_point,  // an immersed solid's node: its position, displacement or velocity
-  rigid_body,   // an immersed rigid body's center_of_mass, velocity, angular_velocity, force or torque
+  rigid_body,   // an immersed rigid body's center_of_mass, velocity, angular_velocity or torque
+  solid_force,  // the fluid's force on an immersed solid or rigid body
   energy        // the fluid's kinetic energy, the solids' excess kinetic and elastic energies, their sum
 };
 
@@ -23,10 +24,11 @@ struct FlowProbe {
   Vec3 a = Vec3::Zero(), b = Vec3::Zero();  // point; line ends; pressure_difference's two points
   int samples = 0;                          // line: points along the segment, ends included
   std::vector<Index> nodes;                 // boundary_force: the boundary's nodes
-  Real coefficient_scale = 0;               // boundary_force, rigid_body force: 2 / (rho U^2 L) (2D) or 2 / (rho U^2 A) (3D); 0: none
+  Real coefficient_scale = 0;               // boundary_force, solid_force: 2 / (rho U^2 L) (2D) or 2 / (rho U^2 A) (3D); 0: none
   Index solid_node = -1;                    // solid_point: the node in the immersed solids' numbering
   std::string quantity;                     // solid_point: position | displacement | velocity; rigid_body: the type
   Index body = -1;                          // rigid_body: its index in immersed->rigid_bodies
+  Index solid = -1;                         // solid_force: its index in immersed->model.solids
 };
 
 struct FlowProblem {
@@ -34,6 +36,9 @@ struct FlowProblem {
   NavierStokesModel model;
   FlowIntegrator integrator = FlowIntegrator::midpoint;
   FlowSolveSettings solve;
+  // A time step whose solve fails is retried from its start as 2, 4, ..., 2^max_step_halvings
+  // equal substeps (not with BDF2, whose formula needs equal steps).
+  int max_step_halvings = 4;
   FlowLinearSettings linear;  // the linear solver inside each Newton/Picard iteration
   // Steady solves: the viscosities (Pa s) solved in turn before the model's own, each from the
   // previous solution (Reynolds-number continuation).

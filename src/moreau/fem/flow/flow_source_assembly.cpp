@@ -4,6 +4,28 @@
 
 namespace moreau {
 
+namespace {
+
+// f_A = -R_src,A / V_A on the free velocity dofs, zero elsewhere.
+VectorX source_force_density(const NavierStokesModel& m, const VectorX& source_R) {
+  VectorX density = VectorX::Zero(m.dof_count());
+  for (Index n = 0; n < m.mesh.node_count(); ++n)
+    for (int i = 0; i < m.dim(); ++i) {
+      const Index d = m.dof(n, i);
+      if (m.free_index[d] >= 0) density[d] = -source_R[d] / m.node_volume[n];
+    }
+  return density;
+}
+
+}  // namespace
+
+void flow_residual_with_source(const NavierStokesModel& m, const VectorX& x, const FlowTimeStep& step,
+                               const VectorX& source_R, VectorX& R) {
+  const VectorX density = source_force_density(m, source_R);
+  assemble_flow(m, x, step, R, nullptr, {}, {&density, nullptr});
+  R += source_R;
+}
+
 void assemble_flow_with_source(const NavierStokesModel& m, const VectorX& x, const FlowTimeStep& step,
                                const FlowSource& source, const FlowAssembly& how, VectorX& R, SparseMatrix* J,
                                FlowLowRank* low_rank, double& source_s) {
@@ -13,16 +35,12 @@ void assemble_flow_with_source(const NavierStokesModel& m, const VectorX& x, con
     source.add(x, step, source_R, J ? &source_entries : nullptr, J ? low_rank : nullptr);
     return 0;
   });
-  // f_A = -R_src,A / V_A on the free velocity dofs; per free column, -1 / V_A (the diagonal of P's
-  // right factor; zero on pressure columns).
-  VectorX density = VectorX::Zero(m.dof_count()), inverse_volume = VectorX::Zero(m.free_count);
+  // Per free column, -1 / V_A: the diagonal of P's right factor (zero on pressure columns).
+  const VectorX density = source_force_density(m, source_R);
+  VectorX inverse_volume = VectorX::Zero(m.free_count);
   for (Index n = 0; n < m.mesh.node_count(); ++n)
-    for (int i = 0; i < m.dim(); ++i) {
-      const Index d = m.dof(n, i), free = m.free_index[d];
-      if (free < 0) continue;
-      density[d] = -source_R[d] / m.node_volume[n];
-      inverse_volume[free] = -1 / m.node_volume[n];
-    }
+    for (int i = 0; i < m.dim(); ++i)
+      if (const Index free = m.free_index[m.dof(n, i)]; free >= 0) inverse_volume[free] = -1 / m.node_volume[n];
   SparseMatrix S;
   assemble_flow(m, x, step, R, J, how, {&density, J ? &S : nullptr});
   R += source_R;

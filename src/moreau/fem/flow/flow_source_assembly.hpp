@@ -23,4 +23,10 @@ void assemble_flow_with_source(const NavierStokesModel& model, const VectorX& x,
                                const FlowSource& source, const FlowAssembly& how, VectorX& R, SparseMatrix* J,
                                FlowLowRank* low_rank, double& source_s);
 
+/// The residual on all dofs at x of the flow with a source whose residual (on all dofs, as
+/// FlowSource::add gives it) is `source_R`: on prescribed dofs, the reactions that hold the fluid
+/// and the source there.
+void flow_residual_with_source(const NavierStokesModel& model, const VectorX& x, const FlowTimeStep& step,
+                               const VectorX& source_R, VectorX& R);
+
 }  // namespace moreau

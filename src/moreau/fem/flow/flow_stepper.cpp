@@ -41,6 +41,18 @@ FlowSolveResult FlowStepper::step(const NavierStokesModel& model, Real t, Real d
   return single(model, scheme, t, dt, x, solver, settings, source);
 }
 
+FlowStepper& FlowStepper::operator=(const FlowStepper& other) {
+  if (this == &other) return *this;
+  integrator_ = other.integrator_;
+  steps_ = other.steps_;
+  previous_ = other.previous_;
+  before_previous_ = other.before_previous_;
+  last_ = other.last_;
+  if (last_.previous) last_.previous = &previous_;
+  if (last_.before_previous) last_.before_previous = &before_previous_;
+  return *this;
+}
+
 void FlowStepper::save(ArchiveWriter& out) const {
   archive(out, std::tie(steps_, previous_, before_previous_, last_.integrator, last_.dt));
 }

@@ -17,6 +17,10 @@ class ArchiveReader;
 class FlowStepper {
  public:
   explicit FlowStepper(FlowIntegrator integrator) : integrator_(integrator) {}
+  /// A copy keeps its own previous states (its last step points at them, not at the original's):
+  /// a step that fails can be undone by assigning back a copy taken before it.
+  FlowStepper(const FlowStepper& other) { *this = other; }
+  FlowStepper& operator=(const FlowStepper& other);
 
   /// Advances x (the state at t) to t + dt. On failure x is left at the failed iterate and the
   /// stepper can be discarded. A `source` (an immersed solid) takes part in every solve and

@@ -87,6 +87,8 @@ ImmersedCoupling::ImmersedCoupling(const NavierStokesModel& fluid, const Immerse
     : fluid_(fluid), solids_(solids), state_(state), locator_(fluid.mesh), rigid_(fluid, solids, locator_),
       rigid_node_(solids.model.node_count, 0) {
   if (solids.model.dim != fluid.dim()) throw std::logic_error("immersed solids and the fluid differ in dimension");
+  if (state.fluid_force.size() != solids.model.solids.size() || state.frame.size() != solids.rigid_bodies.size())
+    throw std::logic_error("the immersed state is not these solids' (start it with initial_immersed_state)");
   for (const ImmersedRigidBody& body : solids.rigid_bodies) {
     const FemSolid& solid = solids.model.solids[body.solid];
     std::fill_n(rigid_node_.begin() + solid.node_begin, solid.mesh.node_count(), 1);
@@ -179,27 +181,18 @@ SparseMatrix ImmersedCoupling::velocity_map(const ImmersedKinematics& k, bool fr
   return M;
 }
 
-void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& R,
-                           std::vector<Eigen::Triplet<Real, int>>* jacobian, FlowLowRank* low_rank) const {
+// The deformable solids' nodal forces r (per solid dof) at the kinematics k and, if asked, their
+// per-cell derivatives gathered over the solid's dofs: d r / d V_theta (elastic through
+// u_n+1 = u_n + dt V_theta, and viscous) and d r / d V_n+1 (the excess inertia). False if a solid
+// cell is inverted.
+bool ImmersedCoupling::nodal_forces(const ImmersedKinematics& k, Real theta, Real dt, VectorX& r,
+                                    std::vector<Eigen::Triplet<Real, int>>* by_theta_velocity,
+                                    std::vector<Eigen::Triplet<Real, int>>* by_next_velocity) const {
   const FemModel& model = solids_.model;
   const int dim = model.dim;
-  const Real theta = scheme_theta(step), dt = step.dt;
-  last_failure_.clear();
-  ImmersedKinematics k;
-  try {
-    k = kinematics(x, step);
-  } catch (const NumericalError& e) {
-    // A trial iterate that carries a solid node out of the fluid: an infinite residual makes
-    // Newton's line search shorten the step (a converged step that does so fails in accept()).
-    last_failure_ = e.what();
-    R.setConstant(std::numeric_limits<Real>::infinity());
-    return;
-  }
+  const bool with_jacobian = by_theta_velocity != nullptr;
   const VectorX u_theta = state_.displacement + theta * (k.displacement - state_.displacement);
-  VectorX r = VectorX::Zero(model.dof_count());
-  // Per cell, gathered over the solid's dofs: d r / d V_theta (elastic through u_n+1 = u_n +
-  // dt V_theta, and viscous) and d r / d V_n+1 (the excess inertia).
-  std::vector<Eigen::Triplet<Real, int>> by_theta_velocity, by_next_velocity;
+  r = VectorX::Zero(model.dof_count());
   for (size_t s = 0; s < model.solids.size(); ++s) {
     if (solids_.rigid_body_of(s)) continue;
     const FemSolid& solid = model.solids[s];
@@ -218,23 +211,19 @@ void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& 
       // its tangent is d f / d u_n+1, and d u_n+1 / d V_theta = dt.
       ElementOutput out;
       if (theta == 1)
-        solid_element(solid.material, solid.volume, solid.cell_quadrature(e), dim, u_next, jacobian != nullptr, out);
+        solid_element(solid.material, solid.volume, solid.cell_quadrature(e), dim, u_next, with_jacobian, out);
       else
         solid_element_step(solid.material, solid.volume, solid.cell_quadrature(e), dim, u_n, u_next, StepRule::energy_momentum,
-                           jacobian != nullptr, out);
+                           with_jacobian, out);
       ElementMatrix K_theta, K_next;
-      if (jacobian) {
+      if (with_jacobian) {
         K_theta = dt * out.tangent;
         K_next.setZero(out.tangent.rows(), out.tangent.cols());
       }
       bool valid = out.valid;
       if (valid && viscosity_difference != 0)
-        valid = add_viscous_force(solid, e, dim, viscosity_difference, u_mid, V, out.force, jacobian ? &K_theta : nullptr, 1);
-      if (!valid) {
-        // An inverted solid cell: an infinite residual makes Newton's line search shorten the step.
-        R.setConstant(std::numeric_limits<Real>::infinity());
-        return;
-      }
+        valid = add_viscous_force(solid, e, dim, viscosity_difference, u_mid, V, out.force, with_jacobian ? &K_theta : nullptr, 1);
+      if (!valid) return false;
       const Vec3 b = fluid_.body_force;
       for (int a = 0; a < nodes; ++a)
         for (int c = 0; c < nodes; ++c) {
@@ -242,7 +231,7 @@ void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& 
           if (m == 0) continue;
           for (int i = 0; i < dim; ++i) {
             out.force[a * dim + i] += m * ((V_next[c * dim + i] - V_n[c * dim + i]) / dt - b[i]);
-            if (jacobian) K_next(a * dim + i, c * dim + i) += m / dt;
+            if (with_jacobian) K_next(a * dim + i, c * dim + i) += m / dt;
           }
         }
       const Index* cell = solid.mesh.cell(e);
@@ -250,15 +239,39 @@ void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& 
       for (int a = 0; a < nodes; ++a)
         for (int i = 0; i < dim; ++i) {
           r[dof(a, i)] += out.force[a * dim + i];
-          if (!jacobian) continue;
+          if (!with_jacobian) continue;
           for (int c = 0; c < nodes; ++c)
             for (int j = 0; j < dim; ++j) {
               const int row = a * dim + i, column = c * dim + j;
-              if (K_theta(row, column) != 0) by_theta_velocity.emplace_back(dof(a, i), dof(c, j), K_theta(row, column));
-              if (K_next(row, column) != 0) by_next_velocity.emplace_back(dof(a, i), dof(c, j), K_next(row, column));
+              if (K_theta(row, column) != 0) by_theta_velocity->emplace_back(dof(a, i), dof(c, j), K_theta(row, column));
+              if (K_next(row, column) != 0) by_next_velocity->emplace_back(dof(a, i), dof(c, j), K_next(row, column));
             }
         }
     }
+  }
+  return true;
+}
+
+void ImmersedCoupling::add(const VectorX& x, const FlowTimeStep& step, VectorX& R,
+                           std::vector<Eigen::Triplet<Real, int>>* jacobian, FlowLowRank* low_rank) const {
+  const Real theta = scheme_theta(step), dt = step.dt;
+  last_failure_.clear();
+  ImmersedKinematics k;
+  try {
+    k = kinematics(x, step);
+  } catch (const NumericalError& e) {
+    // A trial iterate that carries a solid node out of the fluid: an infinite residual makes
+    // Newton's line search shorten the step (a converged step that does so fails in accept()).
+    last_failure_ = e.what();
+    R.setConstant(std::numeric_limits<Real>::infinity());
+    return;
+  }
+  VectorX r;
+  std::vector<Eigen::Triplet<Real, int>> by_theta_velocity, by_next_velocity;
+  if (!nodal_forces(k, theta, dt, r, jacobian ? &by_theta_velocity : nullptr, jacobian ? &by_next_velocity : nullptr)) {
+    // An inverted solid cell: an infinite residual makes Newton's line search shorten the step.
+    R.setConstant(std::numeric_limits<Real>::infinity());
+    return;
   }
   // R += M^T r (prescribed components' rows of M are empty: their forces are reactions).
   R += velocity_map(k, false).transpose() * r;
@@ -340,8 +353,52 @@ void ImmersedCoupling::add_jacobian(const ImmersedKinematics& k, const VectorX& 
     for (SparseMatrix::InnerIterator it(coupling, column); it; ++it) jacobian.emplace_back(it.row(), it.col(), it.value());
 }
 
+// The fluid's force on a deformable solid over a step, from the balance of the solid with the
+// fluid it displaces: the solid's nodal forces r are what it applies to the fluid (its elastic and
+// viscous forces and the inertia of rho_s - rho_f, spread by M^T); the fluid inside the solid
+// (density rho_f, moving with it) adds its own inertia and weight, so the surrounding fluid's
+// traction on the solid has the resultant
+//   F = sum_C r_C + sum_C,D M^f_CD ((V_D,n+1 - V_D,n) / dt - b),
+// over the solid's free components (a clamped base's forces are reactions of its support, not the
+// fluid's). M^f is the consistent mass at the fluid's density. At rest in a steady flow F is the
+// drag and lift the solid takes from the fluid: the sum of its forces on the fluid.
+Vec3 ImmersedCoupling::fluid_force_on_solid(size_t s, const ImmersedKinematics& k, const VectorX& r, Real dt) const {
+  const FemModel& model = solids_.model;
+  const FemSolid& solid = model.solids[s];
+  const int dim = model.dim, nodes = solid.mesh.nodes_per_cell();
+  Vec3 force = Vec3::Zero();
+  for (Index n = 0; n < solid.mesh.node_count(); ++n)
+    for (int i = 0; i < dim; ++i) {
+      const Index d = model.dof(solid.node_begin + n, i);
+      if (model.free_index[d] >= 0) force[i] += r[d];
+    }
+  const Real fluid_share = fluid_.density / solid.material.density;
+  for (Index e = 0; e < solid.mesh.cell_count(); ++e) {
+    const Index* cell = solid.mesh.cell(e);
+    for (int a = 0; a < nodes; ++a)
+      for (int c = 0; c < nodes; ++c) {
+        const Real m = fluid_share * solid.cell_mass[static_cast<size_t>(e) * nodes * nodes + a * nodes + c];
+        for (int i = 0; i < dim; ++i) {
+          const Index row = model.dof(solid.node_begin + cell[a], i), column = model.dof(solid.node_begin + cell[c], i);
+          if (model.free_index[row] < 0) continue;
+          force[i] += m * ((k.velocity[column] - state_.velocity[column]) / dt - fluid_.body_force[i]);
+        }
+      }
+  }
+  return force;
+}
+
 void ImmersedCoupling::accept(const VectorX& x, const FlowTimeStep& step) {
   const ImmersedKinematics k = kinematics(x, step);
+  // The step's loads, from the state it started from: the source's residual on the fluid (for the
+  // walls' reactions) and the fluid's force on each deformable solid (the rigid bodies' below).
+  state_.fluid_source = VectorX::Zero(fluid_.dof_count());
+  add(x, step, state_.fluid_source, nullptr);
+  VectorX r;
+  if (!nodal_forces(k, scheme_theta(step), step.dt, r, nullptr, nullptr))
+    throw NumericalError("an immersed solid's cell is inverted");
+  for (size_t s = 0; s < solids_.model.solids.size(); ++s)
+    if (!solids_.rigid_body_of(s)) state_.fluid_force[s] = fluid_force_on_solid(s, k, r, step.dt);
   state_.displacement = k.displacement;
   state_.velocity = k.velocity;
   rigid_.accept(x, step, scheme_theta(step), state_);

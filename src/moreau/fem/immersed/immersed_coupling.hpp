@@ -98,6 +98,12 @@ class ImmersedCoupling final : public FlowSource {
   ImmersedKinematics kinematics(const VectorX& x, const FlowTimeStep& step) const;
 
  private:
+  // The deformable solids' nodal forces at k (see the .cpp); false if a solid cell is inverted.
+  bool nodal_forces(const ImmersedKinematics& k, Real theta, Real dt, VectorX& r,
+                    std::vector<Eigen::Triplet<Real, int>>* by_theta_velocity,
+                    std::vector<Eigen::Triplet<Real, int>>* by_next_velocity) const;
+  // The fluid's force on deformable solid s over the step ending at k, given its nodal forces r.
+  Vec3 fluid_force_on_solid(size_t s, const ImmersedKinematics& k, const VectorX& r, Real dt) const;
   // M: V = M v, per free solid dof and fluid velocity dof (all, or only the free ones), N_A(x_C).
   SparseMatrix velocity_map(const ImmersedKinematics& k, bool free_columns) const;
   // The source's Jacobian in the fluid's free velocities (see the .cpp), given the solid force r

@@ -422,8 +422,8 @@ void ImmersedRigidCoupling::accept(const VectorX& x, const FlowTimeStep& step, R
       }
     }
     const auto [force, torque] = fluid_load(b, *s, step.dt, theta, state);
-    state.fluid_force[b] = force;
-    state.fluid_torque[b] = torque;
+    state.fluid_force[body.solid] = force;
+    state.fluid_torque[body.solid] = torque;
     state.frame[b] = s->next;
     state.frame_velocity[b] = s->velocity;
   }
@@ -462,14 +462,14 @@ std::pair<Vec3, Vec3> ImmersedRigidCoupling::fluid_load(size_t b, const BodyStep
 ImmersedSolidState initial_immersed_state(const ImmersedSolids& solids) {
   const Index dofs = solids.model.dof_count();
   const int dim = solids.model.dim;
-  ImmersedSolidState state{VectorX::Zero(dofs), VectorX::Zero(dofs), 0, {}, {}, {}, {}};
+  ImmersedSolidState state{VectorX::Zero(dofs), VectorX::Zero(dofs), 0, {}, {}, {}, {}, {}};
   for (const ImmersedRigidBody& body : solids.rigid_bodies) {
     state.frame.push_back(rigid_frame_at_rest(body, dim));
     state.frame_velocity.push_back(body.motion ? prescribed_frame_velocity(*body.motion, state.frame.back(), 0, dim)
                                                : VectorX::Zero(rigid_frame_size(dim)));
-    state.fluid_force.push_back(Vec3::Zero());
-    state.fluid_torque.push_back(Vec3::Zero());
   }
+  state.fluid_force.assign(solids.model.solids.size(), Vec3::Zero());
+  state.fluid_torque.assign(solids.model.solids.size(), Vec3::Zero());
   return state;
 }
 

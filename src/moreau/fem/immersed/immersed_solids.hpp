@@ -49,13 +49,17 @@ struct ImmersedSolids {
 };
 
 /// What a step advances: per solid dof, the displacement u_n (m) and the material velocity V_n
-/// (m/s) of the last accepted step, at its time; per rigid body its frame q and velocity dq/dt,
-/// and the force and torque (about its centre) the fluid exerted on it over that step.
+/// (m/s) of the last accepted step, at its time; per rigid body its frame q and velocity dq/dt;
+/// per solid (index in model.solids) the force the fluid exerted on it over that step and, for a
+/// rigid body, the torque about its centre (zero for a deformable solid); per fluid dof, the
+/// solids' forces on the fluid over that step (their residual R_src: where it falls on a wall's
+/// prescribed dofs, the wall takes it).
 struct ImmersedSolidState {
   VectorX displacement, velocity;
   Real time = 0;  // s, the time of u_n (Dirichlet conditions are functions of it)
   std::vector<VectorX> frame, frame_velocity;
   std::vector<Vec3> fluid_force, fluid_torque;  // N and N m (2D: per m of depth)
+  VectorX fluid_source;                         // N (2D: per m of depth); empty before the first step
 };
 
 /// The solids at rest in their reference configuration at t = 0.
