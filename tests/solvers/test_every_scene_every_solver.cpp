@@ -48,6 +48,10 @@ const std::map<std::string, std::vector<std::string>> kSmaller = {
     {"bench/scenes/fem_block_20.json", {"objects.block.mesh.cells=[4,4,4]"}},
     {"scenes/fluttering_plate.json", {"objects.water.mesh.cells=[24,64]"}},
     {"scenes/sedimenting_disc.json", {"objects.water.mesh.cells=[32,96]"}},
+    {"scenes/turek_hron_fsi1.json",
+     {"objects.fluid.mesh.parameters.N=2", "objects.bar.mesh.parameters.NX=18", "objects.bar.mesh.parameters.NY=2"}},
+    {"scenes/turek_hron_fsi2.json",
+     {"objects.fluid.mesh.parameters.N=2", "objects.bar.mesh.parameters.NX=18", "objects.bar.mesh.parameters.NY=2"}},
     {"scenes/two_leaflet_valve.json",
      {"objects.blood.mesh.cells=[64,16]", "objects.top_leaflet.mesh.cells=[2,10]", "objects.bottom_leaflet.mesh.cells=[2,10]"}},
 };

@@ -205,6 +205,30 @@ TEST(FlowScenes, TransientRunIsBitIdenticalOnOneAndTwoThreads) {
   }
 }
 
+TEST(FlowScenes, AStepWhoseSolveFailsIsRetriedInSubsteps) {
+  // Turek & Hron's FSI1 (scenes/turek_hron_fsi1.json) on the coarse fluid mesh N = 4 with backward
+  // Euler steps of 0.25 s: measured, the tenth step (t = 2.25 to 2.5 s, just after the inflow's
+  // ramp) fails, Newton and Picard both, as the bar's nodes cross the fluid's cells. Without
+  // retries the run stops there (exit 3, naming the step); with the default it redoes that step
+  // as two steps of 0.125 s and carries on, counting it in run.json. The output keeps its times.
+  const std::string scene = test::scene_path("turek_hron_fsi1.json");
+  const std::string common = "--quiet --threads 1 --set objects.fluid.mesh.parameters.N=4 --set settings.dt=0.25 "
+                             "--set settings.duration=2.5";
+  const std::string stopped = test::temp_dir("flow_no_retry") + "/out";
+  const auto r = test::run_moreau(
+      fmt::format("run {} --out {} {} --set settings.newton.max_step_halvings=0", scene, stopped, common));
+  EXPECT_EQ(r.exit_code, 3) << r.output;
+  EXPECT_NE(r.output.find("step 10 (t = 2.25 s to 2.5 s) failed: fluid"), std::string::npos) << r.output;
+  const std::string out = test::temp_dir("flow_retry") + "/out";
+  const auto retried = test::run_moreau(fmt::format("run {} --out {} {}", scene, out, common));
+  ASSERT_EQ(retried.exit_code, 0) << retried.output;
+  const std::string summary = read_text(out + "/run.json");
+  EXPECT_NE(summary.find("\"retried_steps\": 1,"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"smallest_step_s\": 0.125,"), std::string::npos) << summary;
+  const std::string probes = read_text(out + "/probes.csv");
+  EXPECT_NE(probes.find("\n2.5,"), std::string::npos) << probes;
+}
+
 TEST(FlowScenes, BadInputNamesItsKey) {
   auto scene = [](const std::string& fluid_extra, const std::string& boundaries, const std::string& top_extra = "",
                   const std::string& more_objects = "") {
@@ -234,6 +258,10 @@ TEST(FlowScenes, BadInputNamesItsKey) {
   expect_bad("flow_continuation", scene(R"(, "continuation": {"viscosity": [0.1]})", open).replace(
                                       scene("", open).find("\"steady\""), 8, "\"midpoint\""),
              {"objects[0].continuation", "steady"});
+  std::string bdf2 = scene("", open);
+  bdf2.replace(bdf2.find("\"integrator\": \"steady\""), 22,
+               R"("integrator": "bdf2", "dt": 0.1, "duration": 0.2, "newton": {"max_step_halvings": 2})");
+  expect_bad("flow_bdf2_halvings", bdf2, {"settings.newton.max_step_halvings", "equal steps"});
   expect_bad("flow_probe", scene("", open, R"(, "probes": [{"name": "p", "type": "point", "at": [2, 0.5]}])"),
              {"probes[0].at", "outside"});
   expect_bad("flow_geo", scene("", open).replace(scene("", open).find("\"type\": \"rectangle\""), 19, "\"type\": \"geo\", \"file\": \"none.geo\""),
@@ -287,6 +315,9 @@ TEST(FlowScenes, BadInputNamesItsKey) {
   expect_bad("immersed_rigid_probe",
              stepped(scene("", open, R"(, "probes": [{"name": "p", "type": "angular_velocity", "object": "s"}])", solid("") + body(""))),
              {"probes[0].object", "no rigid body named 's'"});
+  expect_bad("immersed_force_probe",
+             stepped(scene("", open, R"(, "probes": [{"name": "p", "type": "force", "object": "nothing"}])", solid(""))),
+             {"probes[0].object", "no solid or rigid body named 'nothing'"});
   // Driven rigid bodies: a motion of t alone, no density, 2D turning about z only.
   auto driven = [](const std::string& motion) {
     return R"(, {"name": "d", "kind": "rigid_body", "mesh": {"type": "rectangle", "min": [0.4, 0.4], "max": [0.6, 0.6], "cells": [4, 4]}, "motion": )" +
