@@ -86,3 +86,17 @@ def save_figure(figure, out, name):
     figure.savefig(pathlib.Path(out) / name, dpi=110)
     plt.close(figure)
     return name
+
+
+def finish_plot(axis, legend_size=8):
+    """The cases' common axis finish: a light grid and a small legend."""
+    axis.grid(alpha=0.3)
+    axis.legend(fontsize=legend_size)
+
+
+def case_result(figure, out, stem, fast, title, reference, scenes, checks, wall, notes):
+    """Writes `figure` as <stem>.png (<stem>_fast.png for the fast subset) and returns the case's
+    result, its title marked as the fast subset when it is one."""
+    plot = save_figure(figure, out, f"{stem}_fast.png" if fast else f"{stem}.png")
+    return CaseResult(title=title + (" (fast subset)" if fast else ""), reference=reference, scene="; ".join(scenes),
+                      checks=checks, plots=[plot], wall_s=wall, notes=notes)

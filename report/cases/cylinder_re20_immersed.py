@@ -18,7 +18,7 @@ is reported, not checked. The fast subset runs N = 16 to t = 5 s and checks the 
 """
 import math
 
-from report_case import CaseResult, Check, plt, read_csv, run_scene, save_figure, scene_text
+from report_case import Check, case_result, finish_plot, plt, read_csv, run_scene, scene_text
 
 SCENE = "scenes/cylinder_re20_immersed.json"
 DRAG, LIFT = 5.5795, 0.010618
@@ -60,10 +60,8 @@ def run(moreau, work, out, fast):
     axis.axhline(DRAG, color="tab:green", label="John & Matthies")
     axis.plot([1 / n for n, *_ in results], [d for _, d, *_ in results], "o-", label="moreau, immersed cylinder")
     axis.set(xlabel="h / D", ylabel="drag coefficient", title="Immersed cylinder, Re 20", xlim=(0, None))
-    axis.grid(alpha=0.3)
-    axis.legend(fontsize=8)
-    plot = save_figure(figure, out, "cylinder_re20_immersed_fast.png" if fast else "cylinder_re20_immersed.png")
-    return CaseResult(
-        title="Schäfer–Turek 2D-1 with the cylinder immersed (a driven rigid body held still)" + (" (fast subset)" if fast else ""),
-        reference="Schäfer & Turek (1996) benchmark range; reference drag of John & Matthies (2001)",
-        scene="; ".join(scenes), checks=checks, plots=[plot], wall_s=wall, notes=notes)
+    finish_plot(axis)
+    return case_result(figure, out, "cylinder_re20_immersed", fast,
+                       "Schäfer–Turek 2D-1 with the cylinder immersed (a driven rigid body held still)",
+                       "Schäfer & Turek (1996) benchmark range; reference drag of John & Matthies (2001)", scenes, checks,
+                       wall, notes)

@@ -19,7 +19,7 @@ import pathlib
 
 import numpy as np
 
-from report_case import CaseResult, Check, plt, read_csv, run_scene, save_figure, scene_text
+from report_case import Check, case_result, finish_plot, plt, read_csv, run_scene, scene_text
 
 SCENE = "scenes/sedimenting_disc.json"
 DATA = pathlib.Path(__file__).resolve().parent.parent / "data" / "glowinski2001_sedimenting_disc_velocity.csv"
@@ -80,12 +80,8 @@ def run(moreau, work, out, fast):
     for (nx, ny), t, v, *_ in runs:
         axis.plot(t, 1e3 * v, "-", lw=1.2, label=f"moreau, {nx} × {ny} fluid cells")
     axis.set(xlabel="t (s)", ylabel="settling speed (mm/s)", title="Disc sedimenting in a closed channel")
-    axis.grid(alpha=0.3)
-    axis.legend(fontsize=8)
-    plot = save_figure(figure, out, "sedimenting_disc_fast.png" if fast else "sedimenting_disc.png")
-    return CaseResult(
-        title="A rigid disc sedimenting in a closed channel" + (" (fast subset)" if fast else ""),
-        reference="Glowinski, Pan, Hesla, Joseph & Périaux (2001), J. Comput. Phys. 169, 363–426: the FEM settling "
-                  "velocity, digitised by a third party from a figure that reproduces it",
-        scene="; ".join(scene_text(SCENE, r[5], duration) for r in runs),
-        checks=checks, plots=[plot], wall_s=wall, notes=notes)
+    finish_plot(axis)
+    return case_result(figure, out, "sedimenting_disc", fast, "A rigid disc sedimenting in a closed channel",
+                       "Glowinski, Pan, Hesla, Joseph & Périaux (2001), J. Comput. Phys. 169, 363–426: the FEM settling "
+                       "velocity, digitised by a third party from a figure that reproduces it",
+                       [scene_text(SCENE, r[5], duration) for r in runs], checks, wall, notes)

@@ -23,7 +23,7 @@ The fast subset runs CFD1 on N = 8 to t = 4 s and checks the drag within 5 %.
 References: Turek & Hron (2006), as tabulated on the Featflow benchmark pages: CFD1 drag 14.29
 and lift 1.119 N/m; FSI1 displacement of A (0.0227, 0.8209) mm, drag 14.295 and lift 0.7638 N/m.
 """
-from report_case import CaseResult, Check, plt, read_csv, run_scene, save_figure, scene_text
+from report_case import Check, case_result, finish_plot, plt, read_csv, run_scene, scene_text
 
 SCENE = "scenes/turek_hron_fsi1.json"
 CFD1 = {"drag": 14.29, "lift": 1.119}
@@ -93,18 +93,13 @@ def run(moreau, work, out, fast):
         axis.plot([1 / r["n"] for r in elastic], [r["drag"] for r in elastic], "s-", color="tab:orange", label="FSI1 drag, moreau")
         axis.axhline(FSI1["drag"], color="tab:orange", ls=":", label="FSI1 drag, Turek & Hron")
     axis.set(xlabel="1 / N (h = 0.05 m / N)", ylabel="drag (N/m)", title="Drag on cylinder and immersed bar", xlim=(0, None))
-    axis.grid(alpha=0.3)
-    axis.legend(fontsize=7)
+    finish_plot(axis, 7)
     if elastic:
         axis = axes[0][1]
         for r in elastic:
             axis.plot(r["time"], [1e3 * u for u in r["uy_history"]], label=f"N = {r['n']}")
         axis.axhline(1e3 * FSI1["uy"], color="k", ls=":", label="Turek & Hron")
         axis.set(xlabel="t (s)", ylabel="uy(A) (mm)", title="FSI1: the bar's tip")
-        axis.grid(alpha=0.3)
-        axis.legend(fontsize=7)
-    plot = save_figure(figure, out, "turek_hron_fsi1_fast.png" if fast else "turek_hron_fsi1.png")
-    return CaseResult(
-        title="Turek & Hron CFD1 and FSI1 with the bar immersed" + (" (fast subset)" if fast else ""),
-        reference="Turek & Hron (2006), Featflow benchmark tables",
-        scene="; ".join(scenes), checks=checks, plots=[plot], wall_s=wall, notes=notes)
+        finish_plot(axis, 7)
+    return case_result(figure, out, "turek_hron_fsi1", fast, "Turek & Hron CFD1 and FSI1 with the bar immersed",
+                       "Turek & Hron (2006), Featflow benchmark tables", scenes, checks, wall, notes)
