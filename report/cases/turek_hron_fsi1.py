@@ -49,7 +49,7 @@ def run_level(moreau, work, name, n, extra, duration):
 
 def within(name, value, reference, unit, scale=1.0):
     return Check(name, scale * value, scale * reference, 0.05 * abs(scale * reference), unit,
-                 "5 %: the tolerance set for immersed forces and the issue's FSI1 target")
+                 "5 %: the tolerance set for immersed forces and the target set for FSI1")
 
 
 def run(moreau, work, out, fast):
