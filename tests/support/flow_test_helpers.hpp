@@ -2,6 +2,7 @@
 // Helpers for Navier-Stokes tests: exact solutions prescribed on boundaries, L2 errors.
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "moreau/fem/flow/navier_stokes.hpp"
@@ -34,6 +35,13 @@ inline void prescribe_exact_velocity(NavierStokesModel& m, const ExactFlow& exac
       for (int k = 0; k < m.mesh.dim; ++k)
         m.prescribed.push_back({m.dof(n, k), [X, k, exact](Real t) { return exact.velocity(X, t)[k]; }});
     }
+}
+
+/// Velocity and pressure at a point; false if it is outside the mesh.
+inline bool sample_flow(const NavierStokesModel& m, const VectorX& x, const Vec3& point, Vec3& velocity, Real& pressure) {
+  const std::optional<MeshPoint> at = MeshLocator(m.mesh).locate(point);
+  if (at) interpolate_flow(m, *at, x, velocity, pressure);
+  return at.has_value();
 }
 
 inline void fix_pressure(NavierStokesModel& m, Index node) {

@@ -122,17 +122,19 @@ void read_rigid_body_probe(const JsonObject& j, const std::string& type, const F
   p.quantity = type;
 }
 
-FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
+FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem, const MeshLocator& locator) {
   const NavierStokesModel& m = problem.model;
   FlowProbe p;
   p.name = j.string("name");
   const std::string type = j.choice("type", {"point", "line", "boundary_force", "pressure_difference", "kinetic_energy",
                                              "energy", "newton_iterations", "center_of_mass", "velocity",
                                              "angular_velocity", "force", "torque"});
+  // A sampled point: located once in the fluid's mesh, where it stays.
   auto inside = [&](const std::string& key, const Vec3& at) {
-    Vec3 u;
-    Real pressure;
-    if (!sample_flow(m, problem.initial, at, u, pressure)) j.fail(key, "the point is outside the fluid mesh");
+    const std::optional<MeshPoint> found = locator.locate(at);
+    if (!found) j.fail(key, "the point is outside the fluid mesh");
+    p.sample_points.push_back(at);
+    p.located.push_back(*found);
   };
   if (type == "point" && j.has("object")) {
     read_solid_point_probe(j, problem, p);
@@ -151,6 +153,13 @@ FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem) {
     p.a = read_point(j, "from", m.dim());
     p.b = read_point(j, "to", m.dim());
     p.samples = j.integer("samples", 101, 2, 1000000);
+    for (int s = 0; s < p.samples; ++s) {
+      const Vec3 at = p.a + (p.b - p.a) * (static_cast<Real>(s) / (p.samples - 1));
+      if (const std::optional<MeshPoint> found = locator.locate(at)) {  // none in a gap of the mesh (an obstacle)
+        p.sample_points.push_back(at);
+        p.located.push_back(*found);
+      }
+    }
   } else if (type == "pressure_difference") {
     p.type = FlowProbeType::pressure_difference;
     p.a = read_point(j, "from", m.dim());
@@ -294,8 +303,9 @@ void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const std:
   for (const PrescribedDof& p : m.prescribed) problem.initial[p.dof] = p.value(0);
   fluid.finish();
   if (!solids.empty() || !rigid_bodies.empty()) read_immersed_solids(top, solids, rigid_bodies, fem.dt, problem);
+  const MeshLocator locator(m.mesh);
   for (const JsonObject& probe : top.object_list("probes")) {
-    problem.probes.push_back(read_flow_probe(probe, problem));
+    problem.probes.push_back(read_flow_probe(probe, problem, locator));
     for (size_t i = 0; i + 1 < problem.probes.size(); ++i)
       if (problem.probes[i].name == problem.probes.back().name)
         probe.fail("name", fmt::format("another probe is already named '{}'", problem.probes.back().name));

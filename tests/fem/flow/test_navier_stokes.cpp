@@ -85,8 +85,8 @@ TEST(NavierStokes, PoiseuilleFlowConvergesAtSecondOrder) {
     ASSERT_TRUE(r.converged) << r.failure;
     Vec3 centre, left;
     Real p_mid, p_left;
-    ASSERT_TRUE(sample_flow(m, x, Vec3(1, 0.5, 0), centre, p_mid));
-    ASSERT_TRUE(sample_flow(m, x, Vec3(0.5, 0.5, 0), left, p_left));
+    ASSERT_TRUE(test::sample_flow(m, x, Vec3(1, 0.5, 0), centre, p_mid));
+    ASSERT_TRUE(test::sample_flow(m, x, Vec3(0.5, 0.5, 0), left, p_left));
     errors.push_back(std::abs(centre.x() - 1.0));
     const Real gradient = (p_mid - p_left) / 0.5;
     std::printf("Poiseuille %2d cells across: centre velocity error %.3e, dp/dx %.5f (exact %.5f), %d Newton\n", n,
@@ -116,9 +116,9 @@ TEST(NavierStokes, LidDrivenCavityAtRe100MatchesGhia) {
   for (int k = 0; k < 17; ++k) {
     Vec3 u;
     Real p;
-    ASSERT_TRUE(sample_flow(m, x, Vec3(0.5, test::ghia1982::kY[k], 0), u, p));
+    ASSERT_TRUE(test::sample_flow(m, x, Vec3(0.5, test::ghia1982::kY[k], 0), u, p));
     worst_u = std::max(worst_u, std::abs(u.x() - test::ghia1982::kU100[k]));
-    ASSERT_TRUE(sample_flow(m, x, Vec3(test::ghia1982::kX[k], 0.5, 0), u, p));
+    ASSERT_TRUE(test::sample_flow(m, x, Vec3(test::ghia1982::kX[k], 0.5, 0), u, p));
     worst_v = std::max(worst_v, std::abs(u.y() - test::ghia1982::kV100[k]));
   }
   std::printf("cavity Re = 100, %d x %d: max |u - Ghia| %.4f, max |v - Ghia| %.4f, %d Newton iterations (%.2f s assembly, "

@@ -114,7 +114,7 @@ void evaluate_flow_probe(const FlowProbe& p, const FlowProblem& problem, const V
     case FlowProbeType::point: {
       Vec3 u;
       Real pressure;
-      if (!sample_flow(m, x, p.a, u, pressure)) throw InputError(fmt::format("probe '{}': the point is outside the fluid mesh", p.name));
+      interpolate_flow(m, p.located[0], x, u, pressure);
       for (int k = 0; k < m.dim(); ++k) values.push_back(u[k]);
       values.push_back(pressure);
       break;
@@ -122,8 +122,8 @@ void evaluate_flow_probe(const FlowProbe& p, const FlowProblem& problem, const V
     case FlowProbeType::pressure_difference: {
       Vec3 u;
       Real pa, pb;
-      if (!sample_flow(m, x, p.a, u, pa) || !sample_flow(m, x, p.b, u, pb))
-        throw InputError(fmt::format("probe '{}': a point is outside the fluid mesh", p.name));
+      interpolate_flow(m, p.located[0], x, u, pa);
+      interpolate_flow(m, p.located[1], x, u, pb);
       values.push_back(pa - pb);
       break;
     }
@@ -195,11 +195,11 @@ void write_line_probe(const FlowProbe& p, const FlowProblem& problem, const Vect
   for (int k = 0; k < m.dim(); ++k) out << axes[k] << ',';
   for (int k = 0; k < m.dim(); ++k) out << "velocity." << axes[k] << ',';
   out << "pressure\n";
-  for (int s = 0; s < p.samples; ++s) {
-    const Vec3 at = p.a + (p.b - p.a) * (static_cast<Real>(s) / (p.samples - 1));
+  for (size_t s = 0; s < p.located.size(); ++s) {
+    const Vec3& at = p.sample_points[s];
     Vec3 u;
     Real pressure;
-    if (!sample_flow(m, x, at, u, pressure)) continue;  // a gap in the mesh (an obstacle): no row
+    interpolate_flow(m, p.located[s], x, u, pressure);
     for (int k = 0; k < m.dim(); ++k) out << fmt::format("{:.9g},", at[k]);
     for (int k = 0; k < m.dim(); ++k) out << fmt::format("{:.17g},", u[k]);
     out << fmt::format("{:.17g}\n", pressure);

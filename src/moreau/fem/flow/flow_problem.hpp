@@ -23,6 +23,10 @@ struct FlowProbe {
   FlowProbeType type = FlowProbeType::point;
   Vec3 a = Vec3::Zero(), b = Vec3::Zero();  // point; line ends; pressure_difference's two points
   int samples = 0;                          // line: points along the segment, ends included
+  // point: a; pressure_difference: a and b; line: its samples inside the mesh (those in a gap, an
+  // obstacle cut out of the mesh, are left out), each with its cell in the fluid's mesh.
+  std::vector<Vec3> sample_points;
+  std::vector<MeshPoint> located;
   std::vector<Index> nodes;                 // boundary_force: the boundary's nodes
   Real coefficient_scale = 0;               // boundary_force, solid_force: 2 / (rho U^2 L) (2D) or 2 / (rho U^2 A) (3D); 0: none
   Index solid_node = -1;                    // solid_point: the node in the immersed solids' numbering

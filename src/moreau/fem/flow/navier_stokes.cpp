@@ -19,6 +19,13 @@ constexpr int kMaxCellDofs = kMaxFields * kMaxElementNodes;
 using CellVector = Eigen::Matrix<Real, Eigen::Dynamic, 1, 0, kMaxCellDofs, 1>;
 using CellMatrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxCellDofs, kMaxCellDofs>;
 
+// The SUPG/PSPG parameter at a point, tau = (s^2 + (2/dt)^2 + (4 nu / h^2)^2)^-1/2, with
+// s = sum_a |u . grad N_a| the advective rate (1/s), h the cell's size (m), nu the kinematic
+// viscosity (m^2/s) and 1/dt (0 when steady).
+Real stabilization_tau(Real advective_rate, Real h, Real nu, Real inverse_dt) {
+  return 1 / std::sqrt(advective_rate * advective_rate + 4 * inverse_dt * inverse_dt + std::pow(4 * nu / (h * h), 2));
+}
+
 // The time scheme's coefficients (navier_stokes.hpp): du/dt = (a0 u_{n+1} + a1 u_n + a2 u_{n-1}) * ct,
 // momentum terms at theta u_{n+1} + (1 - theta) u_n.
 struct SchemeCoefficients {
@@ -133,10 +140,6 @@ void flow_cell(const NavierStokesModel& m, Index e, const Real* x, const Real* x
 }
 
 }  // namespace
-
-Real stabilization_tau(Real advective_rate, Real h, Real nu, Real inverse_dt) {
-  return 1 / std::sqrt(advective_rate * advective_rate + 4 * inverse_dt * inverse_dt + std::pow(4 * nu / (h * h), 2));
-}
 
 void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeStep& step, VectorX& R, SparseMatrix* J,
                    const FlowAssembly& how, const FlowForceDensity& density) {
@@ -391,47 +394,14 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
   return result;
 }
 
-bool sample_flow(const NavierStokesModel& m, const VectorX& x, const Vec3& point, Vec3& velocity, Real& pressure) {
-  const FemMesh& mesh = m.mesh;
-  const int nodes = mesh.nodes_per_cell();
-  Real N[kMaxElementNodes];
-  Vec3 dN[kMaxElementNodes];
-  for (Index e = 0; e < mesh.cell_count(); ++e) {
-    const Index* c = mesh.cell(e);
-    Vec3 lo = mesh.nodes[c[0]], hi = lo;
-    for (int a = 1; a < nodes; ++a) {
-      lo = lo.cwiseMin(mesh.nodes[c[a]]);
-      hi = hi.cwiseMax(mesh.nodes[c[a]]);
-    }
-    const Real slack = 1e-9 * (hi - lo).norm();
-    bool outside = false;
-    for (int k = 0; k < m.dim(); ++k) outside = outside || point[k] < lo[k] - slack || point[k] > hi[k] + slack;
-    if (outside) continue;
-    // Invert x(xi) = sum_a N_a(xi) X_a by Newton from the centre.
-    Vec3 xi = Vec3::Zero();
-    for (int it = 0; it < 30; ++it) {
-      shape_functions(mesh.element, xi, N, dN);
-      Vec3 xr = Vec3::Zero();
-      for (int a = 0; a < nodes; ++a) xr += N[a] * mesh.nodes[c[a]];
-      const Mat3 Jac = cell_jacobian(mesh, e, dN);
-      Vec3 d = Jac.inverse() * (point - xr);
-      for (int k = m.dim(); k < 3; ++k) d[k] = 0;
-      xi += d;
-      if (d.norm() < 1e-14) break;
-    }
-    bool inside = true;
-    for (int k = 0; k < m.dim(); ++k) inside = inside && std::abs(xi[k]) <= 1 + 1e-9;
-    if (!inside) continue;
-    shape_functions(mesh.element, xi, N, dN);
-    velocity.setZero();
-    pressure = 0;
-    for (int a = 0; a < nodes; ++a) {
-      for (int k = 0; k < m.dim(); ++k) velocity[k] += N[a] * x[m.dof(c[a], k)];
-      pressure += N[a] * x[m.dof(c[a], m.dim())];
-    }
-    return true;
+void interpolate_flow(const NavierStokesModel& m, const MeshPoint& at, const VectorX& x, Vec3& velocity, Real& pressure) {
+  const Index* c = m.mesh.cell(at.cell);
+  velocity.setZero();
+  pressure = 0;
+  for (int a = 0; a < m.mesh.nodes_per_cell(); ++a) {
+    for (int k = 0; k < m.dim(); ++k) velocity[k] += at.shape[a] * x[m.dof(c[a], k)];
+    pressure += at.shape[a] * x[m.dof(c[a], m.dim())];
   }
-  return false;
 }
 
 }  // namespace moreau

@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "moreau/fem/core/fem_mesh.hpp"
+#include "moreau/fem/core/mesh_locator.hpp"
 #include "moreau/fem/solids/fem_model.hpp"
 #include "moreau/fem/flow/flow_linear_solver.hpp"
 #include "moreau/fem/solids/static_solver.hpp"
@@ -89,11 +90,6 @@ struct NavierStokesModel {
   Index dof(Index node, int field) const { return node * fields() + field; }
 };
 
-/// The SUPG/PSPG parameter at a point, tau = (s^2 + (2/dt)^2 + (4 nu / h^2)^2)^-1/2, with
-/// s = sum_a |u . grad N_a| the advective rate (1/s), h the cell's size (m), nu the kinematic
-/// viscosity (m^2/s) and 1/dt (0 when steady).
-Real stabilization_tau(Real advective_rate, Real h, Real nu, Real inverse_dt);
-
 /// Quadrature, colours, the free dofs and the Jacobian's sparsity; after `prescribed` is set.
 void setup_navier_stokes(NavierStokesModel& model);
 
@@ -155,8 +151,8 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& model, Real t, cons
                                     FlowLinearSolver& solver, const FlowSolveSettings& settings = {},
                                     const FlowSource* source = nullptr);
 
-/// Velocity and pressure at a point (the cell containing it is found by inverting the
-/// isoparametric map); false if the point is outside the mesh.
-bool sample_flow(const NavierStokesModel& model, const VectorX& x, const Vec3& point, Vec3& velocity, Real& pressure);
+/// Velocity and pressure at a point of the fluid's mesh (found by MeshLocator::locate on
+/// model.mesh): sum_a N_a(x) x_a over the point's cell.
+void interpolate_flow(const NavierStokesModel& model, const MeshPoint& at, const VectorX& x, Vec3& velocity, Real& pressure);
 
 }  // namespace moreau

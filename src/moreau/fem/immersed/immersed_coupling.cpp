@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 #include "moreau/errors.hpp"
 
@@ -389,19 +390,23 @@ Vec3 ImmersedCoupling::fluid_force_on_solid(size_t s, const ImmersedKinematics& 
 }
 
 void ImmersedCoupling::accept(const VectorX& x, const FlowTimeStep& step) {
+  const Real theta = scheme_theta(step);
   const ImmersedKinematics k = kinematics(x, step);
   // The step's loads, from the state it started from: the source's residual on the fluid (for the
-  // walls' reactions) and the fluid's force on each deformable solid (the rigid bodies' below).
-  state_.fluid_source = VectorX::Zero(fluid_.dof_count());
-  add(x, step, state_.fluid_source, nullptr);
+  // walls' reactions; the same M^T r as add() puts in the residual) and the fluid's force on each
+  // deformable solid (the rigid bodies' below).
   VectorX r;
-  if (!nodal_forces(k, scheme_theta(step), step.dt, r, nullptr, nullptr))
-    throw NumericalError("an immersed solid's cell is inverted");
+  if (!nodal_forces(k, theta, step.dt, r, nullptr, nullptr)) throw NumericalError("an immersed solid's cell is inverted");
+  state_.fluid_source = velocity_map(k, false).transpose() * r;
+  if (!solids_.rigid_bodies.empty()) {
+    const std::string failure = rigid_.add(x, step, theta, state_, state_.fluid_source, nullptr, nullptr);
+    if (!failure.empty()) throw NumericalError(failure);
+  }
   for (size_t s = 0; s < solids_.model.solids.size(); ++s)
     if (!solids_.rigid_body_of(s)) state_.fluid_force[s] = fluid_force_on_solid(s, k, r, step.dt);
   state_.displacement = k.displacement;
   state_.velocity = k.velocity;
-  rigid_.accept(x, step, scheme_theta(step), state_);
+  rigid_.accept(x, step, theta, state_);
   state_.time += step.dt;
 }
 
