@@ -206,14 +206,17 @@ TEST(FlowScenes, TransientRunIsBitIdenticalOnOneAndTwoThreads) {
 }
 
 TEST(FlowScenes, AStepWhoseSolveFailsIsRetriedInSubsteps) {
-  // Turek & Hron's FSI1 (scenes/turek_hron_fsi1.json) on the coarse fluid mesh N = 4 with backward
-  // Euler steps of 0.25 s: measured, the tenth step (t = 2.25 to 2.5 s, just after the inflow's
-  // ramp) fails, Newton and Picard both, as the bar's nodes cross the fluid's cells. Without
-  // retries the run stops there (exit 3, naming the step); with the default it redoes that step
-  // as two steps of 0.125 s and carries on, counting it in run.json. The output keeps its times.
+  // Turek & Hron's FSI1 (scenes/turek_hron_fsi1.json) on the coarse block-structured fluid mesh
+  // (turek_hron_channel.geo, N = 4) with a bar of 70 x 4 cells and backward Euler steps of 0.25 s:
+  // measured, the tenth step (t = 2.25 to 2.5 s, just after the inflow's ramp) fails, Newton and
+  // Picard both, as the bar's nodes cross the fluid's cells. Without retries the run stops there
+  // (exit 3, naming the step); with the default it redoes that step as two steps of 0.125 s and
+  // carries on, counting it in run.json. The output keeps its times.
   const std::string scene = test::scene_path("turek_hron_fsi1.json");
-  const std::string common = "--quiet --threads 1 --set objects.fluid.mesh.parameters.N=4 --set settings.dt=0.25 "
-                             "--set settings.duration=2.5";
+  const std::string common =
+      "--quiet --threads 1 --set objects.fluid.mesh.file=meshes/turek_hron_channel.geo --set objects.fluid.mesh.parameters.N=4 "
+      "--set objects.bar.mesh.parameters.NX=70 --set objects.bar.mesh.parameters.NY=4 --set settings.dt=0.25 "
+      "--set settings.duration=2.5";
   const std::string stopped = test::temp_dir("flow_no_retry") + "/out";
   const auto r = test::run_moreau(
       fmt::format("run {} --out {} {} --set settings.newton.max_step_halvings=0", scene, stopped, common));
