@@ -40,6 +40,11 @@ def mesh_overrides(b):
             f"objects.bar.mesh.parameters.NX={70 * b}", f"objects.bar.mesh.parameters.NY={4 * b}"]
 
 
+def cell_mm(b):
+    """The fluid cells' width around the bar at refinement B (mm, as asked of Gmsh)."""
+    return 1e3 * 0.05 / (LEVEL * b)
+
+
 def run_level(moreau, work, name, b, extra, duration):
     overrides = mesh_overrides(b) + extra
     _, seconds = run_scene(moreau, SCENE, work / name, overrides, duration=duration)
@@ -95,11 +100,10 @@ def run(moreau, work, out, fast):
 
     figure, axes = plt.subplots(1, 2 if elastic else 1, figsize=(10.0 if elastic else 5.5, 3.6), squeeze=False)
     axis = axes[0][0]
-    cell = [1e3 * 0.05 / (LEVEL * r["b"]) for r in rigid]
-    axis.plot(cell, [r["drag"] for r in rigid], "o", label="CFD1 drag, moreau")
+    axis.plot([cell_mm(r["b"]) for r in rigid], [r["drag"] for r in rigid], "o", label="CFD1 drag, moreau")
     axis.axhline(CFD1["drag"], color="tab:blue", ls=":", label="CFD1 drag, Turek & Hron")
     if elastic:
-        axis.plot([1e3 * 0.05 / (LEVEL * r["b"]) for r in elastic], [r["drag"] for r in elastic], "s-", color="tab:orange",
+        axis.plot([cell_mm(r["b"]) for r in elastic], [r["drag"] for r in elastic], "s-", color="tab:orange",
                   label="FSI1 drag, moreau")
         axis.axhline(FSI1["drag"], color="tab:orange", ls=":", label="FSI1 drag, Turek & Hron")
     axis.set(xlabel="fluid cells around the bar (mm)", ylabel="drag (N/m)", title="Drag on cylinder and immersed bar",
