@@ -36,6 +36,9 @@ struct FluidSolverSettings {
   std::optional<double> neighbor_skin;  // fraction of the kernel radius the neighbour lists reach beyond it, [0, 1]
   std::optional<double> tensile_k;      // artificial pressure strength, [0, 10]
   std::optional<double> cfl_limit;      // largest particle travel per step, in particle radii
+  std::string viscosity_solver = "auto";  // "auto", "explicit" or "implicit"
+  std::optional<double> viscosity_tolerance;   // implicit: relative residual, (0, 1)
+  std::optional<int> viscosity_iterations;     // implicit: conjugate-gradient iterations at most
 };
 
 /// settings.nmd: the velocity-level formulation's constants. Unset fields keep the engine defaults.
@@ -158,6 +161,7 @@ struct ColliderSpec {
   Vector3 velocity{};                // m/s, a constant translation
   bool inside = false;               // a container: things stay inside the shape
   bool fluid_walls = true;           // sampled as a wall of the particle fluids
+  double fluid_friction = 0;         // [0, 1]: 0 the fluid slips freely along the wall, 1 no slip
   std::optional<double> until;       // s: the collider is removed at this time (a gate opened)
   ContactMaterial contact;
 };

@@ -163,9 +163,22 @@ TEST(CommandLine, FluidInputErrorsNameTheirKey) {
   expect_bad_input("no_blocks", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "blocks": [],
       "emitter": {"shape": "disc", "center": [0, 0.5, 0], "direction": [0, -1, 0], "radius": 0.1, "speed": 1}})"),
                    {"objects[1].blocks", "holds no block"});
-  expect_bad_input("viscous", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "viscosity": 1e4,
-      "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})"),
-                   {"objects[1].viscosity", "0.125 h^2 / nu"});
+  auto with_fluid_settings = [&](const std::string& fluid_settings, const std::string& objects) {
+    return R"({"name": "f", "settings": {"dt": 0.005, "fluid": )" + fluid_settings + "}, \"objects\": [" + objects + "]}";
+  };
+  const std::string honey = R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "viscosity": 1e4,
+      "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})";
+  expect_bad_input("viscous", with_fluid_settings(R"({"viscosity_solver": "explicit"})", tank + ", " + honey),
+                   {"objects[1].viscosity", "0.125 h^2 / nu", "implicit"});
+  expect_bad_input("viscosity_solver", with_fluid_settings(R"({"viscosity_solver": "fast"})", tank + ", " + water),
+                   {"settings.fluid.viscosity_solver", "explicit"});
+  const std::string sticky_tank = R"({"name": "tank", "kind": "collider", "inside": true, "fluid_friction": 1,
+      "shape": {"type": "box", "center": [0, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}})";
+  expect_bad_input("friction_explicit", with_fluid_settings(R"({"viscosity_solver": "explicit"})", sticky_tank + ", " + water),
+                   {"objects[0].fluid_friction", "implicit"});
+  expect_bad_input("friction_range", with_fluid_settings("{}", R"({"name": "tank", "kind": "collider", "inside": true,
+      "fluid_friction": 2, "shape": {"type": "box", "center": [0, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}}, )" + water),
+                   {"objects[0].fluid_friction", "out of range"});
   expect_bad_input("bulk_modulus", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "bulk_modulus": 0,
       "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})"),
                    {"objects[1].bulk_modulus", "out of range"});

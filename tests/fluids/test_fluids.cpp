@@ -169,10 +169,7 @@ TEST(FluidDeterminism, BitIdenticalForOneAndTwoThreads) {
   auto run = [](int threads) {
     Scene scene = scene_from_json(kSloshScene, {fmt::format("settings.threads={}", threads)});
     run_steps(scene, 100);
-    std::vector<std::pair<Index, Vec3>> by_id;
-    for (Index i = 0; i < scene.state.fluid.count; ++i) by_id.emplace_back(scene.state.fluid.id[i], scene.state.fluid.position[i]);
-    std::sort(by_id.begin(), by_id.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    return by_id;
+    return test::by_particle_id(scene.state.fluid, scene.state.fluid.position);
   };
   const auto one = run(1), two = run(2);
   ASSERT_EQ(one.size(), two.size());
@@ -187,11 +184,7 @@ TEST(FluidConservation, CollidingBlobsKeepLinearAndAngularMomentum) {
   // error: a correction computed at the predicted positions x* is applied as velocity (x - x_s)/h,
   // whose moment about x_s differs by h v_ij x dx. XSPH is off: it smooths velocity differences
   // along W_ij rather than along x_ij and damps rotation, so it does not conserve angular momentum.
-  Scene scene = scene_from_json(R"({"name": "blobs", "settings": {"dt": 0.002, "substeps": 4, "gravity": [0, 0, 0]},
-    "objects": [{"name": "a", "kind": "fluid", "particle_radius": 0.01, "viscosity": 1, "xsph": 0,
-                 "block": {"min": [-0.2, 0, 0], "max": [-0.08, 0.12, 0.12]}, "velocity": [1, 0, 0]},
-                {"name": "b", "kind": "fluid", "particle_radius": 0.01, "viscosity": 0.8, "xsph": 0, "density": 800,
-                 "block": {"min": [0.08, 0.06, 0], "max": [0.2, 0.18, 0.12]}, "velocity": [-1, 0, 0]}]})");
+  Scene scene = scene_from_json(test::colliding_blobs_scene(1, 0.8));
   const Vec3 p0 = linear_momentum(scene.model, scene.state, -1);
   const Vec3 L0 = angular_momentum(scene.model, scene.state, -1, Vec3::Zero());
   const Real scale = 2 * 0.2 * std::abs(p0.x()) + kinetic_energy(scene.model, scene.state, -1);  // |m v| x lever arm

@@ -24,6 +24,7 @@ struct Collider {
   Real adhesion = 0;                  // N per contact point with a rigid body or a particle (nmd)
   bool inside = false;                // a container: the solid is outside the shape (a tank keeps particles in)
   bool fluid_walls = true;            // sampled with wall particles for the fluid density
+  Real fluid_friction = 0;            // the fluid's wall shear: 0 free slip, 1 no slip (fluid_viscosity.hpp)
   Real until = std::numeric_limits<Real>::infinity();  // s: removed at this time (particles only)
 
   Vec3 position_at(Real time) const { return position + time * velocity; }

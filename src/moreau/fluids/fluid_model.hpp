@@ -68,6 +68,10 @@ struct FluidSolidSamples {
   Index size() const { return static_cast<Index>(volume.size()); }
 };
 
+/// How the viscosity is integrated over a step (fluid_viscosity.hpp). The scene builder resolves
+/// `automatic` to explicit where that is stable and implicit otherwise.
+enum class ViscositySolver { automatic, explicit_update, implicit_solve };
+
 struct FluidModel {
   Real particle_radius = 0;        // r, m
   Real particle_volume = 0;        // V = (2 r)^3, m^3
@@ -79,6 +83,9 @@ struct FluidModel {
   Real tensile_reference = 0;      // g_ref h, m^2/s^2: s_corr's pressure scale per unit mass
   Real solid_contact_distance = 0;  // m, 1.5 r: closest approach of a fluid particle to a solid sample
   Real cfl_limit = 0.4;            // warn when max |v| h / (2 r) exceeds it (Bender's PBD uses 0.4)
+  ViscositySolver viscosity_solver = ViscositySolver::automatic;
+  Real viscosity_tolerance = 1e-4;   // implicit: relative preconditioned residual to stop at
+  int viscosity_max_iterations = 200;  // implicit: conjugate-gradient iterations at most
 
   std::vector<FluidPhase> phases;
   // Initial particles.

@@ -7,7 +7,11 @@ namespace moreau {
 void FluidScratch::fit(const FluidModel& fm) {
   const std::size_t capacity = fm.capacity, samples = fm.solid.size();
   const std::size_t coupled = fm.solid.coupled_particle.empty() ? 0 : fm.solid.coupled_particle.back() + 1;
-  if (lambda.size() == capacity && solid_reaction.size() == samples && solid_share.size() == coupled) return;
+  const bool implicit_viscosity = fm.viscosity_solver == ViscositySolver::implicit_solve;
+  const std::size_t solve_size = implicit_viscosity ? capacity : 0;
+  if (lambda.size() == capacity && solid_reaction.size() == samples && solid_share.size() == coupled &&
+      solve_residual.size() == solve_size)
+    return;
   substep_start.assign(capacity, Vec3::Zero());
   lambda.assign(capacity, 0);
   correction.assign(capacity, Vec3::Zero());
@@ -19,6 +23,16 @@ void FluidScratch::fit(const FluidModel& fm) {
   solid_inv_mass.assign(samples, 0);
   solid_share.assign(coupled, 1.0);
   solid_contacts.assign(capacity, 0);
+  viscous_change.assign(solve_size, Vec3::Zero());
+  gradient_correction.assign(solve_size, Mat3::Identity());
+  corrected_stress.assign(solve_size, Mat3::Zero());
+  wall_sum.assign(solve_size, Vec3::Zero());
+  wall_velocity_sum.assign(solve_size, Mat3::Zero());
+  velocity_gradient.assign(solve_size, Mat3::Zero());
+  for (std::vector<Vec3>* v : {&solve_residual, &solve_shadow, &solve_direction, &solve_direction_image,
+                                &solve_preconditioned, &solve_intermediate, &solve_intermediate_image})
+    v->assign(solve_size, Vec3::Zero());
+  inverse_diagonal.assign(solve_size, Mat3::Identity());
 }
 
 }  // namespace moreau

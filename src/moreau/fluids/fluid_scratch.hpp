@@ -26,6 +26,22 @@ struct FluidScratch {
   std::vector<Real> solid_share;        // per model particle: 1 / c_k of the split (coupled particles only)
   std::vector<Index> solid_contacts;    // per fluid particle: solid samples it touches
 
+  // The implicit viscosity (fluid_viscosity.hpp; empty when it is explicit): the step's velocity
+  // change; per particle the gradient correction L, the stress times it S = tau L, the velocity
+  // gradient G, the wall terms q and P; the solver's vectors, the inverse diagonal blocks and the
+  // per-block partial dot products.
+  std::vector<Vec3> viscous_change;     // m/s
+  std::vector<Mat3> gradient_correction, corrected_stress;
+  std::vector<Vec3> wall_sum;           // 1/m
+  std::vector<Mat3> wall_velocity_sum;  // 1/s
+  std::vector<Mat3> velocity_gradient;  // 1/s, G_k of the last gradient pass
+  // BiCGSTAB's vectors: residual r, shadow residual, direction p, A y, preconditioned y (and z),
+  // intermediate residual s, A z.
+  std::vector<Vec3> solve_residual, solve_shadow, solve_direction, solve_direction_image, solve_preconditioned,
+      solve_intermediate, solve_intermediate_image;
+  std::vector<Mat3> inverse_diagonal;   // 1/kg
+  std::vector<Real> block_sum_a, block_sum_b;
+
   /// Sizes the buffers for the model's fluid (nothing is reallocated when they already fit).
   void fit(const FluidModel& fluid);
 };

@@ -23,6 +23,15 @@ struct FixedStrideLists {
   const Index* row(Index i) const { return entries.data() + static_cast<std::size_t>(i) * stride; }
 };
 
+/// The implicit viscosity solver's work over a run (fluid_viscosity.hpp).
+struct ViscositySolveStats {
+  long solves = 0;              // steps solved implicitly
+  long iterations = 0;          // conjugate-gradient iterations, summed
+  int most_iterations = 0;      // in one step
+  long unconverged = 0;         // steps that stopped at the iteration limit
+  Real worst_residual = 0;      // largest relative residual a step stopped at
+};
+
 struct FluidState {
   Index count = 0;
   std::vector<Vec3> position, velocity;  // m, m/s
@@ -56,6 +65,7 @@ struct FluidState {
   // Time-step monitor.
   Real max_cfl = 0;                     // max over the run of max|v| h_sub / (2 r)
   long cfl_violations = 0;              // steps whose CFL number exceeded the limit
+  ViscositySolveStats viscosity_stats;
 };
 
 /// Sizes every buffer for the model's capacity and places the initial particles.

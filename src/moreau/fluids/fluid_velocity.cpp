@@ -1,5 +1,7 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 
+#include "moreau/fluids/fluid_viscosity.hpp"
+#include "moreau/fluids/neighbor_loop.hpp"
 #include "moreau/fluids/pair_chunks.hpp"
 #include "moreau/math/target_clones.hpp"
 #include "moreau/model/model.hpp"
@@ -9,16 +11,10 @@ namespace moreau {
 Vec3 fluid_vorticity(const Model& model, const FluidState& fluid, Index i) {
   const FluidModel& fm = model.fluid;
   const CubicSplineKernel& kernel = fm.kernel;
-  const Vec3 xi = fluid.position[i], vi = fluid.velocity[i];
+  const Vec3 vi = fluid.velocity[i];
   Vec3 omega = Vec3::Zero();
-  const Index* row = fluid.fluid_neighbors.row(i);
-  for (Index k = 0; k < fluid.fluid_neighbors.count[i]; ++k) {
-    const Index j = row[k];
-    const Vec3 r = xi - fluid.position[j];
-    const Real d2 = r.squaredNorm();
-    if (d2 >= kernel.h2) continue;
-    omega += (vi - fluid.velocity[j]).cross(kernel.gradient_factor(std::sqrt(d2)) * r);
-  }
+  for_each_fluid_neighbor(fluid, kernel, i,
+                          [&](Index j, const Vec3& r, Real g) { omega += (vi - fluid.velocity[j]).cross(g * r); });
   return fm.particle_volume * omega;
 }
 
@@ -32,6 +28,11 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
     any_vorticity |= p.vorticity > 0;
   }
   if (!any_viscosity && !any_xsph && !any_vorticity) return;
+  // The implicit viscosity is solved first, from the same velocities; the explicit one is a pair
+  // term of the loop below.
+  const bool implicit_viscosity = any_viscosity && fm.viscosity_solver == ViscositySolver::implicit_solve;
+  if (implicit_viscosity) compute_fluid_viscous_change(model, fluid, scratch, dt);
+  const bool explicit_viscosity = any_viscosity && !implicit_viscosity;
 
   const CubicSplineKernel kernel = fm.kernel;
   const Real V = fm.particle_volume, pad = 2 * kernel.h;
@@ -71,7 +72,7 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
         const bool live = begin + k < count;
         const Index j = live ? row[begin + k] : i;
         vx[k] = v[j].x(), vy[k] = v[j].y(), vz[k] = v[j].z();
-        nu[k] = 0.5 * (pi.viscosity + fm.phases[fluid.phase[j]].viscosity);
+        nu[k] = explicit_viscosity ? 0.5 * (pi.viscosity + fm.phases[fluid.phase[j]].viscosity) : 0;
       }
       chunk.evaluate(kernel);
 #pragma omp simd
@@ -91,6 +92,7 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
     const Vec3 viscous(sum_lanes(visc_x), sum_lanes(visc_y), sum_lanes(visc_z));
     const Vec3 smoothing(sum_lanes(smooth_x), sum_lanes(smooth_y), sum_lanes(smooth_z));
     Vec3 vi_new = vi + (dt * 10 * V) * viscous + (pi.xsph * V) * smoothing;
+    if (implicit_viscosity) vi_new += scratch.viscous_change[i];
     if (pi.vorticity > 0) {
       const Vec3 eta(sum_lanes(eta_x), sum_lanes(eta_y), sum_lanes(eta_z));
       const Real eta_norm = eta.norm();

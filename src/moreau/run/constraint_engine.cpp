@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <optional>
 
+#include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/io/binary_archive.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/probe_csv.hpp"
@@ -95,6 +96,17 @@ void ConstraintEngine::add_run_fields(nlohmann::json& j, bool completed) const {
                   {"cfl_limit", m.fluid.cfl_limit},
                   {"steps_over_cfl_limit", state_.fluid.cfl_violations},
                   {"wall_samples", m.fluid.boundary.size()}};
+  if (!m.fluid.empty() && fluid_has_viscosity(m)) {
+    const ViscositySolveStats& v = state_.fluid.viscosity_stats;
+    const bool implicit = m.fluid.viscosity_solver == ViscositySolver::implicit_solve;
+    j["fluid"]["viscosity"] = {{"solver", implicit ? "implicit" : "explicit"}};
+    if (implicit)
+      j["fluid"]["viscosity"].update({{"solves", v.solves},
+                                      {"mean_iterations", v.solves > 0 ? static_cast<Real>(v.iterations) / v.solves : 0.0},
+                                      {"most_iterations", v.most_iterations},
+                                      {"unconverged_steps", v.unconverged},
+                                      {"worst_relative_residual", v.worst_residual}});
+  }
   if (completed)
     j["final_energy_j"] = {{"kinetic", kinetic_energy(m, state_, -1)},
                            {"potential", potential_energy(m, state_, -1)},
@@ -108,6 +120,13 @@ std::vector<std::string> ConstraintEngine::warnings() const {
         "the fluid CFL number max|v| h / (2 r) reached {:.2f} (limit {}) in {} steps; the time step is too long for "
         "the fastest particles: lower settings.dt or raise settings.substeps",
         state_.fluid.max_cfl, model_.fluid.cfl_limit, state_.fluid.cfl_violations));
+  const ViscositySolveStats& viscosity = state_.fluid.viscosity_stats;
+  if (viscosity.unconverged > 0)
+    out.push_back(fmt::format(
+        "the implicit fluid viscosity stopped at settings.fluid.viscosity_iterations = {} in {} steps (relative residual "
+        "up to {:.2g}, tolerance {:.2g}); raise the iteration limit or the tolerance",
+        model_.fluid.viscosity_max_iterations, viscosity.unconverged, viscosity.worst_residual,
+        model_.fluid.viscosity_tolerance));
   // Adhesion is a bound of the velocity-level contact rows; the position-level solver has none.
   if (scene_.solver != "nmd") {
     std::string glued;

@@ -43,6 +43,7 @@ ColliderSpec read_collider(const JsonObject& object) {
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   spec.inside = object.boolean("inside", spec.inside);
   spec.fluid_walls = object.boolean("fluid_walls", spec.fluid_walls);
+  spec.fluid_friction = object.number("fluid_friction", spec.fluid_friction);
   spec.until = read_optional_number(object, "until");
   spec.contact = read_contact_material(object);
   return spec;
@@ -85,6 +86,10 @@ void add_collider(const ColliderSpec& spec, const SpecPlace& place, ObjectInfo& 
   if (c.inside && c.shape.type == ShapeType::plane)
     place.fail("inside", "a plane has no inside; use a box, sphere or capsule as a container");
   c.fluid_walls = spec.fluid_walls;
+  c.fluid_friction = place.number("fluid_friction", spec.fluid_friction, Range::closed(0, 1));
+  if (c.fluid_friction > 0 && !c.fluid_walls)
+    place.fail("fluid_friction", "a collider with \"fluid_walls\": false has no wall samples to carry the fluid's wall "
+                                 "friction; remove \"fluid_friction\" or sample the walls");
   if (spec.until) c.until = place.number("until", *spec.until, Range::non_negative());
   set_contact_material(spec.contact, place, info);
   c.static_friction = info.static_friction;

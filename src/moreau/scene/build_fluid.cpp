@@ -16,6 +16,14 @@ namespace moreau {
 
 namespace {
 
+// nu dt / h^2 above which "auto" solves the viscosity implicitly (explicit is stable to 0.125).
+constexpr Real kStrongViscosity = 0.01;
+
+// Explicit viscosity is stable for dt <= 0.125 h^2 / nu (Monaghan 2005, sec. 6.4).
+Real explicit_viscosity_limit(const FluidModel& fm, const FluidPhase& phase) {
+  return 0.125 * fm.kernel.h2 / std::max(phase.viscosity, 1e-300);
+}
+
 // Lattice points (spacing d) centred in [lo, hi]: floor(L / d) points per axis, each the centre of
 // a cube of volume d^3 inside the box, so the particles represent the box volume.
 void fill_block(const Vec3& lo, const Vec3& hi, Real d, std::vector<Vec3>& out) {
@@ -120,12 +128,12 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   // compliance of a bulk modulus K (C = p / K) is eps = 1 / (K V) (constraint_fluid.hpp).
   phase.compliance = 1 / (place.number("bulk_modulus", spec.bulk_modulus, Range::positive()) * fm.particle_volume);
 
-  // Explicit viscosity is stable for dt <= 0.125 h^2 / nu (Monaghan 2005, sec. 6.4).
-  const Real viscous_limit = 0.125 * fm.kernel.h2 / std::max(phase.viscosity, 1e-300);
-  if (model.settings.dt > viscous_limit)
-    place.fail("viscosity", fmt::format("explicit viscosity needs dt <= 0.125 h^2 / nu = {:.3g} s with h = 4 r = {} m and "
-                                        "nu = mu / rho0 = {:.3g} m^2/s; settings.dt is {} s: lower the viscosity or dt",
-                                        viscous_limit, fm.kernel.h, phase.viscosity, model.settings.dt));
+  if (fm.viscosity_solver == ViscositySolver::explicit_update && model.settings.dt > explicit_viscosity_limit(fm, phase))
+    place.fail("viscosity", fmt::format("explicit viscosity (settings.fluid.viscosity_solver) needs dt <= 0.125 h^2 / nu = "
+                                        "{:.3g} s with h = 4 r = {} m and nu = mu / rho0 = {:.3g} m^2/s; settings.dt is {} s: "
+                                        "use the implicit solver (\"auto\" or \"implicit\"), or lower the viscosity or dt",
+                                        explicit_viscosity_limit(fm, phase), fm.kernel.h, phase.viscosity,
+                                        model.settings.dt));
 
   std::vector<Vec3> points;
   const int sources = spec.block.has_value() + !spec.blocks.empty() + !spec.mesh.empty();
@@ -173,6 +181,25 @@ void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& o
   fm.tensile_reference = kReferenceGravity * fm.kernel.h;
   fm.neighbor_skin = fm.neighbor_skin_fraction * fm.kernel.h;
   fm.solid_contact_distance = 1.5 * fm.particle_radius;  // solid_coupling.hpp
+  // "auto": the implicit, accurate viscosity where it acts strongly within a step or walls have
+  // fluid friction; the fast explicit one otherwise (water at any practical particle size).
+  bool wall_friction = false;
+  for (const Collider& c : model.colliders) wall_friction |= c.fluid_walls && c.fluid_friction > 0;
+  if (fm.viscosity_solver == ViscositySolver::automatic) {
+    bool strong = false;
+    for (const FluidPhase& phase : fm.phases)
+      strong |= phase.viscosity * model.settings.dt > kStrongViscosity * fm.kernel.h2;
+    fm.viscosity_solver = strong || wall_friction ? ViscositySolver::implicit_solve : ViscositySolver::explicit_update;
+  }
+  if (wall_friction && fm.viscosity_solver == ViscositySolver::explicit_update) {
+    for (std::size_t k = 0; k < model.objects.size(); ++k) {
+      const ObjectInfo& object = model.objects[k];
+      if (object.kind == ObjectKind::collider && model.colliders[object.collider].fluid_friction > 0)
+        object_place(static_cast<Index>(k))
+            .fail("fluid_friction", "the fluid's wall friction is part of the implicit viscosity: set "
+                                    "settings.fluid.viscosity_solver to \"implicit\" or \"auto\"");
+    }
+  }
   fm.capacity = fm.initial_count();  // build_fluid checked that the total fits
   for (const FluidEmitter& e : fm.emitters) fm.capacity += e.capacity();
 

@@ -46,6 +46,9 @@ SceneSettings read_settings(const JsonObject& settings) {
     s.fluid.neighbor_skin = read_optional_number(*fluid, "neighbor_skin");
     s.fluid.tensile_k = read_optional_number(*fluid, "tensile_k");
     s.fluid.cfl_limit = read_optional_number(*fluid, "cfl_limit");
+    if (fluid->has("viscosity_solver")) s.fluid.viscosity_solver = fluid->string("viscosity_solver");
+    s.fluid.viscosity_tolerance = read_optional_number(*fluid, "viscosity_tolerance");
+    if (fluid->has("viscosity_iterations")) s.fluid.viscosity_iterations = read_integer(*fluid, "viscosity_iterations");
     fluid->finish();
   }
   if (auto nmd = settings.optional_object("nmd")) {
@@ -109,6 +112,15 @@ void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& sc
   fm.neighbor_skin_fraction = fluid.number("neighbor_skin", spec.fluid.neighbor_skin.value_or(fm.neighbor_skin_fraction), Range::closed(0, 1));
   fm.tensile_k = fluid.number("tensile_k", spec.fluid.tensile_k.value_or(fm.tensile_k), Range::closed(0, 10));
   fm.cfl_limit = fluid.number("cfl_limit", spec.fluid.cfl_limit.value_or(fm.cfl_limit), Range::positive());
+  const std::string viscosity_solver =
+      fluid.choice("viscosity_solver", spec.fluid.viscosity_solver, {"auto", "explicit", "implicit"});
+  fm.viscosity_solver = viscosity_solver == "auto"       ? ViscositySolver::automatic
+                        : viscosity_solver == "explicit" ? ViscositySolver::explicit_update
+                                                         : ViscositySolver::implicit_solve;
+  fm.viscosity_tolerance = fluid.number("viscosity_tolerance", spec.fluid.viscosity_tolerance.value_or(fm.viscosity_tolerance),
+                                        Range::open(0, 1));
+  fm.viscosity_max_iterations = fluid.integer(
+      "viscosity_iterations", spec.fluid.viscosity_iterations.value_or(fm.viscosity_max_iterations), 1, 100000);
   NmdSettings& nmd = s.nmd;
   const NmdSolverSettings& ns = spec.nmd;
   const SpecPlace nmd_place = place.at("nmd");
