@@ -94,22 +94,22 @@ ProfileError profile_error(const FluidState& f, Real t, Real nu) {
 TEST(FluidViscosity, PoiseuilleFlowAtAThousandTimesWaterMatchesTheStartupSolution) {
   // mu = 1 Pa s (nu = 1e-3 m^2/s, 1,000 x water) at t = 0.15 s, still accelerating (diffusion time
   // H^2 / (pi^2 nu) = 0.16 s); the explicit Laplacian would need dt <= 0.125 h^2 / nu = 8 ms.
-  // Measured: Q +1.4 %, worst layer 3.6 % (the layer next to each wall, which slips a little: the
+  // Measured: Q +2.5 %, worst layer 4.0 % (the layer next to each wall, which slips a little: the
   // operator's force on the two layers nearest a wall is 12 % and 6 % short of the exact one for a
-  // parabola, fluids/fluid_viscosity.hpp). Bounds: 3 % and 5 %, the issue's target.
+  // parabola). Bounds: 5 %, the issue's target.
   Scene scene = scene_from_json(falling_column(1.0));
   ASSERT_EQ(scene.model.fluid.viscosity_solver, ViscositySolver::implicit_solve);
   run_steps(scene, 18);
   const ProfileError e = profile_error(scene.state.fluid, 18 * kDt, 1e-3);
-  EXPECT_LT(std::abs(e.flow_rate), 0.03);
+  EXPECT_LT(std::abs(e.flow_rate), 0.05);
   EXPECT_LT(e.worst_layer, 0.05);
   EXPECT_EQ(scene.state.fluid.viscosity_stats.unconverged, 0);
 }
 
 TEST(FluidViscosity, PoiseuilleFlowAtTenThousandTimesWaterReachesTheSteadyParabola) {
-  // mu = 10 Pa s (honey) with the same step: steady after 0.05 s. Measured at t = 0.1 s: Q +3.4 %,
-  // worst layer 2.9 %. The flow rate creeps on, to +5.5 % by 0.2 s and +6.9 % by 0.4 s, with the
-  // layers still ordered within 0.1 mm (cause not found). Bound 5 % for both at 0.1 s.
+  // mu = 10 Pa s (honey) with the same step: steady after 0.05 s. Measured at t = 0.1 s: Q +3.6 %,
+  // worst layer 2.4 %. The flow rate creeps on, to +5.2 % by 0.15 s, with the layers still ordered
+  // within 0.1 mm (cause not found). Bound 5 % for both at 0.1 s.
   Scene scene = scene_from_json(falling_column(10.0));
   run_steps(scene, 12);
   const ProfileError e = profile_error(scene.state.fluid, 12 * kDt, 1e-2);
@@ -123,9 +123,8 @@ TEST(FluidViscosity, CouetteFlowFollowsAMovingWall) {
   // No gravity; the plate at x = H slides along y at U = 0.1 m/s (a kinematic collider), the one at
   // x = 0 stands; mu = 10 Pa s. Start-up Couette flow:
   //   u(x, t) = U x / H - sum_n 2 U / (n pi) (-1)^(n+1) sin(n pi x / H) exp(-n^2 pi^2 nu t / H^2).
-  // Measured at t = 0.1 s (6 diffusion times H^2 / (pi^2 nu)): every layer within 0.5 % of U, the
-  // mean within 0.6 %; at 0.025 s the layers lag by up to 5.5 % of U (backward Euler at
-  // nu dt / h^2 = 1.3). Bound 2 % of U per layer.
+  // Measured at t = 0.1 s (6 diffusion times H^2 / (pi^2 nu)): every layer within 0.3 % of U; at
+  // 0.025 s the layers lag by up to 1.2 % of U (backward Euler). Bound 2 % of U per layer.
   const Real U = 0.1, nu = 1e-2;
   Scene scene = scene_from_json(R"({"name": "couette", "settings": {"dt": 0.008333333333333333, "substeps": 10,
       "gravity": [0, 0, 0]},
@@ -188,7 +187,7 @@ TEST(FluidViscosity, ImplicitViscosityConservesMomentumOfCollidingBlobs) {
   // the pair torques cancel (the gradient correction makes tau L M = tau symmetric), so the exact
   // solution of the implicit step keeps both momenta. The iterative solution keeps them to its
   // residual: the momentum change of a step is the sum of the residual, at most the tolerance
-  // (1e-4) times |dt f(v*)|. Measured: |dp| = 1.4e-5 |p0|; |dL| = 2.6e-5 of the scale, the position
+  // (1e-4) times |h f(v*)| a substep. Measured: |dp| = 1.7e-6 |p0|; |dL| = 2.4e-5 of the scale, the position
   // solver's O(h) lever-arm error (6.6e-5 with explicit viscosity). Bounds: 1e-4 and 1e-3.
   Scene scene = scene_from_json(test::colliding_blobs_scene(10, 8, R"({"viscosity_solver": "implicit"})"));
   const Vec3 p0 = linear_momentum(scene.model, scene.state, -1);

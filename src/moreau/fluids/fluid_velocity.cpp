@@ -1,6 +1,5 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 
-#include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/neighbor_loop.hpp"
 #include "moreau/fluids/pair_chunks.hpp"
 #include "moreau/math/target_clones.hpp"
@@ -27,12 +26,10 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
     any_xsph |= p.xsph > 0;
     any_vorticity |= p.vorticity > 0;
   }
-  if (!any_viscosity && !any_xsph && !any_vorticity) return;
-  // The implicit viscosity is solved first, from the same velocities; the explicit one is a pair
-  // term of the loop below.
-  const bool implicit_viscosity = any_viscosity && fm.viscosity_solver == ViscositySolver::implicit_solve;
-  if (implicit_viscosity) compute_fluid_viscous_change(model, fluid, scratch, dt);
-  const bool explicit_viscosity = any_viscosity && !implicit_viscosity;
+  // The implicit viscosity is applied by the formulation (apply_implicit_fluid_viscosity); the
+  // explicit one is a pair term of the loop below.
+  const bool explicit_viscosity = any_viscosity && fm.viscosity_solver == ViscositySolver::explicit_update;
+  if (!explicit_viscosity && !any_xsph && !any_vorticity) return;
 
   const CubicSplineKernel kernel = fm.kernel;
   const Real V = fm.particle_volume, pad = 2 * kernel.h;
@@ -92,7 +89,6 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
     const Vec3 viscous(sum_lanes(visc_x), sum_lanes(visc_y), sum_lanes(visc_z));
     const Vec3 smoothing(sum_lanes(smooth_x), sum_lanes(smooth_y), sum_lanes(smooth_z));
     Vec3 vi_new = vi + (dt * 10 * V) * viscous + (pi.xsph * V) * smoothing;
-    if (implicit_viscosity) vi_new += scratch.viscous_change[i];
     if (pi.vorticity > 0) {
       const Vec3 eta(sum_lanes(eta_x), sum_lanes(eta_y), sum_lanes(eta_z));
       const Real eta_norm = eta.norm();

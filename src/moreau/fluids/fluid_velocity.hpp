@@ -3,9 +3,8 @@
 // (Macklin & Mueller 2013, Algorithm 1, lines 21-24). Sums run over fluid neighbours j within h;
 // v_ij = v_i - v_j, r_ij = x_i - x_j, grad W_ij = grad W(r_ij).
 //
-// Physical viscosity, when settings.fluid.viscosity_solver makes it explicit (the implicit solver is
-// fluid_viscosity.hpp; its velocity change is computed first, from the same velocities, and added
-// here) (Monaghan 2005, "Smoothed particle hydrodynamics", eq. 6.27 form used for laminar flow;
+// Physical viscosity, when settings.fluid.viscosity_solver makes it explicit (the implicit one is
+// fluid_viscosity.hpp, applied by the formulation) (Monaghan 2005, "Smoothed particle hydrodynamics", eq. 6.27 form used for laminar flow;
 // d = 3 dimensions, kinematic viscosity nu in m^2/s, applied over dt):
 //   a_i = 2 (d + 2) nu sum_j V (v_ij . r_ij) / (|r_ij|^2 + 0.01 h^2) grad W_ij
 //   This is the SPH estimate of nu laplacian(v); it conserves linear and angular momentum.

@@ -404,6 +404,13 @@ bool fluid_has_viscosity(const Model& model) {
   return false;
 }
 
+void apply_implicit_fluid_viscosity(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h) {
+  if (model.fluid.viscosity_solver != ViscositySolver::implicit_solve || !fluid_has_viscosity(model)) return;
+  compute_fluid_viscous_change(model, fluid, scratch, h);
+#pragma omp for schedule(static)
+  for (Index k = 0; k < fluid.count; ++k) fluid.velocity[k] += scratch.viscous_change[k];
+}
+
 void compute_fluid_viscous_change(const Model& model, FluidState& fluid, FluidScratch& scratch, Real dt) {
   implicit_solve(model, fluid, scratch, dt);
 }

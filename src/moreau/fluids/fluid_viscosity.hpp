@@ -1,7 +1,7 @@
 #pragma once
-// The implicit viscosity of the particle fluid and its friction at collider walls, once per step
-// (settings.fluid.viscosity_solver "implicit", or "auto" where the viscosity is strong; the
-// explicit one is Monaghan's Laplacian in fluid_velocity.hpp).
+// The implicit viscosity of the particle fluid and its friction at collider walls (settings.fluid.
+// viscosity_solver "implicit", or "auto" where the viscosity is strong; the explicit one is
+// Monaghan's Laplacian in fluid_velocity.hpp), every substep (apply_implicit_fluid_viscosity).
 //
 // The viscous force is the divergence of the Newtonian stress tau = 2 mu D, D = sym(grad v), with
 // corrected kernel gradients (Bonet & Lok 1999, "Variational and momentum preservation aspects of
@@ -40,8 +40,8 @@
 //   corrected gradient over the fluid neighbours. Taking S_b = S_k, as the adjoint of the wall
 //   terms of G would, gives half the wall shear stress of Poiseuille flow.
 //
-// Time stepping: backward Euler over the step dt, from the velocity v* after the position solve
-// (m_k = rho0 V):
+// Time stepping: backward Euler over dt (the substep under XPBD, the step under nmd), from the
+// velocity v* after the position solve (m_k = rho0 V):
 //   (M + dt K) dv = dt f(v*),   K u = -f(u) with the wall velocities zero.
 // The extrapolated wall stress makes K slightly unsymmetric. The system is solved by
 // right-preconditioned BiCGSTAB (van der Vorst 1992) from dv = 0, to a relative residual
@@ -63,6 +63,13 @@ struct Model;
 /// velocities and positions, changes neither. Call inside an OpenMP parallel region (every
 /// thread), only when the model's viscosity solver is implicit and some phase has a viscosity.
 void compute_fluid_viscous_change(const Model& model, FluidState& fluid, FluidScratch& scratch, Real dt);
+
+/// Solves the implicit viscosity over h and adds the change to the velocities, if the model's
+/// viscosity is implicit and some phase has one. Call inside an OpenMP parallel region (every
+/// thread): the XPBD formulations call it every substep after the velocity update (once per step
+/// of 10 substeps let a very viscous fluid between no-slip walls go unstable together with the
+/// density solve, docs/validation.md), the velocity-level one once per step.
+void apply_implicit_fluid_viscosity(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h);
 
 /// True if any phase has a viscosity.
 bool fluid_has_viscosity(const Model& model);

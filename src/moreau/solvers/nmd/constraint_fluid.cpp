@@ -9,6 +9,7 @@
 #include "moreau/fluids/fluid_motion.hpp"
 #include "moreau/fluids/fluid_neighbors.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
+#include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/model/model.hpp"
@@ -194,6 +195,7 @@ void ConstraintFluid::integrate(const Model& model, State& state, Real h, Real t
 void ConstraintFluid::finish_step(const Model& model, State& state, Real dt, Real h, int threads) {
 #pragma omp parallel num_threads(threads)
   {
+    apply_implicit_fluid_viscosity(model, state.fluid, scratch_, dt);
     apply_fluid_velocity_corrections(model, state.fluid, scratch_, dt);
     apply_fluid_surface_tension(model, state.fluid, scratch_, dt);
   }

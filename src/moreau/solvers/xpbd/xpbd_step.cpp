@@ -10,6 +10,7 @@
 #include "moreau/fluids/fluid_motion.hpp"
 #include "moreau/fluids/fluid_neighbors.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
+#include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/granular/grain_emitter.hpp"
@@ -121,6 +122,8 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   const SubstepStart start = work.substep_start_view();
   const Real start_time = state.time;
   const bool fluids = !model.fluid.empty(), coupled_solids = model.fluid.solid.size() > 0;
+  const bool implicit_viscosity =
+      fluids && model.fluid.viscosity_solver == ViscositySolver::implicit_solve && fluid_has_viscosity(model);
   FluidState& fluid = state.fluid;
   if (!model.fluid.emitters.empty()) emit_fluid(model, fluid, start_time);
 
@@ -197,6 +200,10 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
     if (rigid) update_rigid_body_velocities(model, state.rigid, work.bodies, h);
     if (fluids) update_fluid_velocity(fluid, work.fluid, h);
     lap(XpbdStage::update_velocity);
+    if (fluids && implicit_viscosity) {
+      apply_implicit_fluid_viscosity(model, fluid, work.fluid, h);
+      lap(XpbdStage::fluid_velocity);
+    }
     if (extension) {
       extension->end_substep(model, state, ctx);
       lap(extension_stage + 2);
