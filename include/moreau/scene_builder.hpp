@@ -38,7 +38,7 @@ struct FluidSolverSettings {
   std::optional<double> cfl_limit;      // largest particle travel per step, in particle radii
   std::string viscosity_solver = "auto";  // "auto", "explicit" or "implicit"
   std::optional<double> viscosity_tolerance;   // implicit: relative residual, (0, 1)
-  std::optional<int> viscosity_iterations;     // implicit: conjugate-gradient iterations at most
+  std::optional<int> viscosity_iterations;     // implicit: BiCGSTAB iterations at most per solve
 };
 
 /// settings.nmd: the velocity-level formulation's constants. Unset fields keep the engine defaults.

@@ -68,8 +68,9 @@ struct FluidSolidSamples {
   Index size() const { return static_cast<Index>(volume.size()); }
 };
 
-/// How the viscosity is integrated over a step (fluid_viscosity.hpp). The scene builder resolves
-/// `automatic` to explicit where that is stable and implicit otherwise.
+/// How the viscosity is integrated (fluid_velocity.hpp, fluid_viscosity.hpp). The scene builder
+/// resolves `automatic` to implicit where nu dt / h^2 > 0.01 or a wall has fluid friction, and to
+/// explicit otherwise.
 enum class ViscositySolver { automatic, explicit_update, implicit_solve };
 
 struct FluidModel {
@@ -84,8 +85,8 @@ struct FluidModel {
   Real solid_contact_distance = 0;  // m, 1.5 r: closest approach of a fluid particle to a solid sample
   Real cfl_limit = 0.4;            // warn when max |v| h / (2 r) exceeds it (Bender's PBD uses 0.4)
   ViscositySolver viscosity_solver = ViscositySolver::automatic;
-  Real viscosity_tolerance = 1e-4;   // implicit: relative preconditioned residual to stop at
-  int viscosity_max_iterations = 200;  // implicit: conjugate-gradient iterations at most
+  Real viscosity_tolerance = 1e-4;   // implicit: |r| / |b| to stop at
+  int viscosity_max_iterations = 200;  // implicit: BiCGSTAB iterations at most per solve
 
   std::vector<FluidPhase> phases;
   // Initial particles.

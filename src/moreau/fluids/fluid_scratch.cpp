@@ -25,6 +25,7 @@ void FluidScratch::fit(const FluidModel& fm) {
   solid_contacts.assign(capacity, 0);
   viscous_change.assign(solve_size, Vec3::Zero());
   gradient_correction.assign(solve_size, Mat3::Identity());
+  fluid_gradient_correction.assign(solve_size, Mat3::Identity());
   corrected_stress.assign(solve_size, Mat3::Zero());
   wall_sum.assign(solve_size, Vec3::Zero());
   wall_velocity_sum.assign(solve_size, Mat3::Zero());

@@ -27,11 +27,11 @@ struct FluidScratch {
   std::vector<Index> solid_contacts;    // per fluid particle: solid samples it touches
 
   // The implicit viscosity (fluid_viscosity.hpp; empty when it is explicit): the step's velocity
-  // change; per particle the gradient correction L, the stress times it S = tau L, the velocity
-  // gradient G, the wall terms q and P; the solver's vectors, the inverse diagonal blocks and the
-  // per-block partial dot products.
+  // change; per particle the gradient correction L (and, next to walls, the one over the fluid
+  // neighbours alone), the stress times it S = tau L, the velocity gradient G, the wall terms q and
+  // P; the solver's vectors, the inverse diagonal blocks and the per-block partial dot products.
   std::vector<Vec3> viscous_change;     // m/s
-  std::vector<Mat3> gradient_correction, corrected_stress;
+  std::vector<Mat3> gradient_correction, fluid_gradient_correction, corrected_stress;
   std::vector<Vec3> wall_sum;           // 1/m
   std::vector<Mat3> wall_velocity_sum;  // 1/s
   std::vector<Mat3> velocity_gradient;  // 1/s, G_k of the last gradient pass

@@ -25,11 +25,11 @@ struct FixedStrideLists {
 
 /// The implicit viscosity solver's work over a run (fluid_viscosity.hpp).
 struct ViscositySolveStats {
-  long solves = 0;              // steps solved implicitly
-  long iterations = 0;          // conjugate-gradient iterations, summed
-  int most_iterations = 0;      // in one step
-  long unconverged = 0;         // steps that stopped at the iteration limit
-  Real worst_residual = 0;      // largest relative residual a step stopped at
+  long solves = 0;              // implicit solves (one per substep under XPBD, per step under nmd)
+  long iterations = 0;          // BiCGSTAB iterations, summed
+  int most_iterations = 0;      // in one solve
+  long unconverged = 0;         // solves that stopped at the iteration limit
+  Real worst_residual = 0;      // largest relative residual a solve stopped at
 };
 
 struct FluidState {

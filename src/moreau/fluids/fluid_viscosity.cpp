@@ -113,9 +113,10 @@ MOREAU_TARGET_CLONES void fluid_gradient_sums(const FluidState& fluid, const Vec
   }
 }
 
-/// The gradient pass: G_k(u) and S_k = 2 mu_k sym(G_k) L_k for every particle. `setup` (the step's
-/// first pass, u = v*) also forms L_k, q_k and P_k and includes the walls' velocities; later passes
-/// (the homogeneous operator K) reuse them without the walls' velocities.
+/// The gradient pass: G_k(u) and S_k = 2 mu_k sym(G_k) L_k for every particle. `setup` (the solve's
+/// first pass, u = v*) also forms L_k, q_k, P_k and, next to walls, the fluid-only correction, and
+/// includes the walls' velocities; later passes (the homogeneous operator K) reuse them without the
+/// walls' velocities.
 void gradient_pass(const Model& model, const FluidState& fluid, FluidScratch& s, const Vec3* u, bool setup) {
   const FluidModel& fm = model.fluid;
   const CubicSplineKernel& kernel = fm.kernel;
@@ -128,8 +129,11 @@ void gradient_pass(const Model& model, const FluidState& fluid, FluidScratch& s,
     gradient *= V;
     moment *= V;
     if (setup) {
+      const Mat3 fluid_moment = moment;
       wall_sums(model, fluid, k, moment, s.wall_sum[k], s.wall_velocity_sum[k]);
       s.gradient_correction[k] = floored_inverse(moment);
+      // The wall traction's gradient of the stress is taken over the fluid neighbours alone.
+      if (!s.wall_sum[k].isZero()) s.fluid_gradient_correction[k] = floored_inverse(fluid_moment);
       gradient += s.wall_velocity_sum[k];
     }
     gradient -= uk * s.wall_sum[k].transpose();
@@ -151,9 +155,7 @@ Vec3 wall_traction(const Model& model, const FluidState& fluid, const FluidScrat
   const Real V = fm.particle_volume;
   const Vec3 xk = fluid.position[k];
   const Mat3& Sk = s.corrected_stress[k];
-  Mat3 moment = Mat3::Zero();
-  for_each_fluid_neighbor(fluid, kernel, k, [&](Index, const Vec3& r, Real g) { moment -= (V * g) * r * r.transpose(); });
-  const Mat3 correction = floored_inverse(moment);
+  const Mat3& correction = s.fluid_gradient_correction[k];
   Mat3 slope[3] = {Mat3::Zero(), Mat3::Zero(), Mat3::Zero()};  // dS/dx_c
   for_each_fluid_neighbor(fluid, kernel, k, [&](Index j, const Vec3& r, Real g) {
     const Vec3 c = (V * g) * (correction * r);
@@ -406,13 +408,9 @@ bool fluid_has_viscosity(const Model& model) {
 
 void apply_implicit_fluid_viscosity(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h) {
   if (model.fluid.viscosity_solver != ViscositySolver::implicit_solve || !fluid_has_viscosity(model)) return;
-  compute_fluid_viscous_change(model, fluid, scratch, h);
+  implicit_solve(model, fluid, scratch, h);
 #pragma omp for schedule(static)
   for (Index k = 0; k < fluid.count; ++k) fluid.velocity[k] += scratch.viscous_change[k];
-}
-
-void compute_fluid_viscous_change(const Model& model, FluidState& fluid, FluidScratch& scratch, Real dt) {
-  implicit_solve(model, fluid, scratch, dt);
 }
 
 }  // namespace moreau

@@ -58,14 +58,8 @@ namespace moreau {
 
 struct Model;
 
-/// Writes the implicit viscous velocity change of every live particle over the step dt to
-/// scratch.viscous_change and counts the solver's work in fluid.viscosity_stats. Reads the
-/// velocities and positions, changes neither. Call inside an OpenMP parallel region (every
-/// thread), only when the model's viscosity solver is implicit and some phase has a viscosity.
-void compute_fluid_viscous_change(const Model& model, FluidState& fluid, FluidScratch& scratch, Real dt);
-
 /// Solves the implicit viscosity over h and adds the change to the velocities, if the model's
-/// viscosity is implicit and some phase has one. Call inside an OpenMP parallel region (every
+/// viscosity is implicit and some phase has one; counts the solver's work in fluid.viscosity_stats. Call inside an OpenMP parallel region (every
 /// thread): the XPBD formulations call it every substep after the velocity update (once per step
 /// of 10 substeps let a very viscous fluid between no-slip walls go unstable together with the
 /// density solve, docs/validation.md), the velocity-level one once per step.

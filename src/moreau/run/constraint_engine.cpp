@@ -123,7 +123,7 @@ std::vector<std::string> ConstraintEngine::warnings() const {
   const ViscositySolveStats& viscosity = state_.fluid.viscosity_stats;
   if (viscosity.unconverged > 0)
     out.push_back(fmt::format(
-        "the implicit fluid viscosity stopped at settings.fluid.viscosity_iterations = {} in {} steps (relative residual "
+        "the implicit fluid viscosity stopped at settings.fluid.viscosity_iterations = {} in {} solves (relative residual "
         "up to {:.2g}, tolerance {:.2g}); raise the iteration limit or the tolerance",
         model_.fluid.viscosity_max_iterations, viscosity.unconverged, viscosity.worst_residual,
         model_.fluid.viscosity_tolerance));
