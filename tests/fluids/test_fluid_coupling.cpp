@@ -42,20 +42,27 @@ TEST(FluidSolidCoupling, LightSlabFloatsAtTheArchimedesDraft) {
   Scene scene = scene_from_json(slab_scene(500));
   run_steps(scene, 300);  // 1.2 s: the slab has settled (slab kinetic energy < 1e-4 J by then)
   // Draft averaged over 0.3 s more (the surface still carries small waves).
-  Real draft = 0;
+  // The slab's speed is the root mean square of its centre of mass's over the same window.
+  Real draft = 0, mean_square_speed = 0;
   const int samples = 75;
+  const Index slab = scene.model.find_object("slab");
   for (int k = 0; k < samples; ++k) {
     run_steps(scene, 1);
     draft += (test::slab_tank_open_surface(scene.state.fluid) - slab_bottom(scene)) / samples;
+    const Real speed = linear_momentum(scene.model, scene.state, slab).norm() / (500 * 0.12 * 0.06 * 0.12);
+    mean_square_speed += speed * speed / samples;
   }
-  const Index slab = scene.model.find_object("slab");
-  const Real speed = linear_momentum(scene.model, scene.state, slab).norm() / (500 * 0.12 * 0.06 * 0.12);
-  std::printf("draft %.4f m (Archimedes: 0.5 x 0.06 = 0.0300 m), slab speed %.2e m/s\n", draft, speed);
+  const Real speed = std::sqrt(mean_square_speed);
+  std::printf("draft %.4f m (Archimedes: 0.5 x 0.06 = 0.0300 m), slab speed %.2e m/s (rms)\n", draft, speed);
   // Archimedes: rho_s H = rho_w T, so T = 0.03 m. Tolerance r / 2 = 3.1 mm: the particle free
   // surface settles about r/2 below the lattice top (the resting-tank test measures -1.6 % of
   // 0.2 m), and the slab's bottom sits within r/2 of where its samples say (measured 0.029 m).
   EXPECT_NEAR(draft, 0.03, 0.5 * 0.00625);
-  EXPECT_LT(speed, 0.01);  // floating, not sinking or bobbing
+  // Floating, not sinking or bobbing: the surface's waves keep the slab moving at 0.011-0.012 m/s
+  // rms (measured; rounding-level changes to the fluid move it within that range, and a single
+  // instant's speed ranged from 0.004 to 0.013 m/s). A slab sinking by its own draft within the
+  // 0.3 s window would move at 0.1 m/s.
+  EXPECT_LT(speed, 0.02);
 }
 
 TEST(FluidSolidCoupling, DenseSlabSinksToTheFloor) {

@@ -28,6 +28,18 @@ struct DensityEvaluation {
   Real solid_weight;        // 1/(kg m^2)
 };
 
+/// Where evaluate_density_constraint leaves each fluid pair's kernel value W_ij and gradient
+/// grad W_ij = g_ij (x_i - x_j), so that a second pass over the same positions reads them instead
+/// of evaluating the kernel again. Row i's pairs start at offset[i], in whole chunks of kPairChunk
+/// lanes (pad lanes hold zeros).
+struct DensityPairCache {
+  const Index* offset;
+  Real* w;
+  Real* gx;
+  Real* gy;
+  Real* gz;
+};
+
 /// C_i of fluid particle i over its current neighbour lists (call between list rebuilds);
 /// `solid_inv_mass` holds the solid samples' inverse masses of this substep (split_solid_masses;
 /// unread without solids).
@@ -35,7 +47,8 @@ struct DensityEvaluation {
 /// solver's loop so that each of its instruction-set clones vectorises it for its own width.
 [[gnu::always_inline]] inline DensityEvaluation evaluate_density_constraint(const FluidModel& fm,
                                                                               const FluidState& fluid,
-                                                                              const Real* solid_inv_mass, Index i) {
+                                                                              const Real* solid_inv_mass, Index i,
+                                                                              const DensityPairCache* cache = nullptr) {
   const CubicSplineKernel kernel = fm.kernel;
   const Real V = fm.particle_volume, pad = 2 * kernel.h;
   const Vec3* x = fluid.position.data();
@@ -59,6 +72,16 @@ struct DensityEvaluation {
       sum_w[k] += chunk.w[k];
       gx[k] += Gx, gy[k] += Gy, gz[k] += Gz;
       w_grad2[k] += chunk.a[k] * (Gx * Gx + Gy * Gy + Gz * Gz);  // w_j |grad W_ij|^2
+    }
+    if (cache) {
+      const Index at = cache->offset[i] + begin;
+      #pragma omp simd
+      for (int k = 0; k < kPairChunk; ++k) {
+        cache->w[at + k] = chunk.w[k];
+        cache->gx[at + k] = chunk.g[k] * chunk.rx[k];
+        cache->gy[at + k] = chunk.g[k] * chunk.ry[k];
+        cache->gz[at + k] = chunk.g[k] * chunk.rz[k];
+      }
     }
   }
   Real C = V * (kernel.sigma + sum_lanes(sum_w)) - 1;  // sigma = W(0): the particle itself

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "moreau/fluids/pair_chunks.hpp"
 #include "moreau/model/model.hpp"
 
 namespace moreau {
@@ -66,6 +67,10 @@ Index fill_row(FixedStrideLists& lists, Index i, const Vec3& xi, const Vec3* x, 
       row[count < last ? count : last] = j;
       count += take;
     }
+  // The row's last chunk is whole: its unused lanes repeat the first neighbour, so the pair loops
+  // load a chunk's indices as one vector (pair_chunks.hpp).
+  const Index whole = std::min<Index>((count + kPairChunk - 1) / kPairChunk * kPairChunk, lists.stride);
+  for (Index k = count; k < whole; ++k) row[k] = row[0];
   return count;
 }
 
@@ -116,7 +121,7 @@ bool grow_if_overflowed(FixedStrideLists& lists, Index n) {
   Index longest = 0;
   for (Index i = 0; i < n; ++i) longest = std::max(longest, lists.count[i]);
   if (longest <= lists.stride - 1) return false;
-  lists.stride = longest + longest / 4 + 8;
+  lists.stride = (longest + longest / 4 + 8 + kPairChunk - 1) / kPairChunk * kPairChunk;
   lists.entries.resize(lists.count.size() * static_cast<std::size_t>(lists.stride));
   return true;
 }

@@ -25,6 +25,10 @@ struct FluidScratch {
   std::vector<Real> solid_inv_mass;     // 1/kg, per solid sample: this substep's split (split_solid_masses)
   std::vector<Real> solid_share;        // per model particle: 1 / c_k of the split (coupled particles only)
   std::vector<Index> solid_contacts;    // per fluid particle: solid samples it touches
+  // Each fluid pair's W_ij and grad W_ij from the density multipliers' pass, read by the
+  // corrections' pass (DensityPairCache); row i starts at pair_offset[i].
+  std::vector<Index> pair_offset;
+  std::vector<Real> pair_w, pair_gx, pair_gy, pair_gz;  // 1/m^3, 1/m^4
 
   // The implicit viscosity (fluid_viscosity.hpp; empty when it is explicit): the step's velocity
   // change; per particle the gradient correction L (and, next to walls, the one over the fluid

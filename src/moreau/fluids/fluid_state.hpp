@@ -14,7 +14,9 @@ namespace moreau {
 
 /// Neighbour lists with a fixed row length per particle: row i holds count[i] entries starting at
 /// i * stride (at most stride - 1: the last slot is the fill's spare). Rows are written by their
-/// own particle only (parallel, deterministic, no prefix sum).
+/// own particle only (parallel, deterministic, no prefix sum). The stride is a whole number of pair
+/// chunks (pair_chunks.hpp), and a row's entries past count[i] up to its last whole chunk repeat
+/// its first entry, so a chunk of indices is always valid to load.
 struct FixedStrideLists {
   Index stride = 0;
   std::vector<Index> count;

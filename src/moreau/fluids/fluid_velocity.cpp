@@ -47,6 +47,8 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
     }
   }
 
+  bool one_viscosity = true;  // every phase has the same viscosity: nu_ij needs no phase lookups
+  for (const FluidPhase& phase : fm.phases) one_viscosity &= phase.viscosity == fm.phases[0].viscosity;
   std::vector<Vec3>& v_new = scratch.reorder_vec;
   const Real* w = fluid.inv_mass.data();
 #pragma omp for schedule(static)
@@ -65,12 +67,18 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
     const Index count = fluid.fluid_neighbors.count[i];
     for (Index begin = 0; begin < count; begin += kPairChunk) {
       chunk.load(xi, x, row, begin, count, pad, w, any_vorticity ? omega_norm.data() : nullptr);
-      for (int k = 0; k < kPairChunk; ++k) {
-        const bool live = begin + k < count;
-        const Index j = live ? row[begin + k] : i;
-        vx[k] = v[j].x(), vy[k] = v[j].y(), vz[k] = v[j].z();
-        nu[k] = explicit_viscosity ? 0.5 * (pi.viscosity + fm.phases[fluid.phase[j]].viscosity) : 0;
-      }
+      // Pad lanes hold the row's first neighbour (FixedStrideLists); their kernel values are zero.
+      const Index* lanes = row + begin;
+      const Real* vs = v->data();
+      gather_into(vx, vs, lanes, 3, 0);
+      gather_into(vy, vs, lanes, 3, 1);
+      gather_into(vz, vs, lanes, 3, 2);
+      if (!explicit_viscosity)
+        store(nu, Lanes{});
+      else if (one_viscosity)
+        store(nu, Lanes{} + pi.viscosity);
+      else
+        for (int k = 0; k < kPairChunk; ++k) nu[k] = 0.5 * (pi.viscosity + fm.phases[fluid.phase[lanes[k]]].viscosity);
       chunk.evaluate(kernel);
 #pragma omp simd
       for (int k = 0; k < kPairChunk; ++k) {
