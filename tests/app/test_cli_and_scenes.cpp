@@ -191,6 +191,13 @@ TEST(CommandLine, FluidInputErrorsNameTheirKey) {
                    {"objects[1].emitter.direction", "non-zero"});
   expect_bad_input("emitter_shape", scene(jet + R"({"shape": "star", "center": [0, 0.5, 0], "direction": [0, -1, 0]}})"),
                    {"objects[1].emitter.shape", "disc"});
+  // A second tank beside the first: the water in the first lies outside the second.
+  expect_bad_input("two_tanks", scene(water + R"(, {"name": "second_tank", "kind": "collider", "inside": true,
+      "shape": {"type": "box", "center": [2, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}})"),
+                   {"objects[2].shape", "'w' starts outside this container", "inside every container"});
+  expect_bad_input("jet_outside", scene(jet + R"({"shape": "disc", "center": [0, 1.5, 0], "direction": [0, -1, 0],
+      "radius": 0.1, "speed": 1}})"),
+                   {"objects[0].shape", "'jet' starts outside this container"});
   expect_bad_input("inside_plane", R"({"name": "f", "objects": [{"name": "p", "kind": "collider", "inside": true,
       "shape": {"type": "plane"}}]})",
                    {"objects[0].inside", "plane has no inside"});

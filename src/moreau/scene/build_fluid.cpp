@@ -172,6 +172,41 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   fm.phases.push_back(phase);
 }
 
+namespace {
+
+// Every fluid particle is kept inside every container (a collider with "inside": true), so a
+// particle that starts outside one would be thrown into it, and two containers apart from each
+// other would leave it no place at all. Refuses a container with a fluid particle (or an emitter's
+// opening) outside it, naming the fluid.
+void check_fluid_inside_containers(const Model& model, const std::function<SpecPlace(Index object)>& object_place) {
+  const FluidModel& fm = model.fluid;
+  auto fluid_name = [&](Index phase) -> std::string {
+    for (const ObjectInfo& object : model.objects)
+      if (object.kind == ObjectKind::fluid && object.fluid_phase == phase) return object.name;
+    return "?";
+  };
+  for (std::size_t k = 0; k < model.objects.size(); ++k) {
+    const ObjectInfo& container = model.objects[k];
+    if (container.kind != ObjectKind::collider || !model.colliders[container.collider].inside) continue;
+    const Collider& c = model.colliders[container.collider];
+    auto outside = [&](const Vec3& x) { return collider_distance(c, c.position_at(0), x).distance < 0; };
+    auto refuse = [&](Index phase, const Vec3& x) {
+      object_place(static_cast<Index>(k))
+          .fail("shape", fmt::format("the fluid '{}' starts outside this container (\"inside\": true) at "
+                                     "[{:.4g}, {:.4g}, {:.4g}] m; fluid particles are kept inside every container, "
+                                     "so every fluid must start inside all of them (two containers apart from each "
+                                     "other cannot both hold it)",
+                                     fluid_name(phase), x.x(), x.y(), x.z()));
+    };
+    for (std::size_t i = 0; i < fm.initial_position.size(); ++i)
+      if (outside(fm.initial_position[i])) refuse(fm.initial_phase[i], fm.initial_position[i]);
+    for (const FluidEmitter& e : fm.emitters)
+      if (outside(e.center)) refuse(e.phase, e.center);
+  }
+}
+
+}  // namespace
+
 void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& object_place) {
   FluidModel& fm = model.fluid;
   if (fm.empty()) return;
@@ -200,6 +235,7 @@ void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& o
                                     "settings.fluid.viscosity_solver to \"implicit\" or \"auto\"");
     }
   }
+  check_fluid_inside_containers(model, object_place);
   fm.capacity = fm.initial_count();  // build_fluid checked that the total fits
   for (const FluidEmitter& e : fm.emitters) fm.capacity += e.capacity();
 
