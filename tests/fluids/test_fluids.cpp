@@ -68,9 +68,10 @@ TEST(SphKernel, SolverChunksMatchTheReferenceKernel) {
   const std::vector<Real> distances{0.004, 0.05, 0.0999, 0.1, 0.1001, 0.15, 0.1999, 0.2, 0.25};
   std::vector<Vec3> x;
   for (Real r : distances) x.push_back(r * Vec3(1, 2, 2) / 3);
-  std::vector<Index> row(x.size());
-  std::iota(row.begin(), row.end(), 0);
   const Index count = static_cast<Index>(x.size());
+  // A neighbour row as FixedStrideLists keeps it: whole chunks, the last padded with valid indices.
+  std::vector<Index> row((count + kPairChunk - 1) / kPairChunk * kPairChunk, 0);
+  std::iota(row.begin(), row.begin() + count, 0);
   PairChunk chunk;
   for (Index begin = 0; begin < count; begin += kPairChunk) {
     chunk.load(Vec3::Zero(), x.data(), row.data(), begin, count, 2 * kernel.h);
