@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
 #include <numeric>
 
 #include "moreau/fluids/density_constraint.hpp"
@@ -315,6 +316,36 @@ TEST(FluidSurfaceTension, WeightlessBarOfWaterPullsItselfIntoASphere) {
   EXPECT_GT(ratio_plain, 3.5);   // measured 3.69: the unilateral constraint only relaxes edges and corners
   EXPECT_LT(ratio_tense, 1.15);  // a ball up to the remaining capillary oscillation (measured 1.07)
   EXPECT_LT(p.norm(), 1e-12);    // round-off of 500 particles' sums (momentum scale 0.5 kg * 0.1 m/s)
+}
+
+// A fluid filled from a closed OBJ box holds the lattice of the same block. The OBJ reader keeps
+// vertices in single precision: 0.06 reads as 0.0599999987, so the 0.12 m box is 14.9999997
+// spacings of 8 mm wide, and the count used to lose a column on each side axis (4,900 particles
+// for 5,625).
+TEST(FluidSources, AClosedMeshFillsLikeTheBlockItBounds) {
+  const std::string dir = test::temp_dir("fluid-mesh");
+  {
+    std::ofstream out(dir + "/box.obj");
+    for (int i = 0; i < 8; ++i)
+      out << fmt::format("v {} {} {}\n", (i & 1) ? 0.06 : -0.06, (i & 2) ? 0.2 : 0.0, (i & 4) ? 0.06 : -0.06);
+    // Vertex i + 1 sits at the corner (i & 1, i & 2, i & 4); two triangles per face.
+    out << "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\nf 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
+  }
+  auto particles = [&](const std::string& source) {
+    const std::string path = dir + "/scene.json";
+    std::ofstream(path) << fmt::format(R"({{"name": "fill", "settings": {{"dt": 0.001}},
+        "objects": [{{"name": "water", "kind": "fluid", "particle_radius": 0.004, {}}}]}})", source);
+    const Scene scene = load_scene(path);
+    return std::vector<Vec3>(scene.state.fluid.position.begin(), scene.state.fluid.position.begin() + scene.state.fluid.count);
+  };
+  const std::vector<Vec3> from_mesh = particles(R"("mesh": "box.obj")");
+  const std::vector<Vec3> from_block = particles(R"("block": {"min": [-0.06, 0, -0.06], "max": [0.06, 0.2, 0.06]})");
+  ASSERT_EQ(from_block.size(), 15u * 25 * 15);
+  ASSERT_EQ(from_mesh.size(), from_block.size());
+  // The same points up to the single-precision box corners (lattice offsets below 1e-8 m).
+  Real worst = 0;
+  for (std::size_t k = 0; k < from_mesh.size(); ++k) worst = std::max(worst, (from_mesh[k] - from_block[k]).norm());
+  EXPECT_LT(worst, 1e-8);
 }
 
 }  // namespace

@@ -25,13 +25,14 @@ Real explicit_viscosity_limit(const FluidModel& fm, const FluidPhase& phase) {
 }
 
 // Lattice points (spacing d) centred in [lo, hi]: floor(L / d) points per axis, each the centre of
-// a cube of volume d^3 inside the box, so the particles represent the box volume.
-void fill_block(const Vec3& lo, const Vec3& hi, Real d, std::vector<Vec3>& out) {
+// a cube of volume d^3 inside the box, so the particles represent the box volume. `slack`: how far
+// (in spacings) the length may fall short of a whole number of spacings and still count it.
+void fill_block(const Vec3& lo, const Vec3& hi, Real d, std::vector<Vec3>& out, Real slack = 1e-9) {
   int n[3];
   Vec3 first;
   for (int a = 0; a < 3; ++a) {
     const Real length = hi[a] - lo[a];
-    n[a] = static_cast<int>(std::floor(length / d + 1e-9));
+    n[a] = static_cast<int>(std::floor(length / d + slack));
     first[a] = lo[a] + 0.5 * (length - n[a] * d) + 0.5 * d;
   }
   for (int k = 0; k < n[2]; ++k)
@@ -146,8 +147,11 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   if (!spec.mesh.empty()) {
     // Lattice points inside a closed OBJ surface.
     const ClosedSurface surface = read_closed_surface(ctx, place, "mesh", spec.mesh);
+    // The OBJ reader (tinyobjloader) stores vertices in single precision, relative error 6e-8: a
+    // bounding box a whole number of spacings wide may come out a few 1e-7 spacings short, so the
+    // count allows 1e-5 of a spacing (blocks, read in double precision, allow 1e-9).
     std::vector<Vec3> lattice;
-    fill_block(surface.lo, surface.hi, d, lattice);
+    fill_block(surface.lo, surface.hi, d, lattice, 1e-5);
     for (const Vec3& p : lattice)
       if (point_in_closed_mesh(surface.mesh, p)) points.push_back(p);
   }
