@@ -7,6 +7,26 @@
 
 namespace moreau {
 
+void lay_out_pair_cache(const FluidState& fluid, FluidScratch& scratch) {
+  if (scratch.pair_layout_build == fluid.list_builds) return;  // every thread reads the same two values
+#pragma omp barrier
+#pragma omp single
+  {
+    // Row i's pairs start at pair_offset[i], each row rounded up to whole chunks.
+    scratch.pair_layout_build = fluid.list_builds;
+    const Index n = fluid.count;
+    scratch.pair_offset.resize(n + 1);
+    Index offset = 0;
+    for (Index i = 0; i < n; ++i) {
+      scratch.pair_offset[i] = offset;
+      offset += (fluid.fluid_neighbors.count[i] + kPairChunk - 1) / kPairChunk * kPairChunk;
+    }
+    scratch.pair_offset[n] = offset;
+    for (std::vector<Real>* v : {&scratch.pair_w, &scratch.pair_gx, &scratch.pair_gy, &scratch.pair_gz})
+      if (v->size() < static_cast<std::size_t>(offset)) v->resize(offset + offset / 8);
+  }
+}
+
 MOREAU_TARGET_CLONES
 void project_fluid_density(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h) {
   const FluidModel& fm = model.fluid;
@@ -19,19 +39,7 @@ void project_fluid_density(const Model& model, FluidState& fluid, FluidScratch& 
 
   // The multipliers' pass leaves every fluid pair's W_ij and grad W_ij in a cache that the
   // corrections' pass reads (positions do not change in between): the kernel is evaluated once per
-  // pair and iteration. Row i's pairs start at pair_offset[i], rows rounded up to whole chunks.
-#pragma omp single
-  {
-    scratch.pair_offset.resize(n + 1);
-    Index offset = 0;
-    for (Index i = 0; i < n; ++i) {
-      scratch.pair_offset[i] = offset;
-      offset += (fluid.fluid_neighbors.count[i] + kPairChunk - 1) / kPairChunk * kPairChunk;
-    }
-    scratch.pair_offset[n] = offset;
-    for (std::vector<Real>* v : {&scratch.pair_w, &scratch.pair_gx, &scratch.pair_gy, &scratch.pair_gz})
-      if (v->size() < static_cast<std::size_t>(offset)) v->resize(offset + offset / 8);
-  }
+  // pair and iteration. The cache's rows were laid out at the last list rebuild (lay_out_pair_cache).
   const DensityPairCache cache{scratch.pair_offset.data(), scratch.pair_w.data(), scratch.pair_gx.data(),
                                scratch.pair_gy.data(), scratch.pair_gz.data()};
 

@@ -31,6 +31,11 @@ struct Model;
 struct FluidState;
 struct FluidScratch;
 
+/// Lays out the kernel-value cache the iterations share (FluidScratch::pair_offset) for the
+/// current neighbour lists, once per list rebuild (a no-op in between). Call inside the OpenMP
+/// parallel region.
+void lay_out_pair_cache(const FluidState& fluid, FluidScratch& scratch);
+
 /// One Jacobi iteration: every lambda_i, then every correction into FluidScratch::correction
 /// (apply_fluid_corrections moves the particles). Call inside an
 /// OpenMP parallel region (orphaned omp for loops with barriers).

@@ -152,6 +152,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
       if (model.fluid.boundary.moving) place_boundary_samples(model, fluid, substep_end);
       if (coupled_solids) place_solid_samples(model, state);
       update_fluid_neighbors(model, fluid, work.fluid, substep_end);
+      lay_out_pair_cache(fluid, work.fluid);
       if (coupled_solids) split_solid_masses(model, fluid, work.fluid);
       lap(XpbdStage::fluid_neighbors);
     }
