@@ -129,12 +129,19 @@ FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem, const
   const std::string type = j.choice("type", {"point", "line", "boundary_force", "pressure_difference", "kinetic_energy",
                                              "energy", "newton_iterations", "center_of_mass", "velocity",
                                              "angular_velocity", "force", "torque"});
-  // A sampled point: located once in the fluid's mesh, where it stays.
-  auto inside = [&](const std::string& key, const Vec3& at) {
+  // A sampled point: located once in the fluid's mesh, where it stays. `record` keeps it if it is
+  // inside the mesh; `inside` also requires that it is.
+  auto record = [&](const Vec3& at) {
     const std::optional<MeshPoint> found = locator.locate(at);
-    if (!found) j.fail(key, "the point is outside the fluid mesh");
-    p.sample_points.push_back(at);
-    p.located.push_back(*found);
+    if (found) {
+      p.sample_points.push_back(at);
+      p.located.push_back(*found);
+    }
+    return found.has_value();
+  };
+  auto inside = [&](const std::string& key) {
+    const Vec3 at = read_point(j, key, m.dim());
+    if (!record(at)) j.fail(key, "the point is outside the fluid mesh");
   };
   if (type == "point" && j.has("object")) {
     read_solid_point_probe(j, problem, p);
@@ -146,26 +153,17 @@ FlowProbe read_flow_probe(const JsonObject& j, const FlowProblem& problem, const
     p.type = FlowProbeType::energy;
   } else if (type == "point") {
     p.type = FlowProbeType::point;
-    p.a = read_point(j, "at", m.dim());
-    inside("at", p.a);
+    inside("at");
   } else if (type == "line") {
     p.type = FlowProbeType::line;
-    p.a = read_point(j, "from", m.dim());
-    p.b = read_point(j, "to", m.dim());
-    p.samples = j.integer("samples", 101, 2, 1000000);
-    for (int s = 0; s < p.samples; ++s) {
-      const Vec3 at = p.a + (p.b - p.a) * (static_cast<Real>(s) / (p.samples - 1));
-      if (const std::optional<MeshPoint> found = locator.locate(at)) {  // none in a gap of the mesh (an obstacle)
-        p.sample_points.push_back(at);
-        p.located.push_back(*found);
-      }
-    }
+    const Vec3 from = read_point(j, "from", m.dim()), to = read_point(j, "to", m.dim());
+    const int samples = j.integer("samples", 101, 2, 1000000);
+    // Samples in a gap of the mesh (an obstacle cut out of it) are left out.
+    for (int s = 0; s < samples; ++s) record(from + (to - from) * (static_cast<Real>(s) / (samples - 1)));
   } else if (type == "pressure_difference") {
     p.type = FlowProbeType::pressure_difference;
-    p.a = read_point(j, "from", m.dim());
-    p.b = read_point(j, "to", m.dim());
-    inside("from", p.a);
-    inside("to", p.b);
+    inside("from");
+    inside("to");
   } else if (type == "boundary_force") {
     p.type = FlowProbeType::boundary_force;
     p.nodes = select_nodes(j.object("where"), m.mesh, nullptr);

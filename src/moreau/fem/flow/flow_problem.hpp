@@ -21,10 +21,8 @@ enum class FlowProbeType {
 struct FlowProbe {
   std::string name;
   FlowProbeType type = FlowProbeType::point;
-  Vec3 a = Vec3::Zero(), b = Vec3::Zero();  // point; line ends; pressure_difference's two points
-  int samples = 0;                          // line: points along the segment, ends included
-  // point: a; pressure_difference: a and b; line: its samples inside the mesh (those in a gap, an
-  // obstacle cut out of the mesh, are left out), each with its cell in the fluid's mesh.
+  // point: its point; pressure_difference: its two points; line: its samples inside the mesh (those
+  // in a gap, an obstacle cut out of the mesh, are left out), each with its cell in the fluid's mesh.
   std::vector<Vec3> sample_points;
   std::vector<MeshPoint> located;
   std::vector<Index> nodes;                 // boundary_force: the boundary's nodes

@@ -394,14 +394,17 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
   return result;
 }
 
-void interpolate_flow(const NavierStokesModel& m, const MeshPoint& at, const VectorX& x, Vec3& velocity, Real& pressure) {
+Real interpolate_flow_component(const NavierStokesModel& m, const MeshPoint& at, const VectorX& x, int k) {
   const Index* c = m.mesh.cell(at.cell);
+  Real value = 0;
+  for (int a = 0; a < m.mesh.nodes_per_cell(); ++a) value += at.shape[a] * x[m.dof(c[a], k)];
+  return value;
+}
+
+void interpolate_flow(const NavierStokesModel& m, const MeshPoint& at, const VectorX& x, Vec3& velocity, Real& pressure) {
   velocity.setZero();
-  pressure = 0;
-  for (int a = 0; a < m.mesh.nodes_per_cell(); ++a) {
-    for (int k = 0; k < m.dim(); ++k) velocity[k] += at.shape[a] * x[m.dof(c[a], k)];
-    pressure += at.shape[a] * x[m.dof(c[a], m.dim())];
-  }
+  for (int k = 0; k < m.dim(); ++k) velocity[k] = interpolate_flow_component(m, at, x, k);
+  pressure = interpolate_flow_component(m, at, x, m.dim());
 }
 
 }  // namespace moreau

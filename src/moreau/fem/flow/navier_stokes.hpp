@@ -154,5 +154,7 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& model, Real t, cons
 /// Velocity and pressure at a point of the fluid's mesh (found by MeshLocator::locate on
 /// model.mesh): sum_a N_a(x) x_a over the point's cell.
 void interpolate_flow(const NavierStokesModel& model, const MeshPoint& at, const VectorX& x, Vec3& velocity, Real& pressure);
+/// One field at such a point: velocity component k < dim, or the pressure at k = dim.
+Real interpolate_flow_component(const NavierStokesModel& model, const MeshPoint& at, const VectorX& x, int k);
 
 }  // namespace moreau

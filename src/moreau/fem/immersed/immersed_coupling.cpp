@@ -23,14 +23,6 @@ Real scheme_theta(const FlowTimeStep& step) {
   }
 }
 
-// The fluid's velocity at a located point: sum_A N_A(x) v_A, component k.
-Real interpolate(const NavierStokesModel& fluid, const MeshPoint& at, const VectorX& x, int k) {
-  const Index* cell = fluid.mesh.cell(at.cell);
-  Real v = 0;
-  for (int a = 0; a < fluid.mesh.nodes_per_cell(); ++a) v += at.shape[a] * x[fluid.dof(cell[a], k)];
-  return v;
-}
-
 // The cell's solid dofs gathered node-major (dim per node) from a vector over all solid dofs.
 void gather_cell(const FemModel& model, const FemSolid& solid, Index e, const VectorX& all, Real* local) {
   const Index* cell = solid.mesh.cell(e);
@@ -146,7 +138,8 @@ ImmersedKinematics ImmersedCoupling::kinematics(const VectorX& x, const FlowTime
       for (int c = 0; c < dim; ++c) {
         const Index d = model.dof(n, c);
         if (!prescribed[d]) {
-          const Real v_next = interpolate(fluid_, *at, x, c), v_before = interpolate(fluid_, *at, x_n, c);
+          const Real v_next = interpolate_flow_component(fluid_, *at, x, c),
+                     v_before = interpolate_flow_component(fluid_, *at, x_n, c);
           k.velocity[d] = v_next;
           k.velocity_theta[d] = theta * v_next + (1 - theta) * v_before;
           k.displacement[d] = state_.displacement[d] + dt * k.velocity_theta[d];
