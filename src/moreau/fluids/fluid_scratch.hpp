@@ -27,7 +27,7 @@ struct FluidScratch {
   std::vector<Index> solid_contacts;    // per fluid particle: solid samples it touches
   // Each fluid pair's W_ij and grad W_ij from the density multipliers' pass, read by the
   // corrections' pass (DensityPairCache); row i starts at pair_offset[i], laid out for the lists of
-  // FluidState::list_builds == pair_layout_build.
+  // FluidState::list_builds == pair_layout_build (-1: not laid out; every step starts so).
   std::vector<Index> pair_offset;
   long pair_layout_build = -1;
   std::vector<Real> pair_w, pair_gx, pair_gy, pair_gz;  // 1/m^3, 1/m^4

@@ -103,6 +103,9 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   threads = std::max(1, threads);
   timer.start();
   work.fit(model);
+  // The kernel cache is laid out afresh in every step (then again only when the lists are
+  // rebuilt): a restored State may hold other lists under the same build count.
+  work.fluid.pair_layout_build = -1;
   if (!model.grain_emitters.empty()) emit_grains(model, state);
   // Rigid bodies, or joints alone (a joint may hold a particle to the world).
   const bool rigid = !model.rigid.empty() || !model.joints.empty();
