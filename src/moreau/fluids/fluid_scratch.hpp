@@ -26,10 +26,8 @@ struct FluidScratch {
   std::vector<Real> solid_share;        // per model particle: 1 / c_k of the split (coupled particles only)
   std::vector<Index> solid_contacts;    // per fluid particle: solid samples it touches
   // Each fluid pair's W_ij and grad W_ij from the density multipliers' pass, read by the
-  // corrections' pass (DensityPairCache); row i starts at pair_offset[i], laid out for the lists of
-  // FluidState::list_builds == pair_layout_build (-1: not laid out; every step starts so).
+  // corrections' pass (DensityPairCache); row i starts at pair_offset[i] (lay_out_pair_cache).
   std::vector<Index> pair_offset;
-  long pair_layout_build = -1;
   std::vector<Real> pair_w, pair_gx, pair_gy, pair_gz;  // 1/m^3, 1/m^4
 
   // The implicit viscosity (fluid_viscosity.hpp; empty when it is explicit): the step's velocity

@@ -8,12 +8,9 @@
 namespace moreau {
 
 void lay_out_pair_cache(const FluidState& fluid, FluidScratch& scratch) {
-  if (scratch.pair_layout_build == fluid.list_builds) return;  // every thread reads the same two values
-#pragma omp barrier
 #pragma omp single
   {
     // Row i's pairs start at pair_offset[i], each row rounded up to whole chunks.
-    scratch.pair_layout_build = fluid.list_builds;
     const Index n = fluid.count;
     scratch.pair_offset.resize(n + 1);
     Index offset = 0;
@@ -39,7 +36,7 @@ void project_fluid_density(const Model& model, FluidState& fluid, FluidScratch& 
 
   // The multipliers' pass leaves every fluid pair's W_ij and grad W_ij in a cache that the
   // corrections' pass reads (positions do not change in between): the kernel is evaluated once per
-  // pair and iteration. The cache's rows were laid out at the last list rebuild (lay_out_pair_cache).
+  // pair and iteration. lay_out_pair_cache placed the rows for the current lists.
   const DensityPairCache cache{scratch.pair_offset.data(), scratch.pair_w.data(), scratch.pair_gx.data(),
                                scratch.pair_gy.data(), scratch.pair_gz.data()};
 

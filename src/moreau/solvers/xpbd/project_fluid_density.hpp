@@ -32,8 +32,8 @@ struct FluidState;
 struct FluidScratch;
 
 /// Lays out the kernel-value cache the iterations share (FluidScratch::pair_offset) for the
-/// current neighbour lists: after the step resets FluidScratch::pair_layout_build, then once per
-/// list rebuild (a no-op in between). Call inside the OpenMP parallel region.
+/// current neighbour lists. Call inside the OpenMP parallel region, by every thread, whenever the
+/// lists were rebuilt and at the start of every step.
 void lay_out_pair_cache(const FluidState& fluid, FluidScratch& scratch);
 
 /// One Jacobi iteration: every lambda_i, then every correction into FluidScratch::correction

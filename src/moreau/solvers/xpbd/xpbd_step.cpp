@@ -103,9 +103,6 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   threads = std::max(1, threads);
   timer.start();
   work.fit(model);
-  // The kernel cache is laid out afresh in every step (then again only when the lists are
-  // rebuilt): a restored State may hold other lists under the same build count.
-  work.fluid.pair_layout_build = -1;
   if (!model.grain_emitters.empty()) emit_grains(model, state);
   // Rigid bodies, or joints alone (a joint may hold a particle to the world).
   const bool rigid = !model.rigid.empty() || !model.joints.empty();
@@ -154,8 +151,9 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
     if (fluids) {
       if (model.fluid.boundary.moving) place_boundary_samples(model, fluid, substep_end);
       if (coupled_solids) place_solid_samples(model, state);
-      update_fluid_neighbors(model, fluid, work.fluid, substep_end);
-      lay_out_pair_cache(fluid, work.fluid);
+      // The kernel cache's rows follow the lists: laid out when they are rebuilt, and at each step's
+      // start (the solver's buffers are scratch; a restored State may hold other lists).
+      if (update_fluid_neighbors(model, fluid, work.fluid, substep_end) || sub == 0) lay_out_pair_cache(fluid, work.fluid);
       if (coupled_solids) split_solid_masses(model, fluid, work.fluid);
       lap(XpbdStage::fluid_neighbors);
     }
