@@ -162,6 +162,7 @@ struct ColliderSpec {
   bool inside = false;               // a container: things stay inside the shape
   bool fluid_walls = true;           // sampled as a wall of the particle fluids
   double fluid_friction = 0;         // [0, 1]: 0 the fluid slips freely along the wall, 1 no slip
+  std::optional<double> temperature;  // K: the wall holds the thermal fluids at its surface at it; none: insulating
   std::optional<double> until;       // s: the collider is removed at this time (a gate opened)
   ContactMaterial contact;
 };
@@ -287,6 +288,16 @@ struct EmitterSpec {
 };
 using FluidEmitterSpec = EmitterSpec;
 
+/// A fluid's "thermal" entry: its temperature, and how it conducts heat, melts and freezes.
+struct FluidThermalSpec {
+  double temperature = 293.15;            // K, of the initial and emitted particles
+  double conductivity = 0.6;              // W/(m K) (water)
+  double specific_heat = 4186;            // J/(kg K) (water), the same solid and liquid
+  std::optional<double> melting_point;    // K; none: liquid at every temperature
+  double latent_heat = 0;                 // J/kg, with a melting point
+  std::optional<double> solid_viscosity;  // Pa s, required with a melting point
+};
+
 /// "kind": "fluid": particles on a lattice of spacing 2 r filling a block, blocks or a closed OBJ
 /// surface, and/or released by an emitter.
 struct FluidSpec {
@@ -304,6 +315,7 @@ struct FluidSpec {
   std::string mesh;                  // a closed OBJ surface to fill
   Vector3 velocity{};                // m/s
   std::optional<FluidEmitterSpec> emitter;
+  std::optional<FluidThermalSpec> thermal;  // none: the fluid carries no heat
 };
 
 /// "kind": "rigid_body".

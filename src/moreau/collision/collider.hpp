@@ -6,6 +6,7 @@
 // distance from a point to its surface and the outward normal there.
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "moreau/collision/shape.hpp"
@@ -25,6 +26,7 @@ struct Collider {
   bool inside = false;                // a container: the solid is outside the shape (a tank keeps particles in)
   bool fluid_walls = true;            // sampled with wall particles for the fluid density
   Real fluid_friction = 0;            // the fluid's wall shear: 0 free slip, 1 no slip (fluid_viscosity.hpp)
+  std::optional<Real> temperature;    // K: the wall holds the fluids at its surface at it; none: insulating (fluid_heat.hpp)
   Real until = std::numeric_limits<Real>::infinity();  // s: removed at this time (particles only)
 
   Vec3 position_at(Real time) const { return position + time * velocity; }

@@ -1,5 +1,6 @@
 #include "moreau/fluids/fluid_emitter.hpp"
 
+#include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 #include "moreau/model/model.hpp"
 
@@ -23,9 +24,10 @@ Index emit_fluid(const Model& model, FluidState& fluid, Real time) {
         fluid.phase[i] = emitter.phase;
         fluid.id[i] = fluid.next_id++;
         fluid.mass[i] = phase.particle_mass;
-        fluid.inv_mass[i] = 1 / phase.particle_mass;
         fluid.pressure[i] = 0;
         fluid.density[i] = phase.rest_density;
+        fluid.enthalpy[i] = fluid_enthalpy(phase, phase.temperature);
+        set_fluid_particle_state(phase, fluid, i);
         ++added;
       }
       ++released;

@@ -8,6 +8,7 @@
 // vorticity confinement. Fluid particles live in their own arrays (FluidState), which are
 // re-sorted along a z-order curve whenever the neighbour lists are rebuilt.
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,6 +28,13 @@ struct FluidPhase {
   Real vorticity = 0;              // vorticity-confinement strength epsilon, m/s (see fluid_velocity.hpp)
   Real relaxation = 0;             // epsilon of the density constraint, 1/(kg m^2) (scaled, see density_constraint.hpp)
   Real compliance = 0;             // eps of the density row under "nmd", 1/J: 1 / (K V) (solvers/nmd/constraint_fluid.hpp)
+  // Heat (fluid_heat.hpp). A phase without conductivity neither gains nor loses heat.
+  Real temperature = 293.15;       // K, of the initial and emitted particles
+  Real conductivity = 0;           // k, W/(m K)
+  Real specific_heat = 4186;       // c, J/(kg K), the same in both states
+  std::optional<Real> melting_point;  // T_m, K; none: liquid at every temperature
+  Real latent_heat = 0;            // L, J/kg
+  Real solid_viscosity = 0;        // kinematic viscosity of the solid state, m^2/s
 };
 
 /// Collider walls sampled with particles (Akinci et al. 2012): each sample carries the volume
@@ -87,6 +95,8 @@ struct FluidModel {
   ViscositySolver viscosity_solver = ViscositySolver::automatic;
   Real viscosity_tolerance = 1e-4;   // implicit: |r| / |b| to stop at
   int viscosity_max_iterations = 200;  // implicit: BiCGSTAB iterations at most per solve
+  bool thermal = false;            // some fluid carries heat (fluid_heat.hpp)
+  Real heat_step_limit = 0;        // s, the longest stable explicit part of the heat update
 
   std::vector<FluidPhase> phases;
   // Initial particles.

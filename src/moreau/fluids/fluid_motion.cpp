@@ -12,9 +12,10 @@ void predict_fluid(const Model& model, FluidState& fluid, FluidScratch& scratch,
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
     scratch.substep_start[i] = fluid.position[i];
+    fluid.pressure[i] = 0;
+    if (fluid.inv_mass[i] == 0) continue;  // a solid particle (fluid_heat.hpp) stays at rest
     fluid.velocity[i] += dv;
     fluid.position[i] += h * fluid.velocity[i];
-    fluid.pressure[i] = 0;
   }
 }
 

@@ -9,8 +9,9 @@ void FluidScratch::fit(const FluidModel& fm) {
   const std::size_t coupled = fm.solid.coupled_particle.empty() ? 0 : fm.solid.coupled_particle.back() + 1;
   const bool implicit_viscosity = fm.viscosity_solver == ViscositySolver::implicit_solve;
   const std::size_t solve_size = implicit_viscosity ? capacity : 0;
+  const std::size_t heat_size = fm.thermal ? capacity : 0;
   if (lambda.size() == capacity && solid_reaction.size() == samples && solid_share.size() == coupled &&
-      solve_residual.size() == solve_size)
+      solve_residual.size() == solve_size && temperature.size() == heat_size)
     return;
   substep_start.assign(capacity, Vec3::Zero());
   lambda.assign(capacity, 0);
@@ -19,6 +20,8 @@ void FluidScratch::fit(const FluidModel& fm) {
   reorder_vec.assign(capacity, Vec3::Zero());
   reorder_index.assign(capacity, 0);
   reorder_real.assign(capacity, 0);
+  temperature.assign(heat_size, 0);
+  heat_change.assign(heat_size, 0);
   solid_reaction.assign(samples, Vec3::Zero());
   solid_inv_mass.assign(samples, 0);
   solid_share.assign(coupled, 1.0);

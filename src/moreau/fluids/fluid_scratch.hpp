@@ -20,6 +20,8 @@ struct FluidScratch {
   std::vector<Vec3> reorder_vec;        // the re-sort's and the velocity passes' second buffers
   std::vector<Index> reorder_index;
   std::vector<Real> reorder_real;
+  std::vector<Real> temperature;        // K, per particle, during the heat update (thermal models only)
+  std::vector<Real> heat_change;        // J/kg, per particle, of one part of the heat update
   // Coupling with cloth, soft bodies and rigid bodies (solid_coupling.hpp).
   std::vector<Vec3> solid_reaction;     // kg m, per solid sample: -V_s sum_i lambda_i grad W(x_i - x_s)
   std::vector<Real> solid_inv_mass;     // 1/kg, per solid sample: this substep's split (split_solid_masses)

@@ -1,5 +1,7 @@
 #include "moreau/fluids/fluid_state.hpp"
 
+#include "moreau/fluids/fluid_heat.hpp"
+
 namespace moreau {
 
 FluidState make_fluid_state(const FluidModel& fm) {
@@ -12,13 +14,17 @@ FluidState make_fluid_state(const FluidModel& fm) {
   s.id.assign(capacity, 0);
   s.inv_mass.assign(capacity, 0);
   s.mass.assign(capacity, 0);
+  s.enthalpy.assign(capacity, 0);
+  s.viscosity.assign(capacity, 0);
   for (Index i = 0; i < s.count; ++i) {
     s.position[i] = fm.initial_position[i];
     s.velocity[i] = fm.initial_velocity[i];
     s.phase[i] = fm.initial_phase[i];
     s.id[i] = i;
     s.mass[i] = fm.phases[s.phase[i]].particle_mass;
-    s.inv_mass[i] = 1 / s.mass[i];
+    const FluidPhase& phase = fm.phases[s.phase[i]];
+    s.enthalpy[i] = fluid_enthalpy(phase, phase.temperature);
+    set_fluid_particle_state(phase, s, i);
   }
   s.next_id = s.count;
   s.emitted_layers.assign(fm.emitters.size(), 0);

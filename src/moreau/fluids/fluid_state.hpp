@@ -44,6 +44,8 @@ struct FluidState {
   std::vector<Real> inv_mass, mass;      // 1/kg, kg (copies of the phase's, sorted with the particles)
   std::vector<Real> pressure;            // Pa, -sum over the substep's iterations of lambda / (V h^2)
   std::vector<Real> density;             // kg/m^3 at the last evaluation
+  std::vector<Real> enthalpy;            // J/kg, specific (fluid_heat.hpp; unused unless the model is thermal)
+  std::vector<Real> viscosity;           // m^2/s, kinematic: the phase's, or its state's (fluid_heat.hpp)
 
   // Collider wall samples in world space at the time of the current substep.
   std::vector<Vec3> boundary_position;

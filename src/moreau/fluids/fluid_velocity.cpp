@@ -1,5 +1,6 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 
+#include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/neighbor_loop.hpp"
 #include "moreau/fluids/pair_chunks.hpp"
 #include "moreau/math/target_clones.hpp"
@@ -20,9 +21,9 @@ Vec3 fluid_vorticity(const Model& model, const FluidState& fluid, Index i) {
 MOREAU_TARGET_CLONES
 void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, FluidScratch& scratch, Real dt) {
   const FluidModel& fm = model.fluid;
-  bool any_viscosity = false, any_xsph = false, any_vorticity = false;
+  bool any_xsph = false, any_vorticity = false;
+  const bool any_viscosity = fluid_has_viscosity(model);
   for (const FluidPhase& p : fm.phases) {
-    any_viscosity |= p.viscosity > 0;
     any_xsph |= p.xsph > 0;
     any_vorticity |= p.vorticity > 0;
   }
@@ -47,8 +48,10 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
     }
   }
 
-  bool one_viscosity = true;  // every phase has the same viscosity: nu_ij needs no phase lookups
-  for (const FluidPhase& phase : fm.phases) one_viscosity &= phase.viscosity == fm.phases[0].viscosity;
+  // Every particle has the same viscosity (one for every phase, none melts): nu_ij needs no lookups.
+  bool one_viscosity = true;
+  for (const FluidPhase& phase : fm.phases)
+    one_viscosity &= phase.viscosity == fm.phases[0].viscosity && !phase.melting_point;
   std::vector<Vec3>& v_new = scratch.reorder_vec;
   const Real* w = fluid.inv_mass.data();
 #pragma omp for schedule(static)
@@ -56,8 +59,12 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
     const FluidPhase& pi = fm.phases[fluid.phase[i]];
     const Vec3 xi = x[i], vi = v[i];
     const Real w_i = w[i];
+    if (w_i == 0) {  // a solid particle (fluid_heat.hpp) stays at rest
+      v_new[i] = vi;
+      continue;
+    }
     const Real omega_i = any_vorticity ? omega_norm[i] : 0;
-    // nu_ij is the mean of the two phases' viscosities; XSPH uses particle i's coefficient.
+    // nu_ij is the mean of the two particles' viscosities; XSPH uses particle i's coefficient.
     PairChunk chunk;
     alignas(64) Real vx[kPairChunk], vy[kPairChunk], vz[kPairChunk], nu[kPairChunk];
     alignas(64) Real visc_x[kPairChunk] = {}, visc_y[kPairChunk] = {}, visc_z[kPairChunk] = {};
@@ -78,7 +85,7 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
       else if (one_viscosity)
         store(nu, Lanes{} + pi.viscosity);
       else
-        for (int k = 0; k < kPairChunk; ++k) nu[k] = 0.5 * (pi.viscosity + fm.phases[fluid.phase[lanes[k]]].viscosity);
+        for (int k = 0; k < kPairChunk; ++k) nu[k] = 0.5 * (fluid.viscosity[i] + fluid.viscosity[lanes[k]]);
       chunk.evaluate(kernel);
 #pragma omp simd
       for (int k = 0; k < kPairChunk; ++k) {

@@ -17,8 +17,7 @@ constexpr Index kDotBlock = 512;        // particles per partial dot product
 constexpr Real kLaplacianFactor = 10;   // 2 (d + 2), d = 3: Monaghan's compact Laplacian
 
 Real dynamic_viscosity(const FluidModel& fm, const FluidState& fluid, Index k) {
-  const FluidPhase& phase = fm.phases[fluid.phase[k]];
-  return phase.viscosity * phase.rest_density;
+  return fluid.viscosity[k] * fm.phases[fluid.phase[k]].rest_density;
 }
 
 /// M^-1 with M's eigenvalues floored at kCorrectionFloor. For a symmetric positive semidefinite M,
@@ -198,7 +197,11 @@ MOREAU_TARGET_CLONES Vec3 viscous_force(const Model& model, const FluidState& fl
   const Vec3 xk = x[k], uk = u[k];
   const Mat3& Sk = s.corrected_stress[k];
   const Mat3& Gk = s.velocity_gradient[k];
-  const Real w_k = fluid.inv_mass[k], nu_k = fm.phases[fluid.phase[k]].viscosity;
+  const Real w_k = fluid.inv_mass[k], nu_k = fluid.viscosity[k];
+  if (w_k == 0) {  // a solid particle (fluid_heat.hpp) stays at rest: its row of the system is the identity's
+    if (diagonal) diagonal->setZero();
+    return Vec3::Zero();
+  }
   PairChunk chunk;
   // Per lane: u_j, nu_kj, S_j and G_j (row-major).
   alignas(64) Real ux[kPairChunk], uy[kPairChunk], uz[kPairChunk], nu[kPairChunk], S[9][kPairChunk], G[9][kPairChunk];
@@ -214,7 +217,7 @@ MOREAU_TARGET_CLONES Vec3 viscous_force(const Model& model, const FluidState& fl
     for (int l = 0; l < kPairChunk; ++l) {
       const Index j = begin + l < count ? row[begin + l] : k;  // pad lanes have g = 0
       ux[l] = u[j].x(), uy[l] = u[j].y(), uz[l] = u[j].z();
-      nu[l] = 0.5 * (nu_k + fm.phases[fluid.phase[j]].viscosity);
+      nu[l] = 0.5 * (nu_k + fluid.viscosity[j]);
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) {
           S[3 * a + b][l] = s.corrected_stress[j](a, b);
@@ -402,7 +405,7 @@ void implicit_solve(const Model& model, FluidState& fluid, FluidScratch& s, Real
 
 bool fluid_has_viscosity(const Model& model) {
   for (const FluidPhase& p : model.fluid.phases)
-    if (p.viscosity > 0) return true;
+    if (p.viscosity > 0 || (p.melting_point && p.solid_viscosity > 0)) return true;
   return false;
 }
 

@@ -158,7 +158,8 @@ void project_solid_contacts(const Model& model, State& state, FluidScratch& scra
     // gravity, or +y without gravity).
     const Vec3 up = model.settings.gravity.norm() > 0 ? Vec3(-model.settings.gravity.normalized()) : Vec3::UnitY();
     const Vec3 normal = d > 1e-9 * reach ? Vec3(r / d) : up;
-    p = (reach - d) / (w[i] + scratch.solid_inv_mass[k]) * normal;
+    const Real weight = w[i] + scratch.solid_inv_mass[k];
+    p = weight > 0 ? Vec3((reach - d) / weight * normal) : Vec3::Zero();  // 0: a solid fluid particle on a fixed solid
     return true;
   };
   // Fluid side: dx_i = w_i sum_s p_is (the contact count n_i kept for the solid side).

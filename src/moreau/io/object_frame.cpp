@@ -4,6 +4,7 @@
 
 #include "moreau/collision/collider_surface.hpp"
 #include "moreau/collision/shape_surface.hpp"
+#include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/io/continuum_frame.hpp"
 #include "moreau/io/rod_frame.hpp"
 
@@ -17,10 +18,12 @@ ObjectFrame triangle_frame(const TriangleMesh& mesh, std::vector<VtkPointArray> 
   return f;
 }
 
-// Live particles of one fluid phase: position, velocity, density, pressure, stable id, radius.
+// Live particles of one fluid phase: position, velocity, density, pressure, stable id, radius;
+// with heat (fluid_heat.hpp) also temperature and liquid fraction.
 ObjectFrame fluid_frame(const Model& model, const ObjectInfo& object, const FluidState& fluid) {
+  const FluidPhase& phase = model.fluid.phases[object.fluid_phase];
   std::vector<Vec3> x, v;
-  std::vector<Real> density, pressure, id;
+  std::vector<Real> density, pressure, id, temperature, liquid_fraction;
   for (Index i = 0; i < fluid.count; ++i) {
     if (fluid.phase[i] != object.fluid_phase) continue;
     x.push_back(fluid.position[i]);
@@ -28,14 +31,23 @@ ObjectFrame fluid_frame(const Model& model, const ObjectInfo& object, const Flui
     density.push_back(fluid.density[i]);
     pressure.push_back(fluid.pressure[i]);
     id.push_back(fluid.id[i]);
+    if (model.fluid.thermal) {
+      temperature.push_back(fluid_temperature(phase, fluid.enthalpy[i]));
+      liquid_fraction.push_back(fluid_liquid_fraction(phase, fluid.enthalpy[i]));
+    }
   }
   const std::size_t n = x.size();
-  return {.points = std::move(x),
-          .point_vectors = {{"velocity", std::move(v)}},
-          .point_scalars = {{"density", std::move(density)},
-                            {"pressure", std::move(pressure)},
-                            {"id", std::move(id)},
-                            {"radius", std::vector<Real>(n, model.fluid.particle_radius)}}};
+  ObjectFrame f{.points = std::move(x),
+                .point_vectors = {{"velocity", std::move(v)}},
+                .point_scalars = {{"density", std::move(density)},
+                                  {"pressure", std::move(pressure)},
+                                  {"id", std::move(id)},
+                                  {"radius", std::vector<Real>(n, model.fluid.particle_radius)}}};
+  if (model.fluid.thermal) {
+    f.point_scalars.push_back({"temperature", std::move(temperature)});
+    f.point_scalars.push_back({"liquid_fraction", std::move(liquid_fraction)});
+  }
+  return f;
 }
 
 // Grains or shape-matched particles: position, velocity, displacement and radius; grains also

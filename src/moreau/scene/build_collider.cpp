@@ -44,6 +44,7 @@ ColliderSpec read_collider(const JsonObject& object) {
   spec.inside = object.boolean("inside", spec.inside);
   spec.fluid_walls = object.boolean("fluid_walls", spec.fluid_walls);
   spec.fluid_friction = object.number("fluid_friction", spec.fluid_friction);
+  spec.temperature = read_optional_number(object, "temperature");
   spec.until = read_optional_number(object, "until");
   spec.contact = read_contact_material(object);
   return spec;
@@ -87,6 +88,12 @@ void add_collider(const ColliderSpec& spec, const SpecPlace& place, ObjectInfo& 
     place.fail("inside", "a plane has no inside; use a box, sphere or capsule as a container");
   c.fluid_walls = spec.fluid_walls;
   c.fluid_friction = place.number("fluid_friction", spec.fluid_friction, Range::closed(0, 1));
+  if (spec.temperature) {
+    c.temperature = place.number("temperature", *spec.temperature, Range::positive());
+    if (!c.fluid_walls)
+      place.fail("temperature", "a collider with \"fluid_walls\": false has no wall samples to exchange heat with the "
+                                "fluids; remove \"temperature\" or sample the walls");
+  }
   if (c.fluid_friction > 0 && !c.fluid_walls)
     place.fail("fluid_friction", "a collider with \"fluid_walls\": false has no wall samples to carry the fluid's wall "
                                  "friction; remove \"fluid_friction\" or sample the walls");

@@ -7,6 +7,7 @@
 
 #include "moreau/fluids/boundary_sampling.hpp"
 #include "moreau/fluids/density_constraint.hpp"
+#include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/solid_sampling.hpp"
 #include "moreau/geometry/point_in_mesh.hpp"
 #include "moreau/scene/memory_estimate.hpp"
@@ -19,9 +20,14 @@ namespace {
 // nu dt / h^2 above which "auto" solves the viscosity implicitly (explicit is stable to 0.125).
 constexpr Real kStrongViscosity = 0.01;
 
+// The largest kinematic viscosity a particle of the phase can have: the liquid's, or the solid's.
+Real largest_viscosity(const FluidPhase& phase) {
+  return phase.melting_point ? std::max(phase.viscosity, phase.solid_viscosity) : phase.viscosity;
+}
+
 // Explicit viscosity is stable for dt <= 0.125 h^2 / nu (Monaghan 2005, sec. 6.4).
 Real explicit_viscosity_limit(const FluidModel& fm, const FluidPhase& phase) {
-  return 0.125 * fm.kernel.h2 / std::max(phase.viscosity, 1e-300);
+  return 0.125 * fm.kernel.h2 / std::max(largest_viscosity(phase), 1e-300);
 }
 
 // Lattice points (spacing d) centred in [lo, hi]: floor(L / d) points per axis, each the centre of
@@ -72,6 +78,40 @@ FluidEmitter make_emitter(const FluidEmitterSpec& spec, const SpecPlace& e, Real
   return emitter;
 }
 
+FluidThermalSpec read_thermal(const JsonObject& thermal) {
+  FluidThermalSpec spec;
+  spec.temperature = thermal.number("temperature", spec.temperature);
+  spec.conductivity = thermal.number("conductivity", spec.conductivity);
+  spec.specific_heat = thermal.number("specific_heat", spec.specific_heat);
+  spec.melting_point = read_optional_number(thermal, "melting_point");
+  spec.latent_heat = thermal.number("latent_heat", spec.latent_heat);
+  spec.solid_viscosity = read_optional_number(thermal, "solid_viscosity");
+  thermal.finish();
+  return spec;
+}
+
+// "thermal": the phase's temperature, conduction and melting (fluid_heat.hpp). The phase's
+// viscosity is set.
+void set_thermal(const FluidThermalSpec& spec, const SpecPlace& t, FluidPhase& phase, const std::string& solver) {
+  phase.temperature = t.number("temperature", spec.temperature, Range::positive());
+  phase.conductivity = t.number("conductivity", spec.conductivity, Range::non_negative());
+  phase.specific_heat = t.number("specific_heat", spec.specific_heat, Range::positive());
+  if (!spec.melting_point) {
+    if (spec.latent_heat != 0) t.fail("latent_heat", "a latent heat needs a \"melting_point\" (K)");
+    if (spec.solid_viscosity) t.fail("solid_viscosity", "a solid viscosity needs a \"melting_point\" (K)");
+    return;
+  }
+  if (solver != "xpbd")
+    t.fail("melting_point", fmt::format("melting and freezing run under \"solver\": \"xpbd\" (the scene's is \"{}\"); "
+                                        "heat conduction alone runs under both",
+                                        solver));
+  phase.melting_point = t.number("melting_point", *spec.melting_point, Range::positive());
+  phase.latent_heat = t.number("latent_heat", spec.latent_heat, Range::non_negative());
+  phase.solid_viscosity = spec.solid_viscosity
+                              ? t.number("solid_viscosity", *spec.solid_viscosity, Range::positive()) / phase.rest_density
+                              : phase.viscosity;
+}
+
 }  // namespace
 
 FluidSpec read_fluid(const JsonObject& object) {
@@ -92,6 +132,7 @@ FluidSpec read_fluid(const JsonObject& object) {
   if (object.has("mesh") && spec.mesh.empty()) object.fail("mesh", "give the path of a closed OBJ surface");
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"));
+  if (object.has("thermal")) spec.thermal = read_thermal(object.object("thermal"));
   return spec;
 }
 
@@ -128,12 +169,16 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   // Under "nmd" the density row C = V sum W - 1 has the multiplier lambda = -p V (J), so the
   // compliance of a bulk modulus K (C = p / K) is eps = 1 / (K V) (constraint_fluid.hpp).
   phase.compliance = 1 / (place.number("bulk_modulus", spec.bulk_modulus, Range::positive()) * fm.particle_volume);
+  if (spec.thermal) {
+    set_thermal(*spec.thermal, place.at("thermal"), phase, ctx.solver);
+    fm.thermal = true;
+  }
 
   if (fm.viscosity_solver == ViscositySolver::explicit_update && model.settings.dt > explicit_viscosity_limit(fm, phase))
     place.fail("viscosity", fmt::format("explicit viscosity (settings.fluid.viscosity_solver) needs dt <= 0.125 h^2 / nu = "
                                         "{:.3g} s with h = 4 r = {} m and nu = mu / rho0 = {:.3g} m^2/s; settings.dt is {} s: "
                                         "use the implicit solver (\"auto\" or \"implicit\"), or lower the viscosity or dt",
-                                        explicit_viscosity_limit(fm, phase), fm.kernel.h, phase.viscosity,
+                                        explicit_viscosity_limit(fm, phase), fm.kernel.h, largest_viscosity(phase),
                                         model.settings.dt));
 
   std::vector<Vec3> points;
@@ -213,7 +258,16 @@ void check_fluid_inside_containers(const Model& model, const std::function<SpecP
 
 void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& object_place) {
   FluidModel& fm = model.fluid;
+  // A heated or cooled wall warms only fluids that carry heat.
+  for (std::size_t k = 0; k < model.objects.size(); ++k) {
+    const ObjectInfo& object = model.objects[k];
+    if (!fm.thermal && object.kind == ObjectKind::collider && model.colliders[object.collider].temperature)
+      object_place(static_cast<Index>(k))
+          .fail("temperature", "no fluid of the scene carries heat: give the fluids a \"thermal\" entry, or remove "
+                               "the wall's \"temperature\"");
+  }
   if (fm.empty()) return;
+  fm.heat_step_limit = fluid_heat_step_limit(fm);
   const Real d = 2 * fm.particle_radius;
   fm.tensile_inv_w_dq = 1 / fm.kernel.value(0.2 * fm.kernel.h);
   constexpr Real kReferenceGravity = 9.81;  // m/s^2 (density_constraint.hpp: s_corr)
@@ -227,7 +281,7 @@ void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& o
   if (fm.viscosity_solver == ViscositySolver::automatic) {
     bool strong = false;
     for (const FluidPhase& phase : fm.phases)
-      strong |= phase.viscosity * model.settings.dt > kStrongViscosity * fm.kernel.h2;
+      strong |= largest_viscosity(phase) * model.settings.dt > kStrongViscosity * fm.kernel.h2;
     fm.viscosity_solver = strong || wall_friction ? ViscositySolver::implicit_solve : ViscositySolver::explicit_update;
   }
   if (wall_friction && fm.viscosity_solver == ViscositySolver::explicit_update) {

@@ -48,7 +48,10 @@ void project_fluid_density(const Model& model, FluidState& fluid, FluidScratch& 
     scratch.wall_gradient[i] = wall_gradient;
     const FluidPhase& ph = fm.phases[phase[i]];
     fluid.density[i] = ph.rest_density * (1 + C);
-    const Real denominator = w[i] * grad_i.squaredNorm() + V * V * neighbor_term + solid_term + ph.relaxation;
+    // A solid particle (fluid_heat.hpp, w_i = 0) does not move, but its multiplier is the one it would
+    // have as a liquid, so its liquid neighbours take their share of restoring its density.
+    const Real w_i = w[i] > 0 ? w[i] : 1 / mass[i];
+    const Real denominator = w_i * grad_i.squaredNorm() + V * V * neighbor_term + solid_term + ph.relaxation;
     scratch.lambda[i] = C > 0 ? -C / denominator : 0;
   }
 

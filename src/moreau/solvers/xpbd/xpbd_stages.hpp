@@ -20,6 +20,7 @@ enum class XpbdStage : int {
   update_velocity,
   velocity_pass,
   fluid_velocity,
+  fluid_heat,
   check_state,
   shape_matching,
   sleep,
@@ -33,8 +34,8 @@ constexpr int xpbd_family_stage(int family) { return static_cast<int>(XpbdStage:
 inline std::vector<std::string> xpbd_stage_names() {
   std::vector<std::string> names{"detect_contacts",   "predict",        "fluid_neighbors", "fluid_density",
                                  "particle_contacts", "collider_contacts", "joints",       "rigid_contacts",
-                                 "update_velocity",   "velocity_pass",  "fluid_velocity",  "check_state",
-                                 "shape_matching",    "sleep"};
+                                 "update_velocity",   "velocity_pass",  "fluid_velocity",  "fluid_heat",
+                                 "check_state",       "shape_matching", "sleep"};
   for (std::string_view family : particle_family_names()) names.emplace_back(family);
   return names;
 }

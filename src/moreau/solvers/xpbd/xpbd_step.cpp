@@ -12,6 +12,7 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
+#include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/granular/grain_emitter.hpp"
 #include "moreau/collision/particle_body_contacts.hpp"
@@ -228,6 +229,10 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
     apply_fluid_velocity_corrections(model, fluid, work.fluid, dt);
     apply_fluid_surface_tension(model, fluid, work.fluid, dt);
     lap(XpbdStage::fluid_velocity);
+    if (model.fluid.thermal) {
+      apply_fluid_heat(model, fluid, work.fluid, dt);
+      lap(XpbdStage::fluid_heat);
+    }
   };
   if (!extension) {  // one parallel region for the whole step
 #pragma omp parallel num_threads(threads)
