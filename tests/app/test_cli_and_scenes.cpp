@@ -147,6 +147,33 @@ TEST(CommandLine, ExplosionExitsWithCodeThreeNamingStepTimeAndObject) {
   EXPECT_NE(r.output.find("step"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("'sheet'"), std::string::npos) << r.output;
 }
+TEST(CommandLine, FluidHeatInputErrorsNameTheirKey) {
+  const std::string tank = R"({"name": "tank", "kind": "collider", "inside": true,
+      "shape": {"type": "box", "center": [0, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}})";
+  auto scene = [&](const std::string& thermal, const std::string& tank_keys = "", const std::string& solver = "xpbd") {
+    return R"({"name": "f", "settings": {"dt": 0.005, "solver": ")" + solver + R"("}, "objects": [
+      {"name": "tank", "kind": "collider", "inside": true)" + tank_keys + R"(,
+       "shape": {"type": "box", "center": [0, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}},
+      {"name": "w", "kind": "fluid", "particle_radius": 0.05, "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]})" +
+           thermal + "}]}";
+  };
+  expect_bad_input("cold", scene(R"(, "thermal": {"temperature": -3})"), {"objects[1].thermal.temperature", "out of range"});
+  expect_bad_input("thermal_key", scene(R"(, "thermal": {"melting": 300})"),
+                   {"objects[1].thermal.melting", "unknown key", "melting_point"});
+  expect_bad_input("latent_alone", scene(R"(, "thermal": {"latent_heat": 1e5})"),
+                   {"objects[1].thermal.latent_heat", "melting_point"});
+  expect_bad_input("melt_nmd", scene(R"(, "thermal": {"melting_point": 300})", "", "nmd"),
+                   {"objects[1].thermal.melting_point", "xpbd"});
+  expect_bad_input("hot_wall_alone", scene("", R"(, "temperature": 400)"),
+                   {"objects[0].temperature", "thermal"});
+  expect_bad_input("hot_wall_unsampled", scene(R"(, "thermal": {})", R"(, "temperature": 400, "fluid_walls": false)"),
+                   {"objects[0].temperature", "fluid_walls"});
+  const std::string probe = R"(, "probes": [{"name": "t", "type": "temperature", "object": "w"}]})";
+  std::string no_heat = scene("");
+  no_heat.replace(no_heat.size() - 1, 1, probe);
+  expect_bad_input("probe_no_heat", no_heat, {"probes[0].type", "thermal"});
+}
+
 TEST(CommandLine, FluidInputErrorsNameTheirKey) {
   const std::string tank = R"({"name": "tank", "kind": "collider", "inside": true,
       "shape": {"type": "box", "center": [0, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}})";
@@ -257,6 +284,40 @@ TEST(CommandLine, FluidRunWritesParticlesAndWarnsAboutCfl) {
   while (std::getline(csv, line)) last = line;
   EXPECT_EQ(header, "time,n,out");
   EXPECT_EQ(last.substr(last.find(',')), ",64,0");
+}
+
+TEST(CommandLine, ThermalFluidsWriteTemperaturesAndTheirProbes) {
+  // A hot and a cold block of the same liquid, weightless, in an insulating tank: heat flows from
+  // one to the other, and with one specific heat the mass-weighted mean temperature of both stays
+  // at the mean of the start, 310 K. The frames carry the temperature and the liquid fraction.
+  const std::string fluid = R"({{"name": "{}", "kind": "fluid", "particle_radius": 0.01,
+      "block": {{"min": [{}, 0, 0], "max": [{}, 0.08, 0.08]}}, "thermal": {{"temperature": {}, "conductivity": 2000}}}})";
+  const std::string scene = write_scene("thermal_ok", R"({"name": "heat", "settings": {"dt": 0.01, "substeps": 2, "duration": 1,
+      "gravity": [0, 0, 0]}, "objects": [{"name": "tank", "kind": "collider", "inside": true,
+      "shape": {"type": "box", "center": [0.08, 0.04, 0.04], "half_extents": [0.08, 0.04, 0.04]}}, )" +
+      fmt::format(fmt::runtime(fluid), "cold", 0, 0.08, 300) + ", " + fmt::format(fmt::runtime(fluid), "hot", 0.08, 0.16, 320) + R"(],
+    "probes": [{"name": "both", "type": "temperature", "object": "*"},
+               {"name": "cold_max", "type": "temperature", "object": "cold", "quantity": "max"},
+               {"name": "hot_min", "type": "temperature", "object": "hot", "quantity": "min"},
+               {"name": "liquid", "type": "liquid_fraction", "object": "*"}]})");
+  const std::string out = fs::path(scene).parent_path() / "out";
+  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", scene, out));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  std::ifstream frame(fs::path(out) / "frames/hot_000001.vtp");
+  const std::string text((std::istreambuf_iterator<char>(frame)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("Name=\"temperature\""), std::string::npos);
+  EXPECT_NE(text.find("Name=\"liquid_fraction\""), std::string::npos);
+  std::ifstream csv(fs::path(out) / "probes.csv");
+  std::string header, line, last;
+  std::getline(csv, header);
+  while (std::getline(csv, line)) last = line;
+  EXPECT_EQ(header, "time,both,cold_max,hot_min,liquid");
+  double time, both, cold_max, hot_min, liquid;
+  ASSERT_EQ(std::sscanf(last.c_str(), "%lf,%lf,%lf,%lf,%lf", &time, &both, &cold_max, &hot_min, &liquid), 5) << last;
+  EXPECT_NEAR(both, 310, 1e-9);
+  EXPECT_GT(cold_max, 305);  // heat has crossed: the cold block's warmest particle has gained 5 K
+  EXPECT_LT(hot_min, 315);
+  EXPECT_EQ(liquid, 1);
 }
 
 TEST(CommandLine, AdhesionUnderXpbdIsAWarningNamingTheObjects) {

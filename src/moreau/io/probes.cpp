@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "moreau/collision/penetration.hpp"
+#include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/io/granular_probes.hpp"
 #include "moreau/rods/rod_geometry.hpp"
 
@@ -133,6 +134,23 @@ void evaluate_probe(const Probe& probe, const Model& model, const State& state, 
         ++count;
       });
       values.push_back(probe.quantity == "max" ? worst : (count ? sum / count : 0.0));
+      break;
+    }
+    case ProbeType::temperature:
+    case ProbeType::liquid_fraction: {
+      // The mass-weighted mean temperature or liquid fraction, or the extreme temperature.
+      Real weighted = 0, mass = 0, lowest = std::numeric_limits<Real>::infinity(), highest = -lowest;
+      for_each_fluid_particle(model, state, probe.object, [&](Index i) {
+        const FluidPhase& phase = model.fluid.phases[state.fluid.phase[i]];
+        const Real H = state.fluid.enthalpy[i], m = state.fluid.mass[i];
+        const Real value = probe.type == ProbeType::temperature ? fluid_temperature(phase, H) : fluid_liquid_fraction(phase, H);
+        weighted += m * value;
+        mass += m;
+        lowest = std::min(lowest, value);
+        highest = std::max(highest, value);
+      });
+      if (mass == 0) values.push_back(0);
+      else values.push_back(probe.quantity == "min" ? lowest : probe.quantity == "max" ? highest : weighted / mass);
       break;
     }
     case ProbeType::particle_count:

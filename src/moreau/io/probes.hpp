@@ -18,7 +18,8 @@ enum class ProbeType {
   rod_point, rod_twist,  // a rod's centreline point ("point" on a rod); its twist (rad)
   angle_of_repose, mass_flow,  // a pile's surface slope (degrees); the mass through a plane (kg/s or kg)
   asleep,  // sleeping grains (settings.sleep)
-  runout   // how far a pile reaches from its axis (m)
+  runout,  // how far a pile reaches from its axis (m)
+  temperature, liquid_fraction  // thermal fluids (fluid_heat.hpp): K; the mass-weighted share that is liquid
 };
 
 struct Probe {
@@ -26,7 +27,8 @@ struct Probe {
   ProbeType type = ProbeType::point;
   Index object = -1;                 // -1: every object ("*")
   std::string quantity;              // point: position|displacement|velocity; energy: kinetic|potential|elastic|total;
-                                     // extent: min|max; momentum: linear|angular; density_error: mean|max
+                                     // extent: min|max; momentum: linear|angular; density_error: mean|max;
+                                     // temperature: mean|min|max
   Index particle = -1;               // point probes: global particle index
   int axis = 1;                      // extent
   Vec3 about = Vec3::Zero();         // angular momentum reference point, m

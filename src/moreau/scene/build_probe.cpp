@@ -15,7 +15,8 @@ const std::vector<std::string> kProbeTypes{
     "point",    "energy",      "center_of_mass", "extent",           "momentum",    "constraint_error",
     "fluid_height", "density_error", "particle_count", "escaped",     "position",    "orientation",
     "velocity", "angular_velocity", "joint_error", "contact_count", "max_displacement",
-    "penetration", "suction", "twist", "angle_of_repose", "mass_flow", "asleep", "runout"};
+    "penetration", "suction", "twist", "angle_of_repose", "mass_flow", "asleep", "runout",
+    "temperature", "liquid_fraction"};
 
 // The types whose only key besides name and type is "object": one simulated object or "*".
 const std::map<std::string, ProbeType> kObjectOrEveryProbes{{"center_of_mass", ProbeType::center_of_mass},
@@ -30,7 +31,7 @@ std::vector<std::string> probe_keys(const std::string& type) {
   if (type == "joint_error") add({"joint"});
   else add({"object"});
   if (type == "point") add({"vertex", "nearest", "quantity"});
-  if (type == "energy" || type == "density_error") add({"quantity"});
+  if (type == "energy" || type == "density_error" || type == "temperature") add({"quantity"});
   if (type == "extent") add({"axis", "quantity"});
   if (type == "momentum") add({"quantity", "about"});
   if (type == "fluid_height") add({"at"});
@@ -104,7 +105,7 @@ ProbeSpec read_probe(const JsonObject& j) {
     p.axis = j.string("axis");
     p.quantity = j.string("quantity");
   } else if (p.type == "point" || p.type == "energy" || p.type == "density_error" || p.type == "momentum" ||
-             p.type == "mass_flow") {
+             p.type == "mass_flow" || p.type == "temperature") {
     if (j.has("quantity")) p.quantity = j.string("quantity");
   }
   if (p.type == "momentum") p.about = read_vector(j, "about", p.about);
@@ -198,6 +199,14 @@ Probe bind_probe(const ProbeSpec& spec, const SpecPlace& j, const Model& model) 
     p.type = ProbeType::density_error;
     p.object = object_index(spec, j, model, true, Accepts::fluids);
     p.quantity = quantity(spec, j, "mean", {"mean", "max"});
+  } else if (type == "temperature" || type == "liquid_fraction") {
+    p.type = type == "temperature" ? ProbeType::temperature : ProbeType::liquid_fraction;
+    p.object = object_index(spec, j, model, true, Accepts::fluids);
+    if (!model.fluid.thermal)
+      j.fail("type", fmt::format("a \"{}\" probe reads the fluids' heat, and no fluid of the scene has a \"thermal\" "
+                                 "entry",
+                                 type));
+    if (type == "temperature") p.quantity = quantity(spec, j, "mean", {"mean", "min", "max"});
   } else if (type == "asleep") {
     p.type = ProbeType::asleep;
     p.object = object_index(spec, j, model, true, Accepts::grains);
