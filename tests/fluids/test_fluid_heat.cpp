@@ -209,5 +209,22 @@ TEST(FluidHeat, ALiquidFreezesOnAColdFloorUnderItsOwnWeightAsNeumannsSolution) {
   EXPECT_NEAR(solid_density / 1000, 1, 0.01);
 }
 
+TEST(FluidHeat, FreezingGivesTheSameResultOnOneAndTwoThreads) {
+  auto run = [](int threads) {
+    Scene scene = heated_tank("200", fluid_layer("water", 0, 0.1,
+        R"("density": 1000, "thermal": {"temperature": 300.001, "conductivity": 400, "specific_heat": 1000,
+           "melting_point": 300, "latent_heat": 1e5})"),
+        fmt::format(R"({{"dt": 0.01, "substeps": 10, "iterations": 4, "threads": {}}})", threads));
+    test::run_steps(scene, 10);
+    return scene.state.fluid;
+  };
+  const FluidState one = run(1), two = run(2);
+  ASSERT_EQ(one.count, two.count);
+  for (Index i = 0; i < one.count; ++i) {
+    ASSERT_EQ(one.enthalpy[i], two.enthalpy[i]) << i;
+    ASSERT_EQ(one.position[i], two.position[i]) << i;
+  }
+}
+
 }  // namespace
 }  // namespace moreau
