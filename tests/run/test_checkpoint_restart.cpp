@@ -3,7 +3,7 @@
 // checkpoint of each, which hold every field of the state (contacts, warm starts, neighbour
 // lists, the flow's history and lagged preconditioner) — and the continued output directory
 // holds the same probes.csv and frames as the uninterrupted run's. Every engine and solver:
-// XPBD with every material, rigid bodies, a fluid, nmd with suction cups (warm starts), xpbi sand
+// XPBD with every material, rigid bodies, a fluid, a freezing fluid, nmd with suction cups (warm starts), xpbi sand
 // under a rigid wheel, FEM solids with rigid bodies and joints, and a transient flow with the
 // direct and the GMRES solver.
 #include <gtest/gtest.h>
@@ -118,6 +118,7 @@ INSTANTIATE_TEST_SUITE_P(
     ::testing::Values(Case{"XpbdEveryMaterial", kEveryMaterial, {}, 15},
                       Case{"RigidStack", "stack_knockdown.json", {}, 30},
                       Case{"Fluid", "dam_break.json", {"objects.water.particle_radius=0.02"}, 20},
+                      Case{"FreezingFluid", "lava_flow.json", {}, 20},
                       Case{"NmdSuction", "suction_lift.json", {}, 20},
                       Case{"NmdEveryMaterial", kEveryMaterial, {"settings.solver=\"nmd\""}, 10},
                       Case{"XpbiWheelOnSand", "wheel_on_sand.json", {"objects.sand.spacing=0.01"}, 8},

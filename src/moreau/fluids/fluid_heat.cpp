@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "moreau/fluids/neighbor_loop.hpp"
+#include "moreau/fluids/wall_extrapolation.hpp"
 #include "moreau/model/model.hpp"
 
 namespace moreau {
@@ -23,29 +24,14 @@ Real pair_conductivity(Real a, Real b) { return a > 0 && b > 0 ? 2 * a * b / (a 
 /// of colliders with a temperature of V_b 2 k_i beta (T_i - T_c) g |r|^2 / (|r|^2 + eta^2).
 Real wall_heat(const Model& model, const FluidState& fluid, Index i, Real temperature, Real conductivity) {
   const FluidModel& fm = model.fluid;
-  const FluidBoundarySamples& samples = fm.boundary;
-  const CubicSplineKernel& kernel = fm.kernel;
-  const Real r = fm.particle_radius, eta2 = 0.01 * kernel.h2;
-  const Vec3 xi = fluid.position[i];
+  const Real eta2 = 0.01 * fm.kernel.h2;
   Real sum = 0;
-  Index cached_collider = -1;
-  Real distance = 0;  // m, of x_i from the cached collider's surface
-  const Index* walls = fluid.boundary_neighbors.row(i);
-  for (Index n = 0; n < fluid.boundary_neighbors.count[i]; ++n) {
-    const Index b = walls[n];
-    const Collider& c = model.colliders[samples.collider[b]];
-    if (!c.temperature) continue;
-    const Vec3 rb = xi - fluid.boundary_position[b];
-    const Real d2 = rb.squaredNorm();
-    if (d2 >= kernel.h2) continue;
-    if (samples.collider[b] != cached_collider) {
-      cached_collider = samples.collider[b];
-      distance = collider_distance(c, fluid.boundary_position[b] - samples.local_position[b], xi).distance;
-    }
-    const Real beta = 1 + r / std::max(distance, r);
-    sum += samples.volume[b] * 2 * conductivity * beta * (temperature - *c.temperature) *
-           pair_weight(d2, kernel.gradient_factor(std::sqrt(d2)), eta2);
-  }
+  for_each_extrapolated_wall_sample(
+      model, fluid, i, [](const Collider& c) { return c.temperature.has_value(); },
+      [&](Index b, const Collider& c, const Vec3&, Real d2, Real beta) {
+        sum += fm.boundary.volume[b] * 2 * conductivity * beta * (temperature - *c.temperature) *
+               pair_weight(d2, fm.kernel.gradient_factor(std::sqrt(d2)), eta2);
+      });
   return sum;
 }
 

@@ -6,6 +6,7 @@
 
 #include "moreau/fluids/neighbor_loop.hpp"
 #include "moreau/fluids/pair_chunks.hpp"
+#include "moreau/fluids/wall_extrapolation.hpp"
 #include "moreau/math/target_clones.hpp"
 #include "moreau/model/model.hpp"
 
@@ -39,33 +40,16 @@ Mat3 floored_inverse(const Mat3& moment) {
 void wall_sums(const Model& model, const FluidState& fluid, Index k, Mat3& moment, Vec3& wall_sum,
                Mat3& wall_velocity_sum) {
   const FluidModel& fm = model.fluid;
-  const CubicSplineKernel& kernel = fm.kernel;
-  const FluidBoundarySamples& samples = fm.boundary;
-  const Real depth = fm.particle_radius;
-  const Vec3 xk = fluid.position[k];
   wall_sum.setZero();
   wall_velocity_sum.setZero();
-  Index cached_collider = -1;
-  Real distance = 0;  // m, of x_k from the cached collider's surface
-  const Index* walls = fluid.boundary_neighbors.row(k);
-  for (Index n = 0; n < fluid.boundary_neighbors.count[k]; ++n) {
-    const Index b = walls[n];
-    const Collider& c = model.colliders[samples.collider[b]];
-    if (c.fluid_friction == 0) continue;
-    const Vec3 r = xk - fluid.boundary_position[b];
-    const Real d2 = r.squaredNorm();
-    if (d2 >= kernel.h2) continue;
-    if (samples.collider[b] != cached_collider) {
-      cached_collider = samples.collider[b];
-      const Vec3 center = fluid.boundary_position[b] - samples.local_position[b];
-      distance = collider_distance(c, center, xk).distance;
-    }
-    const Real weight = c.fluid_friction * samples.volume[b] * kernel.gradient_factor(std::sqrt(d2));
-    moment -= weight * r * r.transpose();
-    const Real beta = 1 + depth / std::max(distance, depth);
-    wall_sum += (weight * beta) * r;
-    wall_velocity_sum += (weight * beta) * c.velocity * r.transpose();
-  }
+  for_each_extrapolated_wall_sample(
+      model, fluid, k, [](const Collider& c) { return c.fluid_friction != 0; },
+      [&](Index b, const Collider& c, const Vec3& r, Real d2, Real beta) {
+        const Real weight = c.fluid_friction * fm.boundary.volume[b] * fm.kernel.gradient_factor(std::sqrt(d2));
+        moment -= weight * r * r.transpose();
+        wall_sum += (weight * beta) * r;
+        wall_velocity_sum += (weight * beta) * c.velocity * r.transpose();
+      });
 }
 
 /// Over the fluid neighbours j of k, in chunks the compiler vectorises (pair_chunks.hpp):

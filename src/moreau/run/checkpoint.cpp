@@ -23,7 +23,8 @@ constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
 // 2: a flow with immersed solids also stores its rigid bodies' frames and their velocities.
 // 3: and the fluid's force and torque on each rigid body over the last step.
 // 4: the fluid's force on every immersed solid and the solids' forces on the fluid over the last step.
-constexpr std::uint32_t kFormatVersion = 4;
+// 5: each fluid particle's enthalpy and viscosity (fluid_heat.hpp).
+constexpr std::uint32_t kFormatVersion = 5;
 
 // The checksum of a checkpoint's header and state.
 std::uint64_t checksum(const std::string& header, const std::string& state) { return fnv1a(state, fnv1a(header)); }
