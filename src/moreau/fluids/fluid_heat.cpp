@@ -12,7 +12,7 @@ namespace moreau {
 namespace {
 
 constexpr Real kLatticeGradientSum = 17.1;  // S h^2: sum_j 2 V |g| r^2 / (r^2 + eta^2) on the lattice
-constexpr Real kStabilityMargin = 0.5;      // of the forward-Euler limit 1 / (alpha S)
+constexpr Real kStabilityMargin = 0.25;     // of the forward-Euler limit 1 / (alpha S) (fluid_heat.hpp)
 
 /// |r|^2 / (|r|^2 + eta^2) g: Brookshaw's pair weight with eta^2 = 0.01 h^2 (1/m^5).
 Real pair_weight(Real d2, Real g, Real eta2) { return d2 / (d2 + eta2) * g; }
