@@ -163,7 +163,7 @@ TEST(CommandLine, FluidHeatInputErrorsNameTheirKey) {
   expect_bad_input("latent_alone", scene(R"(, "thermal": {"latent_heat": 1e5})"),
                    {"objects[1].thermal.latent_heat", "melting_point"});
   expect_bad_input("melt_nmd", scene(R"(, "thermal": {"melting_point": 300})", "", "nmd"),
-                   {"objects[1].thermal.melting_point", "xpbd"});
+                   {"settings.solver", "melting", "'w'"});
   expect_bad_input("hot_wall_alone", scene("", R"(, "temperature": 400)"),
                    {"objects[0].temperature", "thermal"});
   expect_bad_input("hot_wall_unsampled", scene(R"(, "thermal": {})", R"(, "temperature": 400, "fluid_walls": false)"),

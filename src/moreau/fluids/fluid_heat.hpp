@@ -1,11 +1,17 @@
 #pragma once
 // Heat in the particle fluids: a temperature per particle, conduction between particles and from
-// collider walls held at a temperature, and melting and freezing through the enthalpy method, with
-// a viscosity that follows the phase (a solid is a fluid of the phase's `solid_viscosity`).
+// collider walls held at a temperature, and melting and freezing through the enthalpy method.
+//
+// Solid state: a particle whose liquid fraction is 0 is fixed where it is (inverse mass 0, at rest;
+// set_fluid_particle_state). The liquid flows around it and rests on it as on a wall: it counts in
+// its neighbours' density, and its own density constraint keeps the multiplier it would have as a
+// liquid, which only its liquid neighbours act on (project_fluid_density.cpp). Without that
+// multiplier the liquid crowded into a crust freezing under its weight, 16 % over the rest density.
+// A particle that freezes stops where it froze; one that melts moves again.
 //
 // State: each particle carries its specific enthalpy H (J/kg). With the phase's specific heat c,
-// melting point T_m and latent heat L (Voller & Prakash 1987's enthalpy form of the Stefan problem,
-// one c for both states):
+// melting point T_m and latent heat L (the enthalpy method of the Stefan problem, Shamsundar &
+// Sparrow 1975, with one c for both states):
 //   H <  c T_m          solid,    T = H / c,          liquid fraction phi = 0
 //   c T_m <= H <= c T_m + L       T = T_m,            phi = (H - c T_m) / L   (melting)
 //   H >  c T_m + L      liquid,   T = (H - L) / c,    phi = 1
@@ -24,7 +30,7 @@
 //
 // Walls: a collider with a `temperature` T_c holds its surface at T_c. Its wall samples (one layer,
 // r behind the surface, boundary_sampling.hpp) take the temperature that extrapolates the
-// particle's linearly through the surface, as the no-slip velocity does (fluid_viscosity.hpp):
+// particle's linearly through the surface, as the no-slip velocity does (wall_extrapolation.hpp):
 //   T_i - T_b -> beta (T_i - T_c),  beta = 1 + r / max(d_i, r),
 // with d_i the particle's distance from the surface, and enter the sum with their volume V_b and
 // the particle's conductivity. On the lattice this is the second-order finite-difference

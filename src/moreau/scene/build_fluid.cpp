@@ -92,7 +92,7 @@ FluidThermalSpec read_thermal(const JsonObject& thermal) {
 
 // "thermal": the phase's temperature, conduction and melting (fluid_heat.hpp). The phase's
 // viscosity is set.
-void set_thermal(const FluidThermalSpec& spec, const SpecPlace& t, FluidPhase& phase, const std::string& solver) {
+void set_thermal(const FluidThermalSpec& spec, const SpecPlace& t, FluidPhase& phase) {
   phase.temperature = t.number("temperature", spec.temperature, Range::positive());
   phase.conductivity = t.number("conductivity", spec.conductivity, Range::non_negative());
   phase.specific_heat = t.number("specific_heat", spec.specific_heat, Range::positive());
@@ -101,10 +101,6 @@ void set_thermal(const FluidThermalSpec& spec, const SpecPlace& t, FluidPhase& p
     if (spec.solid_viscosity) t.fail("solid_viscosity", "a solid viscosity needs a \"melting_point\" (K)");
     return;
   }
-  if (solver != "xpbd")
-    t.fail("melting_point", fmt::format("melting and freezing run under \"solver\": \"xpbd\" (the scene's is \"{}\"); "
-                                        "heat conduction alone runs under both",
-                                        solver));
   phase.melting_point = t.number("melting_point", *spec.melting_point, Range::positive());
   phase.latent_heat = t.number("latent_heat", spec.latent_heat, Range::non_negative());
   phase.solid_viscosity = spec.solid_viscosity
@@ -170,7 +166,7 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   // compliance of a bulk modulus K (C = p / K) is eps = 1 / (K V) (constraint_fluid.hpp).
   phase.compliance = 1 / (place.number("bulk_modulus", spec.bulk_modulus, Range::positive()) * fm.particle_volume);
   if (spec.thermal) {
-    set_thermal(*spec.thermal, place.at("thermal"), phase, ctx.solver);
+    set_thermal(*spec.thermal, place.at("thermal"), phase);
     fm.thermal = true;
   }
 

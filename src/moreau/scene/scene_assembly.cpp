@@ -61,7 +61,7 @@ Scene assemble_scene(const SceneSpec& spec, const std::string& source, const std
   apply_settings(spec.settings, SpecPlace(source, "settings"), scene);
 
   std::vector<Vec3> initial_velocity;
-  SceneBuildContext ctx{scene.model, initial_velocity, scene_directory, scene.duration, scene.solver};
+  SceneBuildContext ctx{scene.model, initial_velocity, scene_directory, scene.duration};
   if (spec.objects.empty()) top.fail("objects", "a scene needs at least one object");
   for (size_t k = 0; k < spec.objects.size(); ++k) {
     const SpecPlace place = entry("objects", k);

@@ -30,7 +30,6 @@ struct SceneBuildContext {
   std::vector<Vec3>& initial_velocity;
   std::filesystem::path scene_directory;
   Real duration = 0;  // s, settings.duration (emitters stop there by default)
-  std::string solver;  // settings.solver
 };
 
 ColliderSpec read_collider(const JsonObject& object);

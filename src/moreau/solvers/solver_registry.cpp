@@ -46,8 +46,20 @@ std::string xpbi_refusal(const Model& model) { return no_suction_cups("xpbi", mo
 // A shape-matching cluster of n particles has n^2 Jacobian blocks under nmd (shape_match_rows.hpp).
 constexpr Index kMaxNmdClusterSize = 512;
 
+// Melting and freezing fix solid fluid particles in place (fluid_heat.hpp), which the XPBD step
+// does; the velocity-level fluid rows do not.
+std::string melting_refusal(std::string_view solver, const Model& model) {
+  for (const ObjectInfo& o : model.objects)
+    if (o.kind == ObjectKind::fluid && model.fluid.phases[o.fluid_phase].melting_point)
+      return fmt::format("the '{}' formulation does not simulate melting and freezing ('{}' has a \"melting_point\"); "
+                         "run with \"solver\": \"xpbd\" (heat conduction alone runs under every formulation)",
+                         solver, o.name);
+  return {};
+}
+
 std::string nmd_refusal(const Model& model) {
   if (std::string why = continuum_refusal("nmd", model); !why.empty()) return why;
+  if (std::string why = melting_refusal("nmd", model); !why.empty()) return why;
   const ShapeMatchClusters& clusters = model.shape_matching;
   for (Index k = 0; k < clusters.size(); ++k) {
     const Index size = clusters.offsets[k + 1] - clusters.offsets[k];
