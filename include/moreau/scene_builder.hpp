@@ -295,7 +295,7 @@ struct FluidThermalSpec {
   double specific_heat = 4186;            // J/(kg K) (water), the same solid and liquid
   std::optional<double> melting_point;    // K; none: liquid at every temperature
   double latent_heat = 0;                 // J/kg, with a melting point
-  std::optional<double> solid_viscosity;  // Pa s, required with a melting point
+  std::optional<double> solid_viscosity;  // Pa s, as a particle begins to melt; default: the fluid's viscosity
 };
 
 /// "kind": "fluid": particles on a lattice of spacing 2 r filling a block, blocks or a closed OBJ

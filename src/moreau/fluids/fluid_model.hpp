@@ -34,7 +34,7 @@ struct FluidPhase {
   Real specific_heat = 4186;       // c, J/(kg K), the same in both states
   std::optional<Real> melting_point;  // T_m, K; none: liquid at every temperature
   Real latent_heat = 0;            // L, J/kg
-  Real solid_viscosity = 0;        // kinematic viscosity of the solid state, m^2/s
+  Real solid_viscosity = 0;        // m^2/s, kinematic, of a particle that begins to melt (fluid_heat.hpp)
 };
 
 /// Collider walls sampled with particles (Akinci et al. 2012): each sample carries the volume

@@ -182,7 +182,7 @@ MOREAU_TARGET_CLONES Vec3 viscous_force(const Model& model, const FluidState& fl
   const Mat3& Sk = s.corrected_stress[k];
   const Mat3& Gk = s.velocity_gradient[k];
   const Real w_k = fluid.inv_mass[k], nu_k = fluid.viscosity[k];
-  if (w_k == 0) {  // a solid particle (fluid_heat.hpp) stays at rest: its row of the system is the identity's
+  if (w_k == 0) {  // a solid particle (fluid_heat.hpp) stays at rest: its row is m_k u_k, so its change stays 0
     if (diagonal) diagonal->setZero();
     return Vec3::Zero();
   }

@@ -90,8 +90,8 @@ FluidThermalSpec read_thermal(const JsonObject& thermal) {
   return spec;
 }
 
-// "thermal": the phase's temperature, conduction and melting (fluid_heat.hpp). The phase's
-// viscosity is set.
+// "thermal": the phase's temperature, conduction and melting (fluid_heat.hpp). Call after the
+// phase's viscosity is set (the default of solid_viscosity).
 void set_thermal(const FluidThermalSpec& spec, const SpecPlace& t, FluidPhase& phase) {
   phase.temperature = t.number("temperature", spec.temperature, Range::positive());
   phase.conductivity = t.number("conductivity", spec.conductivity, Range::non_negative());

@@ -6,12 +6,12 @@
 
 #include "moreau/fluids/density_constraint.hpp"
 #include "moreau/fluids/fluid_emitter.hpp"
+#include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/fluid_motion.hpp"
 #include "moreau/fluids/fluid_neighbors.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
-#include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/model/model.hpp"
 #include "moreau/model/state.hpp"

@@ -7,12 +7,12 @@
 
 #include "moreau/solvers/xpbd/project_fluid_density.hpp"
 #include "moreau/fluids/fluid_emitter.hpp"
+#include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/fluid_motion.hpp"
 #include "moreau/fluids/fluid_neighbors.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
-#include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/granular/grain_emitter.hpp"
 #include "moreau/collision/particle_body_contacts.hpp"
