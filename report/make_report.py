@@ -147,6 +147,12 @@ def main():
     args = parser.parse_args()
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    known = [c.__name__.split(".")[-1] for c in CASES]
+    unknown = sorted(set(args.only or []) - set(known))
+    if unknown:
+        print(f"make_report.py: --only: no case named {', '.join(unknown)} in report/cases/__init__.py "
+              f"(the cases are {', '.join(known)})", file=sys.stderr)
+        return 2
     cases = [c for c in CASES if not args.only or c.__name__.split(".")[-1] in args.only]
     header = provenance(args.fast)
     # A partial run of the whole report keeps the other cases' last results.
