@@ -296,6 +296,8 @@ struct FluidThermalSpec {
   std::optional<double> melting_point;    // K; none: liquid at every temperature
   double latent_heat = 0;                 // J/kg, with a melting point
   std::optional<double> solid_viscosity;  // Pa s, as a particle begins to melt; default: the fluid's viscosity
+  double expansion = 0;                   // 1/K, volumetric thermal expansion (buoyancy); 0: none
+  std::optional<double> reference_temperature;  // K, where the fluid has its density; needed with an expansion
 };
 
 /// "kind": "fluid": particles on a lattice of spacing 2 r filling a block, blocks or a closed OBJ

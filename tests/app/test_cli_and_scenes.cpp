@@ -168,6 +168,12 @@ TEST(CommandLine, FluidHeatInputErrorsNameTheirKey) {
                    {"objects[0].temperature", "thermal"});
   expect_bad_input("hot_wall_unsampled", scene(R"(, "thermal": {})", R"(, "temperature": 400, "fluid_walls": false)"),
                    {"objects[0].temperature", "fluid_walls"});
+  expect_bad_input("expansion_alone", scene(R"(, "thermal": {"expansion": 0.003})"),
+                   {"objects[1].thermal.reference_temperature", "expansion", "density"});
+  expect_bad_input("reference_alone", scene(R"(, "thermal": {"reference_temperature": 300})"),
+                   {"objects[1].thermal.reference_temperature", "expansion"});
+  expect_bad_input("expansion_huge", scene(R"(, "thermal": {"expansion": 2, "reference_temperature": 300})"),
+                   {"objects[1].thermal.expansion", "out of range"});
   const std::string probe = R"(, "probes": [{"name": "t", "type": "temperature", "object": "w"}]})";
   std::string no_heat = scene("");
   no_heat.replace(no_heat.size() - 1, 1, probe);

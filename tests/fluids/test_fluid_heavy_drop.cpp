@@ -1,18 +1,16 @@
 // A heavy drop falls through a lighter liquid: a sphere of 1,000 kg/m^3 starts at rest inside a
 // tank of 500 kg/m^3. The surrounding liquid is filled from an OBJ with two shells, the tank's box
 // and the drop's sphere, so the ray-parity fill leaves a spherical hole that the drop fills on the
-// same lattice (the sphere's bounding box is a whole number of spacings from the box's).
+// same lattice (drop_meshes.hpp).
 #include <gtest/gtest.h>
 
-#include <array>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <map>
 #include <string>
-#include <vector>
 
+#include "drop_meshes.hpp"
 #include "test_helpers.hpp"
 
 namespace moreau {
@@ -22,46 +20,6 @@ constexpr Real kRadius = 0.0025;                   // particle radius r, m (spac
 constexpr Real kDropRadius = 0.02, kDropCenterY = 0.07;  // m: 6 spacings from the side walls, 10 from the floor
 constexpr Real kHalfWidth = 0.05, kLiquidHeight = 0.15;  // the tank's liquid, m (20 x 30 x 20 lattice)
 constexpr Real kLight = 500, kHeavy = 1000, kGravity = 9.81;
-
-// The unit sphere from an octahedron whose faces are split in four `levels` times: its vertices
-// include the six axis points, so its bounding box is exactly [-1, 1]^3.
-void write_sphere_shell(std::ofstream& out, int first_vertex, Real radius, const Vec3& center) {
-  std::vector<Vec3> v = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  std::vector<std::array<int, 3>> faces = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
-                                           {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
-  for (int level = 0; level < 4; ++level) {
-    std::map<std::pair<int, int>, int> midpoint;
-    auto middle = [&](int a, int b) {
-      const auto key = std::minmax(a, b);
-      auto [it, added] = midpoint.try_emplace(key, static_cast<int>(v.size()));
-      if (added) v.push_back((v[a] + v[b]).normalized());
-      return it->second;
-    };
-    std::vector<std::array<int, 3>> split;
-    for (const auto& [a, b, c] : faces) {
-      const int ab = middle(a, b), bc = middle(b, c), ca = middle(c, a);
-      split.insert(split.end(), {{a, ab, ca}, {b, bc, ab}, {c, ca, bc}, {ab, bc, ca}});
-    }
-    faces = split;
-  }
-  for (const Vec3& p : v) out << fmt::format("v {:.9f} {:.9f} {:.9f}\n", center.x() + radius * p.x(),
-                                            center.y() + radius * p.y(), center.z() + radius * p.z());
-  for (const auto& [a, b, c] : faces) out << fmt::format("f {} {} {}\n", first_vertex + a, first_vertex + b, first_vertex + c);
-}
-
-// drop.obj (the sphere) and surround.obj (the tank's liquid box and the sphere) in `dir`.
-void write_drop_meshes(const std::string& dir) {
-  const Vec3 center(0, kDropCenterY, 0);
-  std::ofstream drop(dir + "/drop.obj");
-  write_sphere_shell(drop, 1, kDropRadius, center);
-  std::ofstream surround(dir + "/surround.obj");
-  for (int i = 0; i < 8; ++i)
-    surround << fmt::format("v {} {} {}\n", (i & 1) ? kHalfWidth : -kHalfWidth, (i & 2) ? kLiquidHeight : 0.0,
-                            (i & 4) ? kHalfWidth : -kHalfWidth);
-  // Vertex i + 1 sits at the corner (i & 1, i & 2, i & 4); two triangles per face.
-  surround << "f 1 3 2\nf 2 3 4\nf 5 6 7\nf 6 8 7\nf 1 2 5\nf 2 6 5\nf 3 7 4\nf 4 7 8\nf 1 5 3\nf 3 5 7\nf 2 4 6\nf 4 8 6\n";
-  write_sphere_shell(surround, 9, kDropRadius, center);
-}
 
 Scene drop_scene(const std::string& dir, Real drop_density) {
   const std::string path = dir + "/scene.json";
@@ -96,7 +54,7 @@ DropTally drop_tally(const Scene& scene) {
 
 TEST(FluidPhases, AHeavyDropFallsThroughALighterLiquidAndPoolsOnTheFloor) {
   const std::string dir = test::temp_dir("heavy-drop");
-  write_drop_meshes(dir);
+  test::write_drop_meshes(dir, kHalfWidth, kLiquidHeight, kDropRadius, Vec3(0, kDropCenterY, 0));
   Scene heavy = drop_scene(dir, kHeavy), neutral = drop_scene(dir, kLight);
   const DropTally start = drop_tally(heavy);
   ASSERT_EQ(heavy.state.fluid.count, 20 * 30 * 20);  // the hole and the drop share the tank's lattice

@@ -46,6 +46,11 @@ Real fluid_temperature(const FluidPhase& phase, Real enthalpy) {
   return (enthalpy - phase.latent_heat) / c;
 }
 
+Real fluid_weight_factor(const FluidPhase& phase, Real enthalpy) {
+  if (phase.expansion == 0) return 1;
+  return 1 - phase.expansion * (fluid_temperature(phase, enthalpy) - phase.reference_temperature);
+}
+
 Real fluid_liquid_fraction(const FluidPhase& phase, Real enthalpy) {
   if (!phase.melting_point) return 1;
   const Real excess = enthalpy - phase.specific_heat * *phase.melting_point;

@@ -36,6 +36,15 @@
 // the particle's conductivity. On the lattice this is the second-order finite-difference
 // Dirichlet condition at the surface. Colliders without a temperature are insulating.
 //
+// Buoyancy (the Boussinesq approximation; Boussinesq 1903, as in Gray & Giorgini 1976, "The
+// validity of the Boussinesq approximation for liquids and gases", Int. J. Heat Mass Transfer 19):
+// the density varies with temperature only in the weight,
+//   rho0 Dv/Dt = -grad p + rho0 (1 - beta (T - T_ref)) g,
+// with beta the volumetric expansion coefficient and T_ref the temperature at which the phase has
+// its rest density rho0. The density constraint keeps every particle at rho0 (the flow stays
+// incompressible); only gravity is scaled per particle. Valid while beta |T - T_ref| << 1: for an
+// ideal gas beta = 1 / T_ref, so a plume 30 K hotter than air at 300 K is within 10 %.
+//
 // Time stepping: explicit (forward Euler, Jacobi), once per step after the velocity corrections,
 // in as many equal parts as stability asks. By Gershgorin's theorem the update matrix's
 // eigenvalues are at most twice the largest row sum max_i sum_j V 2 k_ij |g| r^2 / (r^2 + eta^2) /
@@ -60,6 +69,10 @@ Real fluid_liquid_fraction(const FluidPhase& phase, Real enthalpy);
 /// The specific enthalpy (J/kg) of a particle of `phase` at temperature T: solid at or below the
 /// melting point, liquid above it.
 Real fluid_enthalpy(const FluidPhase& phase, Real temperature);
+
+/// The factor 1 - beta (T - T_ref) that scales gravity on a particle of `phase` with specific
+/// enthalpy H (1 for a phase without an expansion coefficient).
+Real fluid_weight_factor(const FluidPhase& phase, Real enthalpy);
 
 /// The kinematic viscosity (m^2/s) of a particle of `phase` with specific enthalpy H.
 Real fluid_particle_viscosity(const FluidPhase& phase, Real enthalpy);

@@ -35,6 +35,9 @@ struct FluidPhase {
   std::optional<Real> melting_point;  // T_m, K; none: liquid at every temperature
   Real latent_heat = 0;            // L, J/kg
   Real solid_viscosity = 0;        // m^2/s, kinematic, of a particle that begins to melt (fluid_heat.hpp)
+  // Buoyancy (Boussinesq, fluid_heat.hpp): the weight of a particle at T is m g (1 - beta (T - T_ref)).
+  Real expansion = 0;              // beta, volumetric thermal expansion coefficient, 1/K (0: no buoyancy)
+  Real reference_temperature = 0;  // T_ref, K, at which the phase has its rest density
 };
 
 /// Collider walls sampled with particles (Akinci et al. 2012): each sample carries the volume
@@ -96,6 +99,7 @@ struct FluidModel {
   Real viscosity_tolerance = 1e-4;   // implicit: |r| / |b| to stop at
   int viscosity_max_iterations = 200;  // implicit: BiCGSTAB iterations at most per solve
   bool thermal = false;            // some fluid carries heat (fluid_heat.hpp)
+  bool buoyant = false;            // some fluid's weight depends on its temperature (an expansion)
   Real heat_step_limit = 0;        // s, the longest stable explicit part of the heat update
 
   std::vector<FluidPhase> phases;

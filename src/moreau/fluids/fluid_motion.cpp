@@ -2,19 +2,24 @@
 
 #include <algorithm>
 
+#include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/model/model.hpp"
 
 namespace moreau {
 
 void predict_fluid(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h) {
   const Vec3 dv = h * model.settings.gravity;
+  const bool buoyant = model.fluid.buoyant;
   const Index n = fluid.count;
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
     scratch.substep_start[i] = fluid.position[i];
     fluid.pressure[i] = 0;
     if (fluid.inv_mass[i] == 0) continue;  // a solid particle (fluid_heat.hpp) stays at rest
-    fluid.velocity[i] += dv;
+    if (buoyant)
+      fluid.velocity[i] += fluid_weight_factor(model.fluid.phases[fluid.phase[i]], fluid.enthalpy[i]) * dv;
+    else
+      fluid.velocity[i] += dv;
     fluid.position[i] += h * fluid.velocity[i];
   }
 }

@@ -86,6 +86,8 @@ FluidThermalSpec read_thermal(const JsonObject& thermal) {
   spec.melting_point = read_optional_number(thermal, "melting_point");
   spec.latent_heat = thermal.number("latent_heat", spec.latent_heat);
   spec.solid_viscosity = read_optional_number(thermal, "solid_viscosity");
+  spec.expansion = thermal.number("expansion", spec.expansion);
+  spec.reference_temperature = read_optional_number(thermal, "reference_temperature");
   thermal.finish();
   return spec;
 }
@@ -96,6 +98,17 @@ void set_thermal(const FluidThermalSpec& spec, const SpecPlace& t, FluidPhase& p
   phase.temperature = t.number("temperature", spec.temperature, Range::positive());
   phase.conductivity = t.number("conductivity", spec.conductivity, Range::non_negative());
   phase.specific_heat = t.number("specific_heat", spec.specific_heat, Range::positive());
+  // Buoyancy: gravity scaled by 1 - beta (T - T_ref) (fluid_heat.hpp). |beta| <= 0.1 1/K covers
+  // liquids (water 2.1e-4) and ideal gases down to 10 K (beta = 1 / T).
+  phase.expansion = t.number("expansion", spec.expansion, Range::closed(-0.1, 0.1));
+  if (phase.expansion != 0) {
+    if (!spec.reference_temperature)
+      t.fail("reference_temperature", "an \"expansion\" needs the temperature (K) at which the fluid has its "
+                                      "\"density\": hotter particles weigh less, colder ones more");
+    phase.reference_temperature = t.number("reference_temperature", *spec.reference_temperature, Range::positive());
+  } else if (spec.reference_temperature)
+    t.fail("reference_temperature", "a reference temperature sets the buoyancy of an \"expansion\" (1/K); give one, "
+                                    "or remove the reference temperature");
   if (!spec.melting_point) {
     if (spec.latent_heat != 0) t.fail("latent_heat", "a latent heat needs a \"melting_point\" (K)");
     if (spec.solid_viscosity) t.fail("solid_viscosity", "a solid viscosity needs a \"melting_point\" (K)");
@@ -168,6 +181,7 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   if (spec.thermal) {
     set_thermal(*spec.thermal, place.at("thermal"), phase);
     fm.thermal = true;
+    fm.buoyant = fm.buoyant || phase.expansion != 0;
   }
 
   if (fm.viscosity_solver == ViscositySolver::explicit_update && model.settings.dt > explicit_viscosity_limit(fm, phase))

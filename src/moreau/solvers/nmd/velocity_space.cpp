@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/body_handle.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
@@ -73,8 +74,13 @@ void VelocitySpace::apply_forces(const Model& model, const State& state, Real h)
     if (particle_inv_mass[p] <= 0) continue;
     for (int c = 0; c < 3; ++c) v[3 * p + c] += dv[c];
   }
-  for (Index i = 0; i < fluids; ++i)
-    for (int c = 0; c < 3; ++c) v[fluid_dof(i) + c] += dv[c];
+  for (Index i = 0; i < fluids; ++i) {
+    // Buoyant fluids weigh by their temperature (fluid_heat.hpp).
+    const Vec3 dv_i = model.fluid.buoyant ? Vec3(fluid_weight_factor(model.fluid.phases[state.fluid.phase[i]],
+                                                                     state.fluid.enthalpy[i]) * dv)
+                                          : dv;
+    for (int c = 0; c < 3; ++c) v[fluid_dof(i) + c] += dv_i[c];
+  }
   const RigidBodyModel& m = model.rigid;
   for (Index b = 0; b < bodies; ++b) {
     if (!m.is_dynamic(b)) continue;
