@@ -300,6 +300,14 @@ struct FluidThermalSpec {
   std::optional<double> reference_temperature;  // K, where the fluid has its density; needed with an expansion
 };
 
+/// A fluid's "gas" entry: the fluid is a gas in open air of its own density (smoke, steam). The air
+/// carries its weight, so only its buoyancy acts (with a thermal expansion), and it drags the
+/// particles that it partly surrounds toward the wind.
+struct FluidGasSpec {
+  double drag = 10;   // 1/s, k: the air's drag on a particle with no neighbours is k (1 - 1/pi) (v - wind)
+  Vector3 wind{};     // m/s, the air's velocity
+};
+
 /// "kind": "fluid": particles on a lattice of spacing 2 r filling a block, blocks or a closed OBJ
 /// surface, and/or released by an emitter.
 struct FluidSpec {
@@ -318,6 +326,7 @@ struct FluidSpec {
   Vector3 velocity{};                // m/s
   std::optional<FluidEmitterSpec> emitter;
   std::optional<FluidThermalSpec> thermal;  // none: the fluid carries no heat
+  std::optional<FluidGasSpec> gas;          // none: a liquid, or a gas filling its container
 };
 
 /// "kind": "rigid_body".

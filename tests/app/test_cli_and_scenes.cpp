@@ -147,7 +147,7 @@ TEST(CommandLine, ExplosionExitsWithCodeThreeNamingStepTimeAndObject) {
   EXPECT_NE(r.output.find("step"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("'sheet'"), std::string::npos) << r.output;
 }
-TEST(CommandLine, FluidHeatInputErrorsNameTheirKey) {
+TEST(CommandLine, FluidHeatAndGasInputErrorsNameTheirKey) {
   const std::string tank = R"({"name": "tank", "kind": "collider", "inside": true,
       "shape": {"type": "box", "center": [0, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}})";
   auto scene = [&](const std::string& thermal, const std::string& tank_keys = "", const std::string& solver = "xpbd") {
@@ -174,6 +174,9 @@ TEST(CommandLine, FluidHeatInputErrorsNameTheirKey) {
                    {"objects[1].thermal.reference_temperature", "expansion"});
   expect_bad_input("expansion_huge", scene(R"(, "thermal": {"expansion": 2, "reference_temperature": 300})"),
                    {"objects[1].thermal.expansion", "out of range"});
+  expect_bad_input("gas_key", scene(R"(, "gas": {"breeze": [1, 0, 0]})"), {"objects[1].gas.breeze", "unknown key", "wind"});
+  expect_bad_input("gas_drag", scene(R"(, "gas": {"drag": -1})"), {"objects[1].gas.drag", "out of range"});
+  expect_bad_input("gas_nmd", scene(R"(, "gas": {})", "", "nmd"), {"settings.solver", "gas in open air", "'w'"});
   const std::string probe = R"(, "probes": [{"name": "t", "type": "temperature", "object": "w"}]})";
   std::string no_heat = scene("");
   no_heat.replace(no_heat.size() - 1, 1, probe);

@@ -86,7 +86,8 @@ const std::vector<ExpectedRefusal> kRefusals = {{"xpbd", "does not simulate suct
                                                 {"xpbi", "does not simulate suction cups", "suction"},
                                                 {"xpbd", "does not simulate continua", "kind=continuum"},
                                                 {"nmd", "does not simulate continua", "kind=continuum"},
-                                                // (every thermal fluid of the scenes has a melting point)
+                                                {"nmd", "does not simulate a gas in open air", "gas"},
+                                                // (every other thermal fluid of the scenes has a melting point)
                                                 {"nmd", "does not simulate melting", "thermal"}};
 
 bool holds_key(const std::string& scene, const std::string& key) {

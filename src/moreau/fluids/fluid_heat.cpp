@@ -47,8 +47,10 @@ Real fluid_temperature(const FluidPhase& phase, Real enthalpy) {
 }
 
 Real fluid_weight_factor(const FluidPhase& phase, Real enthalpy) {
-  if (phase.expansion == 0) return 1;
-  return 1 - phase.expansion * (fluid_temperature(phase, enthalpy) - phase.reference_temperature);
+  const Real thermal =
+      phase.expansion == 0 ? 0 : phase.expansion * (fluid_temperature(phase, enthalpy) - phase.reference_temperature);
+  // A gas in open air: the air of the gas's own density carries the weight m g (ambient_air.hpp).
+  return phase.gas ? -thermal : 1 - thermal;
 }
 
 Real fluid_liquid_fraction(const FluidPhase& phase, Real enthalpy) {

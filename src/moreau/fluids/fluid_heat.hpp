@@ -71,7 +71,8 @@ Real fluid_liquid_fraction(const FluidPhase& phase, Real enthalpy);
 Real fluid_enthalpy(const FluidPhase& phase, Real temperature);
 
 /// The factor 1 - beta (T - T_ref) that scales gravity on a particle of `phase` with specific
-/// enthalpy H (1 for a phase without an expansion coefficient).
+/// enthalpy H (1 for a phase without an expansion coefficient); for a gas in open air, whose weight
+/// the air carries (ambient_air.hpp), -beta (T - T_ref).
 Real fluid_weight_factor(const FluidPhase& phase, Real enthalpy);
 
 /// The kinematic viscosity (m^2/s) of a particle of `phase` with specific enthalpy H.

@@ -38,6 +38,10 @@ struct FluidPhase {
   // Buoyancy (Boussinesq, fluid_heat.hpp): the weight of a particle at T is m g (1 - beta (T - T_ref)).
   Real expansion = 0;              // beta, volumetric thermal expansion coefficient, 1/K (0: no buoyancy)
   Real reference_temperature = 0;  // T_ref, K, at which the phase has its rest density
+  // A gas in open air (ambient_air.hpp): weightless but for its buoyancy, dragged toward the wind.
+  bool gas = false;
+  Real gas_drag = 0;               // k, 1/s
+  Vec3 wind = Vec3::Zero();        // m/s
 };
 
 /// Collider walls sampled with particles (Akinci et al. 2012): each sample carries the volume
@@ -99,7 +103,8 @@ struct FluidModel {
   Real viscosity_tolerance = 1e-4;   // implicit: |r| / |b| to stop at
   int viscosity_max_iterations = 200;  // implicit: BiCGSTAB iterations at most per solve
   bool thermal = false;            // some fluid carries heat (fluid_heat.hpp)
-  bool buoyant = false;            // some fluid's weight depends on its temperature (an expansion)
+  bool buoyant = false;            // some fluid's weight is not m g (an expansion, or a gas in open air)
+  bool gas = false;                // some fluid is a gas in open air (ambient_air.hpp)
   Real heat_step_limit = 0;        // s, the longest stable explicit part of the heat update
 
   std::vector<FluidPhase> phases;

@@ -78,6 +78,14 @@ FluidEmitter make_emitter(const FluidEmitterSpec& spec, const SpecPlace& e, Real
   return emitter;
 }
 
+FluidGasSpec read_gas(const JsonObject& gas) {
+  FluidGasSpec spec;
+  spec.drag = gas.number("drag", spec.drag);
+  spec.wind = read_vector(gas, "wind", spec.wind);
+  gas.finish();
+  return spec;
+}
+
 FluidThermalSpec read_thermal(const JsonObject& thermal) {
   FluidThermalSpec spec;
   spec.temperature = thermal.number("temperature", spec.temperature);
@@ -142,6 +150,7 @@ FluidSpec read_fluid(const JsonObject& object) {
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"));
   if (object.has("thermal")) spec.thermal = read_thermal(object.object("thermal"));
+  if (object.has("gas")) spec.gas = read_gas(object.object("gas"));
   return spec;
 }
 
@@ -182,6 +191,13 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
     set_thermal(*spec.thermal, place.at("thermal"), phase);
     fm.thermal = true;
     fm.buoyant = fm.buoyant || phase.expansion != 0;
+  }
+  if (spec.gas) {  // a gas in open air (ambient_air.hpp)
+    const SpecPlace g = place.at("gas");
+    phase.gas = true;
+    phase.gas_drag = g.number("drag", spec.gas->drag, Range::non_negative());
+    phase.wind = g.vector("wind", spec.gas->wind);
+    fm.gas = fm.buoyant = true;
   }
 
   if (fm.viscosity_solver == ViscositySolver::explicit_update && model.settings.dt > explicit_viscosity_limit(fm, phase))

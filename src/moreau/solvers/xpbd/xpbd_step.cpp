@@ -9,6 +9,7 @@
 #include "moreau/fluids/fluid_emitter.hpp"
 #include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/fluid_motion.hpp"
+#include "moreau/fluids/ambient_air.hpp"
 #include "moreau/fluids/fluid_neighbors.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
@@ -227,6 +228,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   };
   auto finish_fluids = [&] {
     apply_fluid_velocity_corrections(model, fluid, work.fluid, dt);
+    apply_ambient_air_drag(model, fluid, dt);
     apply_fluid_surface_tension(model, fluid, work.fluid, dt);
     lap(XpbdStage::fluid_velocity);
     if (model.fluid.thermal) {

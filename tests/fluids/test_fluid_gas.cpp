@@ -1,0 +1,94 @@
+// A gas in open air (src/moreau/fluids/ambient_air.hpp): the air carries the gas's weight and
+// drags the particles it partly surrounds toward the wind, dv/dt = -k (1 - rho_i / rho0) (v - v_air),
+// and a warm gas rises with the Boussinesq part of gravity, -beta (T - T_ref) g.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+
+#include "test_helpers.hpp"
+
+namespace moreau {
+namespace {
+
+constexpr Real kRadius = 0.005, kGravity = 9.81, kPi = 3.14159265358979323846;
+
+// Air-like gas (1.2 kg/m^3, beta = 1/300 K^-1 about 300 K) filling the block [0, size]^3 (m),
+// at `temperature` (K), with drag k = `drag` (1/s) toward `wind` (m/s).
+Scene gas_scene(Real size, Real temperature, Real drag, const std::string& wind, Real dt = 0.01) {
+  return test::scene_from_json(fmt::format(R"({{"name": "gas", "settings": {{"dt": {}, "substeps": 2, "iterations": 2}},
+    "objects": [
+      {{"name": "smoke", "kind": "fluid", "particle_radius": {}, "density": 1.2, "viscosity": 0, "xsph": 0,
+        "thermal": {{"temperature": {}, "conductivity": 0, "expansion": {}, "reference_temperature": 300}},
+        "gas": {{"drag": {}, "wind": {}}},
+        "block": {{"min": [0, 0, 0], "max": [{}, {}, {}]}}}}]}})",
+                                           dt, kRadius, temperature, 1.0 / 300, drag, wind, size, size, size));
+}
+
+Vec3 mean_position(const Scene& scene) {
+  const FluidState& f = scene.state.fluid;
+  Vec3 sum = Vec3::Zero();
+  for (Index i = 0; i < f.count; ++i) sum += f.position[i];
+  return sum / static_cast<Real>(f.count);
+}
+
+// The mean velocity (m/s) of a lone particle 30 K warm in a wind of 0.5 m/s along x, over the
+// second of a run's first 3 s (14 time constants have passed by then).
+Vec3 lone_particle_velocity(Real dt) {
+  Scene scene = gas_scene(2 * kRadius, 330, 10, "[0.5, 0, 0]", dt);
+  EXPECT_EQ(scene.state.fluid.count, 1);
+  test::run_steps(scene, std::lround(2 / dt));
+  const Vec3 start = scene.state.fluid.position[0];
+  test::run_steps(scene, std::lround(1 / dt));
+  return scene.state.fluid.position[0] - start;
+}
+
+TEST(FluidGas, ALoneWarmParticleRisesAtItsTerminalVelocityAndDriftsWithTheWind) {
+  // Buoyancy g beta Delta T = 0.981 m/s^2 up; drag k (1 - 1/pi) (the particle's own kernel value is
+  // the whole of its density, V W(0) = 1/pi of rho0). Terminal velocity 0.981 / (10 (1 - 1/pi)) =
+  // 0.1439 m/s up, and the wind's 0.5 m/s along x. The buoyancy is applied in the substeps and the
+  // drag once per step, a splitting whose error is first order: lambda dt / 2 = 1.7 % at
+  // dt = 0.01 s (lambda = k (1 - 1/pi)), and a quarter of that at dt = 0.0025 s.
+  const Real lambda = 10 * (1 - 1 / kPi), terminal = kGravity * 30.0 / 300 / lambda;
+  Real previous_error = 0;
+  for (Real dt : {0.01, 0.0025}) {
+    const Vec3 velocity = lone_particle_velocity(dt);
+    const Real error = velocity.y() / terminal - 1;
+    std::printf("dt = %.4f s: mean velocity (%.6f, %.6f, %.6f) m/s; terminal rise %.6f m/s (%+.3f %%)\n", dt,
+                velocity.x(), velocity.y(), velocity.z(), terminal, 100 * error);
+    EXPECT_LT(std::abs(error), 0.6 * lambda * dt);  // measured 0.51 lambda dt
+    EXPECT_NEAR(velocity.x(), 0.5, 1e-6);           // the drift has settled to e^-14 of the wind
+    EXPECT_NEAR(velocity.z(), 0, 1e-12);
+    if (previous_error != 0) {
+      EXPECT_NEAR(previous_error / error, 4, 0.2);  // first order in dt
+    }
+    previous_error = error;
+  }
+}
+
+TEST(FluidGas, GasAtTheAirsTemperatureIsWeightlessAndCoolGasSinks) {
+  // A cloud of 6 x 6 x 6 particles at the reference temperature floats where it is (the air carries
+  // its weight); 30 K cooler, it sinks, and only its edge particles feel the air's drag.
+  Scene neutral = gas_scene(12 * kRadius, 300, 10, "[0, 0, 0]");
+  Scene cool = gas_scene(12 * kRadius, 270, 10, "[0, 0, 0]");
+  ASSERT_EQ(neutral.state.fluid.count, 216);
+  const Vec3 start = mean_position(neutral);
+  test::run_steps(neutral, 50);
+  test::run_steps(cool, 50);
+  const Vec3 moved = mean_position(neutral) - start, sank = mean_position(cool) - start;
+  std::printf("neutral cloud's centre moved (%.2e, %.2e, %.2e) m; the cool one's %.4f m in 0.5 s\n", moved.x(),
+              moved.y(), moved.z(), sank.y());
+  // The neutral cloud spreads (nothing holds a gas together) but its centre stays: the density
+  // solve moves particles in equal and opposite pairs. Bound: 1e-9 m, round-off over 50 steps.
+  EXPECT_LT(moved.norm(), 1e-9);
+  // The cool cloud sinks at most as fast as free fall at g beta Delta T = 0.981 m/s^2 (0.123 m in
+  // 0.5 s) and faster than a lone particle, whose drag is the largest a particle can have: from
+  // rest it falls v_t (t - tau (1 - e^(-t/tau))) = 0.0515 m in 0.5 s (v_t = 0.1439 m/s, tau = 0.147 s).
+  const Real t = 0.5, a = kGravity * 30.0 / 300, rate = 10 * (1 - 1 / kPi);
+  const Real lone = a / rate * (t - (1 - std::exp(-rate * t)) / rate);
+  EXPECT_LT(-sank.y(), 0.5 * a * t * t);
+  EXPECT_GT(-sank.y(), lone);
+}
+
+}  // namespace
+}  // namespace moreau
