@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "moreau/fluids/fluid_heat.hpp"
 #include "test_helpers.hpp"
 
 namespace moreau {
@@ -15,14 +16,14 @@ constexpr Real kRadius = 0.005, kGravity = 9.81, kPi = 3.14159265358979323846;
 
 // Air-like gas (1.2 kg/m^3, beta = 1/300 K^-1 about 300 K) filling the block [0, size]^3 (m),
 // at `temperature` (K), with drag k = `drag` (1/s) toward `wind` (m/s).
-Scene gas_scene(Real size, Real temperature, Real drag, const std::string& wind, Real dt = 0.01) {
+Scene gas_scene(Real size, Real temperature, Real drag, const std::string& wind, Real dt = 0.01, Real mixing = 0) {
   return test::scene_from_json(fmt::format(R"({{"name": "gas", "settings": {{"dt": {}, "substeps": 2, "iterations": 2}},
     "objects": [
       {{"name": "smoke", "kind": "fluid", "particle_radius": {}, "density": 1.2, "viscosity": 0, "xsph": 0,
         "thermal": {{"temperature": {}, "conductivity": 0, "expansion": {}, "reference_temperature": 300}},
-        "gas": {{"drag": {}, "wind": {}}},
+        "gas": {{"drag": {}, "wind": {}, "mixing": {}}},
         "block": {{"min": [0, 0, 0], "max": [{}, {}, {}]}}}}]}})",
-                                           dt, kRadius, temperature, 1.0 / 300, drag, wind, size, size, size));
+                                           dt, kRadius, temperature, 1.0 / 300, drag, wind, mixing, size, size, size));
 }
 
 Vec3 mean_position(const Scene& scene) {
@@ -88,6 +89,21 @@ TEST(FluidGas, GasAtTheAirsTemperatureIsWeightlessAndCoolGasSinks) {
   const Real lone = a / rate * (t - (1 - std::exp(-rate * t)) / rate);
   EXPECT_LT(-sank.y(), 0.5 * a * t * t);
   EXPECT_GT(-sank.y(), lone);
+}
+
+TEST(FluidGas, TheAirMixesIntoALoneParticlesSmokeAndHeatAtTheOpenRate) {
+  // Mixing m = 2 1/s into a lone particle (open fraction 1 - 1/pi): its smoke concentration and its
+  // excess temperature over the air's both decay as exp(-m (1 - 1/pi) t). The step integrates the
+  // decay exactly for a constant open fraction, so after 1 s both agree to round-off (bound 1e-12).
+  Scene scene = gas_scene(2 * kRadius, 330, 10, "[0, 0, 0]", 0.01, 2);
+  test::run_steps(scene, 100);
+  const FluidState& f = scene.state.fluid;
+  const Real expected = std::exp(-2 * (1 - 1 / kPi) * scene.state.time);
+  const Real excess = fluid_temperature(scene.model.fluid.phases[0], f.enthalpy[0]) - 300;
+  std::printf("after %.2f s: smoke %.12f, excess temperature %.9f K (expected %.12f and %.9f)\n", scene.state.time,
+              f.smoke[0], excess, expected, 30 * expected);
+  EXPECT_NEAR(f.smoke[0], expected, 1e-12);
+  EXPECT_NEAR(excess, 30 * expected, 30e-12);
 }
 
 }  // namespace

@@ -119,6 +119,7 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"RigidStack", "stack_knockdown.json", {}, 30},
                       Case{"Fluid", "dam_break.json", {"objects.water.particle_radius=0.02"}, 20},
                       Case{"FreezingFluid", "lava_flow.json", {}, 20},
+                      Case{"SmokeInOpenAir", "smoke_plume.json", {}, 40},
                       Case{"NmdSuction", "suction_lift.json", {}, 20},
                       Case{"NmdEveryMaterial", kEveryMaterial, {"settings.solver=\"nmd\""}, 10},
                       Case{"XpbiWheelOnSand", "wheel_on_sand.json", {"objects.sand.spacing=0.01"}, 8},

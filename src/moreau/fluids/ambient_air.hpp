@@ -19,14 +19,23 @@
 // coefficient can overshoot. A lone particle (rho_i / rho0 = V W(0) = 1/pi for the cubic spline
 // with h = 4 r) has s = 1 - 1/pi and reaches the terminal velocity
 //   v = v_air - beta (T - T_ref) g / (k (1 - 1/pi)).
+//
+// Marker and mixing: each gas particle carries a smoke concentration c, 1 as it is released. Where
+// the air reaches it, the air mixes in at the rate `mixing` (1/s), diluting the smoke and bringing
+// the temperature to the air's T_ref alike:
+//   dc/dt = -m s c,   d(H - H_ref)/dt = -m s (H - H_ref),
+// with the same open fraction s and H_ref the specific enthalpy at T_ref (for a gas with an
+// expansion, which gives T_ref; another gas keeps its heat). A plume therefore fades
+// and cools from its edges, and loses its buoyancy as it entrains air.
 #include "moreau/fluids/fluid_state.hpp"
 
 namespace moreau {
 
 struct Model;
 
-/// Drags the particles of gas fluids toward their wind over the step dt. Call inside an OpenMP
-/// parallel region (every thread), after the step's last density evaluation.
-void apply_ambient_air_drag(const Model& model, FluidState& fluid, Real dt);
+/// Drags the particles of gas fluids toward their wind and mixes air into their smoke and heat over
+/// the step dt. Call inside an OpenMP parallel region (every thread), after the step's last
+/// density evaluation.
+void apply_ambient_air(const Model& model, FluidState& fluid, Real dt);
 
 }  // namespace moreau

@@ -27,6 +27,7 @@ Index emit_fluid(const Model& model, FluidState& fluid, Real time) {
         fluid.pressure[i] = 0;
         fluid.density[i] = phase.rest_density;
         fluid.enthalpy[i] = fluid_enthalpy(phase, phase.temperature);
+        fluid.smoke[i] = phase.gas ? 1 : 0;
         set_fluid_particle_state(phase, fluid, i);
         ++added;
       }

@@ -15,6 +15,7 @@ FluidState make_fluid_state(const FluidModel& fm) {
   s.inv_mass.assign(capacity, 0);
   s.mass.assign(capacity, 0);
   s.enthalpy.assign(capacity, 0);
+  s.smoke.assign(capacity, 0);
   s.viscosity.assign(capacity, 0);
   for (Index i = 0; i < s.count; ++i) {
     s.position[i] = fm.initial_position[i];
@@ -24,6 +25,7 @@ FluidState make_fluid_state(const FluidModel& fm) {
     s.mass[i] = fm.phases[s.phase[i]].particle_mass;
     const FluidPhase& phase = fm.phases[s.phase[i]];
     s.enthalpy[i] = fluid_enthalpy(phase, phase.temperature);
+    s.smoke[i] = phase.gas ? 1 : 0;
     set_fluid_particle_state(phase, s, i);
   }
   s.next_id = s.count;

@@ -46,6 +46,7 @@ struct FluidState {
   std::vector<Real> density;             // kg/m^3 at the last evaluation
   std::vector<Real> enthalpy;            // J/kg, specific (fluid_heat.hpp; unused unless the model is thermal)
   std::vector<Real> viscosity;           // m^2/s, kinematic: the phase's, or its state's (fluid_heat.hpp)
+  std::vector<Real> smoke;               // a gas's marker concentration, 1 as released (ambient_air.hpp; 0 for liquids)
 
   // Collider wall samples in world space at the time of the current substep.
   std::vector<Vec3> boundary_position;

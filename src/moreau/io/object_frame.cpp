@@ -19,11 +19,12 @@ ObjectFrame triangle_frame(const TriangleMesh& mesh, std::vector<VtkPointArray> 
 }
 
 // Live particles of one fluid phase: position, velocity, density, pressure, stable id, radius;
-// with heat (fluid_heat.hpp) also temperature and liquid fraction.
+// with heat (fluid_heat.hpp) also temperature and liquid fraction; a gas (ambient_air.hpp) also its
+// smoke concentration.
 ObjectFrame fluid_frame(const Model& model, const ObjectInfo& object, const FluidState& fluid) {
   const FluidPhase& phase = model.fluid.phases[object.fluid_phase];
   std::vector<Vec3> x, v;
-  std::vector<Real> density, pressure, id, temperature, liquid_fraction;
+  std::vector<Real> density, pressure, id, temperature, liquid_fraction, smoke;
   for (Index i = 0; i < fluid.count; ++i) {
     if (fluid.phase[i] != object.fluid_phase) continue;
     x.push_back(fluid.position[i]);
@@ -35,6 +36,7 @@ ObjectFrame fluid_frame(const Model& model, const ObjectInfo& object, const Flui
       temperature.push_back(fluid_temperature(phase, fluid.enthalpy[i]));
       liquid_fraction.push_back(fluid_liquid_fraction(phase, fluid.enthalpy[i]));
     }
+    if (phase.gas) smoke.push_back(fluid.smoke[i]);
   }
   const std::size_t n = x.size();
   ObjectFrame f{.points = std::move(x),
@@ -47,6 +49,7 @@ ObjectFrame fluid_frame(const Model& model, const ObjectInfo& object, const Flui
     f.point_scalars.push_back({"temperature", std::move(temperature)});
     f.point_scalars.push_back({"liquid_fraction", std::move(liquid_fraction)});
   }
+  if (phase.gas) f.point_scalars.push_back({"smoke", std::move(smoke)});
   return f;
 }
 

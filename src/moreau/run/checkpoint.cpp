@@ -24,7 +24,8 @@ constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
 // 3: and the fluid's force and torque on each rigid body over the last step.
 // 4: the fluid's force on every immersed solid and the solids' forces on the fluid over the last step.
 // 5: each fluid particle's enthalpy and viscosity (fluid_heat.hpp).
-constexpr std::uint32_t kFormatVersion = 5;
+// 6: each fluid particle's smoke concentration (ambient_air.hpp).
+constexpr std::uint32_t kFormatVersion = 6;
 
 // The checksum of a checkpoint's header and state.
 std::uint64_t checksum(const std::string& header, const std::string& state) { return fnv1a(state, fnv1a(header)); }

@@ -82,6 +82,7 @@ FluidGasSpec read_gas(const JsonObject& gas) {
   FluidGasSpec spec;
   spec.drag = gas.number("drag", spec.drag);
   spec.wind = read_vector(gas, "wind", spec.wind);
+  spec.mixing = gas.number("mixing", spec.mixing);
   gas.finish();
   return spec;
 }
@@ -197,6 +198,7 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
     phase.gas = true;
     phase.gas_drag = g.number("drag", spec.gas->drag, Range::non_negative());
     phase.wind = g.vector("wind", spec.gas->wind);
+    phase.gas_mixing = g.number("mixing", spec.gas->mixing, Range::non_negative());
     fm.gas = fm.buoyant = true;
   }
 

@@ -228,7 +228,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   };
   auto finish_fluids = [&] {
     apply_fluid_velocity_corrections(model, fluid, work.fluid, dt);
-    apply_ambient_air_drag(model, fluid, dt);
+    apply_ambient_air(model, fluid, dt);
     apply_fluid_surface_tension(model, fluid, work.fluid, dt);
     lap(XpbdStage::fluid_velocity);
     if (model.fluid.thermal) {
