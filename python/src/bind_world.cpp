@@ -69,7 +69,7 @@ constexpr const char* kArrayDoc = R"(One array of the current state as a (count,
 
 The array is a view into the engine's storage (no copy): it follows the state as the World steps,
 and writing a writable array (e.g. particle.velocity) changes the state the next step starts
-from. Read-only arrays (fluid.position, fluid.density, fluid.pressure) raise on writing. The view
+from. Read-only arrays (fluid.position, fluid.density, fluid.pressure, fluid.enthalpy) raise on writing. The view
 keeps the World alive. Its length is the item count when it was taken: a fluid with emitters has
 more live particles later, so take it again after steps. array_units() gives each array's unit.
 
@@ -78,7 +78,8 @@ Names by engine:
                      (rad/s); body.position (m), body.orientation (unit quaternion x y z w),
                      body.velocity (m/s), body.angular_velocity (rad/s, world frame);
                      fluid.position (m), fluid.velocity (m/s), fluid.density (kg/m^3),
-                     fluid.pressure (Pa), in the order of a space-filling curve
+                     fluid.pressure (Pa), fluid.enthalpy (J/kg), fluid.smoke (a gas's smoke
+                     concentration), in the order of a space-filling curve
   fem                solid.displacement (m), solid.velocity (m/s); body.director_state (24 values:
                      x, d1, d2, d3, v, v_d1, v_d2, v_d3)
   flow               flow.solution: the velocity (m/s) then the pressure (Pa) per node

@@ -44,6 +44,8 @@ def test_read_only_arrays_refuse_writes(root):
     world.array("fluid.velocity")[0, 0] = 0.0  # writable
     with pytest.raises(ValueError):
         world.array("fluid.position")[0, 0] = 1.0
+    with pytest.raises(ValueError):
+        world.array("fluid.enthalpy")[0] = 1.0
     with pytest.raises(moreau.InputError, match="fluid.position"):
         world.array("no.such.array")
 

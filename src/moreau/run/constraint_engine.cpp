@@ -179,7 +179,11 @@ std::vector<StateArray> ConstraintEngine::state_arrays() {
           state_array("fluid.position", "m", f.position, fluid, false),
           state_array("fluid.velocity", "m/s", f.velocity, fluid, true),
           state_array("fluid.density", "kg/m^3", f.density, fluid, false),
-          state_array("fluid.pressure", "Pa", f.pressure, fluid, false)};
+          state_array("fluid.pressure", "Pa", f.pressure, fluid, false),
+          // The enthalpy sets a particle's viscosity and solid state, which the heat stage derives
+          // from it once per step: read only. The smoke concentration is a marker: writable.
+          state_array("fluid.enthalpy", "J/kg", f.enthalpy, fluid, false),
+          state_array("fluid.smoke", "", f.smoke, fluid, true)};
 }
 
 std::string ConstraintEngine::summary() const {
