@@ -46,26 +46,32 @@ std::string xpbi_refusal(const Model& model) { return no_suction_cups("xpbi", mo
 // A shape-matching cluster of n particles has n^2 Jacobian blocks under nmd (shape_match_rows.hpp).
 constexpr Index kMaxNmdClusterSize = 512;
 
+// The refusal naming the first fluid whose phase holds what `solver` does not simulate, or "".
+template <class Holds>
+std::string fluid_refusal(std::string_view solver, const Model& model, Holds holds, std::string_view what,
+                          std::string_view advice) {
+  for (const ObjectInfo& o : model.objects)
+    if (o.kind == ObjectKind::fluid && holds(model.fluid.phases[o.fluid_phase]))
+      return fmt::format("the '{}' formulation does not simulate {}; {}", solver, fmt::format(fmt::runtime(what), o.name),
+                         advice);
+  return {};
+}
+
 // Melting and freezing fix solid fluid particles in place (fluid_heat.hpp), which the XPBD step
 // does; the velocity-level fluid rows do not.
 std::string melting_refusal(std::string_view solver, const Model& model) {
-  for (const ObjectInfo& o : model.objects)
-    if (o.kind == ObjectKind::fluid && model.fluid.phases[o.fluid_phase].melting_point)
-      return fmt::format("the '{}' formulation does not simulate melting and freezing ('{}' has a \"melting_point\"); "
-                         "run with \"solver\": \"xpbd\" (heat conduction alone runs under every formulation)",
-                         solver, o.name);
-  return {};
+  return fluid_refusal(
+      solver, model, [](const FluidPhase& p) { return p.melting_point.has_value(); },
+      "melting and freezing ('{}' has a \"melting_point\")",
+      "run with \"solver\": \"xpbd\" (heat conduction alone runs under every formulation)");
 }
 
 // A gas in open air is dragged with the density of the XPBD step's last density evaluation
 // (ambient_air.hpp); the velocity-level fluid rows keep no such density.
 std::string gas_refusal(std::string_view solver, const Model& model) {
-  for (const ObjectInfo& o : model.objects)
-    if (o.kind == ObjectKind::fluid && model.fluid.phases[o.fluid_phase].gas)
-      return fmt::format("the '{}' formulation does not simulate a gas in open air ('{}' has a \"gas\" entry); "
-                         "run with \"solver\": \"xpbd\"",
-                         solver, o.name);
-  return {};
+  return fluid_refusal(
+      solver, model, [](const FluidPhase& p) { return p.gas; }, "a gas in open air ('{}' has a \"gas\" entry)",
+      "run with \"solver\": \"xpbd\"");
 }
 
 std::string nmd_refusal(const Model& model) {
