@@ -306,7 +306,7 @@ struct FluidThermalSpec {
 struct FluidGasSpec {
   double drag = 10;   // 1/s, k: the air's drag on a particle with no neighbours is k (1 - 1/pi) (v - wind)
   Vector3 wind{};     // m/s, the air's velocity
-  double mixing = 0;  // 1/s, c: the air mixes into a lone particle's smoke and heat at c (1 - 1/pi)
+  double mixing = 0;  // 1/s, m: the air dilutes a lone particle's smoke (and heat, with an expansion) at m (1 - 1/pi)
 };
 
 /// "kind": "fluid": particles on a lattice of spacing 2 r filling a block, blocks or a closed OBJ

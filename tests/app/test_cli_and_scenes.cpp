@@ -174,9 +174,11 @@ TEST(CommandLine, FluidHeatAndGasInputErrorsNameTheirKey) {
                    {"objects[1].thermal.reference_temperature", "expansion"});
   expect_bad_input("expansion_huge", scene(R"(, "thermal": {"expansion": 2, "reference_temperature": 300})"),
                    {"objects[1].thermal.expansion", "out of range"});
+  expect_bad_input("expansion_too_warm",
+                   scene(R"(, "thermal": {"temperature": 500, "expansion": 0.004, "reference_temperature": 300})"),
+                   {"objects[1].thermal.expansion", "0.8", "more than half"});
   expect_bad_input("gas_key", scene(R"(, "gas": {"breeze": [1, 0, 0]})"), {"objects[1].gas.breeze", "unknown key", "wind"});
   expect_bad_input("gas_drag", scene(R"(, "gas": {"drag": -1})"), {"objects[1].gas.drag", "out of range"});
-  expect_bad_input("gas_nmd", scene(R"(, "gas": {})", "", "nmd"), {"settings.solver", "gas in open air", "'w'"});
   const std::string probe = R"(, "probes": [{"name": "t", "type": "temperature", "object": "w"}]})";
   std::string no_heat = scene("");
   no_heat.replace(no_heat.size() - 1, 1, probe);

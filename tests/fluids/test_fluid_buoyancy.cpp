@@ -96,7 +96,7 @@ TEST(FluidBuoyancy, AWarmBlobRisesWithThePotentialFlowAccelerationOfItsTemperatu
       EXPECT_NEAR(a / a30, 2, 0.06);
     }
   }
-  EXPECT_LT(std::abs(twin_rise), 3e-5);  // a tenth of the 30 K blob's rise
+  EXPECT_LT(std::abs(twin_rise), 2e-5);  // a sixth of the 30 K blob's rise (1.18e-4 m); measured 1.05e-5
 }
 
 }  // namespace

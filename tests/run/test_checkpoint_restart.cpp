@@ -3,7 +3,8 @@
 // checkpoint of each, which hold every field of the state (contacts, warm starts, neighbour
 // lists, the flow's history and lagged preconditioner) — and the continued output directory
 // holds the same probes.csv and frames as the uninterrupted run's. Every engine and solver:
-// XPBD with every material, rigid bodies, a fluid, a freezing fluid, nmd with suction cups (warm starts), xpbi sand
+// XPBD with every material, rigid bodies, a fluid, a freezing fluid, smoke in open air (its
+// concentration), nmd with suction cups (warm starts), xpbi sand
 // under a rigid wheel, FEM solids with rigid bodies and joints, and a transient flow with the
 // direct and the GMRES solver.
 #include <gtest/gtest.h>

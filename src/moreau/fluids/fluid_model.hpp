@@ -41,7 +41,7 @@ struct FluidPhase {
   // A gas in open air (ambient_air.hpp): weightless but for its buoyancy, dragged toward the wind.
   bool gas = false;
   Real gas_drag = 0;               // k, 1/s
-  Real gas_mixing = 0;             // c, 1/s: the air dilutes the smoke and brings it to T_ref
+  Real gas_mixing = 0;             // m, 1/s: the air dilutes the smoke (and a buoyant gas's heat)
   Vec3 wind = Vec3::Zero();        // m/s
 };
 

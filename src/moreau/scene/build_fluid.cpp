@@ -201,6 +201,15 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
     phase.gas_mixing = g.number("mixing", spec.gas->mixing, Range::non_negative());
     fm.gas = fm.buoyant = true;
   }
+  // A liquid's Boussinesq weight m g (1 - beta (T - T_ref)) holds for small beta (T - T_ref); a gas
+  // in open air's -beta (T - T_ref) g is exact for an ideal gas (ambient_air.hpp).
+  if (const Real change = phase.expansion * (phase.temperature - phase.reference_temperature);
+      !phase.gas && std::abs(change) > 0.5)
+    place.at("thermal").fail("expansion", fmt::format("expansion x (temperature - reference_temperature) = {:.3g}: the "
+                                                      "Boussinesq weight m g (1 - beta (T - T_ref)) would change by more "
+                                                      "than half; allowed: at most 0.5 in size (a \"gas\" in open air "
+                                                      "has no such limit)",
+                                                      change));
 
   if (fm.viscosity_solver == ViscositySolver::explicit_update && model.settings.dt > explicit_viscosity_limit(fm, phase))
     place.fail("viscosity", fmt::format("explicit viscosity (settings.fluid.viscosity_solver) needs dt <= 0.125 h^2 / nu = "

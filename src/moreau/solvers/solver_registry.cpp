@@ -66,18 +66,9 @@ std::string melting_refusal(std::string_view solver, const Model& model) {
       "run with \"solver\": \"xpbd\" (heat conduction alone runs under every formulation)");
 }
 
-// A gas in open air is dragged with the density of the XPBD step's last density evaluation
-// (ambient_air.hpp); the velocity-level fluid rows keep no such density.
-std::string gas_refusal(std::string_view solver, const Model& model) {
-  return fluid_refusal(
-      solver, model, [](const FluidPhase& p) { return p.gas; }, "a gas in open air ('{}' has a \"gas\" entry)",
-      "run with \"solver\": \"xpbd\"");
-}
-
 std::string nmd_refusal(const Model& model) {
   if (std::string why = continuum_refusal("nmd", model); !why.empty()) return why;
   if (std::string why = melting_refusal("nmd", model); !why.empty()) return why;
-  if (std::string why = gas_refusal("nmd", model); !why.empty()) return why;
   const ShapeMatchClusters& clusters = model.shape_matching;
   for (Index k = 0; k < clusters.size(); ++k) {
     const Index size = clusters.offsets[k + 1] - clusters.offsets[k];

@@ -9,6 +9,7 @@
 #include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/fluid_motion.hpp"
 #include "moreau/fluids/fluid_neighbors.hpp"
+#include "moreau/fluids/ambient_air.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
@@ -198,6 +199,7 @@ void ConstraintFluid::finish_step(const Model& model, State& state, Real dt, Rea
   {
     apply_implicit_fluid_viscosity(model, state.fluid, scratch_, dt);
     apply_fluid_velocity_corrections(model, state.fluid, scratch_, dt);
+    apply_ambient_air(model, state.fluid, dt);
     apply_fluid_surface_tension(model, state.fluid, scratch_, dt);
     apply_fluid_heat(model, state.fluid, scratch_, dt);
   }
