@@ -46,24 +46,15 @@ std::string xpbi_refusal(const Model& model) { return no_suction_cups("xpbi", mo
 // A shape-matching cluster of n particles has n^2 Jacobian blocks under nmd (shape_match_rows.hpp).
 constexpr Index kMaxNmdClusterSize = 512;
 
-// The refusal naming the first fluid whose phase holds what `solver` does not simulate, or "".
-template <class Holds>
-std::string fluid_refusal(std::string_view solver, const Model& model, Holds holds, std::string_view what,
-                          std::string_view advice) {
-  for (const ObjectInfo& o : model.objects)
-    if (o.kind == ObjectKind::fluid && holds(model.fluid.phases[o.fluid_phase]))
-      return fmt::format("the '{}' formulation does not simulate {}; {}", solver, fmt::format(fmt::runtime(what), o.name),
-                         advice);
-  return {};
-}
-
 // Melting and freezing fix solid fluid particles in place (fluid_heat.hpp), which the XPBD step
 // does; the velocity-level fluid rows do not.
 std::string melting_refusal(std::string_view solver, const Model& model) {
-  return fluid_refusal(
-      solver, model, [](const FluidPhase& p) { return p.melting_point.has_value(); },
-      "melting and freezing ('{}' has a \"melting_point\")",
-      "run with \"solver\": \"xpbd\" (heat conduction alone runs under every formulation)");
+  for (const ObjectInfo& o : model.objects)
+    if (o.kind == ObjectKind::fluid && model.fluid.phases[o.fluid_phase].melting_point)
+      return fmt::format("the '{}' formulation does not simulate melting and freezing ('{}' has a \"melting_point\"); "
+                         "run with \"solver\": \"xpbd\" (heat conduction alone runs under every formulation)",
+                         solver, o.name);
+  return {};
 }
 
 std::string nmd_refusal(const Model& model) {

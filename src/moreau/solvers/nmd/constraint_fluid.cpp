@@ -4,12 +4,12 @@
 #include <cmath>
 #include <limits>
 
+#include "moreau/fluids/ambient_air.hpp"
 #include "moreau/fluids/density_constraint.hpp"
 #include "moreau/fluids/fluid_emitter.hpp"
 #include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/fluid_motion.hpp"
 #include "moreau/fluids/fluid_neighbors.hpp"
-#include "moreau/fluids/ambient_air.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/solid_coupling.hpp"

@@ -6,10 +6,10 @@
 #include <cmath>
 
 #include "moreau/solvers/xpbd/project_fluid_density.hpp"
+#include "moreau/fluids/ambient_air.hpp"
 #include "moreau/fluids/fluid_emitter.hpp"
 #include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/fluid_motion.hpp"
-#include "moreau/fluids/ambient_air.hpp"
 #include "moreau/fluids/fluid_neighbors.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
