@@ -295,7 +295,7 @@ Real gyration_ratio(const FluidState& f) {
 
 Scene weightless_bar(Real surface_tension) {
   return test::scene_from_json(fmt::format(R"({{"name": "bar", "settings": {{"dt": 0.002, "substeps": 2, "iterations": 2, "gravity": [0, 0, 0]}},
-    "objects": [{{"name": "water", "kind": "fluid", "particle_radius": 0.005, "surface_tension": {},
+    "objects": [{{"name": "water", "kind": "fluid", "particle_radius": 0.005, "xsph": 0.3, "surface_tension": {},
       "block": {{"min": [-0.1, -0.025, -0.025], "max": [0.1, 0.025, 0.025]}}}}]}})",
                                            surface_tension));
 }
@@ -304,17 +304,20 @@ TEST(FluidSurfaceTension, WeightlessBarOfWaterPullsItselfIntoASphere) {
   // Zero gravity: a 0.2 x 0.05 x 0.05 m bar (500 particles) has nothing to change its shape but
   // surface tension, which minimises the surface: the bar must round up into a ball (gyration
   // ratio 4.08 -> 1), without surface tension it must keep its shape, and the pair forces are equal
-  // and opposite, so the momentum stays zero.
-  Scene plain = weightless_bar(0), tense = weightless_bar(2);
+  // and opposite, so the momentum stays zero. gamma = 2.5 N/m gives the ball of the bar's volume
+  // (R = 4.9 cm) an l = 2 period of 0.5 s. Strong XSPH smoothing (0.3) damps the retraction: the
+  // drop's own oscillation is lightly damped (ratio 0.06), and a bar of 4:1 overshoots into a
+  // sloshing ball instead (ratio between 1.07 and 1.8 over 3 s, measured).
+  Scene plain = weightless_bar(0), tense = weightless_bar(2.5);
   EXPECT_NEAR(gyration_ratio(tense.state.fluid), std::sqrt(399.0 / 24), 1e-9);
   run_steps(plain, 500);
-  run_steps(tense, 500);  // 1 s: about two capillary oscillation periods at gamma = 2
+  run_steps(tense, 500);  // 1 s
   const Real ratio_plain = gyration_ratio(plain.state.fluid), ratio_tense = gyration_ratio(tense.state.fluid);
   const Vec3 p = linear_momentum(tense.model, tense.state, -1);
   std::printf("gyration ratio after 1 s: %.3f without, %.3f with surface tension; momentum %.2e kg m/s\n", ratio_plain,
               ratio_tense, p.norm());
-  EXPECT_GT(ratio_plain, 3.5);   // measured 3.69: the unilateral constraint only relaxes edges and corners
-  EXPECT_LT(ratio_tense, 1.15);  // a ball up to the remaining capillary oscillation (measured 1.07)
+  EXPECT_GT(ratio_plain, 3.5);   // measured 3.99: the unilateral constraint only relaxes edges and corners
+  EXPECT_LT(ratio_tense, 1.1);   // a ball (measured 1.018; 1.016-1.025 from 1 to 3 s)
   EXPECT_LT(p.norm(), 1e-12);    // round-off of 500 particles' sums (momentum scale 0.5 kg * 0.1 m/s)
 }
 

@@ -24,7 +24,7 @@ struct FluidPhase {
   Real particle_mass = 0;          // kg, rho0 V
   Real xsph = 0;                   // XSPH velocity smoothing c, applied once per step (dimensionless)
   Real viscosity = 0;              // kinematic viscosity nu, m^2/s
-  Real surface_tension = 0;        // gamma of Akinci et al. 2013, m/s^2 (see surface_tension.hpp)
+  Real surface_tension = 0;        // gamma, N/m (surface_tension.hpp)
   Real vorticity = 0;              // vorticity-confinement strength epsilon, m/s (see fluid_velocity.hpp)
   Real relaxation = 0;             // epsilon of the density constraint, 1/(kg m^2) (scaled, see density_constraint.hpp)
   Real compliance = 0;             // eps of the density row under "nmd", 1/J: 1 / (K V) (solvers/nmd/constraint_fluid.hpp)

@@ -12,6 +12,10 @@ Real cohesion_spline(Real r, Real h) {
   return 2 * r > h ? scale * a : scale * (2 * a - std::pow(h, 6) / 64);
 }
 
+Real capillary_time_step(Real rest_density, Real spacing, Real surface_tension) {
+  return std::sqrt(rest_density * spacing * spacing * spacing / (2 * kPi * surface_tension));
+}
+
 void apply_fluid_surface_tension(const Model& model, FluidState& fluid, FluidScratch& scratch, Real dt) {
   const FluidModel& fm = model.fluid;
   bool any = false;
@@ -19,6 +23,8 @@ void apply_fluid_surface_tension(const Model& model, FluidState& fluid, FluidScr
   if (!any) return;
   const CubicSplineKernel& kernel = fm.kernel;
   const Real h = kernel.h, V = fm.particle_volume;
+  // The forces per unit gamma (N/m): a_coh V^2 / h^2 C(r) and a_curv h (n_i - n_j) (see the header).
+  const Real cohesion_scale = kCohesionWeight * V * V / (h * h), curvature_scale = kCurvatureWeight * h;
   const Index n = fluid.count;
   std::vector<Vec3>& normal = scratch.correction;  // free between steps
   std::vector<Vec3>& v_new = scratch.reorder_vec;
@@ -34,7 +40,7 @@ void apply_fluid_surface_tension(const Model& model, FluidState& fluid, FluidScr
     }
   };
 
-  // n_i = h V sum_j grad W(x_i - x_j) over the same phase (Akinci's sign; see the header).
+  // n_i = h V sum_j grad W(x_i - x_j) over the same phase: dimensionless, ~0 inside the fluid.
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
     Vec3 sum = Vec3::Zero();
@@ -47,16 +53,15 @@ void apply_fluid_surface_tension(const Model& model, FluidState& fluid, FluidScr
     const FluidPhase& phase = fm.phases[fluid.phase[i]];
     v_new[i] = fluid.velocity[i];
     if (phase.surface_tension <= 0 || fluid.inv_mass[i] == 0) continue;  // none, or a solid particle at rest
-    const Real gamma = phase.surface_tension, rho0 = phase.rest_density, m_i = fluid.mass[i];
+    const Real gamma = phase.surface_tension, rho0 = phase.rest_density;
     Vec3 force = Vec3::Zero();
     for_each_same_phase_pair(i, [&](Index j, const Vec3& r, Real d) {
-      const Real m_j = fluid.mass[j];
       const Real symmetry = 2 * rho0 / (fluid.density[i] + fluid.density[j]);
-      const Vec3 cohesion = -gamma * m_i * m_j * cohesion_spline(d, h) / d * r;
-      const Vec3 curvature = -gamma * 0.5 * (m_i + m_j) * (normal[i] - normal[j]);
+      const Vec3 cohesion = -cohesion_scale * cohesion_spline(d, h) / d * r;
+      const Vec3 curvature = -curvature_scale * (normal[i] - normal[j]);
       force += symmetry * (cohesion + curvature);
     });
-    v_new[i] += dt / m_i * force;
+    v_new[i] += dt * fluid.inv_mass[i] * gamma * force;
   }
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) fluid.velocity[i] = v_new[i];

@@ -9,6 +9,7 @@
 #include "moreau/fluids/density_constraint.hpp"
 #include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/solid_sampling.hpp"
+#include "moreau/fluids/surface_tension.hpp"
 #include "moreau/geometry/point_in_mesh.hpp"
 #include "moreau/scene/memory_estimate.hpp"
 #include "moreau/scene/spec_builders.hpp"
@@ -217,6 +218,14 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
                                         "use the implicit solver (\"auto\" or \"implicit\"), or lower the viscosity or dt",
                                         explicit_viscosity_limit(fm, phase), fm.kernel.h, largest_viscosity(phase),
                                         model.settings.dt));
+
+  if (phase.surface_tension > 0 && model.settings.dt > capillary_time_step(phase.rest_density, d, phase.surface_tension))
+    place.fail("surface_tension",
+               fmt::format("surface tension {} N/m needs dt <= sqrt(rho0 (2r)^3 / (2 pi gamma)) = {:.3g} s to resolve the "
+                           "capillary waves on the particle spacing 2r = {} m; settings.dt is {} s: lower dt or the "
+                           "surface tension, or use larger particles",
+                           phase.surface_tension, capillary_time_step(phase.rest_density, d, phase.surface_tension), d,
+                           model.settings.dt));
 
   std::vector<Vec3> points;
   const int sources = spec.block.has_value() + !spec.blocks.empty() + !spec.mesh.empty();
