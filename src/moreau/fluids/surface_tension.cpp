@@ -6,12 +6,6 @@
 
 namespace moreau {
 
-Real cohesion_spline(Real r, Real h) {
-  if (r <= 0 || r > h) return 0;
-  const Real scale = 32 / (kPi * std::pow(h, 9)), a = (h - r) * (h - r) * (h - r) * r * r * r;
-  return 2 * r > h ? scale * a : scale * (2 * a - std::pow(h, 6) / 64);
-}
-
 Real capillary_time_step(Real rest_density, Real spacing, Real surface_tension) {
   return std::sqrt(rest_density * spacing * spacing * spacing / (2 * kPi * surface_tension));
 }
@@ -24,6 +18,7 @@ void apply_fluid_surface_tension(const Model& model, FluidState& fluid, FluidScr
   const CubicSplineKernel& kernel = fm.kernel;
   const Real h = kernel.h, V = fm.particle_volume;
   // The forces per unit gamma (N/m): a_coh V^2 / h^2 C(r) and a_curv h (n_i - n_j) (see the header).
+  const CohesionSpline spline(h);
   const Real cohesion_scale = kCohesionWeight * V * V / (h * h), curvature_scale = kCurvatureWeight * h;
   const Index n = fluid.count;
   std::vector<Vec3>& normal = scratch.correction;  // free between steps
@@ -57,7 +52,7 @@ void apply_fluid_surface_tension(const Model& model, FluidState& fluid, FluidScr
     Vec3 force = Vec3::Zero();
     for_each_same_phase_pair(i, [&](Index j, const Vec3& r, Real d) {
       const Real symmetry = 2 * rho0 / (fluid.density[i] + fluid.density[j]);
-      const Vec3 cohesion = -cohesion_scale * cohesion_spline(d, h) / d * r;
+      const Vec3 cohesion = -cohesion_scale * spline(d) / d * r;
       const Vec3 curvature = -curvature_scale * (normal[i] - normal[j]);
       force += symmetry * (cohesion + curvature);
     });

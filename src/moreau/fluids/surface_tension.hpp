@@ -34,6 +34,8 @@
 // Pairs of different phases do not attract (immiscible fluids), and walls do not attract the
 // liquid. The fluid's `pressure` (the density multipliers') includes the cohesive tension the
 // constraint holds: about 0.73 gamma / h more than the mechanical pressure inside the liquid.
+#include <cmath>
+
 #include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 
@@ -45,8 +47,18 @@ struct Model;
 inline constexpr Real kCohesionWeight = 27.4;
 inline constexpr Real kCurvatureWeight = 0.0548;
 
-/// Akinci's cohesion spline C(r) for support h, 1/m^3.
-Real cohesion_spline(Real r, Real h);
+/// Akinci's cohesion spline C(r) (1/m^3) for support h, with its constants computed once.
+struct CohesionSpline {
+  Real h, scale, core;  // h; 32 / (pi h^9); h^6 / 64
+  explicit CohesionSpline(Real support)
+      : h(support), scale(32 / (kPi * std::pow(support, 9))), core(std::pow(support, 6) / 64) {}
+  Real operator()(Real r) const {
+    if (r <= 0 || r > h) return 0;
+    const Real a = (h - r) * (h - r) * (h - r) * r * r * r;
+    return 2 * r > h ? scale * a : scale * (2 * a - core);
+  }
+};
+
 
 /// The largest step (s) that resolves the capillary waves on the lattice spacing s (m) of a fluid
 /// of rest density rho0 (kg/m^3) and surface tension gamma (N/m): sqrt(rho0 s^3 / (2 pi gamma)).
