@@ -317,8 +317,8 @@ struct FluidSpec {
   double density = 1000;             // kg/m^3
   double viscosity = 1.0e-3;         // Pa s
   double xsph = 0.01;                // [0, 1]
-  double vorticity = 0;
-  double surface_tension = 0;
+  double vorticity = 0;              // m/s
+  double surface_tension = 0;        // N/m, gamma against air
   double relaxation = 0.01;          // [0, 1e6]
   double bulk_modulus = 2.2e9;       // Pa, K of the density rows under "nmd" (water: 2.2e9)
   std::optional<FluidBlock> block;

@@ -9,7 +9,7 @@
 //   curvature        F_ij = -a_curv gamma h (n_i - n_j)
 //   symmetrisation   K_ij = 2 rho0 / (rho_i + rho_j)           (stronger where the fluid is sparse)
 //   v_i += dt / m_i sum_j K_ij (F_cohesion + F_curvature)
-// with Akinci's cohesion spline (support h; attracting beyond about h/2, repelling closer)
+// with Akinci's cohesion spline (support h; repelling below 0.27 h, attracting beyond, strongest at h/2)
 //   C(r) = 32 / (pi h^9) * { (h - r)^3 r^3                 h/2 < r <= h
 //                           { 2 (h - r)^3 r^3 - h^6 / 64   0 < r <= h/2.
 // Both forces are gamma h times a function of r / h, so the model is the same at every particle
@@ -27,12 +27,16 @@
 // gamma 0.03-0.15 N/m, R / (2r) 10-20 and r 0.25-0.5 mm
 // (tests/fluids/test_fluid_surface_tension.cpp; docs/validation.md).
 //
-// It is explicit, so the step must resolve the fastest capillary wave on the particle scale
-// (Brackbill et al. 1992): dt <= sqrt(rho0 (2r)^3 / (2 pi gamma)) (capillary_time_step; the scene
-// reader enforces it). Measured: a 1 cm water drop at r = 0.5 mm is stable at 0.94 of that step
+// It is explicit, so the step must resolve the fastest capillary wave on the particle scale:
+// dt <= sqrt(rho0 (2r)^3 / (2 pi gamma)) (capillary_time_step; the scene reader enforces it). That is
+// Brackbill et al.'s (1992) limit with the liquid's density where they take the mean of the two
+// fluids' (here the air carries none), sqrt(2) longer than theirs. Measured: a 1 cm water drop at r = 0.5 mm is stable at 0.94 of that step
 // and falls apart at 1.7 of it.
-// Pairs of different phases do not attract (immiscible fluids), and walls do not attract the
-// liquid. The fluid's `pressure` (the density multipliers') includes the cohesive tension the
+// The pair forces are equal and opposite (the curvature term uses the pair's common weight), so
+// linear momentum is conserved. Sign: with grad W(r) = g(|r|) r, g < 0, the normal as written
+// points into the fluid; with the opposite sign the curvature term is anti-diffusive and a blob
+// blows apart. Pairs of different phases do not attract (immiscible fluids), and walls do not
+// attract the liquid. The fluid's `pressure` (the density multipliers') includes the cohesive tension the
 // constraint holds: about 0.73 gamma / h more than the mechanical pressure inside the liquid.
 #include <cmath>
 
