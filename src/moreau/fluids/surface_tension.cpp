@@ -6,6 +6,26 @@
 
 namespace moreau {
 
+namespace {
+
+// a_coh and a_curv (dimensionless; how they were chosen: surface_tension.hpp).
+constexpr Real kCohesionWeight = 27.4;
+constexpr Real kCurvatureWeight = 0.0548;
+
+// Akinci's cohesion spline C(r) (1/m^3) for support h, with its constants computed once.
+struct CohesionSpline {
+  Real h, scale, core;  // h; 32 / (pi h^9); h^6 / 64
+  explicit CohesionSpline(Real support)
+      : h(support), scale(32 / (kPi * std::pow(support, 9))), core(std::pow(support, 6) / 64) {}
+  Real operator()(Real r) const {
+    if (r <= 0 || r > h) return 0;
+    const Real a = (h - r) * (h - r) * (h - r) * r * r * r;
+    return 2 * r > h ? scale * a : scale * (2 * a - core);
+  }
+};
+
+}  // namespace
+
 Real capillary_time_step(Real rest_density, Real spacing, Real surface_tension) {
   return std::sqrt(rest_density * spacing * spacing * spacing / (2 * kPi * surface_tension));
 }

@@ -20,49 +20,31 @@
 // it acts only at the surface, which keeps the drop's oscillation lightly damped. The cohesion
 // binds the surface particles to the liquid (without it they leave a drop within 0.1 s), but it
 // also puts the liquid under a uniform tension that the density constraint must hold, and that
-// damps: a drop held by cohesion alone oscillates with a damping ratio near 0.4; with these
+// damps: a drop held by cohesion alone oscillates with a damping ratio near 0.45; with these
 // weights it is 0.05-0.15. Halving a_coh again lets particles escape (measured: 1 % of a drop).
-// a_coh and a_curv were then scaled together until the l = 2 oscillation of a drop matched
-// Rayleigh's omega^2 = 8 gamma / (rho0 R^3): measured within -2.2 % .. +3.3 % in frequency for
-// gamma 0.03-0.15 N/m, R / (2r) 10-20 and r 0.25-0.5 mm
+// The weights, a_coh = 27.4 and a_curv = 0.0548 (surface_tension.cpp), were then scaled together
+// until the l = 2 oscillation of a drop matched Rayleigh's omega^2 = 8 gamma / (rho0 R^3): measured
+// within -2.2 % .. +3.3 % in frequency for gamma 0.03-0.15 N/m, R / (2r) 10-20 and r 0.25-0.5 mm
 // (tests/fluids/test_fluid_surface_tension.cpp; docs/validation.md).
 //
 // It is explicit, so the step must resolve the fastest capillary wave on the particle scale:
 // dt <= sqrt(rho0 (2r)^3 / (2 pi gamma)) (capillary_time_step; the scene reader enforces it). That is
 // Brackbill et al.'s (1992) limit with the liquid's density where they take the mean of the two
-// fluids' (here the air carries none), sqrt(2) longer than theirs. Measured: a 1 cm water drop at r = 0.5 mm is stable at 0.94 of that step
-// and falls apart at 1.7 of it.
+// fluids' (here the air carries none), sqrt(2) longer than theirs. Measured: a 1 cm water drop at
+// r = 0.5 mm is stable at 0.94 of that step and falls apart at 1.7 of it.
 // The pair forces are equal and opposite (the curvature term uses the pair's common weight), so
 // linear momentum is conserved. Sign: with grad W(r) = g(|r|) r, g < 0, the normal as written
 // points into the fluid; with the opposite sign the curvature term is anti-diffusive and a blob
 // blows apart. Pairs of different phases do not attract (immiscible fluids), and walls do not
-// attract the liquid. The fluid's `pressure` (the density multipliers') includes the cohesive tension the
-// constraint holds: about 0.73 gamma / h more than the mechanical pressure inside the liquid.
-#include <cmath>
-
+// attract the liquid. The fluid's `pressure` (the density multipliers') includes the cohesive
+// tension the constraint holds: about 0.73 gamma / h more than the mechanical pressure inside the
+// liquid.
 #include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 
 namespace moreau {
 
 struct Model;
-
-/// a_coh and a_curv of the header (dimensionless).
-inline constexpr Real kCohesionWeight = 27.4;
-inline constexpr Real kCurvatureWeight = 0.0548;
-
-/// Akinci's cohesion spline C(r) (1/m^3) for support h, with its constants computed once.
-struct CohesionSpline {
-  Real h, scale, core;  // h; 32 / (pi h^9); h^6 / 64
-  explicit CohesionSpline(Real support)
-      : h(support), scale(32 / (kPi * std::pow(support, 9))), core(std::pow(support, 6) / 64) {}
-  Real operator()(Real r) const {
-    if (r <= 0 || r > h) return 0;
-    const Real a = (h - r) * (h - r) * (h - r) * r * r * r;
-    return 2 * r > h ? scale * a : scale * (2 * a - core);
-  }
-};
-
 
 /// The largest step (s) that resolves the capillary waves on the lattice spacing s (m) of a fluid
 /// of rest density rho0 (kg/m^3) and surface tension gamma (N/m): sqrt(rho0 s^3 / (2 pi gamma)).

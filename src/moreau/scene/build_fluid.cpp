@@ -219,13 +219,15 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
                                         explicit_viscosity_limit(fm, phase), fm.kernel.h, largest_viscosity(phase),
                                         model.settings.dt));
 
-  if (phase.surface_tension > 0 && model.settings.dt > capillary_time_step(phase.rest_density, d, phase.surface_tension))
-    place.fail("surface_tension",
-               fmt::format("surface tension {} N/m needs dt <= sqrt(rho0 (2r)^3 / (2 pi gamma)) = {:.3g} s to resolve the "
-                           "capillary waves on the particle spacing 2r = {} m; settings.dt is {} s: lower dt or the "
-                           "surface tension, or use larger particles",
-                           phase.surface_tension, capillary_time_step(phase.rest_density, d, phase.surface_tension), d,
-                           model.settings.dt));
+  if (phase.surface_tension > 0) {
+    const Real limit = capillary_time_step(phase.rest_density, d, phase.surface_tension);
+    if (model.settings.dt > limit)
+      place.fail("surface_tension",
+                 fmt::format("surface tension {} N/m needs dt <= sqrt(rho0 (2r)^3 / (2 pi gamma)) = {:.3g} s to resolve "
+                             "the capillary waves on the particle spacing 2r = {} m; settings.dt is {} s: lower dt or "
+                             "the surface tension, or use larger particles",
+                             phase.surface_tension, limit, d, model.settings.dt));
+  }
 
   std::vector<Vec3> points;
   const int sources = spec.block.has_value() + !spec.blocks.empty() + !spec.mesh.empty();
