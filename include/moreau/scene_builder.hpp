@@ -444,10 +444,11 @@ struct ShapeMatchedSpec {
 };
 
 /// A continuum's plastic flow: "drucker_prager" (sand), "von_mises" (metal, plasticine), "snow"
-/// (Stomakhin et al. 2013) or "herschel_bulkley" (foam, cream, mud, paste; Bingham for flow index
-/// 1); absent, the continuum is an elastic StVK-Hencky solid.
+/// (Stomakhin et al. 2013), "herschel_bulkley" (foam, cream, mud, paste; Bingham for flow index
+/// 1) or "maxwell" (a viscoelastic fluid: silly putty, slime); absent, the continuum is an elastic
+/// StVK-Hencky solid.
 struct ContinuumPlasticity {
-  std::string model;                         // drucker_prager, von_mises, snow, herschel_bulkley
+  std::string model;                         // drucker_prager, von_mises, snow, herschel_bulkley, maxwell
   std::optional<double> friction_angle_deg;  // drucker_prager (required), degrees
   double cohesion = 0;                       // drucker_prager: Pa, the isotropic tension it carries
   std::optional<double> yield_stress;        // von_mises (required): Pa, uniaxial
@@ -457,6 +458,7 @@ struct ContinuumPlasticity {
   std::optional<double> shear_yield_stress;  // herschel_bulkley (required): Pa, tau_y in simple shear
   std::optional<double> consistency;         // herschel_bulkley (required): Pa s^n, K
   double flow_index = 1;                     // herschel_bulkley: n (1: Bingham)
+  std::optional<double> relaxation_time;     // maxwell (required): s, lambda; shear viscosity mu lambda
 };
 
 /// "kind": "continuum": an inelastic (or elastic) continuum of particles on a cubic lattice of

@@ -198,7 +198,7 @@ TEST(XpbiContinuum, BadInputNamesItsPath) {
       {"xpbi", "", {"objects[0].youngs_modulus", "Young's modulus"}},
       {"xpbi", R"(, "youngs_modulus": 1e5, "poisson_ratio": 0.5)", {"objects[0].poisson_ratio", "out of range"}},
       {"xpbi", R"(, "youngs_modulus": 1e5, "plasticity": {"model": "cam_clay"})",
-       {"objects[0].plasticity.model", "drucker_prager, von_mises, snow, herschel_bulkley"}},
+       {"objects[0].plasticity.model", "drucker_prager, von_mises, snow, herschel_bulkley, maxwell"}},
       {"xpbi", R"(, "youngs_modulus": 1e5, "plasticity": {"model": "drucker_prager", "friction_angle_deg": 95})",
        {"objects[0].plasticity.friction_angle_deg", "out of range"}},
       {"xpbi", R"(, "youngs_modulus": 1e5, "plasticity": {"model": "von_mises"})", {"yield_stress"}},
@@ -208,6 +208,9 @@ TEST(XpbiContinuum, BadInputNamesItsPath) {
        R"(, "youngs_modulus": 1e5, "plasticity": {"model": "herschel_bulkley", "shear_yield_stress": 50,
           "consistency": 1, "flow_index": 0})",
        {"objects[0].plasticity.flow_index", "out of range"}},
+      {"xpbi", R"(, "youngs_modulus": 1e5, "plasticity": {"model": "maxwell"})", {"objects[0].plasticity", "relaxation_time"}},
+      {"xpbi", R"(, "youngs_modulus": 1e5, "plasticity": {"model": "maxwell", "relaxation_time": 0})",
+       {"objects[0].plasticity.relaxation_time", "out of range"}},
       {"xpbi", R"(, "youngs_modulus": 1e5, "spheres": [{"center": [0, 0.3, 0], "radius": 0.004}])",
        {"objects[0].spheres[0].radius", "at least one particle spacing (0.01 m) wide"}},
   };

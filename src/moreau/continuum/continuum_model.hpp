@@ -19,7 +19,8 @@ enum class PlasticModel {
   drucker_prager,  // sand: friction angle, cohesion
   von_mises,       // metal, plasticine: uniaxial yield stress
   snow,            // Stomakhin et al. 2013: stretches clamped, hardening with compaction
-  herschel_bulkley // foam, cream, mud: shear yield stress, consistency, flow index (Bingham: 1)
+  herschel_bulkley, // foam, cream, mud: shear yield stress, consistency, flow index (Bingham: 1)
+  maxwell           // silly putty, slime, polymer melts: elastic when quick, viscous when slow
 };
 
 struct ContinuumMaterial {
@@ -35,6 +36,7 @@ struct ContinuumMaterial {
   Real shear_yield_stress = 0;     // Pa (herschel_bulkley): tau_y in simple shear
   Real consistency = 0;            // Pa s^n (herschel_bulkley): K in tau = tau_y + K gamma'^n
   Real flow_index = 1;             // n (herschel_bulkley): 1 is a Bingham fluid
+  Real relaxation_time = 0;        // s (maxwell): lambda; the fluid's shear viscosity is mu lambda
 };
 
 struct ContinuumModel {

@@ -16,7 +16,7 @@ inline LameParameters continuum_lame(const ContinuumMaterial& m, Real plastic_vo
 }
 
 /// Z applied to trial principal stretches `sigma` reached over a step of h seconds (the rate
-/// matters to Herschel-Bulkley alone), with Lame parameters `lame` (continuum_lame).
+/// matters to Herschel-Bulkley and Maxwell), with Lame parameters `lame` (continuum_lame).
 inline PlasticReturn plastic_flow(const ContinuumMaterial& m, const LameParameters& lame, Vec3 sigma, Real h) {
   sigma = sigma.cwiseMax(kMinContinuumStretch);
   switch (m.plastic) {
@@ -25,6 +25,7 @@ inline PlasticReturn plastic_flow(const ContinuumMaterial& m, const LameParamete
     case PlasticModel::snow: return snow_return(m.critical_compression, m.critical_stretch, sigma);
     case PlasticModel::herschel_bulkley:
       return herschel_bulkley_return(lame, m.shear_yield_stress, m.consistency, m.flow_index, h, sigma);
+    case PlasticModel::maxwell: return maxwell_return(m.relaxation_time, h, sigma);
     case PlasticModel::none: break;
   }
   return {sigma, 0};

@@ -115,6 +115,30 @@ inline PlasticReturn herschel_bulkley_return(const LameParameters& m, Real shear
   return {returned.array().exp().matrix(), dgamma};
 }
 
+/// A Maxwell fluid (silly putty, slime, polymer melts) of relaxation time lambda: a spring of
+/// shear modulus mu in series with a dashpot of viscosity eta = mu lambda. The dashpot's flow is
+/// D_p = tau^ / (2 eta), so at rest the deviatoric Kirchhoff stress relaxes as d tau^/dt =
+/// -tau^ / lambda; in the Hencky strain, where tau^ = 2 mu eps^, the deviatoric strain relaxes alike
+/// and the volume is kept. Over a step h the relaxation is taken backward (implicit) Euler:
+///   eps^ <- eps^_trial / (1 + h / lambda),   dgamma = |eps^_trial| h / (lambda + h).
+/// This is the Herschel-Bulkley map above with tau_y = 0, n = 1 and K = mu lambda. Backward Euler
+/// keeps steady flow exact at any step: sheared at a rate gamma', a substep adds h gamma' / 2 to the
+/// shear strain eps_xy and the map divides it by 1 + h / lambda, whose fixed point eps_xy = lambda
+/// gamma' / 2 carries tau_xy = mu lambda gamma' = eta gamma' (the fluid is Newtonian with eta when
+/// lambda << h, and an elastic solid when lambda >> the time it is watched). A held strain decays
+/// as (1 + h / lambda)^(-t / h), which tends to exp(-t / lambda) as h / lambda -> 0. At small
+/// strains this is the upper-convected Maxwell model (Oldroyd 1950), whose conformation tensor is
+/// the elastic left Cauchy-Green tensor F F^T here, as in the conformation constraints of Barreiro,
+/// Garcia-Fernandez, Alduan, Otaduy 2017 ("Conformation constraints for efficient viscoelastic
+/// fluid simulation", SIGGRAPH Asia 2017); its relaxation acts on ln(F F^T) / 2 instead of F F^T.
+inline PlasticReturn maxwell_return(Real relaxation_time, Real h, const Vec3& sigma) {
+  const Vec3 eps = hencky_strain(sigma);
+  const Vec3 deviator = eps - (eps.sum() / 3) * Vec3::Ones();
+  const Real kept = relaxation_time / (relaxation_time + h);
+  const Vec3 returned = eps - (1 - kept) * deviator;
+  return {returned.array().exp().matrix(), (1 - kept) * deviator.norm()};
+}
+
 /// Snow after Stomakhin, Schroeder, Chai, Teran, Selle 2013 ("A material point method for snow
 /// simulation", SIGGRAPH 2013): the stretches are clamped to [1 - theta_c, 1 + theta_s] and what
 /// is clamped away becomes plastic; J_p grows by det(trial) / det(clamped). (The paper's elastic

@@ -30,7 +30,7 @@ std::vector<Vec3> in_z_order(const std::vector<Vec3>& points, Real spacing) {
 
 ContinuumPlasticity read_plasticity(const JsonObject& object) {
   ContinuumPlasticity p;
-  p.model = object.choice("model", {"drucker_prager", "von_mises", "snow", "herschel_bulkley"});
+  p.model = object.choice("model", {"drucker_prager", "von_mises", "snow", "herschel_bulkley", "maxwell"});
   if (p.model == "drucker_prager") {
     p.friction_angle_deg = object.number("friction_angle_deg");
     p.cohesion = object.number("cohesion", p.cohesion);
@@ -40,6 +40,8 @@ ContinuumPlasticity read_plasticity(const JsonObject& object) {
     p.shear_yield_stress = object.number("shear_yield_stress");
     p.consistency = object.number("consistency");
     p.flow_index = object.number("flow_index", p.flow_index);
+  } else if (p.model == "maxwell") {
+    p.relaxation_time = object.number("relaxation_time");
   } else {
     p.critical_compression = object.number("critical_compression", p.critical_compression);
     p.critical_stretch = object.number("critical_stretch", p.critical_stretch);
@@ -70,6 +72,9 @@ ContinuumMaterial continuum_material(const ContinuumSpec& spec, const SpecPlace&
     m.shear_yield_stress = at.number("shear_yield_stress", *p.shear_yield_stress, Range::non_negative());
     m.consistency = at.number("consistency", *p.consistency, Range::non_negative());
     m.flow_index = at.number("flow_index", p.flow_index, Range::positive());
+  } else if (p.model == "maxwell") {
+    m.plastic = PlasticModel::maxwell;
+    m.relaxation_time = at.number("relaxation_time", *p.relaxation_time, Range::positive());
   } else {
     m.plastic = PlasticModel::snow;
     m.critical_compression = at.number("critical_compression", p.critical_compression, Range::open(0, 1));
