@@ -24,6 +24,7 @@ GALLERY = [
     ("granular_column_collapse", None, None, "velocity"),
     ("fem_flying_l", 6, None, "velocity"),
     ("cylinder_re100", None, None, "velocity"),
+    ("putty_balls", 0.5, 0.4, "plastic_strain"),
 ]
 
 
