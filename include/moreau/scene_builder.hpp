@@ -345,6 +345,7 @@ struct RigidBodySpec {
   Vector3 angular_velocity{};             // rad/s
   ContactMaterial contact;
   bool fluid_coupling = true;
+  double fluid_friction = 0;              // the particle fluids' wall friction at its surface: 0 free slip, 1 no slip
 };
 
 /// A rod's centreline at rest: a helix about `axis` through `center` (the start lies at

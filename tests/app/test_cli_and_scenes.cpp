@@ -217,6 +217,19 @@ TEST(CommandLine, FluidInputErrorsNameTheirKey) {
   expect_bad_input("friction_range", with_fluid_settings("{}", R"({"name": "tank", "kind": "collider", "inside": true,
       "fluid_friction": 2, "shape": {"type": "box", "center": [0, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}}, )" + water),
                    {"objects[0].fluid_friction", "out of range"});
+  const std::string paddle = R"({"name": "paddle", "kind": "rigid_body", "position": [0.2, 0.3, 0],
+      "shape": {"type": "box", "half_extents": [0.01, 0.1, 0.1]}, )";
+  expect_bad_input("body_friction_explicit",
+                   with_fluid_settings(R"({"viscosity_solver": "explicit"})",
+                                       tank + ", " + water + ", " + paddle + R"("fluid_friction": 1})"),
+                   {"objects[2].fluid_friction", "implicit"});
+  expect_bad_input("body_friction_range", with_fluid_settings("{}", tank + ", " + water + ", " + paddle + R"("fluid_friction": -1})"),
+                   {"objects[2].fluid_friction", "out of range"});
+  expect_bad_input("body_friction_uncoupled",
+                   with_fluid_settings("{}", tank + ", " + water + ", " + paddle + R"("fluid_friction": 1, "fluid_coupling": false})"),
+                   {"objects[2].fluid_friction", "fluid_coupling"});
+  expect_bad_input("body_friction_no_fluid", with_fluid_settings("{}", tank + ", " + paddle + R"("fluid_friction": 1})"),
+                   {"objects[1].fluid_friction", "no particle fluid"});
   expect_bad_input("bulk_modulus", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "bulk_modulus": 0,
       "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})"),
                    {"objects[1].bulk_modulus", "out of range"});

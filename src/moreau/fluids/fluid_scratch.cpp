@@ -10,8 +10,10 @@ void FluidScratch::fit(const FluidModel& fm) {
   const bool implicit_viscosity = fm.viscosity_solver == ViscositySolver::implicit_solve;
   const std::size_t solve_size = implicit_viscosity ? capacity : 0;
   const std::size_t heat_size = fm.thermal ? capacity : 0;
+  const bool rough_solids = implicit_viscosity && fm.solid.any_friction;
+  const std::size_t rough_samples = rough_solids ? samples : 0, rough_size = rough_solids ? capacity : 0;
   if (lambda.size() == capacity && solid_reaction.size() == samples && solid_share.size() == coupled &&
-      solve_residual.size() == solve_size && temperature.size() == heat_size)
+      solve_residual.size() == solve_size && temperature.size() == heat_size && stress_slope.size() == rough_size)
     return;
   substep_start.assign(capacity, Vec3::Zero());
   lambda.assign(capacity, 0);
@@ -33,6 +35,10 @@ void FluidScratch::fit(const FluidModel& fm) {
   wall_sum.assign(solve_size, Vec3::Zero());
   wall_velocity_sum.assign(solve_size, Mat3::Zero());
   velocity_gradient.assign(solve_size, Mat3::Zero());
+  solid_wall_velocity.assign(rough_samples, Vec3::Zero());
+  solid_wall_normal.assign(rough_samples, Vec3::Zero());
+  solid_viscous_force.assign(rough_samples, Vec3::Zero());
+  stress_slope.assign(rough_size, {Mat3::Zero(), Mat3::Zero(), Mat3::Zero()});
   for (std::vector<Vec3>* v : {&solve_residual, &solve_shadow, &solve_direction, &solve_direction_image,
                                 &solve_preconditioned, &solve_intermediate, &solve_intermediate_image})
     v->assign(solve_size, Vec3::Zero());

@@ -3,6 +3,7 @@
 // step reads: a solver keeps them in its workspace, next to the FluidState. Per-particle arrays
 // hold the fluid's capacity and move with the particles when the neighbour search re-sorts them
 // (substep_start) or are rewritten before they are read (the rest).
+#include <array>
 #include <vector>
 
 #include "moreau/math/types.hpp"
@@ -41,6 +42,13 @@ struct FluidScratch {
   std::vector<Vec3> wall_sum;           // 1/m
   std::vector<Mat3> wall_velocity_sum;  // 1/s
   std::vector<Mat3> velocity_gradient;  // 1/s, G_k of the last gradient pass
+  // Rigid surfaces with fluid friction (empty without): per solid sample its world velocity and
+  // outward normal this substep and the viscous force the fluid puts on it; per particle the
+  // gradient of its corrected stress, dS/dx_c, that extrapolates it to the samples.
+  std::vector<Vec3> solid_wall_velocity;  // m/s
+  std::vector<Vec3> solid_wall_normal;
+  std::vector<Vec3> solid_viscous_force;  // N
+  std::vector<std::array<Mat3, 3>> stress_slope;
   // BiCGSTAB's vectors: residual r, shadow residual, direction p, A y, preconditioned y (and z),
   // intermediate residual s, A z.
   std::vector<Vec3> solve_residual, solve_shadow, solve_direction, solve_direction_image, solve_preconditioned,

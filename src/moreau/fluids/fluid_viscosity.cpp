@@ -35,10 +35,36 @@ Mat3 floored_inverse(const Mat3& moment) {
   return eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
 }
 
+/// Calls visit(s, friction, r, d2, beta) for every solid sample s with fluid friction (a rigid
+/// body's surface) within the kernel support of fluid particle k, r = x_k - x_s, d2 = |r|^2. The
+/// sample lies r_p (the particle radius) behind its face along the outward normal n_s, so the
+/// particle's distance from the surface is d_k = r . n_s - r_p, and beta = 1 + r_p / max(d_k, r_p)
+/// as for the collider walls (wall_extrapolation.hpp).
+template <class Visit>
+void for_each_rough_solid_sample(const Model& model, const FluidState& fluid, const FluidScratch& s, Index k,
+                                 Visit&& visit) {
+  const FluidModel& fm = model.fluid;
+  if (!fm.solid.any_friction) return;
+  const Real h2 = fm.kernel.h2, depth = fm.particle_radius;
+  const Vec3 xk = fluid.position[k];
+  const Index* row = fluid.solid_neighbors.row(k);
+  for (Index n = 0; n < fluid.solid_neighbors.count[k]; ++n) {
+    const Index sample = row[n];
+    const Real friction = fm.solid.friction[sample];
+    if (friction == 0) continue;
+    const Vec3 r = xk - fluid.solid_position[sample];
+    const Real d2 = r.squaredNorm();
+    if (d2 >= h2) continue;
+    const Real distance = r.dot(s.solid_wall_normal[sample]) - depth;
+    visit(sample, friction, r, d2, 1 + depth / std::max(distance, depth));
+  }
+}
+
 /// The wall sums of particle k: its walls' part of M_k, q_k and P_k (Morris et al. 1997: a sample's
-/// velocity extrapolates v_k through the wall).
-void wall_sums(const Model& model, const FluidState& fluid, Index k, Mat3& moment, Vec3& wall_sum,
-               Mat3& wall_velocity_sum) {
+/// velocity extrapolates v_k through the wall), over the collider walls and the rigid surfaces
+/// with fluid friction.
+void wall_sums(const Model& model, const FluidState& fluid, const FluidScratch& s, Index k, Mat3& moment,
+               Vec3& wall_sum, Mat3& wall_velocity_sum) {
   const FluidModel& fm = model.fluid;
   wall_sum.setZero();
   wall_velocity_sum.setZero();
@@ -50,6 +76,12 @@ void wall_sums(const Model& model, const FluidState& fluid, Index k, Mat3& momen
         wall_sum += (weight * beta) * r;
         wall_velocity_sum += (weight * beta) * c.velocity * r.transpose();
       });
+  for_each_rough_solid_sample(model, fluid, s, k, [&](Index sample, Real friction, const Vec3& r, Real d2, Real beta) {
+    const Real weight = friction * fm.solid.volume[sample] * fm.kernel.gradient_factor(std::sqrt(d2));
+    moment -= weight * r * r.transpose();
+    wall_sum += (weight * beta) * r;
+    wall_velocity_sum += (weight * beta) * s.solid_wall_velocity[sample] * r.transpose();
+  });
 }
 
 /// Over the fluid neighbours j of k, in chunks the compiler vectorises (pair_chunks.hpp):
@@ -113,7 +145,7 @@ void gradient_pass(const Model& model, const FluidState& fluid, FluidScratch& s,
     moment *= V;
     if (setup) {
       const Mat3 fluid_moment = moment;
-      wall_sums(model, fluid, k, moment, s.wall_sum[k], s.wall_velocity_sum[k]);
+      wall_sums(model, fluid, s, k, moment, s.wall_sum[k], s.wall_velocity_sum[k]);
       s.gradient_correction[k] = floored_inverse(moment);
       // The wall traction's gradient of the stress is taken over the fluid neighbours alone.
       if (!s.wall_sum[k].isZero()) s.fluid_gradient_correction[k] = floored_inverse(fluid_moment);
@@ -127,24 +159,40 @@ void gradient_pass(const Model& model, const FluidState& fluid, FluidScratch& s,
   }
 }
 
-/// The wall samples' share of f_k: V sum_b f_c V_b g_kb (S_b + S_k) r_kb, with the stress at the sample
-/// extrapolated from the particle's, S_b = S_k + grad S_k (x_b - x_k), grad S_k by the corrected
-/// gradient over the fluid neighbours. (Taking S_b = S_k, as the adjoint of the wall terms of G
-/// would, gives a wall shear stress half the exact one in Poiseuille flow.)
-Vec3 wall_traction(const Model& model, const FluidState& fluid, const FluidScratch& s, Index k) {
-  const FluidModel& fm = model.fluid;
-  const CubicSplineKernel& kernel = fm.kernel;
-  const FluidBoundarySamples& samples = fm.boundary;
-  const Real V = fm.particle_volume;
-  const Vec3 xk = fluid.position[k];
+/// dS/dx_c of particle k's corrected stress, c = x, y, z, by the corrected gradient over its fluid
+/// neighbours alone: what extrapolates the stress to the wall samples.
+std::array<Mat3, 3> stress_slope(const Model& model, const FluidState& fluid, const FluidScratch& s, Index k) {
+  const Real V = model.fluid.particle_volume;
   const Mat3& Sk = s.corrected_stress[k];
   const Mat3& correction = s.fluid_gradient_correction[k];
-  Mat3 slope[3] = {Mat3::Zero(), Mat3::Zero(), Mat3::Zero()};  // dS/dx_c
-  for_each_fluid_neighbor(fluid, kernel, k, [&](Index j, const Vec3& r, Real g) {
+  std::array<Mat3, 3> slope = {Mat3::Zero(), Mat3::Zero(), Mat3::Zero()};
+  for_each_fluid_neighbor(fluid, model.fluid.kernel, k, [&](Index j, const Vec3& r, Real g) {
     const Vec3 c = (V * g) * (correction * r);
     const Mat3 difference = s.corrected_stress[j] - Sk;
     for (int a = 0; a < 3; ++a) slope[a] += c[a] * difference;
   });
+  return slope;
+}
+
+/// One wall sample's traction on particle k over the particle's volume V, f V_b g_kb (S_b + S_k) r_kb
+/// (N/m^3), with the stress at
+/// the sample extrapolated from the particle's, S_b = S_k + grad S_k (x_b - x_k). (Taking S_b = S_k,
+/// as the adjoint of the wall terms of G would, gives a wall shear stress half the exact one in
+/// Poiseuille flow.)
+Vec3 wall_sample_traction(const Model& model, const Mat3& Sk, const std::array<Mat3, 3>& slope, const Vec3& r, Real d2,
+                          Real friction, Real sample_volume) {
+  const Mat3 Sb = Sk - r.x() * slope[0] - r.y() * slope[1] - r.z() * slope[2];
+  return (friction * sample_volume * model.fluid.kernel.gradient_factor(std::sqrt(d2))) * ((Sb + Sk) * r);
+}
+
+/// The wall samples' share of f_k: the traction of every collider wall sample and rigid surface
+/// sample with fluid friction.
+Vec3 wall_traction(const Model& model, const FluidState& fluid, const FluidScratch& s, Index k) {
+  const FluidModel& fm = model.fluid;
+  const FluidBoundarySamples& samples = fm.boundary;
+  const Vec3 xk = fluid.position[k];
+  const Mat3& Sk = s.corrected_stress[k];
+  const std::array<Mat3, 3> slope = stress_slope(model, fluid, s, k);
   Vec3 traction = Vec3::Zero();
   const Index* walls = fluid.boundary_neighbors.row(k);
   for (Index n = 0; n < fluid.boundary_neighbors.count[k]; ++n) {
@@ -153,11 +201,13 @@ Vec3 wall_traction(const Model& model, const FluidState& fluid, const FluidScrat
     if (friction == 0) continue;
     const Vec3 r = xk - fluid.boundary_position[b];
     const Real d2 = r.squaredNorm();
-    if (d2 >= kernel.h2) continue;
-    const Mat3 Sb = Sk - r.x() * slope[0] - r.y() * slope[1] - r.z() * slope[2];
-    traction += (friction * samples.volume[b] * kernel.gradient_factor(std::sqrt(d2))) * ((Sb + Sk) * r);
+    if (d2 >= fm.kernel.h2) continue;
+    traction += wall_sample_traction(model, Sk, slope, r, d2, friction, samples.volume[b]);
   }
-  return V * traction;
+  for_each_rough_solid_sample(model, fluid, s, k, [&](Index sample, Real friction, const Vec3& r, Real d2, Real) {
+    traction += wall_sample_traction(model, Sk, slope, r, d2, friction, fm.solid.volume[sample]);
+  });
+  return fm.particle_volume * traction;
 }
 
 /// The force pass for particle k: the stress divergence
@@ -385,6 +435,73 @@ void implicit_solve(const Model& model, FluidState& fluid, FluidScratch& s, Real
   }
 }
 
+/// Every rough sample's world velocity v_b + w_b x (x_s - x_b) and outward normal q_b n_s, from its
+/// body's state.
+void place_rough_samples(const Model& model, const FluidState& fluid, const RigidBodyState& rigid, FluidScratch& s) {
+  const FluidSolidSamples& samples = model.fluid.solid;
+#pragma omp for schedule(static)
+  for (Index sample = 0; sample < samples.size(); ++sample) {
+    const Index b = samples.body[sample];
+    if (samples.friction[sample] == 0 || b < 0) continue;
+    s.solid_wall_velocity[sample] =
+        rigid.velocity[b] + rigid.angular_velocity[b].cross(fluid.solid_position[sample] - rigid.position[b]);
+    s.solid_wall_normal[sample] = rigid.orientation[b] * samples.body_normal[sample];
+  }
+}
+
+/// The viscous reaction on the rigid bodies with fluid friction, after the solve has set the
+/// velocities v = v* + dv. Backward Euler made the fluid's velocity change the impulse h f(v), so
+/// the walls' share of it is h times their traction at v: each sample s takes the opposite,
+///   F_s = -sum_k t_ks(v),   t_ks = V f V_s g_ks (S_s + S_k) r_ks     (wall_sample_traction),
+/// summed over the sample's fluid particles (the reverse lists, in their fixed order), and each
+/// dynamic body the impulse of its samples' forces at their points:
+///   v_b += h/m sum_s F_s,   w_b += h I_b^-1 sum_s (x_s - x_b) x F_s.
+/// Momentum is then kept to the solve's tolerance: the fluid's other viscous terms are pairwise
+/// equal and opposite. The body's change is explicit (it follows the fluid's implicit one), which
+/// is stable while the body outweighs the fluid its surface drags within a substep.
+void apply_rough_solid_reactions(const Model& model, FluidState& fluid, FluidScratch& s, RigidBodyState& rigid, Real h) {
+  const FluidModel& fm = model.fluid;
+  const FluidSolidSamples& samples = fm.solid;
+  gradient_pass(model, fluid, s, fluid.velocity.data(), true);
+#pragma omp for schedule(static)
+  for (Index k = 0; k < fluid.count; ++k) {
+    bool rough = false;
+    for_each_rough_solid_sample(model, fluid, s, k, [&](Index, Real, const Vec3&, Real, Real) { rough = true; });
+    if (rough) s.stress_slope[k] = stress_slope(model, fluid, s, k);
+  }
+#pragma omp for schedule(static)
+  for (Index sample = 0; sample < samples.size(); ++sample) {
+    Vec3 force = Vec3::Zero();
+    const Real friction = samples.friction[sample];
+    if (friction > 0) {
+      const Index* row = fluid.solid_fluids.row(sample);
+      for (Index n = 0; n < fluid.solid_fluids.count[sample]; ++n) {
+        const Index k = row[n];
+        const Vec3 r = fluid.position[k] - fluid.solid_position[sample];
+        const Real d2 = r.squaredNorm();
+        if (d2 >= fm.kernel.h2) continue;
+        force -= wall_sample_traction(model, s.corrected_stress[k], s.stress_slope[k], r, d2, friction,
+                                      samples.volume[sample]);
+      }
+    }
+    s.solid_viscous_force[sample] = fm.particle_volume * force;
+  }
+#pragma omp single
+  for (std::size_t j = 0; j < samples.sampled_body.size(); ++j) {
+    const Index b = samples.sampled_body[j];
+    const Real inv_mass = model.rigid.body_inv_mass[b];
+    if (inv_mass == 0) continue;
+    Vec3 force = Vec3::Zero(), torque = Vec3::Zero();
+    for (Index sample = samples.body_begin[j]; sample < samples.body_begin[j + 1]; ++sample) {
+      force += s.solid_viscous_force[sample];
+      torque += (fluid.solid_position[sample] - rigid.position[b]).cross(s.solid_viscous_force[sample]);
+    }
+    const Mat3 R = rigid.orientation[b].toRotationMatrix();
+    rigid.velocity[b] += (h * inv_mass) * force;
+    rigid.angular_velocity[b] += h * (R * model.rigid.body_inv_inertia[b].asDiagonal() * R.transpose() * torque);
+  }
+}
+
 }  // namespace
 
 bool fluid_has_viscosity(const Model& model) {
@@ -393,11 +510,15 @@ bool fluid_has_viscosity(const Model& model) {
   return false;
 }
 
-void apply_implicit_fluid_viscosity(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h) {
+void apply_implicit_fluid_viscosity(const Model& model, FluidState& fluid, FluidScratch& scratch, RigidBodyState& rigid,
+                                    Real h) {
   if (model.fluid.viscosity_solver != ViscositySolver::implicit_solve || !fluid_has_viscosity(model)) return;
+  const bool rough_solids = model.fluid.solid.any_friction;
+  if (rough_solids) place_rough_samples(model, fluid, rigid, scratch);
   implicit_solve(model, fluid, scratch, h);
 #pragma omp for schedule(static)
   for (Index k = 0; k < fluid.count; ++k) fluid.velocity[k] += scratch.viscous_change[k];
+  if (rough_solids) apply_rough_solid_reactions(model, fluid, scratch, rigid, h);
 }
 
 }  // namespace moreau

@@ -40,6 +40,10 @@
 //   the stress extrapolated to the sample, S_b = S_k + grad S_k (x_b - x_k), with grad S_k the
 //   corrected gradient over the fluid neighbours. Taking S_b = S_k, as the adjoint of the wall
 //   terms of G would, gives half the wall shear stress of Poiseuille flow.
+// - Rigid bodies with `fluid_friction` f are walls of the same kind: their surface samples
+//   (solid_sampling.hpp, r behind each face) enter the sums with weight f V_s, move with the body,
+//   v_s = v_b + w_b x (x_s - x_b), and extrapolate as above with d_k measured along the face's
+//   outward normal. The body takes the opposite of their traction (apply_implicit_fluid_viscosity).
 //
 // Time stepping: backward Euler over dt (the substep under XPBD, the step under nmd), from the
 // velocity v* after the position solve (m_k = rho0 V):
@@ -58,13 +62,18 @@
 namespace moreau {
 
 struct Model;
+struct RigidBodyState;
 
 /// Solves the implicit viscosity over h and adds the change to the velocities, if the model's
 /// viscosity is implicit and some phase has one; counts the solver's work in fluid.viscosity_stats. Call inside an OpenMP parallel region (every
 /// thread): the XPBD formulations call it every substep after the velocity update (once per step
 /// of 10 substeps let a very viscous fluid between no-slip walls go unstable together with the
 /// density solve, docs/validation.md), the velocity-level one once per step.
-void apply_implicit_fluid_viscosity(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h);
+/// Rigid bodies with `fluid_friction` grip the fluid at their surface samples as the collider walls
+/// do, each sample moving with its body, and take the opposite of the viscous force they exert
+/// (apply_rough_solid_reactions): `rigid` gives their motion and receives the reaction.
+void apply_implicit_fluid_viscosity(const Model& model, FluidState& fluid, FluidScratch& scratch, RigidBodyState& rigid,
+                                    Real h);
 
 /// True if any phase has a viscosity.
 bool fluid_has_viscosity(const Model& model);

@@ -60,6 +60,8 @@ struct Sampler {
     out.body.push_back(-1);
     out.body_point.push_back(Vec3::Zero());
     out.body_weight.push_back(0);
+    out.friction.push_back(0);
+    out.body_normal.push_back(Vec3::Zero());
     rest.push_back(x);
   }
 
@@ -143,6 +145,8 @@ struct Sampler {
         out.body.push_back(b);
         out.body_point.push_back(q);
         out.body_weight.push_back(m.body_inv_mass[b] + q.squaredNorm() * max_inv_inertia);
+        out.friction.push_back(model.objects[object].fluid_friction);
+        out.body_normal.push_back(-inward);
         rest.push_back(q);  // the body frame is as good as any for the volumes
       }
     }
@@ -186,6 +190,8 @@ FluidSolidSamples sample_fluid_solids(const Model& model, Real particle_radius, 
   }
   FluidSolidSamples& s = sampler.out;
   s.body_begin.push_back(s.size());
+  for (Index o = 0; o < static_cast<Index>(model.objects.size()); ++o)
+    s.any_friction |= model.objects[o].fluid_coupling && model.objects[o].fluid_friction > 0;
   for (Index b = 0; b < model.rigid.count(); ++b) {
     const Index o = model.rigid.body_object[b];
     const ObjectInfo& info = model.objects[o];

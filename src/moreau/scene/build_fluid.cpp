@@ -314,6 +314,11 @@ void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& o
           .fail("temperature", "no fluid of the scene carries heat: give the fluids a \"thermal\" entry, or remove "
                                "the wall's \"temperature\"");
   }
+  // A rigid body's fluid friction grips the particle fluids; without one it would do nothing.
+  for (std::size_t k = 0; k < model.objects.size(); ++k)
+    if (fm.empty() && model.objects[k].fluid_friction > 0)
+      object_place(static_cast<Index>(k))
+          .fail("fluid_friction", "the scene has no particle fluid for the body's surface to grip; remove \"fluid_friction\"");
   if (fm.empty()) return;
   fm.heat_step_limit = fluid_heat_step_limit(fm);
   const Real d = 2 * fm.particle_radius;
@@ -326,6 +331,7 @@ void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& o
   // fluid friction; the fast explicit one otherwise (water at any practical particle size).
   bool wall_friction = false;
   for (const Collider& c : model.colliders) wall_friction |= c.fluid_walls && c.fluid_friction > 0;
+  for (const ObjectInfo& object : model.objects) wall_friction |= object.fluid_friction > 0;
   if (fm.viscosity_solver == ViscositySolver::automatic) {
     bool strong = false;
     for (const FluidPhase& phase : fm.phases)
@@ -335,7 +341,8 @@ void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& o
   if (wall_friction && fm.viscosity_solver == ViscositySolver::explicit_update) {
     for (std::size_t k = 0; k < model.objects.size(); ++k) {
       const ObjectInfo& object = model.objects[k];
-      if (object.kind == ObjectKind::collider && model.colliders[object.collider].fluid_friction > 0)
+      if ((object.kind == ObjectKind::collider && model.colliders[object.collider].fluid_friction > 0) ||
+          object.fluid_friction > 0)
         object_place(static_cast<Index>(k))
             .fail("fluid_friction", "the fluid's wall friction is part of the implicit viscosity: set "
                                     "settings.fluid.viscosity_solver to \"implicit\" or \"auto\"");
