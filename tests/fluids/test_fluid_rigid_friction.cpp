@@ -20,32 +20,7 @@ using test::scene_from_json;
 
 constexpr Real kGap = 0.04;  // m, H: plate to plate
 constexpr Real kDt = 1.0 / 120;
-
-// The mean sliding speed (along y) of each of the 10 lattice layers across the gap in the middle
-// of the column (y in [0.35, 0.45]), and the layers' mean x.
-struct LayerSpeeds {
-  static constexpr int kLayers = 10;
-  Real speed[kLayers] = {}, x[kLayers] = {};
-};
-
-LayerSpeeds layer_speeds(const FluidState& f) {
-  LayerSpeeds layers;
-  int count[LayerSpeeds::kLayers] = {};
-  for (Index i = 0; i < f.count; ++i) {
-    const Vec3& p = f.position[i];
-    if (p.y() < 0.35 || p.y() > 0.45) continue;
-    const int layer = std::clamp(static_cast<int>(p.x() / kGap * LayerSpeeds::kLayers), 0, LayerSpeeds::kLayers - 1);
-    layers.speed[layer] += f.velocity[i].y();
-    layers.x[layer] += p.x();
-    ++count[layer];
-  }
-  for (int k = 0; k < LayerSpeeds::kLayers; ++k) {
-    EXPECT_GT(count[k], 0) << "layer " << k;
-    layers.speed[k] /= std::max(count[k], 1);
-    layers.x[k] /= std::max(count[k], 1);
-  }
-  return layers;
-}
+constexpr int kLayers = 10;  // lattice layers across the gap
 
 // As the collider Couette test (test_fluid_viscosity.cpp), with the moving wall a kinematic rigid
 // box sliding along y at U = 0.1 m/s: no gravity, mu = 10 Pa s, the still plate at x = 0 a
@@ -57,33 +32,20 @@ LayerSpeeds layer_speeds(const FluidState& f) {
 // bound is the same 2 % of U.
 TEST(FluidRigidFriction, AKinematicPlateDrivesCouetteFlow) {
   const Real U = 0.1, nu = 1e-2;
-  Scene scene = scene_from_json(R"({"name": "couette", "settings": {"dt": 0.008333333333333333, "substeps": 10,
-      "gravity": [0, 0, 0]},
-    "objects": [
-      {"name": "box", "kind": "collider", "inside": true,
-       "shape": {"type": "box", "center": [0.02, 0.3, 0.012], "half_extents": [0.03, 0.4, 0.012]}},
-      {"name": "still", "kind": "collider", "fluid_friction": 1,
-       "shape": {"type": "box", "center": [-0.005, 0.3, 0.012], "half_extents": [0.005, 0.4, 0.03]}},
-      {"name": "moving", "kind": "rigid_body", "kinematic": true, "fluid_friction": 1, "velocity": [0, 0.1, 0],
-       "shape": {"type": "box", "half_extents": [0.005, 0.2, 0.03]}, "position": [0.045, 0.4, 0.012]},
-      {"name": "liquid", "kind": "fluid", "particle_radius": 0.002, "viscosity": 10, "xsph": 0,
-       "block": {"min": [0, 0.3, 0], "max": [0.04, 0.5, 0.024]}}]})");
+  Scene scene = scene_from_json(test::viscous_gap_scene(R"({"name": "moving", "kind": "rigid_body", "kinematic": true,
+       "fluid_friction": 1, "velocity": [0, 0.1, 0], "shape": {"type": "box", "half_extents": [0.005, 0.2, 0.03]},
+       "position": [0.045, 0.4, 0.012]})"));
   run_steps(scene, 12);
   const Real t = 12 * kDt;
-  auto couette = [&](Real x) {
-    Real u = U * x / kGap;
-    for (int n = 1; n < 2000; ++n)
-      u -= 2 * U / (n * kPi) * (n % 2 == 1 ? 1 : -1) * std::sin(n * kPi * x / kGap) *
-           std::exp(-n * n * kPi * kPi * nu * t / (kGap * kGap));
-    return u;
-  };
-  const LayerSpeeds layers = layer_speeds(scene.state.fluid);
+  const test::SliceSpeeds layers = test::slice_speeds(scene.state.fluid, kGap, kLayers, 0.35, 0.45);
   Real worst = 0;
-  for (int k = 0; k < LayerSpeeds::kLayers; ++k)
-    worst = std::max(worst, std::abs(layers.speed[k] - couette(layers.x[k])) / U);
+  for (int k = 0; k < kLayers; ++k) {
+    ASSERT_GT(layers.count[k], 0) << "layer " << k;
+    worst = std::max(worst, std::abs(layers.speed[k] - test::couette_startup_speed(layers.x[k], t, U, kGap, nu)) / U);
+  }
   std::printf("Couette behind a kinematic rigid plate at t = %.3f s: worst layer %.2f %% of U (wall layer %.4f, "
               "exact %.4f m/s)\n",
-              t, 100 * worst, layers.speed[LayerSpeeds::kLayers - 1], couette(layers.x[LayerSpeeds::kLayers - 1]));
+              t, 100 * worst, layers.speed[kLayers - 1], test::couette_startup_speed(layers.x[kLayers - 1], t, U, kGap, nu));
   EXPECT_LT(worst, 0.02);
 }
 
@@ -97,17 +59,9 @@ TEST(FluidRigidFriction, AKinematicPlateDrivesCouetteFlow) {
 // exp(-pi^2 nu t / (4 H^2)), to 6e-4) liquid and plate move together at m U / (m + M).
 TEST(FluidRigidFriction, AFreePlateDragsTheLiquidAlongAndKeepsTheMomentum) {
   const Real U = 0.1, plate = 0.2;
-  Scene scene = scene_from_json(R"({"name": "drag", "settings": {"dt": 0.008333333333333333, "substeps": 10,
-      "gravity": [0, 0, 0]},
-    "objects": [
-      {"name": "box", "kind": "collider", "inside": true, "friction": 0,
-       "shape": {"type": "box", "center": [0.02, 0.3, 0.012], "half_extents": [0.03, 0.4, 0.012]}},
-      {"name": "still", "kind": "collider",
-       "shape": {"type": "box", "center": [-0.005, 0.3, 0.012], "half_extents": [0.005, 0.4, 0.03]}},
-      {"name": "plate", "kind": "rigid_body", "mass": 0.2, "fluid_friction": 1, "velocity": [0, 0.1, 0], "friction": 0,
-       "shape": {"type": "box", "half_extents": [0.003, 0.15, 0.011]}, "position": [0.043, 0.4, 0.012]},
-      {"name": "liquid", "kind": "fluid", "particle_radius": 0.002, "viscosity": 10, "xsph": 0,
-       "block": {"min": [0, 0.3, 0], "max": [0.04, 0.5, 0.024]}}]})");
+  Scene scene = scene_from_json(test::viscous_gap_scene(R"({"name": "plate", "kind": "rigid_body", "mass": 0.2,
+       "fluid_friction": 1, "velocity": [0, 0.1, 0], "friction": 0, "shape": {"type": "box", "half_extents": [0.003, 0.15, 0.011]},
+       "position": [0.043, 0.4, 0.012]})", "0", "0"));
   const Index body = scene.model.objects[scene.model.find_object("plate")].body;
   Real liquid = 0;
   for (Index i = 0; i < scene.state.fluid.count; ++i) liquid += scene.state.fluid.mass[i];
@@ -122,10 +76,9 @@ TEST(FluidRigidFriction, AFreePlateDragsTheLiquidAlongAndKeepsTheMomentum) {
   Real fluid_momentum = 0;
   for (Index i = 0; i < scene.state.fluid.count; ++i)
     fluid_momentum += scene.state.fluid.mass[i] * scene.state.fluid.velocity[i].y();
-  const LayerSpeeds layers = layer_speeds(scene.state.fluid);
-  Real slowest = 1e9, fastest = -1e9;
-  for (int k = 0; k < LayerSpeeds::kLayers; ++k)
-    slowest = std::min(slowest, layers.speed[k]), fastest = std::max(fastest, layers.speed[k]);
+  const test::SliceSpeeds layers = test::slice_speeds(scene.state.fluid, kGap, kLayers, 0.35, 0.45);
+  const Real slowest = *std::min_element(layers.speed.begin(), layers.speed.end());
+  const Real fastest = *std::max_element(layers.speed.begin(), layers.speed.end());
   std::printf("free plate after 0.5 s: plate %.5f, liquid %.5f m/s (layers %.5f to %.5f) against m U / (m + M) = "
               "%.5f; y momentum drift at most %.2e of the start's\n",
               plate_speed, fluid_momentum / liquid, slowest, fastest, together, worst_drift / p0);

@@ -126,42 +126,15 @@ TEST(FluidViscosity, CouetteFlowFollowsAMovingWall) {
   // Measured at t = 0.1 s (6 diffusion times H^2 / (pi^2 nu)): every layer within 0.3 % of U; at
   // 0.025 s the layers lag by up to 1.2 % of U (backward Euler). Bound 2 % of U per layer.
   const Real U = 0.1, nu = 1e-2;
-  Scene scene = scene_from_json(R"({"name": "couette", "settings": {"dt": 0.008333333333333333, "substeps": 10,
-      "gravity": [0, 0, 0]},
-    "objects": [
-      {"name": "box", "kind": "collider", "inside": true,
-       "shape": {"type": "box", "center": [0.02, 0.3, 0.012], "half_extents": [0.03, 0.4, 0.012]}},
-      {"name": "still", "kind": "collider", "fluid_friction": 1,
-       "shape": {"type": "box", "center": [-0.005, 0.3, 0.012], "half_extents": [0.005, 0.4, 0.03]}},
-      {"name": "moving", "kind": "collider", "fluid_friction": 1, "velocity": [0, 0.1, 0],
-       "shape": {"type": "box", "center": [0.045, 0.3, 0.012], "half_extents": [0.005, 0.4, 0.03]}},
-      {"name": "liquid", "kind": "fluid", "particle_radius": 0.002, "viscosity": 10, "xsph": 0,
-       "block": {"min": [0, 0.3, 0], "max": [0.04, 0.5, 0.024]}}]})");
+  Scene scene = scene_from_json(test::viscous_gap_scene(R"({"name": "moving", "kind": "collider", "fluid_friction": 1,
+       "velocity": [0, 0.1, 0], "shape": {"type": "box", "center": [0.045, 0.3, 0.012], "half_extents": [0.005, 0.4, 0.03]}})"));
   run_steps(scene, 12);
   const Real t = 12 * kDt;
-  auto couette = [&](Real x) {
-    Real u = U * x / kGap;
-    for (int n = 1; n < 2000; ++n)
-      u -= 2 * U / (n * kPi) * (n % 2 == 1 ? 1 : -1) * std::sin(n * kPi * x / kGap) *
-           std::exp(-n * n * kPi * kPi * nu * t / (kGap * kGap));
-    return u;
-  };
-  const FluidState& f = scene.state.fluid;
-  constexpr int kLayers = 10;
-  Real speed[kLayers] = {}, x[kLayers] = {};
-  int count[kLayers] = {};
-  for (Index i = 0; i < f.count; ++i) {
-    const Vec3& p = f.position[i];
-    if (p.y() < 0.35 || p.y() > 0.45) continue;  // the middle of the column, 5 cm from its ends
-    const int layer = std::clamp(static_cast<int>(p.x() / kGap * kLayers), 0, kLayers - 1);
-    speed[layer] += f.velocity[i].y();
-    x[layer] += p.x();
-    ++count[layer];
-  }
+  const test::SliceSpeeds layers = test::slice_speeds(scene.state.fluid, kGap, 10, 0.35, 0.45);  // 5 cm from the ends
   Real worst = 0;
-  for (int k = 0; k < kLayers; ++k) {
-    ASSERT_GT(count[k], 0) << "layer " << k;
-    worst = std::max(worst, std::abs(speed[k] / count[k] - couette(x[k] / count[k])) / U);
+  for (int k = 0; k < 10; ++k) {
+    ASSERT_GT(layers.count[k], 0) << "layer " << k;
+    worst = std::max(worst, std::abs(layers.speed[k] - test::couette_startup_speed(layers.x[k], t, U, kGap, nu)) / U);
   }
   std::printf("Couette at t = %.3f s: worst layer %.2f %% of U\n", t, 100 * worst);
   EXPECT_LT(worst, 0.02);

@@ -76,4 +76,54 @@ inline Real slab_tank_open_surface(const FluidState& f) {
                            [](const Vec3& x) { return std::max(std::abs(x.x()), std::abs(x.z())) >= 0.09; });
 }
 
+/// Start-up plane Couette flow between a still wall at x = 0 and one sliding along y at U from
+/// t = 0 at x = H, for a liquid of kinematic viscosity nu at rest before (a Fourier sine series):
+///   u(x, t) = U x / H - sum_n 2 U / (n pi) (-1)^(n+1) sin(n pi x / H) exp(-n^2 pi^2 nu t / H^2).
+inline Real couette_startup_speed(Real x, Real t, Real U, Real H, Real nu) {
+  Real u = U * x / H;
+  for (int n = 1; n < 2000; ++n)
+    u -= 2 * U / (n * kPi) * (n % 2 == 1 ? 1 : -1) * std::sin(n * kPi * x / H) * std::exp(-n * n * kPi * kPi * nu * t / (H * H));
+  return u;
+}
+
+/// The mean speed along y of the particles of each of `layers` slices of [0, H] in x, taking only
+/// the particles with y in [y_low, y_high], and each slice's mean x. A slice without particles has
+/// count 0.
+struct SliceSpeeds {
+  std::vector<Real> speed, x;
+  std::vector<int> count;
+};
+
+inline SliceSpeeds slice_speeds(const FluidState& f, Real H, int layers, Real y_low, Real y_high) {
+  SliceSpeeds s{std::vector<Real>(layers, 0), std::vector<Real>(layers, 0), std::vector<int>(layers, 0)};
+  for (Index i = 0; i < f.count; ++i) {
+    const Vec3& p = f.position[i];
+    if (p.y() < y_low || p.y() > y_high) continue;
+    const int layer = std::clamp(static_cast<int>(p.x() / H * layers), 0, layers - 1);
+    s.speed[layer] += f.velocity[i].y();
+    s.x[layer] += p.x();
+    ++s.count[layer];
+  }
+  for (int k = 0; k < layers; ++k)
+    if (s.count[k] > 0) s.speed[k] /= s.count[k], s.x[k] /= s.count[k];
+  return s;
+}
+
+/// A 4 cm gap of mu = 10 Pa s liquid (r = 2 mm, 10 particles across, x in [0, 0.04], y in
+/// [0.3, 0.5], z in [0, 0.024]) in a free-slip tank, no gravity, dt = 1/120 s in 10 substeps. The
+/// wall at x = 0 is a collider of fluid friction `still_friction` (JSON number), the tank's friction
+/// against bodies is `tank_friction`; `wall` is the JSON object of the other side's wall.
+inline std::string viscous_gap_scene(const std::string& wall, const std::string& still_friction = "1",
+                                     const std::string& tank_friction = "0.5") {
+  return R"({"name": "gap", "settings": {"dt": 0.008333333333333333, "substeps": 10, "gravity": [0, 0, 0]},
+    "objects": [
+      {"name": "box", "kind": "collider", "inside": true, "friction": )" + tank_friction + R"(,
+       "shape": {"type": "box", "center": [0.02, 0.3, 0.012], "half_extents": [0.03, 0.4, 0.012]}},
+      {"name": "still", "kind": "collider", "fluid_friction": )" + still_friction + R"(,
+       "shape": {"type": "box", "center": [-0.005, 0.3, 0.012], "half_extents": [0.005, 0.4, 0.03]}},
+      )" + wall + R"(,
+      {"name": "liquid", "kind": "fluid", "particle_radius": 0.002, "viscosity": 10, "xsph": 0,
+       "block": {"min": [0, 0.3, 0], "max": [0.04, 0.5, 0.024]}}]})";
+}
+
 }  // namespace moreau::test
