@@ -228,6 +228,10 @@ TEST(CommandLine, FluidInputErrorsNameTheirKey) {
   expect_bad_input("body_friction_uncoupled",
                    with_fluid_settings("{}", tank + ", " + water + ", " + paddle + R"("fluid_friction": 1, "fluid_coupling": false})"),
                    {"objects[2].fluid_friction", "fluid_coupling"});
+  expect_bad_input("body_friction_inviscid",
+                   with_fluid_settings("{}", tank + R"(, {"name": "w", "kind": "fluid", "particle_radius": 0.05, "viscosity": 0,
+      "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}}, )" + paddle + R"("fluid_friction": 1})"),
+                   {"objects[2].fluid_friction", "viscosity"});
   expect_bad_input("body_friction_no_fluid", with_fluid_settings("{}", tank + ", " + paddle + R"("fluid_friction": 1})"),
                    {"objects[1].fluid_friction", "no particle fluid"});
   expect_bad_input("bulk_modulus", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "bulk_modulus": 0,

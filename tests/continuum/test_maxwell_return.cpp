@@ -72,7 +72,9 @@ TEST(MaxwellReturn, AHeldShearRelaxesExponentially) {
     fmt::print("held shear, h = lambda / {}: tau(2 lambda) / tau0 = {:.6f} against exp(-2) = {:.6f} ({:+.3f} %)\n",
                per_lambda, shear_stress(F) / tau0, exact, 100 * error);
     EXPECT_NEAR(error, 2.0 / (2 * per_lambda), 0.05 * 2.0 / (2 * per_lambda));  // the predicted t h / (2 lambda^2)
-    if (error_before != 0) EXPECT_NEAR(error_before / error, 2, 0.05);           // first order in h
+    if (error_before != 0) {
+      EXPECT_NEAR(error_before / error, 2, 0.05);  // first order in h
+    }
     error_before = error;
   }
 }

@@ -24,7 +24,7 @@ void step(Scene& scene) {
 // Uniaxial creep between frictionless plates. A Newtonian liquid squeezed by a load N over its
 // section A flows in pure extension at the axial rate d ln H / dt = -N / (3 eta A) (Trouton's
 // extensional viscosity 3 eta), and its volume V = A H is kept. A Maxwell column's elastic strain
-// (N / (E A), 0.4 % here) settles within a few relaxation times and then changes only as the
+// (N / (E A), 0.6-0.7 % here) settles within a few relaxation times and then changes only as the
 // section grows, so from 0.3 s (8 lambda) on it creeps as the liquid of viscosity mu lambda:
 // its middle half shortens at the rate -N H / (3 eta V) and the whole column's 1 / H grows at
 // N / (3 eta V).

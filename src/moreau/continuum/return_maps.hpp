@@ -5,7 +5,7 @@
 //
 // With the St. Venant-Kirchhoff-Hencky law (hencky_elasticity.hpp) the Kirchhoff stress is
 // tau_i = 2 mu eps_i + lambda tr eps in the Hencky strain eps = ln sigma, so its deviator is 2 mu
-// times the strain's, eps^ = eps - (tr eps / 3) 1, and its trace (3 lambda + 2 mu) tr eps. Both
+// times the strain's, eps^ = eps - (tr eps / 3) 1, and its trace (3 lambda + 2 mu) tr eps. The
 // maps below flow along eps^ alone (a radial return in the deviatoric plane):
 //
 //   Drucker-Prager (Klar, Gast, Pradhana, Fu, Schroeder, Jiang, Teran 2016, "Drucker-Prager
@@ -124,8 +124,9 @@ inline PlasticReturn herschel_bulkley_return(const LameParameters& m, Real shear
 /// This is the Herschel-Bulkley map above with tau_y = 0, n = 1 and K = mu lambda. Backward Euler
 /// keeps steady flow exact at any step: sheared at a rate gamma', a substep adds h gamma' / 2 to the
 /// shear strain eps_xy and the map divides it by 1 + h / lambda, whose fixed point eps_xy = lambda
-/// gamma' / 2 carries tau_xy = mu lambda gamma' = eta gamma' (the fluid is Newtonian with eta when
-/// lambda << h, and an elastic solid when lambda >> the time it is watched). A held strain decays
+/// gamma' / 2 carries tau_xy = mu lambda gamma' = eta gamma' whatever lambda / h (with lambda << h
+/// the stress reaches it within a step). Watched for much longer than lambda the fluid is
+/// Newtonian with viscosity eta; in motions much quicker than lambda it is an elastic solid. A held strain decays
 /// as (1 + h / lambda)^(-t / h), which tends to exp(-t / lambda) as h / lambda -> 0. At small
 /// strains this is the upper-convected Maxwell model (Oldroyd 1950), whose conformation tensor is
 /// the elastic left Cauchy-Green tensor F F^T here, as in the conformation constraints of Barreiro,

@@ -13,7 +13,8 @@ void FluidScratch::fit(const FluidModel& fm) {
   const bool rough_solids = implicit_viscosity && fm.solid.any_friction;
   const std::size_t rough_samples = rough_solids ? samples : 0, rough_size = rough_solids ? capacity : 0;
   if (lambda.size() == capacity && solid_reaction.size() == samples && solid_share.size() == coupled &&
-      solve_residual.size() == solve_size && temperature.size() == heat_size && stress_slope.size() == rough_size)
+      solve_residual.size() == solve_size && temperature.size() == heat_size && stress_slope.size() == rough_size &&
+      solid_wall_velocity.size() == rough_samples)
     return;
   substep_start.assign(capacity, Vec3::Zero());
   lambda.assign(capacity, 0);

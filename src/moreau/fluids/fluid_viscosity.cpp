@@ -39,7 +39,9 @@ Mat3 floored_inverse(const Mat3& moment) {
 /// body's surface) within the kernel support of fluid particle k, r = x_k - x_s, d2 = |r|^2. The
 /// sample lies r_p (the particle radius) behind its face along the outward normal n_s, so the
 /// particle's distance from the surface is d_k = r . n_s - r_p, and beta = 1 + r_p / max(d_k, r_p)
-/// as for the collider walls (wall_extrapolation.hpp).
+/// as for the collider walls (wall_extrapolation.hpp). d_k is the distance to the plane of the
+/// sample's own face: exact on a face, short of the true distance for a particle beyond the face's
+/// edge, where the extrapolation then grips harder (beta up to 2, as at the surface).
 template <class Visit>
 void for_each_rough_solid_sample(const Model& model, const FluidState& fluid, const FluidScratch& s, Index k,
                                  Visit&& visit) {
@@ -435,17 +437,22 @@ void implicit_solve(const Model& model, FluidState& fluid, FluidScratch& s, Real
   }
 }
 
-/// Every rough sample's world velocity v_b + w_b x (x_s - x_b) and outward normal q_b n_s, from its
-/// body's state.
-void place_rough_samples(const Model& model, const FluidState& fluid, const RigidBodyState& rigid, FluidScratch& s) {
+/// Every rough sample placed at its body's current pose, x_s = x_b + q_b s (the last placement,
+/// before the density solve under XPBD and before the step's motion under nmd, lags the body by
+/// what the contacts, joints or the step moved it since), its outward normal q_b n_s, and the
+/// velocity of the surface point r_p in front of it, v_b + w_b x (x_s + r_p n - x_b).
+void place_rough_samples(const Model& model, FluidState& fluid, const RigidBodyState& rigid, FluidScratch& s) {
   const FluidSolidSamples& samples = model.fluid.solid;
+  const Real depth = model.fluid.particle_radius;
 #pragma omp for schedule(static)
   for (Index sample = 0; sample < samples.size(); ++sample) {
     const Index b = samples.body[sample];
     if (samples.friction[sample] == 0 || b < 0) continue;
-    s.solid_wall_velocity[sample] =
-        rigid.velocity[b] + rigid.angular_velocity[b].cross(fluid.solid_position[sample] - rigid.position[b]);
-    s.solid_wall_normal[sample] = rigid.orientation[b] * samples.body_normal[sample];
+    const Vec3 lever = rigid.orientation[b] * samples.body_point[sample];
+    const Vec3 normal = rigid.orientation[b] * samples.body_normal[sample];
+    fluid.solid_position[sample] = rigid.position[b] + lever;
+    s.solid_wall_normal[sample] = normal;
+    s.solid_wall_velocity[sample] = rigid.velocity[b] + rigid.angular_velocity[b].cross(lever + depth * normal);
   }
 }
 
@@ -477,6 +484,7 @@ void apply_rough_solid_reactions(const Model& model, FluidState& fluid, FluidScr
       const Index* row = fluid.solid_fluids.row(sample);
       for (Index n = 0; n < fluid.solid_fluids.count[sample]; ++n) {
         const Index k = row[n];
+        if (fluid.inv_mass[k] == 0) continue;  // a solid particle (fluid_heat.hpp): the solve leaves it at rest
         const Vec3 r = fluid.position[k] - fluid.solid_position[sample];
         const Real d2 = r.squaredNorm();
         if (d2 >= fm.kernel.h2) continue;

@@ -74,6 +74,7 @@ ContinuumMaterial continuum_material(const ContinuumSpec& spec, const SpecPlace&
     m.flow_index = at.number("flow_index", p.flow_index, Range::positive());
   } else if (p.model == "maxwell") {
     m.plastic = PlasticModel::maxwell;
+    if (!p.relaxation_time) at.fail("relaxation_time", "a maxwell fluid needs its relaxation time (s)");
     m.relaxation_time = at.number("relaxation_time", *p.relaxation_time, Range::positive());
   } else {
     m.plastic = PlasticModel::snow;

@@ -8,6 +8,7 @@
 #include "moreau/fluids/boundary_sampling.hpp"
 #include "moreau/fluids/density_constraint.hpp"
 #include "moreau/fluids/fluid_heat.hpp"
+#include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/solid_sampling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/geometry/point_in_mesh.hpp"
@@ -332,6 +333,13 @@ void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& o
   bool wall_friction = false;
   for (const Collider& c : model.colliders) wall_friction |= c.fluid_walls && c.fluid_friction > 0;
   for (const ObjectInfo& object : model.objects) wall_friction |= object.fluid_friction > 0;
+  // The friction acts through the viscosity: a body gripping an inviscid liquid would do nothing.
+  if (!fluid_has_viscosity(model))
+    for (std::size_t k = 0; k < model.objects.size(); ++k)
+      if (model.objects[k].fluid_friction > 0)
+        object_place(static_cast<Index>(k))
+            .fail("fluid_friction", "the surface grips the particle fluids through their viscosity, and no fluid of the "
+                                    "scene has one; give a fluid a \"viscosity\" or remove \"fluid_friction\"");
   if (fm.viscosity_solver == ViscositySolver::automatic) {
     bool strong = false;
     for (const FluidPhase& phase : fm.phases)
