@@ -28,7 +28,7 @@ Mat3 sheared_step(const Mat3& F, Real rate, Real relaxation_time, Real h) {
   Mat3 velocity_gradient = Mat3::Zero();
   velocity_gradient(0, 1) = rate;
   const RotationSvd trial = rotation_svd((Mat3::Identity() + h * velocity_gradient) * F);
-  const PlasticReturn r = maxwell_return(relaxation_time, h, trial.sigma);
+  const PlasticReturn r = maxwell_return(kPutty, relaxation_time, h, trial.sigma);
   return trial.U * r.sigma.asDiagonal() * trial.V.transpose();
 }
 

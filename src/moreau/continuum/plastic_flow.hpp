@@ -25,7 +25,7 @@ inline PlasticReturn plastic_flow(const ContinuumMaterial& m, const LameParamete
     case PlasticModel::snow: return snow_return(m.critical_compression, m.critical_stretch, sigma);
     case PlasticModel::herschel_bulkley:
       return herschel_bulkley_return(lame, m.shear_yield_stress, m.consistency, m.flow_index, h, sigma);
-    case PlasticModel::maxwell: return maxwell_return(m.relaxation_time, h, sigma);
+    case PlasticModel::maxwell: return maxwell_return(lame, m.relaxation_time, h, sigma);
     case PlasticModel::none: break;
   }
   return {sigma, 0};

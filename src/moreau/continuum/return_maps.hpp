@@ -119,25 +119,22 @@ inline PlasticReturn herschel_bulkley_return(const LameParameters& m, Real shear
 /// shear modulus mu in series with a dashpot of viscosity eta = mu lambda. The dashpot's flow is
 /// D_p = tau^ / (2 eta), so at rest the deviatoric Kirchhoff stress relaxes as d tau^/dt =
 /// -tau^ / lambda; in the Hencky strain, where tau^ = 2 mu eps^, the deviatoric strain relaxes alike
-/// and the volume is kept. Over a step h the relaxation is taken backward (implicit) Euler:
+/// and the volume is kept. That is the Herschel-Bulkley flow above with tau_y = 0, n = 1 and
+/// K = mu lambda, whose closed-form root takes the relaxation backward (implicit) Euler over h:
 ///   eps^ <- eps^_trial / (1 + h / lambda),   dgamma = |eps^_trial| h / (lambda + h).
-/// This is the Herschel-Bulkley map above with tau_y = 0, n = 1 and K = mu lambda. Backward Euler
-/// keeps steady flow exact at any step: sheared at a rate gamma', a substep adds h gamma' / 2 to the
-/// shear strain eps_xy and the map divides it by 1 + h / lambda, whose fixed point eps_xy = lambda
-/// gamma' / 2 carries tau_xy = mu lambda gamma' = eta gamma' whatever lambda / h (with lambda << h
-/// the stress reaches it within a step). Watched for much longer than lambda the fluid is
-/// Newtonian with viscosity eta; in motions much quicker than lambda it is an elastic solid. A held strain decays
-/// as (1 + h / lambda)^(-t / h), which tends to exp(-t / lambda) as h / lambda -> 0. At small
-/// strains this is the upper-convected Maxwell model (Oldroyd 1950), whose conformation tensor is
-/// the elastic left Cauchy-Green tensor F F^T here, as in the conformation constraints of Barreiro,
-/// Garcia-Fernandez, Alduan, Otaduy 2017 ("Conformation constraints for efficient viscoelastic
-/// fluid simulation", SIGGRAPH Asia 2017); its relaxation acts on ln(F F^T) / 2 instead of F F^T.
-inline PlasticReturn maxwell_return(Real relaxation_time, Real h, const Vec3& sigma) {
-  const Vec3 eps = hencky_strain(sigma);
-  const Vec3 deviator = eps - (eps.sum() / 3) * Vec3::Ones();
-  const Real kept = relaxation_time / (relaxation_time + h);
-  const Vec3 returned = eps - (1 - kept) * deviator;
-  return {returned.array().exp().matrix(), (1 - kept) * deviator.norm()};
+/// Backward Euler keeps steady flow exact at any step: sheared at a rate gamma', a substep adds
+/// h gamma' / 2 to the shear strain eps_xy and the map divides it by 1 + h / lambda, whose fixed
+/// point eps_xy = lambda gamma' / 2 carries tau_xy = mu lambda gamma' = eta gamma' whatever
+/// lambda / h (with lambda << h the stress reaches it within a step). Watched for much longer than
+/// lambda the fluid is Newtonian with viscosity eta; in motions much quicker than lambda it is an
+/// elastic solid. A held strain decays as (1 + h / lambda)^(-t / h), which tends to
+/// exp(-t / lambda) as h / lambda -> 0. At small strains this is the upper-convected Maxwell model
+/// (Oldroyd 1950), whose conformation tensor is the elastic left Cauchy-Green tensor F F^T here,
+/// as in the conformation constraints of Barreiro, Garcia-Fernandez, Alduan, Otaduy 2017
+/// ("Conformation constraints for efficient viscoelastic fluid simulation", SIGGRAPH Asia 2017);
+/// its relaxation acts on ln(F F^T) / 2 instead of F F^T.
+inline PlasticReturn maxwell_return(const LameParameters& m, Real relaxation_time, Real h, const Vec3& sigma) {
+  return herschel_bulkley_return(m, 0, m.mu * relaxation_time, 1, h, sigma);
 }
 
 /// Snow after Stomakhin, Schroeder, Chai, Teran, Selle 2013 ("A material point method for snow

@@ -177,10 +177,9 @@ std::array<Mat3, 3> stress_slope(const Model& model, const FluidState& fluid, co
 }
 
 /// One wall sample's traction on particle k over the particle's volume V, f V_b g_kb (S_b + S_k) r_kb
-/// (N/m^3), with the stress at
-/// the sample extrapolated from the particle's, S_b = S_k + grad S_k (x_b - x_k). (Taking S_b = S_k,
-/// as the adjoint of the wall terms of G would, gives a wall shear stress half the exact one in
-/// Poiseuille flow.)
+/// (N/m^3), with the stress at the sample extrapolated from the particle's, S_b = S_k + grad S_k
+/// (x_b - x_k). (Taking S_b = S_k, as the adjoint of the wall terms of G would, gives a wall shear
+/// stress half the exact one in Poiseuille flow.)
 Vec3 wall_sample_traction(const Model& model, const Mat3& Sk, const std::array<Mat3, 3>& slope, const Vec3& r, Real d2,
                           Real friction, Real sample_volume) {
   const Mat3 Sb = Sk - r.x() * slope[0] - r.y() * slope[1] - r.z() * slope[2];

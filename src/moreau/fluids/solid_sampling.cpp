@@ -190,8 +190,6 @@ FluidSolidSamples sample_fluid_solids(const Model& model, Real particle_radius, 
   }
   FluidSolidSamples& s = sampler.out;
   s.body_begin.push_back(s.size());
-  for (Index o = 0; o < static_cast<Index>(model.objects.size()); ++o)
-    s.any_friction |= model.objects[o].fluid_coupling && model.objects[o].fluid_friction > 0;
   for (Index b = 0; b < model.rigid.count(); ++b) {
     const Index o = model.rigid.body_object[b];
     const ObjectInfo& info = model.objects[o];
@@ -201,6 +199,7 @@ FluidSolidSamples sample_fluid_solids(const Model& model, Real particle_radius, 
     s.sampled_body.push_back(b);
     s.body_begin.push_back(s.size());
   }
+  s.any_friction = std::any_of(s.friction.begin(), s.friction.end(), [](Real f) { return f > 0; });
 
   // Particle -> (sample, weight), ordered by particle, then sample: each particle gathers its
   // reaction in a fixed order.

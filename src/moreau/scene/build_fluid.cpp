@@ -315,11 +315,16 @@ void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& o
           .fail("temperature", "no fluid of the scene carries heat: give the fluids a \"thermal\" entry, or remove "
                                "the wall's \"temperature\"");
   }
-  // A rigid body's fluid friction grips the particle fluids; without one it would do nothing.
+  // A rigid body's fluid friction grips the particle fluids through their viscosity: without a
+  // viscous fluid it would do nothing.
   for (std::size_t k = 0; k < model.objects.size(); ++k)
-    if (fm.empty() && model.objects[k].fluid_friction > 0)
+    if (model.objects[k].fluid_friction > 0 && !fluid_has_viscosity(model))
       object_place(static_cast<Index>(k))
-          .fail("fluid_friction", "the scene has no particle fluid for the body's surface to grip; remove \"fluid_friction\"");
+          .fail("fluid_friction", fm.empty() ? "the scene has no particle fluid for the body's surface to grip; remove "
+                                               "\"fluid_friction\""
+                                             : "the surface grips the particle fluids through their viscosity, and no "
+                                               "fluid of the scene has one; give a fluid a \"viscosity\" or remove "
+                                               "\"fluid_friction\"");
   if (fm.empty()) return;
   fm.heat_step_limit = fluid_heat_step_limit(fm);
   const Real d = 2 * fm.particle_radius;
@@ -333,13 +338,6 @@ void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& o
   bool wall_friction = false;
   for (const Collider& c : model.colliders) wall_friction |= c.fluid_walls && c.fluid_friction > 0;
   for (const ObjectInfo& object : model.objects) wall_friction |= object.fluid_friction > 0;
-  // The friction acts through the viscosity: a body gripping an inviscid liquid would do nothing.
-  if (!fluid_has_viscosity(model))
-    for (std::size_t k = 0; k < model.objects.size(); ++k)
-      if (model.objects[k].fluid_friction > 0)
-        object_place(static_cast<Index>(k))
-            .fail("fluid_friction", "the surface grips the particle fluids through their viscosity, and no fluid of the "
-                                    "scene has one; give a fluid a \"viscosity\" or remove \"fluid_friction\"");
   if (fm.viscosity_solver == ViscositySolver::automatic) {
     bool strong = false;
     for (const FluidPhase& phase : fm.phases)
