@@ -264,15 +264,17 @@ void FlowEngine::add_run_fields(nlohmann::json& j, bool /*completed*/) const {
     j["newton"]["smallest_step_s"] = retried_steps_ > 0 ? smallest_step_ : scene_.fem->dt;
   }
   j["linear_solver"] = {{"type", solver_.name()}};
-  if (problem_.linear.method == FlowLinearMethod::gmres) {
+  if (problem_.linear.method != FlowLinearMethod::direct) {
     const FlowLinearStatistics& ls = solver_.statistics();
+    const bool gmres = problem_.linear.method == FlowLinearMethod::gmres;
     j["linear_solver"].update(nlohmann::json{{"solves", ls.solves},
-                                             {"retries", ls.retries},
-                                             {"gmres_iterations", ls.iterations},
-                                             {"max_gmres_iterations_per_solve", ls.max_iterations},
+                                             {gmres ? "gmres_iterations" : "krylov_iterations", ls.iterations},
+                                             {gmres ? "max_gmres_iterations_per_solve" : "max_krylov_iterations_per_solve",
+                                              ls.max_iterations},
                                              {"preconditioner_updates", ls.preconditioner_updates},
                                              {"preconditioner_s", ls.preconditioner_s},
                                              {"tolerance", problem_.linear.tolerance}});
+    if (gmres) j["linear_solver"]["retries"] = ls.retries;
   }
   if (steady()) j["continuation"] = continuation_;
   if (problem_.immersed) {

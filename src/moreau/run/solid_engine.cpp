@@ -111,6 +111,7 @@ SolidEngine::SolidEngine(Scene& scene) : scene_(scene), problem_(*scene.fem) {
   }
   VectorX force;
   state.energy = assemble_internal_forces(model, state.u, force, nullptr).energy;
+  if (problem_.linear.petsc) solver_.use_petsc(problem_.linear, solid_unknown_layout(model));
 }
 
 NewtonResult SolidEngine::advance(const NewtonSettings& newton) {
@@ -186,6 +187,12 @@ void SolidEngine::add_run_fields(nlohmann::json& j, bool completed) const {
                  {"assembly_s", assembly_s_},
                  {"solve_s", solve_s_},
                  {"last_linear_solver", problem_.joints.empty() ? solver_.method() : std::string("umfpack (coupled)")}};
+  if (problem_.linear.petsc)
+    j["linear_solver"] = {{"type", "petsc"},
+                          {"preconditioner", problem_.linear.preconditioner},
+                          {"tolerance", problem_.linear.tolerance},
+                          {"krylov_iterations", solver_.krylov_iterations()},
+                          {"max_krylov_iterations_per_solve", solver_.max_krylov_iterations()}};
   if (completed) {
     Real kinetic = kinetic_energy(model, run_.solids.v);
     for (size_t b = 0; b < run_.bodies.size(); ++b) kinetic += kinetic_energy(problem_.rigid_bodies[b].body, run_.bodies[b]);

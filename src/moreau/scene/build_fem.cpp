@@ -10,6 +10,7 @@
 
 #include "moreau/fem/solids/fem_assembly.hpp"
 #include "moreau/math/expression.hpp"
+#include "moreau/fem/petsc/petsc_presets.hpp"
 #include "moreau/scene/fem_scene.hpp"
 
 namespace moreau {
@@ -277,9 +278,23 @@ namespace {
 
 // The solids' "integrator" and "newton" settings.
 void read_solid_settings(const JsonObject& settings, FemProblem& problem) {
-  if (settings.has("linear_solver"))
-    settings.fail("linear_solver", "\"linear_solver\" applies to fluids; solids are solved by CHOLMOD (or UMFPACK where "
-                                   "the tangent is indefinite) without a choice");
+  if (auto linear = settings.optional_object("linear_solver")) {
+    SolidLinearSettings& s = problem.linear;
+    s.petsc = linear->choice("type", "direct", {"direct", "petsc"}) == "petsc";
+    for (const char* key : {"preconditioner", "tolerance", "max_iterations", "petsc_options"})
+      if (!s.petsc && linear->has(key))
+        linear->fail(key, fmt::format("\"{}\" is a setting of \"type\": \"petsc\"; the direct solvers (CHOLMOD, "
+                                      "UMFPACK) have none",
+                                      key));
+    if (s.petsc) {
+      s.preconditioner = linear->choice("preconditioner", s.preconditioner, solid_petsc_preconditioners());
+      s.tolerance = linear->number("tolerance", s.tolerance, Range::open(0, 1));
+      s.max_iterations = linear->integer("max_iterations", s.max_iterations, 1, 1000000);
+      if (linear->has("petsc_options")) s.petsc_options = linear->string("petsc_options");
+      require_petsc(*linear, solid_petsc_options(s.preconditioner) + " " + s.petsc_options);
+    }
+    linear->finish();
+  }
   const std::string integrator = settings.choice("integrator", "energy_momentum", {"static", "midpoint", "energy_momentum"});
   problem.integrator = integrator == "static"     ? FemIntegrator::static_load_steps
                        : integrator == "midpoint" ? FemIntegrator::midpoint
@@ -400,6 +415,9 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
   for (const JsonObject& joint : top.object_list("joints")) problem.joints.push_back(read_fem_joint(joint, problem));
   if (!problem.joints.empty() && problem.integrator == FemIntegrator::static_load_steps)
     top.fail("joints", "joints need a dynamic integrator (\"midpoint\" or \"energy_momentum\")");
+  if (!problem.joints.empty() && problem.linear.petsc)
+    top.fail("joints", "solids joined to rigid bodies are solved as one system by UMFPACK; \"linear_solver\": "
+                       "{\"type\": \"petsc\"} is for solids without joints");
   for (const JsonObject& probe : top.object_list("probes")) problem.probes.push_back(read_fem_probe(probe, problem));
 }
 

@@ -13,9 +13,25 @@
 
 #include "moreau/scene/memory_estimate.hpp"
 #include "moreau/errors.hpp"
+#include "moreau/fem/petsc/petsc_plugin_loader.hpp"
 #include "moreau/scene/fem_scene.hpp"
 
 namespace moreau {
+
+void require_petsc(const JsonObject& linear_solver, const std::string& options) {
+  petsc_plugin::Backend* backend = nullptr;
+  try {
+    backend = &petsc_backend();
+  } catch (const std::runtime_error& e) {
+    linear_solver.fail("type", std::string("\"petsc\" is not available here: ") + e.what());
+  }
+  // A solver made and dropped at once: PETSc reads the options now, and rejects an unknown
+  // solver or preconditioner type before the run starts rather than at its first solve.
+  std::string failure;
+  if (!backend->make_solver({.prefix = "scene_check_", .options = options}, {}, failure))
+    linear_solver.fail(linear_solver.has("petsc_options") ? "petsc_options" : "preconditioner",
+                       "PETSc does not accept these options: " + failure);
+}
 
 Vec3 read_point(const JsonObject& j, const std::string& key, int dim) {
   if (dim == 3) return j.vec3(key);

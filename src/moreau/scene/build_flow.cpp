@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 
+#include "moreau/fem/petsc/petsc_presets.hpp"
 #include "moreau/scene/fem_scene.hpp"
 
 namespace moreau {
@@ -208,18 +209,32 @@ void read_flow_settings(const JsonObject* settings, const JsonObject& fluid, Flo
   }
   if (auto linear = settings->optional_object("linear_solver")) {
     FlowLinearSettings& s = problem.linear;
-    s.method = linear->choice("type", "direct", {"direct", "gmres"}) == "gmres" ? FlowLinearMethod::gmres
-                                                                              : FlowLinearMethod::direct;
-    for (const char* key : {"tolerance", "max_iterations", "restart", "drop_tolerance", "fill_factor", "refresh_ratio"})
-      if (s.method == FlowLinearMethod::direct && linear->has(key))
-        linear->fail(key, fmt::format("\"{}\" is a setting of \"type\": \"gmres\"; the direct solver (UMFPACK) has none", key));
-    if (s.method == FlowLinearMethod::gmres) {
+    const std::string type = linear->choice("type", "direct", {"direct", "gmres", "petsc"});
+    s.method = type == "gmres" ? FlowLinearMethod::gmres : type == "petsc" ? FlowLinearMethod::petsc : FlowLinearMethod::direct;
+    const auto only_for = [&](std::initializer_list<const char*> keys, bool allowed, const char* whose) {
+      for (const char* key : keys)
+        if (!allowed && linear->has(key))
+          linear->fail(key, fmt::format("\"{}\" is a setting of {}; \"type\": \"{}\" has none", key, whose, type));
+    };
+    only_for({"tolerance", "max_iterations", "restart"}, s.method != FlowLinearMethod::direct,
+             "the iterative solvers (\"gmres\", \"petsc\")");
+    only_for({"drop_tolerance", "fill_factor", "refresh_ratio"}, s.method == FlowLinearMethod::gmres,
+             "\"type\": \"gmres\"");
+    only_for({"preconditioner", "petsc_options"}, s.method == FlowLinearMethod::petsc, "\"type\": \"petsc\"");
+    if (s.method != FlowLinearMethod::direct) {
       s.tolerance = linear->number("tolerance", s.tolerance, Range::open(0, 1));
       s.max_iterations = linear->integer("max_iterations", s.max_iterations, 1, 1000000);
       s.restart = linear->integer("restart", s.restart, 1, 10000);
+    }
+    if (s.method == FlowLinearMethod::gmres) {
       s.drop_tolerance = linear->number("drop_tolerance", s.drop_tolerance, Range::open(0, 1));
       s.fill_factor = linear->integer("fill_factor", s.fill_factor, 1, 1000);
       s.refresh_ratio = linear->number("refresh_ratio", s.refresh_ratio, Range::closed(1, 1e6));
+    }
+    if (s.method == FlowLinearMethod::petsc) {
+      s.preconditioner = linear->choice("preconditioner", s.preconditioner, flow_petsc_preconditioners());
+      if (linear->has("petsc_options")) s.petsc_options = linear->string("petsc_options");
+      require_petsc(*linear, flow_petsc_options(s.preconditioner, s.restart) + " " + s.petsc_options);
     }
     linear->finish();
   }

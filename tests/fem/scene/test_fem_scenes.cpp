@@ -380,7 +380,10 @@ TEST(FemScenes, BadInputNamesItsKey) {
   expect_bad("fem_formulation_cells",
              scene(R"(, "formulation": "mean_dilatation")").replace(scene("").find("\"cells\""), 0, "\"element\": \"tet4\", "),
              {"objects[0].formulation", "quad4 or hex8", "tet4"});
-  expect_bad("fem_linear_solver", scene("", R"(, "linear_solver": {"type": "gmres"})"), {"settings.linear_solver", "fluids"});
+  expect_bad("fem_linear_solver", scene("", R"(, "linear_solver": {"type": "gmres"})"),
+             {"settings.linear_solver.type", "direct, petsc"});
+  expect_bad("fem_linear_solver_key", scene("", R"(, "linear_solver": {"tolerance": 1e-6})"),
+             {"settings.linear_solver.tolerance", "\"type\": \"petsc\""});
   const std::string body = R"({"name": "f", "settings": {"solver": "fem", "integrator": "static"},
       "objects": [{"name": "b", "kind": "rigid_body", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [1, 1, 1]}, "density": 1000}]})";
   expect_bad("fem_rigid_static", body, {"objects[0].kind", "dynamic integrator"});

@@ -1,15 +1,101 @@
 #include "moreau/fem/core/linear_solver.hpp"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 
+#include "moreau/fem/petsc/petsc_plugin_loader.hpp"
+#include "moreau/fem/petsc/petsc_presets.hpp"
+
 namespace moreau {
+
+petsc_plugin::UnknownLayout solid_unknown_layout(const FemModel& model) {
+  petsc_plugin::UnknownLayout layout;
+  layout.dim = model.dim;
+  layout.component.resize(model.free_count);
+  layout.position.resize(3 * static_cast<size_t>(model.free_count));
+  for (Index d = 0; d < model.dof_count(); ++d) {
+    const Index row = model.free_index[d];
+    if (row < 0) continue;
+    layout.component[row] = d % model.dim;
+    const Vec3 X = model.reference_position(d / model.dim);
+    for (int k = 0; k < 3; ++k) layout.position[3 * row + k] = X[k];
+  }
+  return layout;
+}
+
+// Two PETSc solvers, made when first needed: one for symmetric tangents (the static and midpoint
+// ones), one for the energy-momentum scheme's nonsymmetric ones.
+struct SparseSymmetricSolver::Petsc {
+  SolidLinearSettings settings;
+  petsc_plugin::UnknownLayout layout;
+  std::unique_ptr<petsc_plugin::LinearSolver> symmetric, general;
+  petsc_plugin::LinearSolver* last = nullptr;
+};
 
 SparseSymmetricSolver::SparseSymmetricSolver() {
   // An indefinite tangent is an expected outcome (UMFPACK takes over), not a warning to print.
   cholesky_.cholmod().print = 0;
 }
 
+SparseSymmetricSolver::~SparseSymmetricSolver() = default;
+
+void SparseSymmetricSolver::use_petsc(const SolidLinearSettings& settings, petsc_plugin::UnknownLayout layout) {
+  petsc_ = std::make_unique<Petsc>();
+  petsc_->settings = settings;
+  petsc_->layout = std::move(layout);
+}
+
+bool SparseSymmetricSolver::factorize_petsc(const SparseMatrix& K, bool symmetric) {
+  Petsc& p = *petsc_;
+  auto& solver = symmetric ? p.symmetric : p.general;
+  if (!solver) {
+    petsc_plugin::SolverSpec spec;
+    spec.prefix = symmetric ? "solid_" : "solid_general_";
+    const std::string& name = p.settings.preconditioner;
+    spec.options = solid_petsc_options(symmetric || name != "cholesky" ? name : "lu");
+    if (!symmetric) spec.options += " -ksp_type " + std::string(name == "amg" ? "gmres -ksp_pc_side right" : "preonly");
+    spec.options += " " + p.settings.petsc_options;
+    spec.relative_tolerance = p.settings.tolerance;
+    spec.max_iterations = p.settings.max_iterations;
+    solver = petsc_backend().make_solver(spec, p.layout, failure_);
+    if (!solver) return false;
+  }
+  SparseMatrix compressed;
+  const SparseMatrix* A = &K;
+  if (!K.isCompressed()) {
+    compressed = K;
+    compressed.makeCompressed();
+    A = &compressed;
+  }
+  p.last = solver.get();
+  method_ = "petsc " + solver->describe();
+  if (solver->set_matrix(static_cast<int>(A->rows()), A->outerIndexPtr(), A->innerIndexPtr(), A->valuePtr(), failure_))
+    return true;
+  failure_ = "PETSc could not set up the preconditioner: " + failure_;
+  return false;
+}
+
+bool SparseSymmetricSolver::solve(const VectorX& b, VectorX& x) {
+  if (!petsc_) {
+    x = solve(b);
+    return true;
+  }
+  x = VectorX::Zero(b.size());
+  const petsc_plugin::SolveReport report = petsc_->last->solve(b.data(), x.data());
+  krylov_iterations_ += report.iterations;
+  max_krylov_iterations_ = std::max(max_krylov_iterations_, report.iterations);
+  if (report.converged) return true;
+  failure_ = fmt::format(
+      "PETSc's {} stopped with {} after {} iterations (residual {:.2e}, tolerance {:.1e} relative); raise "
+      "settings.linear_solver.max_iterations, or choose another \"preconditioner\"",
+      petsc_->last->describe(), report.reason, report.iterations, report.residual, petsc_->settings.tolerance);
+  return false;
+}
+
 bool SparseSymmetricSolver::factorize(const SparseMatrix& K, bool symmetric) {
+  failure_.clear();
+  if (petsc_) return factorize_petsc(K, symmetric);
   if (symmetric && !cholesky_analyzed_) {
     cholesky_.analyzePattern(K);
     cholesky_analyzed_ = true;

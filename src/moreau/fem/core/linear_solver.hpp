@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "moreau/fem/petsc/petsc_plugin_api.hpp"
 #include "moreau/fem/solids/fem_model.hpp"
 
 namespace moreau {
@@ -30,22 +31,52 @@ class SparseLuSolver {
   std::vector<int> analyzed_outer_, analyzed_inner_;  // the analysed pattern (compressed column starts, rows)
 };
 
+/// How a solid's tangent systems are solved.
+struct SolidLinearSettings {
+  bool petsc = false;                  // false: CHOLMOD, UMFPACK where it is not positive definite
+  std::string preconditioner = "amg";  // petsc: a name of solid_petsc_preconditioners()
+  Real tolerance = 1e-8;               // petsc: the Krylov solve's relative residual
+  int max_iterations = 1000;           // petsc: Krylov iterations per solve
+  std::string petsc_options;           // petsc: PETSc options after the preset's
+};
+
+/// The free unknowns of a solid model as the PETSc plugin sees them: per free dof, its component
+/// and its node's reference position (for the rigid-body modes).
+petsc_plugin::UnknownLayout solid_unknown_layout(const FemModel& model);
+
 class SparseSymmetricSolver {
  public:
   SparseSymmetricSolver();
+  ~SparseSymmetricSolver();
+  /// Solves with PETSc from now on: a symmetric K with the preset's Krylov method, any other with
+  /// right-preconditioned GMRES around the same preconditioner (LU for "cholesky").
+  void use_petsc(const SolidLinearSettings& settings, petsc_plugin::UnknownLayout layout);
   /// Factorizes K; false if neither Cholesky nor LU succeeds (a singular K). A K that is not
   /// symmetric (`symmetric` false) goes to LU directly.
   bool factorize(const SparseMatrix& K, bool symmetric = true);
-  /// Solves K x = b with the last factorization.
+  /// Solves K x = b with the last factorization (direct only).
   VectorX solve(const VectorX& b) const;
-  /// "cholmod" or "umfpack": what factorized the last K.
+  /// Solves K x = b; false, with failure() saying why, if the Krylov solve did not converge.
+  bool solve(const VectorX& b, VectorX& x);
+  /// "cholmod", "umfpack" or "petsc cg+gamg": what solved with the last K.
   const std::string& method() const { return method_; }
+  /// Why the last factorize or solve failed ("" if neither did).
+  const std::string& failure() const { return failure_; }
+  /// Krylov iterations over all solves and the most in one (petsc only).
+  long krylov_iterations() const { return krylov_iterations_; }
+  int max_krylov_iterations() const { return max_krylov_iterations_; }
 
  private:
+  struct Petsc;
+  bool factorize_petsc(const SparseMatrix& K, bool symmetric);
+
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower> cholesky_;
   SparseLuSolver lu_;
   bool cholesky_analyzed_ = false;
-  std::string method_;
+  std::string method_, failure_;
+  std::unique_ptr<Petsc> petsc_;
+  long krylov_iterations_ = 0;
+  int max_krylov_iterations_ = 0;
 };
 
 }  // namespace moreau

@@ -7,6 +7,8 @@
 #include <chrono>
 #include <unsupported/Eigen/IterativeSolvers>
 
+#include "moreau/fem/petsc/petsc_plugin_loader.hpp"
+#include "moreau/fem/petsc/petsc_presets.hpp"
 #include "moreau/io/binary_archive.hpp"
 
 namespace moreau {
@@ -42,7 +44,13 @@ struct FlowLinearSolver::Iterative {
   bool last_failed = false;
 };
 
+struct FlowLinearSolver::Petsc {
+  petsc_plugin::UnknownLayout layout;   // per free dof, 0 velocity or 1 pressure
+  std::unique_ptr<petsc_plugin::LinearSolver> solver;  // made at the first factorize
+};
+
 FlowLinearSolver::FlowLinearSolver(const FlowLinearSettings& settings) : settings_(settings) {
+  if (settings_.method == FlowLinearMethod::petsc) petsc_ = std::make_unique<Petsc>();
   if (settings_.method == FlowLinearMethod::gmres) {
     iterative_ = std::make_unique<Iterative>();
     iterative_->ilu.setDroptol(settings_.drop_tolerance);
@@ -56,7 +64,61 @@ FlowLinearSolver::FlowLinearSolver(const FlowLinearSettings& settings) : setting
 
 FlowLinearSolver::~FlowLinearSolver() = default;
 
-std::string FlowLinearSolver::name() const { return iterative_ ? "gmres+ilut" : "umfpack"; }
+std::string FlowLinearSolver::name() const {
+  if (petsc_) return "petsc " + (petsc_->solver ? petsc_->solver->describe() : settings_.preconditioner);
+  return iterative_ ? "gmres+ilut" : "umfpack";
+}
+
+void FlowLinearSolver::set_layout(const std::vector<Index>& free_index, int fields, Index free_count) {
+  if (!petsc_ || static_cast<Index>(petsc_->layout.field.size()) == free_count) return;
+  std::vector<int>& field = petsc_->layout.field;
+  field.assign(free_count, 0);
+  for (size_t dof = 0; dof < free_index.size(); ++dof)
+    if (free_index[dof] >= 0 && static_cast<int>(dof % fields) == fields - 1) field[free_index[dof]] = 1;
+  petsc_->solver.reset();  // its index sets were of the old unknowns
+}
+
+bool FlowLinearSolver::factorize_petsc(const SparseMatrix& J) {
+  Petsc& p = *petsc_;
+  if (!p.solver) {
+    petsc_plugin::SolverSpec spec;
+    spec.prefix = "flow_";
+    spec.options = flow_petsc_options(settings_.preconditioner, settings_.restart) + " " + settings_.petsc_options;
+    spec.relative_tolerance = settings_.tolerance;
+    spec.max_iterations = settings_.max_iterations;
+    if (p.layout.field.empty()) p.layout.field.assign(J.rows(), 0);  // no layout given: one block
+    p.solver = petsc_backend().make_solver(spec, p.layout, failure_);
+    if (!p.solver) return false;
+  }
+  SparseMatrix compressed;
+  const SparseMatrix* A = &J;
+  if (!J.isCompressed()) {
+    compressed = J;
+    compressed.makeCompressed();
+    A = &compressed;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const bool built = p.solver->set_matrix(static_cast<int>(A->rows()), A->outerIndexPtr(), A->innerIndexPtr(),
+                                          A->valuePtr(), failure_);
+  statistics_.preconditioner_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ++statistics_.preconditioner_updates;
+  if (!built) failure_ = "PETSc could not set up the preconditioner: " + failure_;
+  return built;
+}
+
+bool FlowLinearSolver::solve_petsc(const VectorX& b, VectorX& dx) {
+  dx = VectorX::Zero(b.size());
+  const petsc_plugin::SolveReport report = petsc_->solver->solve(b.data(), dx.data());
+  ++statistics_.solves;
+  statistics_.iterations += report.iterations;
+  statistics_.max_iterations = std::max(statistics_.max_iterations, report.iterations);
+  if (report.converged) return true;
+  failure_ = fmt::format(
+      "PETSc's {} stopped with {} after {} iterations (residual {:.2e}, tolerance {:.1e} relative); raise "
+      "settings.linear_solver.max_iterations, or choose another \"preconditioner\" or \"type\"",
+      petsc_->solver->describe(), report.reason, report.iterations, report.residual, settings_.tolerance);
+  return false;
+}
 
 bool FlowLinearSolver::refresh_preconditioner() {
   Iterative& state = *iterative_;
@@ -91,6 +153,7 @@ bool FlowLinearSolver::needs_refresh() const {
 bool FlowLinearSolver::factorize(const SparseMatrix& J) {
   failure_.clear();
   matrix_ = &J;
+  if (petsc_) return factorize_petsc(J);
   if (!iterative_) {
     if (lu_.factorize(J)) return true;
     failure_ = "the flow Jacobian is singular (is the pressure fixed somewhere, or an outflow given?)";
@@ -104,6 +167,7 @@ bool FlowLinearSolver::factorize(const SparseMatrix& J) {
 }
 
 bool FlowLinearSolver::solve(const VectorX& b, VectorX& dx) {
+  if (petsc_) return solve_petsc(b, dx);
   if (!iterative_) {
     dx = lu_.solve(b);
     return true;

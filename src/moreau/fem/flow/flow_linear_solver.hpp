@@ -22,9 +22,14 @@
 //   refresh), when a solve failed (it is retried once with a fresh ILU), or when the matrix's
 //   size or number of entries (its pattern) changed. Jacobians of successive Newton iterations, continuation stages and time steps differ
 //   little, and one ILU costs as much as ~100 GMRES iterations.
-// Both are serial and deterministic.
+// petsc: a PETSc Krylov solver and preconditioner (PETSc's KSP and PC, loaded as a plugin; see
+//   fem/petsc/petsc_presets.hpp for what each "preconditioner" means). Inexact Newton like gmres,
+//   with `tolerance` relative to the true (unpreconditioned) residual; the preconditioner is
+//   built again for every Jacobian, its symbolic setup kept while the pattern is.
+// All are serial and deterministic.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "moreau/fem/core/linear_solver.hpp"
 
@@ -33,20 +38,25 @@ namespace moreau {
 class ArchiveWriter;
 class ArchiveReader;
 
-enum class FlowLinearMethod { direct, gmres };
+enum class FlowLinearMethod { direct, gmres, petsc };
 
 struct FlowLinearSettings {
   FlowLinearMethod method = FlowLinearMethod::direct;
-  // gmres only:
-  Real tolerance = 1e-3;       // relative reduction of the preconditioned residual per solve
-  int max_iterations = 1000;   // GMRES iterations per solve
+  // gmres and petsc:
+  Real tolerance = 1e-3;       // relative reduction of the residual per solve
+  int max_iterations = 1000;   // Krylov iterations per solve
   int restart = 50;            // Krylov vectors kept before a restart (memory: restart x unknowns)
+  // petsc only:
+  std::string preconditioner = "fieldsplit";  // a name of flow_petsc_preconditioners()
+  std::string petsc_options;                  // PETSc options after the preset's ("-ksp_monitor")
+  // gmres only:
   Real drop_tolerance = 1e-2;  // ILUT: entries below this times the row's norm are dropped
   int fill_factor = 2;         // ILUT: entries kept per row of L plus U, relative to J's average row
   Real refresh_ratio = 2;      // ILU recomputed when a solve needs this times max(10, its first solve's iterations)
 };
 
-/// What the linear solves cost so far (gmres only; the direct solver leaves them 0).
+/// What the linear solves cost so far (gmres and petsc; the direct solver leaves them 0; for petsc
+/// a preconditioner update is the setup for one Jacobian).
 struct FlowLinearStatistics {
   long solves = 0;                   // linear systems solved (or attempted)
   int retries = 0;                   // solves repeated with a fresh ILU after a lagged one failed
@@ -61,6 +71,11 @@ class FlowLinearSolver {
   explicit FlowLinearSolver(const FlowLinearSettings& settings = {});
   ~FlowLinearSolver();
 
+  /// The unknowns of the next Jacobians: per dof, its index among the free dofs (-1 if
+  /// prescribed), with `fields` dofs per node of which the last is the pressure. Needed before the
+  /// first factorize by petsc's field split; the other methods ignore it.
+  void set_layout(const std::vector<Index>& free_index, int fields, Index free_count);
+
   /// Takes the Jacobian of the next solve; J must stay alive and unchanged until then. False if
   /// it is singular (direct) or its incomplete factorization breaks down (gmres).
   bool factorize(const SparseMatrix& J);
@@ -70,7 +85,7 @@ class FlowLinearSolver {
 
   const std::string& failure() const { return failure_; }
   const FlowLinearStatistics& statistics() const { return statistics_; }
-  /// "umfpack" or "gmres+ilut".
+  /// "umfpack", "gmres+ilut" or "petsc fgmres+fieldsplit" (PETSc's KSP and PC types).
   std::string name() const;
 
   /// Checkpoints: the statistics and, for gmres, the lagged ILU — as the matrix it was computed
@@ -82,12 +97,16 @@ class FlowLinearSolver {
 
  private:
   struct Iterative;
+  struct Petsc;
+  bool factorize_petsc(const SparseMatrix& J);
+  bool solve_petsc(const VectorX& b, VectorX& dx);
   bool refresh_preconditioner();
   bool needs_refresh() const;
 
   FlowLinearSettings settings_;
   SparseLuSolver lu_;
   std::unique_ptr<Iterative> iterative_;
+  std::unique_ptr<Petsc> petsc_;
   const SparseMatrix* matrix_ = nullptr;
   FlowLinearStatistics statistics_;
   std::string failure_;

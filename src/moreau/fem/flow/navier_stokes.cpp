@@ -345,6 +345,7 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
                                     FlowLinearSolver& solver, const FlowSolveSettings& settings, const FlowSource* source) {
   FlowSolveResult result;
   for (const PrescribedDof& p : m.prescribed) x[p.dof] = p.value(t);
+  solver.set_layout(m.free_index, m.fields(), m.free_count);
   const VectorX start = x;
   NewtonSettings newton;
   newton.tolerance = settings.tolerance;

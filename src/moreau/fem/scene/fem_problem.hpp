@@ -46,6 +46,7 @@ struct FemProblem {
   Real dt = 1.0 / 60;        // s, settings.dt (a flow's steady solve ignores it)
   int threads = 0;           // settings.threads: the most worker threads a step may use (0 = all cores)
   NewtonSettings newton;
+  SolidLinearSettings linear;  // settings.linear_solver of a scene of solids
   VectorX initial_velocity;  // per dof
   std::vector<FemRigidBody> rigid_bodies;
   std::vector<FemJoint> joints;

@@ -109,10 +109,13 @@ class DynamicStepSystem final : public NewtonIterates<DynamicStepIterate> {
     SparseMatrix& K = now_.K;
     for (Index i = 0; i < K.nonZeros(); ++i) K.valuePtr()[i] += c * mass_.valuePtr()[i];
     if (!timed(result_.solve_s, [&] { return solver_.factorize(K, rule_ == StepRule::midpoint); })) {
-      failure = "the step's tangent is singular";
+      failure = solver_.failure().empty() ? "the step's tangent is singular" : solver_.failure();
       return false;
     }
-    du = timed(result_.solve_s, [&] { return solver_.solve(-now_.R); });
+    if (!timed(result_.solve_s, [&] { return solver_.solve(-now_.R, du); })) {
+      failure = solver_.failure();
+      return false;
+    }
     return true;
   }
 

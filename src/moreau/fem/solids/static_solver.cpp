@@ -46,10 +46,14 @@ class StaticSystem final : public NewtonIterates<StaticIterate> {
 
   bool solve(VectorX& du, std::string& failure) override {
     if (!timed(result_.solve_s, [&] { return solver_.factorize(now_.K); })) {
-      failure = "the tangent is singular (is the body held against rigid motion?)";
+      failure = solver_.failure().empty() ? "the tangent is singular (is the body held against rigid motion?)"
+                                          : solver_.failure();
       return false;
     }
-    du = timed(result_.solve_s, [&] { return solver_.solve(-residual()); });
+    if (!timed(result_.solve_s, [&] { return solver_.solve(-residual(), du); })) {
+      failure = solver_.failure();
+      return false;
+    }
     return true;
   }
 

@@ -1,0 +1,15 @@
+#pragma once
+// Finds and loads the PETSc plugin (libmoreau_petsc.so) the first time a scene asks for it.
+#include <string>
+
+#include "moreau/fem/petsc/petsc_plugin_api.hpp"
+
+namespace moreau {
+
+/// The PETSc backend, loaded and initialized on the first call. Looked for, in order: the file
+/// $MOREAU_PETSC_PLUGIN names; next to the running program; in ../lib/moreau beside it; in the
+/// build tree the engine was built in. Throws std::runtime_error saying where it looked and why
+/// loading failed.
+petsc_plugin::Backend& petsc_backend();
+
+}  // namespace moreau

@@ -1,0 +1,229 @@
+#include "krylov_solver.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+#include "petsc_call.hpp"
+
+namespace moreau::petsc_plugin {
+
+static_assert(sizeof(PetscInt) == sizeof(int), "the plugin passes 32-bit indices to PETSc");
+static_assert(std::is_same_v<PetscScalar, double>, "the plugin needs PETSc's real double build");
+
+namespace {
+
+// "-ksp_type gmres -pc_hypre_boomeramg_strong_threshold 0.5" with prefix "moreau1_flow_" becomes
+// "-moreau1_flow_ksp_type gmres -moreau1_flow_pc_hypre_boomeramg_strong_threshold 0.5": a token is
+// an option's name when it starts with '-' and a letter (not a negative number).
+std::string with_prefix(const std::string& options, const std::string& prefix) {
+  std::istringstream tokens(options);
+  std::string token, out;
+  while (tokens >> token) {
+    if (!out.empty()) out += ' ';
+    if (token.size() > 1 && token[0] == '-' && std::isalpha(static_cast<unsigned char>(token[1])))
+      out += '-' + prefix + token.substr(1);
+    else
+      out += token;
+  }
+  return out;
+}
+
+// The rigid-body modes of a solid on its free unknowns (translations along each axis, rotations
+// about each axis through the centroid), orthonormalized by modified Gram-Schmidt as
+// MatNullSpaceCreate requires. They span the near-null space of the elasticity operator: smoothed
+// aggregation builds its coarse spaces from them (Vanek, Mandel & Brezina 1996, Computing 56).
+std::vector<std::vector<double>> rigid_body_modes(const UnknownLayout& layout) {
+  const size_t n = layout.component.size();
+  double centre[3] = {0, 0, 0};
+  for (size_t i = 0; i < n; ++i)
+    for (int k = 0; k < 3; ++k) centre[k] += layout.position[3 * i + k] / static_cast<double>(n);
+  const int count = layout.dim == 2 ? 3 : 6;
+  std::vector<std::vector<double>> modes(count, std::vector<double>(n, 0.0));
+  for (size_t i = 0; i < n; ++i) {
+    const int c = layout.component[i];
+    const double x = layout.position[3 * i] - centre[0], y = layout.position[3 * i + 1] - centre[1],
+                 z = layout.position[3 * i + 2] - centre[2];
+    modes[c][i] = 1;  // translation along axis c
+    if (layout.dim == 2) {
+      modes[2][i] = c == 0 ? -y : x;  // rotation about z: (-y, x)
+    } else {
+      const double about_x[3] = {0, -z, y}, about_y[3] = {z, 0, -x}, about_z[3] = {-y, x, 0};
+      modes[3][i] = about_x[c];
+      modes[4][i] = about_y[c];
+      modes[5][i] = about_z[c];
+    }
+  }
+  for (int a = 0; a < count; ++a) {
+    for (int b = 0; b < a; ++b) {
+      double dot = 0;
+      for (size_t i = 0; i < n; ++i) dot += modes[a][i] * modes[b][i];
+      for (size_t i = 0; i < n; ++i) modes[a][i] -= dot * modes[b][i];
+    }
+    double norm = 0;
+    for (double v : modes[a]) norm += v * v;
+    norm = std::sqrt(norm);
+    for (double& v : modes[a]) v /= norm;
+  }
+  return modes;
+}
+
+}  // namespace
+
+KrylovSolver::KrylovSolver(const SolverSpec& spec, const UnknownLayout& layout) : spec_(spec), layout_(layout) {
+  static std::atomic<int> solvers{0};
+  prefix_ = "moreau" + std::to_string(++solvers) + "_" + spec.prefix;
+  petsc_call(PetscOptionsInsertString(nullptr, with_prefix(spec.options, prefix_).c_str()), "the PETSc options");
+  petsc_call(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
+  petsc_call(KSPSetOptionsPrefix(ksp_, prefix_.c_str()), "KSPSetOptionsPrefix");
+  petsc_call(KSPSetTolerances(ksp_, spec.relative_tolerance, spec.absolute_tolerance, PETSC_DEFAULT,
+                              spec.max_iterations),
+             "KSPSetTolerances");
+  petsc_call(KSPSetFromOptions(ksp_), "the KSP's options");
+}
+
+KrylovSolver::~KrylovSolver() {
+  PetscBool finalized = PETSC_TRUE;
+  PetscFinalized(&finalized);
+  if (finalized) return;  // at exit, after PETSc has gone: nothing left to free
+  KSPDestroy(&ksp_);
+  MatDestroy(&matrix_);
+  VecDestroy(&b_);
+  VecDestroy(&x_);
+}
+
+bool KrylovSolver::same_pattern(int n, const int* column_starts, const int* rows) const {
+  if (!matrix_ || static_cast<int>(column_starts_.size()) != n + 1) return false;
+  if (!std::equal(column_starts, column_starts + n + 1, column_starts_.begin())) return false;
+  return std::equal(rows, rows + column_starts[n], rows_.begin());
+}
+
+// Column-ordered entries to rows: count the entries of each row, then walk the columns in order, so
+// each row's columns come out sorted, as AIJ needs.
+void KrylovSolver::create_matrix(int n, const int* column_starts, const int* rows) {
+  const int entries = column_starts[n];
+  column_starts_.assign(column_starts, column_starts + n + 1);
+  rows_.assign(rows, rows + entries);
+  std::vector<PetscInt> row_starts(n + 1, 0), columns(entries), next(n);
+  for (int k = 0; k < entries; ++k) ++row_starts[rows[k] + 1];
+  for (int r = 0; r < n; ++r) row_starts[r + 1] += row_starts[r];
+  std::copy(row_starts.begin(), row_starts.end() - 1, next.begin());
+  csr_position_.resize(entries);
+  for (int j = 0; j < n; ++j)
+    for (int k = column_starts[j]; k < column_starts[j + 1]; ++k) {
+      const int position = next[rows[k]]++;
+      columns[position] = j;
+      csr_position_[k] = position;
+    }
+  csr_values_.assign(entries, 0.0);
+
+  MatDestroy(&matrix_);
+  VecDestroy(&b_);
+  VecDestroy(&x_);
+  petsc_call(MatCreate(PETSC_COMM_SELF, &matrix_), "MatCreate");
+  petsc_call(MatSetSizes(matrix_, n, n, n, n), "MatSetSizes");
+  petsc_call(MatSetType(matrix_, MATSEQAIJ), "MatSetType");
+  petsc_call(MatSetOptionsPrefix(matrix_, prefix_.c_str()), "MatSetOptionsPrefix");
+  petsc_call(MatSeqAIJSetPreallocationCSR(matrix_, row_starts.data(), columns.data(), csr_values_.data()),
+             "MatSeqAIJSetPreallocationCSR");
+  petsc_call(MatSetOption(matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
+  petsc_call(MatCreateVecs(matrix_, &x_, &b_), "MatCreateVecs");
+  attach_layout();
+}
+
+// The field split's index sets and the near-null space, for preconditioners that use them (any other
+// ignores them).
+void KrylovSolver::attach_layout() {
+  if (!layout_.field.empty()) {
+    PC pc;
+    petsc_call(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    std::vector<PetscInt> velocity, pressure;
+    for (size_t i = 0; i < layout_.field.size(); ++i)
+      (layout_.field[i] == 1 ? pressure : velocity).push_back(static_cast<PetscInt>(i));
+    IS sets[2];
+    petsc_call(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(velocity.size()), velocity.data(),
+                               PETSC_COPY_VALUES, &sets[0]),
+               "ISCreateGeneral");
+    petsc_call(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(pressure.size()), pressure.data(),
+                               PETSC_COPY_VALUES, &sets[1]),
+               "ISCreateGeneral");
+    petsc_call(PCFieldSplitSetIS(pc, "u", sets[0]), "PCFieldSplitSetIS");
+    petsc_call(PCFieldSplitSetIS(pc, "p", sets[1]), "PCFieldSplitSetIS");
+    ISDestroy(&sets[0]);
+    ISDestroy(&sets[1]);
+  }
+  if (!layout_.component.empty()) {
+    const auto modes = rigid_body_modes(layout_);
+    std::vector<Vec> vectors(modes.size());
+    for (size_t m = 0; m < modes.size(); ++m) {
+      petsc_call(MatCreateVecs(matrix_, &vectors[m], nullptr), "MatCreateVecs");
+      PetscScalar* v;
+      petsc_call(VecGetArray(vectors[m], &v), "VecGetArray");
+      std::copy(modes[m].begin(), modes[m].end(), v);
+      petsc_call(VecRestoreArray(vectors[m], &v), "VecRestoreArray");
+    }
+    MatNullSpace space;
+    petsc_call(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(vectors.size()),
+                                  vectors.data(), &space),
+               "MatNullSpaceCreate");
+    petsc_call(MatSetNearNullSpace(matrix_, space), "MatSetNearNullSpace");
+    MatNullSpaceDestroy(&space);
+    for (Vec& v : vectors) VecDestroy(&v);
+  }
+}
+
+bool KrylovSolver::set_matrix(int n, const int* column_starts, const int* rows, const double* values,
+                              std::string& failure) {
+  try {
+    if (!layout_.field.empty() && static_cast<int>(layout_.field.size()) != n)
+      throw PetscFailure("the field layout has " + std::to_string(layout_.field.size()) + " unknowns, the matrix " +
+                         std::to_string(n));
+    if (!same_pattern(n, column_starts, rows)) create_matrix(n, column_starts, rows);
+    PetscScalar* stored;
+    petsc_call(MatSeqAIJGetArray(matrix_, &stored), "MatSeqAIJGetArray");
+    for (int k = 0; k < column_starts[n]; ++k) stored[csr_position_[k]] = values[k];
+    petsc_call(MatSeqAIJRestoreArray(matrix_, &stored), "MatSeqAIJRestoreArray");
+    petsc_call(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+    petsc_call(KSPSetUp(ksp_), "setting up the preconditioner");
+    return true;
+  } catch (const PetscFailure& e) {
+    failure = e.what();
+    return false;
+  }
+}
+
+SolveReport KrylovSolver::solve(const double* b, double* x) {
+  SolveReport report;
+  try {
+    petsc_call(VecPlaceArray(b_, const_cast<double*>(b)), "VecPlaceArray");
+    petsc_call(VecPlaceArray(x_, x), "VecPlaceArray");
+    const PetscErrorCode code = KSPSolve(ksp_, b_, x_);
+    VecResetArray(b_);
+    VecResetArray(x_);
+    petsc_call(code, "KSPSolve");
+    KSPConvergedReason reason;
+    petsc_call(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+    petsc_call(KSPGetIterationNumber(ksp_, &report.iterations), "KSPGetIterationNumber");
+    petsc_call(KSPGetResidualNorm(ksp_, &report.residual), "KSPGetResidualNorm");
+    report.converged = reason > 0;
+    report.reason = KSPConvergedReasons[reason];
+  } catch (const PetscFailure& e) {
+    report.converged = false;
+    report.reason = e.what();
+  }
+  return report;
+}
+
+std::string KrylovSolver::describe() const {
+  KSPType ksp_type = nullptr;
+  PCType pc_type = nullptr;
+  PC pc;
+  KSPGetType(ksp_, &ksp_type);
+  KSPGetPC(ksp_, &pc);
+  PCGetType(pc, &pc_type);
+  return std::string(ksp_type ? ksp_type : "?") + "+" + (pc_type ? pc_type : "?");
+}
+
+}  // namespace moreau::petsc_plugin

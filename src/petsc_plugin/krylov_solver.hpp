@@ -1,0 +1,43 @@
+#pragma once
+// One PETSc KSP with its matrix, on one process: the matrix arrives in compressed sparse column
+// form, is stored as PETSc's AIJ (compressed rows), and keeps its pattern between Newton
+// iterations, so only the values are copied and the preconditioner's symbolic setup is reused.
+#include <petscksp.h>
+
+#include <vector>
+
+#include "moreau/fem/petsc/petsc_plugin_api.hpp"
+
+namespace moreau::petsc_plugin {
+
+class KrylovSolver final : public LinearSolver {
+ public:
+  /// Throws PetscFailure if the KSP cannot be created.
+  KrylovSolver(const SolverSpec& spec, const UnknownLayout& layout);
+  ~KrylovSolver() override;
+  KrylovSolver(const KrylovSolver&) = delete;
+  KrylovSolver& operator=(const KrylovSolver&) = delete;
+
+  bool set_matrix(int n, const int* column_starts, const int* rows, const double* values,
+                  std::string& failure) override;
+  SolveReport solve(const double* b, double* x) override;
+  std::string describe() const override;
+
+ private:
+  bool same_pattern(int n, const int* column_starts, const int* rows) const;
+  void create_matrix(int n, const int* column_starts, const int* rows);
+  void attach_layout();
+
+  SolverSpec spec_;
+  UnknownLayout layout_;
+  std::string prefix_;  // unique to this solver: spec.prefix after a process-wide counter
+  KSP ksp_ = nullptr;
+  Mat matrix_ = nullptr;
+  Vec b_ = nullptr, x_ = nullptr;
+  // The pattern as given (to recognise it again) and, per stored entry in column order, its
+  // position in the row-ordered values PETSc holds.
+  std::vector<int> column_starts_, rows_, csr_position_;
+  std::vector<PetscScalar> csr_values_;
+};
+
+}  // namespace moreau::petsc_plugin

@@ -1,0 +1,79 @@
+// "linear_solver": {"type": "petsc"} in scene files, through the `moreau` program: a flow and a
+// solid run with it to the direct solvers' answers, and what it refuses (exit 2, naming the key).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "scene_test_helpers.hpp"
+#include "test_helpers.hpp"
+
+namespace moreau {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The 3D lid-driven cube of scenes/cavity3d_re400.json at Re 100 on 8^3 cells.
+std::string cavity(const std::string& linear_solver) {
+  return std::string(R"({"name": "cavity", "settings": {"solver": "fem", "integrator": "steady", "gravity": [0, 0, 0],
+      "newton": {"tolerance": 1e-11}, "linear_solver": )") + linear_solver + R"(},
+    "objects": [{"name": "fluid", "kind": "fluid", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [8, 8, 8]},
+      "density": 1.0, "viscosity": 0.01,
+      "boundaries": [{"where": {"side": "top"}, "velocity": ["1", "0", "0"]},
+                     {"where": {"side": ["left", "right", "bottom", "back", "front"]}, "type": "no_slip"}],
+      "pressure_reference": {"mean": 0}}],
+    "probes": [{"name": "centre", "type": "point", "at": [0.5, 0.5, 0.5]}]})";
+}
+
+void expect_bad(const std::string& tag, const std::string& text, const std::vector<std::string>& needles) {
+  const std::string path = test::write_scene(tag, text);
+  const std::string out = fs::path(path).parent_path() / "out";
+  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", path, out));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "missing '" << n << "' in: " << r.output;
+  EXPECT_FALSE(fs::exists(out)) << "bad input must not leave output behind";
+}
+
+TEST(PetscScenes, AFlowSceneGivesTheDirectSolversProbes) {
+  // Newton to 1e-11 either way, Krylov solves to 1e-10: the probes (velocity ~0.1 m/s, pressure
+  // ~0.01 Pa) agree to 1e-9, the figures of the tests beside this one.
+  const auto direct = test::run_scene(test::write_scene("petsc_direct", cavity(R"({"type": "direct"})")), test::temp_dir("petsc_direct_run") + "/out");
+  const std::string out = test::temp_dir("petsc_fieldsplit") + "/out";
+  const auto petsc = test::run_scene(test::write_scene("petsc_fieldsplit_scene", cavity(R"({"type": "petsc", "tolerance": 1e-10})")), out);
+  ASSERT_FALSE(direct.empty());
+  ASSERT_EQ(direct.size(), petsc.size());
+  for (size_t c = 1; c < direct.back().size(); ++c) EXPECT_NEAR(direct.back()[c], petsc.back()[c], 1e-9) << "column " << c;
+  std::ifstream run_file(out + "/run.json");
+  const nlohmann::json run = nlohmann::json::parse(run_file);
+  EXPECT_EQ(run["linear_solver"]["type"], "petsc fgmres+fieldsplit");
+  EXPECT_EQ(run["linear_solver"]["solves"], run["newton"]["iterations"]);
+  EXPECT_GT(run["linear_solver"]["krylov_iterations"].get<long>(), 0);
+}
+
+TEST(PetscScenes, BadPetscSettingsAreRefusedBeforeTheRun) {
+  expect_bad("petsc_pc", cavity(R"({"type": "petsc", "preconditioner": "jacobi"})"),
+             {"settings.linear_solver.preconditioner", "fieldsplit, amg, ilu, lu"});
+  expect_bad("petsc_options", cavity(R"({"type": "petsc", "petsc_options": "-pc_type nonsense"})"),
+             {"settings.linear_solver.petsc_options", "PETSc does not accept", "nonsense"});
+  expect_bad("petsc_gmres_key", cavity(R"({"type": "petsc", "drop_tolerance": 1e-3})"),
+             {"settings.linear_solver.drop_tolerance", "\"type\": \"gmres\""});
+  expect_bad("petsc_key_on_direct", cavity(R"({"type": "direct", "preconditioner": "amg"})"),
+             {"settings.linear_solver.preconditioner", "\"type\": \"petsc\""});
+}
+
+TEST(PetscScenes, AMissingPluginIsBadInputThatSaysWhereItWasLookedFor) {
+  const std::string path = test::write_scene("petsc_missing", cavity(R"({"type": "petsc"})"));
+  const std::string out = fs::path(path).parent_path() / "out";
+  setenv("MOREAU_PETSC_PLUGIN", "/nowhere/libmoreau_petsc.so", 1);
+  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", path, out));
+  unsetenv("MOREAU_PETSC_PLUGIN");
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("settings.linear_solver.type"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("/nowhere/libmoreau_petsc.so: not there"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
+}  // namespace moreau
