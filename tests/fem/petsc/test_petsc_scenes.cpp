@@ -54,7 +54,7 @@ TEST(PetscScenes, AFlowSceneGivesTheDirectSolversProbes) {
 
 TEST(PetscScenes, BadPetscSettingsAreRefusedBeforeTheRun) {
   expect_bad("petsc_pc", cavity(R"({"type": "petsc", "preconditioner": "jacobi"})"),
-             {"settings.linear_solver.preconditioner", "fieldsplit, amg, ilu, lu"});
+             {"settings.linear_solver.preconditioner", "fieldsplit, fieldsplit_ilu, amg, ilu, lu"});
   expect_bad("petsc_options", cavity(R"({"type": "petsc", "petsc_options": "-pc_type nonsense"})"),
              {"settings.linear_solver.petsc_options", "PETSc does not accept", "nonsense"});
   expect_bad("petsc_gmres_key", cavity(R"({"type": "petsc", "drop_tolerance": 1e-3})"),
