@@ -31,6 +31,8 @@ struct SparseSymmetricSolver::Petsc {
   petsc_plugin::UnknownLayout layout;
   std::unique_ptr<petsc_plugin::LinearSolver> symmetric, general;
   petsc_plugin::LinearSolver* last = nullptr;
+  const SparseMatrix* matrix = nullptr;  // the last K, alive until the solve that follows it
+  bool cg_indefinite = false;            // CG met an indefinite multigrid cycle: GMRES from then on
 };
 
 SparseSymmetricSolver::SparseSymmetricSolver() {
@@ -48,6 +50,7 @@ void SparseSymmetricSolver::use_petsc(const SolidLinearSettings& settings, petsc
 
 bool SparseSymmetricSolver::factorize_petsc(const SparseMatrix& K, bool symmetric) {
   Petsc& p = *petsc_;
+  if (p.cg_indefinite) symmetric = false;
   auto& solver = symmetric ? p.symmetric : p.general;
   if (!solver) {
     petsc_plugin::SolverSpec spec;
@@ -69,6 +72,7 @@ bool SparseSymmetricSolver::factorize_petsc(const SparseMatrix& K, bool symmetri
     A = &compressed;
   }
   p.last = solver.get();
+  p.matrix = &K;
   method_ = "petsc " + solver->describe();
   if (solver->set_matrix(static_cast<int>(A->rows()), A->outerIndexPtr(), A->innerIndexPtr(), A->valuePtr(), failure_))
     return true;
@@ -82,9 +86,23 @@ bool SparseSymmetricSolver::solve(const VectorX& b, VectorX& x) {
     return true;
   }
   x = VectorX::Zero(b.size());
-  const petsc_plugin::SolveReport report = petsc_->last->solve(b.data(), x.data());
+  petsc_plugin::SolveReport report = petsc_->last->solve(b.data(), x.data());
   krylov_iterations_ += report.iterations;
   max_krylov_iterations_ = std::max(max_krylov_iterations_, report.iterations);
+  // CG needs a positive definite preconditioner, and multigrid's Chebyshev smoothers, tuned by
+  // estimates of the extreme eigenvalues, are not always one on a tangent far from the reference
+  // configuration (seen on the sheared 20^3 block at its third load step): the solve is repeated
+  // with the GMRES solver, as the direct path falls back from Cholesky to LU, and GMRES solves
+  // every later tangent of the run too. (Symmetric SOR smoothers, which would keep the cycle
+  // positive definite, broke down on a 40^3 block.)
+  if (!report.converged && report.reason.find("INDEFINITE") != std::string::npos && petsc_->last == petsc_->symmetric.get()) {
+    petsc_->cg_indefinite = true;
+    if (!factorize_petsc(*petsc_->matrix, false)) return false;
+    x.setZero();
+    report = petsc_->last->solve(b.data(), x.data());
+    krylov_iterations_ += report.iterations;
+    max_krylov_iterations_ = std::max(max_krylov_iterations_, report.iterations);
+  }
   if (report.converged) return true;
   failure_ = fmt::format(
       "PETSc's {} stopped with {} after {} iterations (residual {:.2e}, tolerance {:.1e} relative); raise "

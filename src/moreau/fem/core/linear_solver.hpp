@@ -56,7 +56,9 @@ class SparseSymmetricSolver {
   bool factorize(const SparseMatrix& K, bool symmetric = true);
   /// Solves K x = b with the last factorization (direct only).
   VectorX solve(const VectorX& b) const;
-  /// Solves K x = b; false, with failure() saying why, if the Krylov solve did not converge.
+  /// Solves K x = b with the last K factorized (which must still be alive: PETSc may set it up
+  /// again for GMRES when CG meets an indefinite multigrid cycle); false, with failure() saying
+  /// why, if the Krylov solve did not converge.
   bool solve(const VectorX& b, VectorX& x);
   /// "cholmod", "umfpack" or "petsc cg+gamg": what solved with the last K.
   const std::string& method() const { return method_; }
