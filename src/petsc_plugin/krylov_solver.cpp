@@ -65,8 +65,14 @@ std::vector<std::vector<double>> rigid_body_modes(const UnknownLayout& layout) {
     double norm = 0;
     for (double v : modes[a]) norm += v * v;
     norm = std::sqrt(norm);
-    for (double& v : modes[a]) v /= norm;
+    const double scale = norm > 1e-12 * std::sqrt(static_cast<double>(n)) ? 1 / norm : 0;
+    for (double& v : modes[a]) v *= scale;
   }
+  // A mode with nothing left after the others were taken out of it (every dof of a component
+  // prescribed, or all nodes on one line) is not a direction: it is dropped.
+  std::erase_if(modes, [](const std::vector<double>& mode) {
+    return std::none_of(mode.begin(), mode.end(), [](double v) { return std::isfinite(v) && v != 0; });
+  });
   return modes;
 }
 
@@ -76,12 +82,24 @@ KrylovSolver::KrylovSolver(const SolverSpec& spec, const UnknownLayout& layout) 
   static std::atomic<int> solvers{0};
   prefix_ = "moreau" + std::to_string(++solvers) + "_" + spec.prefix;
   petsc_call(PetscOptionsInsertString(nullptr, with_prefix(spec.options, prefix_).c_str()), "the PETSc options");
-  petsc_call(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
-  petsc_call(KSPSetOptionsPrefix(ksp_, prefix_.c_str()), "KSPSetOptionsPrefix");
-  petsc_call(KSPSetTolerances(ksp_, spec.relative_tolerance, spec.absolute_tolerance, PETSC_DEFAULT,
-                              spec.max_iterations),
-             "KSPSetTolerances");
-  petsc_call(KSPSetFromOptions(ksp_), "the KSP's options");
+  create_ksp();
+}
+
+// A new KSP from the options under this solver's prefix. A KSP is made again for a matrix of
+// another pattern: a field split, once set up, keeps its blocks' index sets and patterns.
+void KrylovSolver::create_ksp() {
+  KSPDestroy(&ksp_);
+  try {
+    petsc_call(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
+    petsc_call(KSPSetOptionsPrefix(ksp_, prefix_.c_str()), "KSPSetOptionsPrefix");
+    petsc_call(KSPSetTolerances(ksp_, spec_.relative_tolerance, spec_.absolute_tolerance, PETSC_DEFAULT,
+                                spec_.max_iterations),
+               "KSPSetTolerances");
+    petsc_call(KSPSetFromOptions(ksp_), "the KSP's options");
+  } catch (const PetscFailure&) {
+    KSPDestroy(&ksp_);
+    throw;
+  }
 }
 
 KrylovSolver::~KrylovSolver() {
@@ -103,6 +121,7 @@ bool KrylovSolver::same_pattern(int n, const int* column_starts, const int* rows
 // Column-ordered entries to rows: count the entries of each row, then walk the columns in order, so
 // each row's columns come out sorted, as AIJ needs.
 void KrylovSolver::create_matrix(int n, const int* column_starts, const int* rows) {
+  const bool had_matrix = matrix_ != nullptr;
   const int entries = column_starts[n];
   column_starts_.assign(column_starts, column_starts + n + 1);
   rows_.assign(rows, rows + entries);
@@ -122,6 +141,7 @@ void KrylovSolver::create_matrix(int n, const int* column_starts, const int* row
   MatDestroy(&matrix_);
   VecDestroy(&b_);
   VecDestroy(&x_);
+  if (had_matrix) create_ksp();
   petsc_call(MatCreate(PETSC_COMM_SELF, &matrix_), "MatCreate");
   petsc_call(MatSetSizes(matrix_, n, n, n, n), "MatSetSizes");
   petsc_call(MatSetType(matrix_, MATSEQAIJ), "MatSetType");
@@ -142,44 +162,47 @@ void KrylovSolver::attach_layout() {
     std::vector<PetscInt> velocity, pressure;
     for (size_t i = 0; i < layout_.field.size(); ++i)
       (layout_.field[i] == 1 ? pressure : velocity).push_back(static_cast<PetscInt>(i));
-    IS sets[2];
-    petsc_call(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(velocity.size()), velocity.data(),
-                               PETSC_COPY_VALUES, &sets[0]),
-               "ISCreateGeneral");
-    petsc_call(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(pressure.size()), pressure.data(),
-                               PETSC_COPY_VALUES, &sets[1]),
-               "ISCreateGeneral");
-    petsc_call(PCFieldSplitSetIS(pc, "u", sets[0]), "PCFieldSplitSetIS");
-    petsc_call(PCFieldSplitSetIS(pc, "p", sets[1]), "PCFieldSplitSetIS");
+    IS sets[2] = {nullptr, nullptr};
+    PetscErrorCode code =
+        ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(velocity.size()), velocity.data(), PETSC_COPY_VALUES,
+                        &sets[0]);
+    if (!code)
+      code = ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(pressure.size()), pressure.data(),
+                             PETSC_COPY_VALUES, &sets[1]);
+    if (!code) code = PCFieldSplitSetIS(pc, "u", sets[0]);
+    if (!code) code = PCFieldSplitSetIS(pc, "p", sets[1]);
     ISDestroy(&sets[0]);
     ISDestroy(&sets[1]);
+    petsc_call(code, "the field split's index sets");
   }
   if (!layout_.component.empty()) {
     const auto modes = rigid_body_modes(layout_);
-    std::vector<Vec> vectors(modes.size());
-    for (size_t m = 0; m < modes.size(); ++m) {
-      petsc_call(MatCreateVecs(matrix_, &vectors[m], nullptr), "MatCreateVecs");
-      PetscScalar* v;
-      petsc_call(VecGetArray(vectors[m], &v), "VecGetArray");
-      std::copy(modes[m].begin(), modes[m].end(), v);
-      petsc_call(VecRestoreArray(vectors[m], &v), "VecRestoreArray");
+    std::vector<Vec> vectors(modes.size(), nullptr);
+    PetscErrorCode code = 0;
+    for (size_t m = 0; m < modes.size() && !code; ++m) {
+      code = VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(modes[m].size()), &vectors[m]);
+      PetscScalar* v = nullptr;
+      if (!code) code = VecGetArray(vectors[m], &v);
+      if (!code) std::copy(modes[m].begin(), modes[m].end(), v);
+      if (!code) code = VecRestoreArray(vectors[m], &v);
     }
-    MatNullSpace space;
-    petsc_call(MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(vectors.size()),
-                                  vectors.data(), &space),
-               "MatNullSpaceCreate");
-    petsc_call(MatSetNearNullSpace(matrix_, space), "MatSetNearNullSpace");
+    MatNullSpace space = nullptr;
+    if (!code)
+      code = MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(),
+                                &space);
+    if (!code) code = MatSetNearNullSpace(matrix_, space);
     MatNullSpaceDestroy(&space);
     for (Vec& v : vectors) VecDestroy(&v);
+    petsc_call(code, "the rigid-body modes");
   }
 }
 
 bool KrylovSolver::set_matrix(int n, const int* column_starts, const int* rows, const double* values,
                               std::string& failure) {
   try {
-    if (!layout_.field.empty() && static_cast<int>(layout_.field.size()) != n)
-      throw PetscFailure("the field layout has " + std::to_string(layout_.field.size()) + " unknowns, the matrix " +
-                         std::to_string(n));
+    const size_t laid_out = layout_.field.empty() ? layout_.component.size() : layout_.field.size();
+    if (laid_out != 0 && laid_out != static_cast<size_t>(n))
+      throw PetscFailure("the layout has " + std::to_string(laid_out) + " unknowns, the matrix " + std::to_string(n));
     if (!same_pattern(n, column_starts, rows)) create_matrix(n, column_starts, rows);
     PetscScalar* stored;
     petsc_call(MatSeqAIJGetArray(matrix_, &stored), "MatSeqAIJGetArray");
@@ -198,7 +221,10 @@ SolveReport KrylovSolver::solve(const double* b, double* x) {
   SolveReport report;
   try {
     petsc_call(VecPlaceArray(b_, const_cast<double*>(b)), "VecPlaceArray");
-    petsc_call(VecPlaceArray(x_, x), "VecPlaceArray");
+    if (const PetscErrorCode placed = VecPlaceArray(x_, x)) {
+      VecResetArray(b_);
+      petsc_call(placed, "VecPlaceArray");
+    }
     const PetscErrorCode code = KSPSolve(ksp_, b_, x_);
     VecResetArray(b_);
     VecResetArray(x_);

@@ -25,6 +25,7 @@ class KrylovSolver final : public LinearSolver {
 
  private:
   bool same_pattern(int n, const int* column_starts, const int* rows) const;
+  void create_ksp();
   void create_matrix(int n, const int* column_starts, const int* rows);
   void attach_layout();
 

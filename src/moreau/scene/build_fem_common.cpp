@@ -30,7 +30,8 @@ void require_petsc(const JsonObject& linear_solver, const std::string& options) 
   std::string failure;
   if (!backend->make_solver({.prefix = "scene_check_", .options = options}, {}, failure))
     linear_solver.fail(linear_solver.has("petsc_options") ? "petsc_options" : "preconditioner",
-                       "PETSc does not accept these options: " + failure);
+                       "PETSc does not accept these options: " + failure +
+                           "; the KSP and PC types PETSc knows are listed in its manual pages (KSPType, PCType)");
 }
 
 Vec3 read_point(const JsonObject& j, const std::string& key, int dim) {

@@ -86,8 +86,8 @@ void read_immersed_rigid_body(const JsonObject& top, const JsonObject& bj, Real 
   }
   if (problem.linear.method != FlowLinearMethod::direct)
     bj.fail("kind", "a fluid with rigid bodies needs the direct linear solver (\"linear_solver\": {\"type\": \"direct\"}): "
-                    "the bodies' part of the Jacobian is applied through extra solves that GMRES, solving each only "
-                    "to its tolerance, cannot make accurate enough");
+                    "the bodies' part of the Jacobian is applied through extra solves that an iterative solver, "
+                    "solving each only to its tolerance, cannot make accurate enough");
   const Real stiffness = bj.number("coupling_stiffness", default_rigid_coupling_stiffness(fluid, dt), Range::positive());
   // A body lighter than the fluid has a negative excess mass; its frame's equations stay
   // well-posed while theta k outweighs (rho_f - rho_s)/dt (theta = 1/2 at worst), with a margin.

@@ -32,13 +32,13 @@ void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& 
 
 // --- shared readers ---
 
-/// A solid's "material": a hyperelastic model with Young's modulus and Poisson's ratio or Lame's
-/// parameters, and its density.
 /// Loads the PETSc plugin for `"type": "petsc"` in `linear_solver` and has PETSc read `options`
 /// (the preset's and the user's); fails naming linear_solver.type, with where the plugin was looked
 /// for, if it cannot be loaded, or naming petsc_options if PETSc rejects them.
 void require_petsc(const JsonObject& linear_solver, const std::string& options);
 
+/// A solid's "material": a hyperelastic model with Young's modulus and Poisson's ratio or Lame's
+/// parameters, and its density.
 HyperelasticMaterial read_fem_material(const JsonObject& material);
 /// A solid object's "formulation" ("displacement" or "mean_dilatation"), checked against its
 /// material and cells (mean dilatation: Neo-Hookean on quad4/hex8).

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cassert>
 
 #include "moreau/fem/petsc/petsc_plugin_loader.hpp"
 #include "moreau/fem/petsc/petsc_presets.hpp"
@@ -98,6 +99,7 @@ bool SparseSymmetricSolver::solve(const VectorX& b, VectorX& x) {
   if (!report.converged && report.reason.find("INDEFINITE") != std::string::npos && petsc_->last == petsc_->symmetric.get()) {
     petsc_->cg_indefinite = true;
     if (!factorize_petsc(*petsc_->matrix, false)) return false;
+    petsc_->symmetric.reset();  // its multigrid hierarchy is not needed again
     x.setZero();
     report = petsc_->last->solve(b.data(), x.data());
     krylov_iterations_ += report.iterations;
@@ -156,6 +158,7 @@ bool SparseLuSolver::factorize(const SparseMatrix& A) {
 }
 
 VectorX SparseSymmetricSolver::solve(const VectorX& b) const {
+  assert(!petsc_ && "a PETSc solve can fail: use solve(b, x)");
   if (method_ == "cholmod") return cholesky_.solve(b);
   return lu_.solve(b);
 }

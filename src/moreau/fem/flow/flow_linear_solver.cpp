@@ -70,11 +70,12 @@ std::string FlowLinearSolver::name() const {
 }
 
 void FlowLinearSolver::set_layout(const std::vector<Index>& free_index, int fields, Index free_count) {
-  if (!petsc_ || static_cast<Index>(petsc_->layout.field.size()) == free_count) return;
-  std::vector<int>& field = petsc_->layout.field;
-  field.assign(free_count, 0);
+  if (!petsc_) return;
+  std::vector<int> field(free_count, 0);
   for (size_t dof = 0; dof < free_index.size(); ++dof)
     if (free_index[dof] >= 0 && static_cast<int>(dof % fields) == fields - 1) field[free_index[dof]] = 1;
+  if (field == petsc_->layout.field) return;
+  petsc_->layout.field = std::move(field);
   petsc_->solver.reset();  // its index sets were of the old unknowns
 }
 
@@ -86,7 +87,6 @@ bool FlowLinearSolver::factorize_petsc(const SparseMatrix& J) {
     spec.options = flow_petsc_options(settings_.preconditioner, settings_.restart) + " " + settings_.petsc_options;
     spec.relative_tolerance = settings_.tolerance;
     spec.max_iterations = settings_.max_iterations;
-    if (p.layout.field.empty()) p.layout.field.assign(J.rows(), 0);  // no layout given: one block
     p.solver = petsc_backend().make_solver(spec, p.layout, failure_);
     if (!p.solver) return false;
   }

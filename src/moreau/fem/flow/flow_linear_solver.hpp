@@ -73,7 +73,8 @@ class FlowLinearSolver {
 
   /// The unknowns of the next Jacobians: per dof, its index among the free dofs (-1 if
   /// prescribed), with `fields` dofs per node of which the last is the pressure. Needed before the
-  /// first factorize by petsc's field split; the other methods ignore it.
+  /// first factorize by petsc's field split (without it, PETSc refuses a field split); the other
+  /// methods ignore it.
   void set_layout(const std::vector<Index>& free_index, int fields, Index free_count);
 
   /// Takes the Jacobian of the next solve; J must stay alive and unchanged until then. False if

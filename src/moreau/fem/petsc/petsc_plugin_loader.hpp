@@ -6,9 +6,10 @@
 
 namespace moreau {
 
-/// The PETSc backend, loaded and initialized on the first call. Looked for, in order: the file
-/// $MOREAU_PETSC_PLUGIN names; next to the running program; in ../lib/moreau beside it; in the
-/// build tree the engine was built in. Throws std::runtime_error saying where it looked and why
+/// The PETSc backend, loaded and initialized on the first call. Looked for in the file
+/// $MOREAU_PETSC_PLUGIN names, if it is set (and nowhere else then); otherwise next to the running
+/// program, in ../lib/moreau beside it, and in the build tree the engine was built in, in that
+/// order. Throws std::runtime_error saying where it looked and why
 /// loading failed.
 petsc_plugin::Backend& petsc_backend();
 

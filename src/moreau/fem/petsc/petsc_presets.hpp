@@ -15,9 +15,9 @@ const std::vector<std::string>& solid_petsc_preconditioners();
 /// - fieldsplit: the block factorization [A Bᵀ; B C] ≈ [A Bᵀ; 0 Ŝ] ("upper"), with the Schur
 ///   complement S = C - B A⁻¹ Bᵀ approximated by Ŝ = C - B diag(A)⁻¹ Bᵀ ("selfp", SIMPLE's
 ///   approximation; Patankar & Spalding 1972) and one BoomerAMG V-cycle (hypre; Henson & Yang
-///   2002, Appl. Numer. Math. 41) for A and for Ŝ. On the 3D cavity "upper" needed 8 % fewer
-///   iterations than "lower" and 15 % fewer than the full factorization, which costs a second
-///   velocity solve.
+///   2002, Appl. Numer. Math. 41) for A and for Ŝ. On the 3D cavity "upper" needed 5-8 % fewer
+///   iterations than "lower"; the full factorization needed 11-21 % more and costs a second
+///   velocity solve per iteration (30 % more time).
 /// - fieldsplit_ilu: the same with ILU(0) for A instead of multigrid: cheaper per iteration, more
 ///   iterations as the mesh is refined.
 /// - amg: one BoomerAMG V-cycle on the whole system (PSPG gives the pressure rows a diagonal, so

@@ -120,12 +120,18 @@ NewtonResult solve_static(const FemModel& model, Real t, VectorX& u, SparseSymme
     state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K, settings.threads); });
   } else if (du_D.squaredNorm() > 0) {
     if (!timed(result.solve_s, [&] { return solver.factorize(K); })) {
-      result.failure = "the tangent is singular (is the body held against rigid motion?)";
+      result.failure = solver.failure().empty() ? "the tangent is singular (is the body held against rigid motion?)"
+                                                : solver.failure();
       return result;
     }
     const VectorX rhs = free_part(model, f_int - f_ext + tangent_times(model, u, du_D));
+    VectorX du_f;
+    if (!timed(result.solve_s, [&] { return solver.solve(-rhs, du_f); })) {
+      result.failure = solver.failure();
+      return result;
+    }
     u = target;
-    add_free_part(model, timed(result.solve_s, [&] { return solver.solve(-rhs); }), u);
+    add_free_part(model, du_f, u);
     ++result.iterations;
     state = timed(result.assembly_s, [&] { return assemble_internal_forces(model, u, f_int, &K, settings.threads); });
     if (!state.valid) {
