@@ -61,4 +61,15 @@ inline std::vector<std::vector<Real>> run_scene(const std::string& scene, const 
   return r.exit_code == 0 ? read_probes(out) : std::vector<std::vector<Real>>{};
 }
 
+/// Runs a scene that must be refused: exit code 2, each of `needles` in the message, and no output
+/// directory left behind.
+inline void expect_bad_scene(const std::string& tag, const std::string& text, const std::vector<std::string>& needles) {
+  const std::string path = write_scene(tag, text);
+  const std::string out = std::filesystem::path(path).parent_path() / "out";
+  const auto r = run_moreau(fmt::format("run {} --out {} --quiet", path, out));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "missing '" << n << "' in: " << r.output;
+  EXPECT_FALSE(std::filesystem::exists(out)) << "bad input must not leave output behind";
+}
+
 }  // namespace moreau::test

@@ -241,14 +241,7 @@ TEST(FlowScenes, BadInputNamesItsKey) {
   };
   const std::string closed = R"([{"where": {"side": "top"}, "velocity": [1, 0]}, {"where": {"side": ["left", "right", "bottom"]}, "type": "no_slip"}])";
   const std::string open = R"J([{"where": {"side": ["top", "bottom"]}, "type": "no_slip"}, {"where": {"side": "left"}, "velocity": ["y*(1-y)", 0]}, {"where": {"side": "right"}, "type": "outflow"}])J";
-  auto expect_bad = [](const std::string& tag, const std::string& text, const std::vector<std::string>& needles) {
-    const std::string path = test::write_scene(tag, text);
-    const std::string out = fs::path(path).parent_path() / "out";
-    const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", path, out));
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "missing '" << n << "' in: " << r.output;
-    EXPECT_FALSE(fs::exists(out)) << "bad input must not leave output behind";
-  };
+  const auto expect_bad = test::expect_bad_scene;
   expect_bad("flow_undetermined", scene("", closed), {"objects[0].boundaries", "pressure_reference"});
   expect_bad("flow_overfixed", scene(R"(, "pressure_reference": {"mean": 0})", open), {"objects[0].pressure_reference", "outflow"});
   expect_bad("flow_side", scene("", R"([{"where": {"side": "lid"}, "velocity": [1, 0]}])"), {"objects[0].boundaries[0].where.side", "'lid'", "top"});

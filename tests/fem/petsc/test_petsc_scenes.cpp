@@ -27,14 +27,7 @@ std::string cavity(const std::string& linear_solver) {
     "probes": [{"name": "centre", "type": "point", "at": [0.5, 0.5, 0.5]}]})";
 }
 
-void expect_bad(const std::string& tag, const std::string& text, const std::vector<std::string>& needles) {
-  const std::string path = test::write_scene(tag, text);
-  const std::string out = fs::path(path).parent_path() / "out";
-  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", path, out));
-  EXPECT_EQ(r.exit_code, 2) << r.output;
-  for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "missing '" << n << "' in: " << r.output;
-  EXPECT_FALSE(fs::exists(out)) << "bad input must not leave output behind";
-}
+using test::expect_bad_scene;
 
 TEST(PetscScenes, AFlowSceneGivesTheDirectSolversProbes) {
   // Newton to 1e-11 either way, Krylov solves to 1e-10: the probes (velocity ~0.1 m/s, pressure
@@ -53,13 +46,13 @@ TEST(PetscScenes, AFlowSceneGivesTheDirectSolversProbes) {
 }
 
 TEST(PetscScenes, BadPetscSettingsAreRefusedBeforeTheRun) {
-  expect_bad("petsc_pc", cavity(R"({"type": "petsc", "preconditioner": "jacobi"})"),
+  expect_bad_scene("petsc_pc", cavity(R"({"type": "petsc", "preconditioner": "jacobi"})"),
              {"settings.linear_solver.preconditioner", "fieldsplit, fieldsplit_ilu, amg, ilu, lu"});
-  expect_bad("petsc_options", cavity(R"({"type": "petsc", "petsc_options": "-pc_type nonsense"})"),
+  expect_bad_scene("petsc_options", cavity(R"({"type": "petsc", "petsc_options": "-pc_type nonsense"})"),
              {"settings.linear_solver.petsc_options", "PETSc does not accept", "nonsense"});
-  expect_bad("petsc_gmres_key", cavity(R"({"type": "petsc", "drop_tolerance": 1e-3})"),
+  expect_bad_scene("petsc_gmres_key", cavity(R"({"type": "petsc", "drop_tolerance": 1e-3})"),
              {"settings.linear_solver.drop_tolerance", "\"type\": \"gmres\""});
-  expect_bad("petsc_key_on_direct", cavity(R"({"type": "direct", "preconditioner": "amg"})"),
+  expect_bad_scene("petsc_key_on_direct", cavity(R"({"type": "direct", "preconditioner": "amg"})"),
              {"settings.linear_solver.preconditioner", "\"type\": \"petsc\""});
 }
 

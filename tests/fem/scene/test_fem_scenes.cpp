@@ -352,14 +352,7 @@ TEST(FemScenes, BadInputNamesItsKey) {
                   "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 1000})" +
            solid_extra + "}]}";
   };
-  auto expect_bad = [](const std::string& tag, const std::string& text, const std::vector<std::string>& needles) {
-    const std::string path = write_scene(tag, text);
-    const std::string out = fs::path(path).parent_path() / "out";
-    const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", path, out));
-    EXPECT_EQ(r.exit_code, 2) << r.output;
-    for (const auto& n : needles) EXPECT_NE(r.output.find(n), std::string::npos) << "missing '" << n << "' in: " << r.output;
-    EXPECT_FALSE(fs::exists(out)) << "bad input must not leave output behind";
-  };
+  const auto expect_bad = test::expect_bad_scene;
   expect_bad("fem_boundary", scene(R"(, "dirichlet": [{"where": {"boundary": "side"}, "value": [0, 0, 0]}])"),
              {"objects[0].dirichlet[0].where.boundary", "'side'", "left"});
   expect_bad("fem_expression", scene(R"(, "loads": [{"type": "nodal_force", "where": {"boundary": "top"}, "value": [0, "sin(", 0]}])"),

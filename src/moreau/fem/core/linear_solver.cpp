@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cassert>
 
+#include "moreau/fem/petsc/petsc_matrix.hpp"
 #include "moreau/fem/petsc/petsc_plugin_loader.hpp"
 #include "moreau/fem/petsc/petsc_presets.hpp"
 
@@ -65,20 +66,10 @@ bool SparseSymmetricSolver::factorize_petsc(const SparseMatrix& K, bool symmetri
     solver = petsc_backend().make_solver(spec, p.layout, failure_);
     if (!solver) return false;
   }
-  SparseMatrix compressed;
-  const SparseMatrix* A = &K;
-  if (!K.isCompressed()) {
-    compressed = K;
-    compressed.makeCompressed();
-    A = &compressed;
-  }
   p.last = solver.get();
   p.matrix = &K;
   method_ = "petsc " + solver->describe();
-  if (solver->set_matrix(static_cast<int>(A->rows()), A->outerIndexPtr(), A->innerIndexPtr(), A->valuePtr(), failure_))
-    return true;
-  failure_ = "PETSc could not set up the preconditioner: " + failure_;
-  return false;
+  return set_petsc_matrix(*solver, K, failure_);
 }
 
 bool SparseSymmetricSolver::solve(const VectorX& b, VectorX& x) {

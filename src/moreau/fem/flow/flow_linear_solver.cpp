@@ -7,6 +7,7 @@
 #include <chrono>
 #include <unsupported/Eigen/IterativeSolvers>
 
+#include "moreau/fem/petsc/petsc_matrix.hpp"
 #include "moreau/fem/petsc/petsc_plugin_loader.hpp"
 #include "moreau/fem/petsc/petsc_presets.hpp"
 #include "moreau/io/binary_archive.hpp"
@@ -90,19 +91,10 @@ bool FlowLinearSolver::factorize_petsc(const SparseMatrix& J) {
     p.solver = petsc_backend().make_solver(spec, p.layout, failure_);
     if (!p.solver) return false;
   }
-  SparseMatrix compressed;
-  const SparseMatrix* A = &J;
-  if (!J.isCompressed()) {
-    compressed = J;
-    compressed.makeCompressed();
-    A = &compressed;
-  }
   const auto start = std::chrono::steady_clock::now();
-  const bool built = p.solver->set_matrix(static_cast<int>(A->rows()), A->outerIndexPtr(), A->innerIndexPtr(),
-                                          A->valuePtr(), failure_);
+  const bool built = set_petsc_matrix(*p.solver, J, failure_);
   statistics_.preconditioner_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++statistics_.preconditioner_updates;
-  if (!built) failure_ = "PETSc could not set up the preconditioner: " + failure_;
   return built;
 }
 
