@@ -8,6 +8,8 @@ packages=(
   libeigen3-dev        # dense/sparse linear algebra
   libsuitesparse-dev   # CHOLMOD/UMFPACK (FEM engine)
   petsc-dev            # the PETSc plugin: Krylov solvers, hypre's BoomerAMG, MUMPS, with Open MPI
+  openmpi-bin          # mpirun: distributed FEM runs and their tests
+  libmetis-dev         # METIS: partitions a FEM mesh among the MPI ranks of a distributed run
   libopenblas0-serial  # BLAS behind CHOLMOD's supernodal Cholesky: 3.8x faster factorizations than
                        # the reference BLAS on a 20^3 hex block; the serial build keeps results
                        # independent of the thread count (moreau's threads are its own, OpenMP)

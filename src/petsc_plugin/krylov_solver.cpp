@@ -81,6 +81,16 @@ std::vector<std::vector<double>> rigid_body_modes(const UnknownLayout& layout) {
 KrylovSolver::KrylovSolver(const SolverSpec& spec, const UnknownLayout& layout) : spec_(spec), layout_(layout) {
   static std::atomic<int> solvers{0};
   prefix_ = "moreau" + std::to_string(++solvers) + "_" + spec.prefix;
+  int rank = 0, ranks = 1;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &ranks);
+  if (!layout.owner.empty() && ranks > 1) {
+    try {
+      distribution_.emplace(layout.owner, rank, ranks);
+    } catch (const std::invalid_argument& e) {
+      throw PetscFailure(e.what());
+    }
+  }
   petsc_call(PetscOptionsInsertString(nullptr, with_prefix(spec.options, prefix_).c_str()), "the PETSc options");
   create_ksp();
 }
@@ -90,7 +100,7 @@ KrylovSolver::KrylovSolver(const SolverSpec& spec, const UnknownLayout& layout) 
 void KrylovSolver::create_ksp() {
   KSPDestroy(&ksp_);
   try {
-    petsc_call(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
+    petsc_call(KSPCreate(communicator(), &ksp_), "KSPCreate");
     petsc_call(KSPSetOptionsPrefix(ksp_, prefix_.c_str()), "KSPSetOptionsPrefix");
     petsc_call(KSPSetTolerances(ksp_, spec_.relative_tolerance, spec_.absolute_tolerance, PETSC_DEFAULT,
                                 spec_.max_iterations),
@@ -110,6 +120,8 @@ KrylovSolver::~KrylovSolver() {
   MatDestroy(&matrix_);
   VecDestroy(&b_);
   VecDestroy(&x_);
+  VecScatterDestroy(&gather_all_);
+  VecDestroy(&x_all_);
 }
 
 bool KrylovSolver::same_pattern(int n, const int* column_starts, const int* rows) const {
@@ -153,21 +165,72 @@ void KrylovSolver::create_matrix(int n, const int* column_starts, const int* row
   attach_layout();
 }
 
+// This rank's rows of a distributed matrix: the entries of the column-ordered matrix in its own
+// rows, renumbered to PETSc's rows and columns and sorted by column within each row (MPIAIJ's
+// CSR). Rows of other ranks, complete or not, are left out.
+void KrylovSolver::create_distributed_matrix(int n, const int* column_starts, const int* rows) {
+  const RowDistribution& d = *distribution_;
+  if (static_cast<int>(d.petsc_index.size()) != n)
+    throw PetscFailure("the layout has " + std::to_string(d.petsc_index.size()) + " unknowns, the matrix " +
+                       std::to_string(n));
+  const bool had_matrix = matrix_ != nullptr;
+  column_starts_.assign(column_starts, column_starts + n + 1);
+  rows_.assign(rows, rows + column_starts[n]);
+  const int local = static_cast<int>(d.owned.size());
+  std::vector<int> local_row(n, -1);
+  for (int i = 0; i < local; ++i) local_row[d.owned[i]] = i;
+  std::vector<std::vector<std::pair<PetscInt, int>>> entries(local);  // (PETSc column, source entry)
+  for (int j = 0; j < n; ++j)
+    for (int k = column_starts[j]; k < column_starts[j + 1]; ++k)
+      if (const int r = local_row[rows[k]]; r >= 0) entries[r].emplace_back(d.petsc_index[j], k);
+  local_row_starts_.assign(1, 0);
+  local_columns_.clear();
+  local_source_.clear();
+  for (auto& row : entries) {
+    std::sort(row.begin(), row.end());
+    for (const auto& [column, source] : row) {
+      local_columns_.push_back(column);
+      local_source_.push_back(source);
+    }
+    local_row_starts_.push_back(static_cast<PetscInt>(local_columns_.size()));
+  }
+  csr_values_.assign(local_columns_.size(), 0.0);
+
+  MatDestroy(&matrix_);
+  VecDestroy(&b_);
+  VecDestroy(&x_);
+  VecScatterDestroy(&gather_all_);
+  VecDestroy(&x_all_);
+  if (had_matrix) create_ksp();
+  petsc_call(MatCreateMPIAIJWithArrays(PETSC_COMM_WORLD, local, local, n, n, local_row_starts_.data(),
+                                       local_columns_.data(), csr_values_.data(), &matrix_),
+             "MatCreateMPIAIJWithArrays");
+  petsc_call(MatSetOptionsPrefix(matrix_, prefix_.c_str()), "MatSetOptionsPrefix");
+  petsc_call(MatSetOption(matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
+  petsc_call(MatCreateVecs(matrix_, &x_, &b_), "MatCreateVecs");
+  petsc_call(VecScatterCreateToAll(x_, &gather_all_, &x_all_), "VecScatterCreateToAll");
+  attach_layout();
+}
+
 // The field split's index sets and the near-null space, for preconditioners that use them (any other
 // ignores them).
 void KrylovSolver::attach_layout() {
   if (!layout_.field.empty()) {
     PC pc;
     petsc_call(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    // Each rank lists its own rows of each field, in PETSc's numbering.
     std::vector<PetscInt> velocity, pressure;
-    for (size_t i = 0; i < layout_.field.size(); ++i)
-      (layout_.field[i] == 1 ? pressure : velocity).push_back(static_cast<PetscInt>(i));
+    for (size_t i = 0; i < layout_.field.size(); ++i) {
+      if (distribution_ && layout_.owner[i] != distribution_->rank) continue;
+      const PetscInt row = distribution_ ? distribution_->petsc_index[i] : static_cast<PetscInt>(i);
+      (layout_.field[i] == 1 ? pressure : velocity).push_back(row);
+    }
     IS sets[2] = {nullptr, nullptr};
     PetscErrorCode code =
-        ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(velocity.size()), velocity.data(), PETSC_COPY_VALUES,
+        ISCreateGeneral(communicator(), static_cast<PetscInt>(velocity.size()), velocity.data(), PETSC_COPY_VALUES,
                         &sets[0]);
     if (!code)
-      code = ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(pressure.size()), pressure.data(),
+      code = ISCreateGeneral(communicator(), static_cast<PetscInt>(pressure.size()), pressure.data(),
                              PETSC_COPY_VALUES, &sets[1]);
     if (!code) code = PCFieldSplitSetIS(pc, "u", sets[0]);
     if (!code) code = PCFieldSplitSetIS(pc, "p", sets[1]);
@@ -180,15 +243,18 @@ void KrylovSolver::attach_layout() {
     std::vector<Vec> vectors(modes.size(), nullptr);
     PetscErrorCode code = 0;
     for (size_t m = 0; m < modes.size() && !code; ++m) {
-      code = VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(modes[m].size()), &vectors[m]);
+      code = MatCreateVecs(matrix_, &vectors[m], nullptr);
       PetscScalar* v = nullptr;
       if (!code) code = VecGetArray(vectors[m], &v);
-      if (!code) std::copy(modes[m].begin(), modes[m].end(), v);
+      if (!code && distribution_)
+        for (size_t i = 0; i < distribution_->owned.size(); ++i) v[i] = modes[m][distribution_->owned[i]];
+      else if (!code)
+        std::copy(modes[m].begin(), modes[m].end(), v);
       if (!code) code = VecRestoreArray(vectors[m], &v);
     }
     MatNullSpace space = nullptr;
     if (!code)
-      code = MatNullSpaceCreate(PETSC_COMM_SELF, PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(),
+      code = MatNullSpaceCreate(communicator(), PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(),
                                 &space);
     if (!code) code = MatSetNearNullSpace(matrix_, space);
     MatNullSpaceDestroy(&space);
@@ -203,6 +269,14 @@ bool KrylovSolver::set_matrix(int n, const int* column_starts, const int* rows, 
     const size_t laid_out = layout_.field.empty() ? layout_.component.size() : layout_.field.size();
     if (laid_out != 0 && laid_out != static_cast<size_t>(n))
       throw PetscFailure("the layout has " + std::to_string(laid_out) + " unknowns, the matrix " + std::to_string(n));
+    if (distribution_) {
+      if (!same_pattern(n, column_starts, rows)) create_distributed_matrix(n, column_starts, rows);
+      for (size_t k = 0; k < local_source_.size(); ++k) csr_values_[k] = values[local_source_[k]];
+      petsc_call(MatUpdateMPIAIJWithArray(matrix_, csr_values_.data()), "MatUpdateMPIAIJWithArray");
+      petsc_call(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+      petsc_call(KSPSetUp(ksp_), "setting up the preconditioner");
+      return true;
+    }
     if (!same_pattern(n, column_starts, rows)) create_matrix(n, column_starts, rows);
     PetscScalar* stored;
     petsc_call(MatSeqAIJGetArray(matrix_, &stored), "MatSeqAIJGetArray");
@@ -220,6 +294,10 @@ bool KrylovSolver::set_matrix(int n, const int* column_starts, const int* rows, 
 SolveReport KrylovSolver::solve(const double* b, double* x) {
   SolveReport report;
   try {
+    if (distribution_) {
+      solve_distributed(b, x, report);
+      return report;
+    }
     petsc_call(VecPlaceArray(b_, const_cast<double*>(b)), "VecPlaceArray");
     if (const PetscErrorCode placed = VecPlaceArray(x_, x)) {
       VecResetArray(b_);
@@ -229,17 +307,38 @@ SolveReport KrylovSolver::solve(const double* b, double* x) {
     VecResetArray(b_);
     VecResetArray(x_);
     petsc_call(code, "KSPSolve");
-    KSPConvergedReason reason;
-    petsc_call(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
-    petsc_call(KSPGetIterationNumber(ksp_, &report.iterations), "KSPGetIterationNumber");
-    petsc_call(KSPGetResidualNorm(ksp_, &report.residual), "KSPGetResidualNorm");
-    report.converged = reason > 0;
-    report.reason = KSPConvergedReasons[reason];
+    read_report(report);
   } catch (const PetscFailure& e) {
     report.converged = false;
     report.reason = e.what();
   }
   return report;
+}
+
+// Each rank gives its rows of b; every rank receives the whole solution.
+void KrylovSolver::solve_distributed(const double* b, double* x, SolveReport& report) {
+  const RowDistribution& d = *distribution_;
+  PetscScalar* local = nullptr;
+  petsc_call(VecGetArray(b_, &local), "VecGetArray");
+  for (size_t i = 0; i < d.owned.size(); ++i) local[i] = b[d.owned[i]];
+  petsc_call(VecRestoreArray(b_, &local), "VecRestoreArray");
+  petsc_call(KSPSolve(ksp_, b_, x_), "KSPSolve");
+  petsc_call(VecScatterBegin(gather_all_, x_, x_all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  petsc_call(VecScatterEnd(gather_all_, x_, x_all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  const PetscScalar* all = nullptr;
+  petsc_call(VecGetArrayRead(x_all_, &all), "VecGetArrayRead");
+  for (size_t i = 0; i < d.petsc_index.size(); ++i) x[i] = all[d.petsc_index[i]];
+  petsc_call(VecRestoreArrayRead(x_all_, &all), "VecRestoreArrayRead");
+  read_report(report);
+}
+
+void KrylovSolver::read_report(SolveReport& report) const {
+  KSPConvergedReason reason;
+  petsc_call(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+  petsc_call(KSPGetIterationNumber(ksp_, &report.iterations), "KSPGetIterationNumber");
+  petsc_call(KSPGetResidualNorm(ksp_, &report.residual), "KSPGetResidualNorm");
+  report.converged = reason > 0;
+  report.reason = KSPConvergedReasons[reason];
 }
 
 std::string KrylovSolver::describe() const {

@@ -1,12 +1,16 @@
 #pragma once
-// One PETSc KSP with its matrix, on one process: the matrix arrives in compressed sparse column
-// form, is stored as PETSc's AIJ (compressed rows), and keeps its pattern between Newton
-// iterations, so only the values are copied and the preconditioner's symbolic setup is reused.
+// One PETSc KSP with its matrix: the matrix arrives in compressed sparse column form, is stored
+// as PETSc's AIJ (compressed rows), and keeps its pattern between Newton iterations, so only the
+// values are copied and the preconditioner's symbolic setup is reused. On one process the matrix is
+// sequential (SEQAIJ); in a distributed run (a layout with owners, several ranks) each rank keeps
+// its own rows of an MPIAIJ matrix in PETSc's numbering (row_distribution.hpp).
 #include <petscksp.h>
 
+#include <optional>
 #include <vector>
 
 #include "moreau/fem/petsc/petsc_plugin_api.hpp"
+#include "row_distribution.hpp"
 
 namespace moreau::petsc_plugin {
 
@@ -27,7 +31,11 @@ class KrylovSolver final : public LinearSolver {
   bool same_pattern(int n, const int* column_starts, const int* rows) const;
   void create_ksp();
   void create_matrix(int n, const int* column_starts, const int* rows);
+  void create_distributed_matrix(int n, const int* column_starts, const int* rows);
   void attach_layout();
+  void solve_distributed(const double* b, double* x, SolveReport& report);
+  void read_report(SolveReport& report) const;
+  MPI_Comm communicator() const { return distribution_ ? PETSC_COMM_WORLD : PETSC_COMM_SELF; }
 
   SolverSpec spec_;
   UnknownLayout layout_;
@@ -39,6 +47,13 @@ class KrylovSolver final : public LinearSolver {
   // position in the row-ordered values PETSc holds.
   std::vector<int> column_starts_, rows_, csr_position_;
   std::vector<PetscScalar> csr_values_;
+  // Distributed: the numbering, this rank's rows (CSR in PETSc's numbering, each entry's position
+  // in the engine's column-ordered values) and the scatter that gives every rank the solution.
+  std::optional<RowDistribution> distribution_;
+  std::vector<PetscInt> local_row_starts_, local_columns_;
+  std::vector<int> local_source_;
+  VecScatter gather_all_ = nullptr;
+  Vec x_all_ = nullptr;
 };
 
 }  // namespace moreau::petsc_plugin

@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "krylov_solver.hpp"
+#include "mpi_world.hpp"
 #include "moreau/fem/petsc/petsc_plugin_api.hpp"
 #include "petsc_call.hpp"
 
@@ -47,6 +48,11 @@ class PetscBackend final : public Backend {
 #endif
     return v;
   }
+
+  const Communicator& world() const override { return world_; }
+
+ private:
+  MpiWorld world_;
 };
 
 }  // namespace

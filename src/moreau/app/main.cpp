@@ -20,6 +20,7 @@
 #include <string>
 
 #include "moreau/app/output_server.hpp"
+#include "moreau/fem/distributed/mpi_ranks.hpp"
 #include "moreau/app/render_output.hpp"
 #include "moreau/moreau.hpp"
 
@@ -129,6 +130,18 @@ int main(int argc, char** argv) {
     return kExitBadInput;
   }
 
+  // Under mpirun (a distributed FEM run) MPI starts first, in the PETSc plugin; every rank then
+  // runs the same program on the same scene, and rank 0 alone prints and writes.
+  try {
+    moreau::start_mpi_if_launched();
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "moreau: error: this process was started by mpirun, but MPI cannot start: {}\n", e.what());
+    return kExitOther;
+  }
+  const bool root = moreau::mpi_rank() == 0;
+  if (!root) quiet = true;
+  const auto rank_prefix = [] { return moreau::mpi_ranks() > 1 ? fmt::format("[rank {}] ", moreau::mpi_rank()) : std::string(); };
+
   try {
     if (memory_limit_gb > 0) moreau::set_memory_limit(memory_limit_gb * 1e9);
     if (view->parsed()) {
@@ -167,8 +180,7 @@ int main(int argc, char** argv) {
     }
     moreau::World world = moreau::World::load(scene_path, overrides);
     if (check->parsed()) {
-      fmt::print("{}", world.summary());
-      fmt::print("scene is valid\n");
+      if (root) fmt::print("{}scene is valid\n", world.summary());
       return 0;
     }
     if (!restart_path.empty()) world.restore(restart_path);
@@ -181,6 +193,7 @@ int main(int argc, char** argv) {
     std::signal(SIGINT, stop_after_step);
     std::signal(SIGTERM, stop_after_step);
     const moreau::RunResult r = world.run(options);
+    if (r.stopped_by_signal != 0 && !root) return 128 + r.stopped_by_signal;
     if (r.stopped_by_signal != 0) {
       std::string resume = "moreau run " + scene_path;
       for (const std::string& o : overrides) resume += " --set '" + o + "'";
@@ -195,13 +208,14 @@ int main(int argc, char** argv) {
                  r.wall_time_s, r.steps / std::max(r.wall_time_s, 1e-12), r.out_dir);
     return 0;
   } catch (const moreau::InputError& e) {
-    fmt::print(stderr, "moreau: error: {}\n", e.what());
+    // Every rank reads the same scene and takes the same decisions: rank 0 speaks for all.
+    if (root) fmt::print(stderr, "moreau: error: {}\n", e.what());
     return kExitBadInput;
   } catch (const moreau::NumericalError& e) {
-    fmt::print(stderr, "moreau: numerical failure: {}\n", e.what());
+    if (root) fmt::print(stderr, "moreau: numerical failure: {}\n", e.what());
     return kExitNumerical;
   } catch (const std::exception& e) {
-    fmt::print(stderr, "moreau: internal error: {}\n", e.what());
+    fmt::print(stderr, "moreau: {}internal error: {}\n", rank_prefix(), e.what());
     return kExitOther;
   }
 }

@@ -6,7 +6,9 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <optional>
 
+#include "moreau/fem/distributed/mpi_ranks.hpp"
 #include "moreau/io/atomic_file.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/output_budget.hpp"
@@ -50,7 +52,9 @@ bool same_directory(const std::string& a, const std::string& b) {
 void request_stop(int signal_number) { stop_signal.store(signal_number, std::memory_order_relaxed); }
 
 RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& options, const RunContext& context) {
-  const int requested_threads = options.threads.value_or(engine.requested_threads());
+  // A distributed run's ranks share the cores: one thread each unless the user asks for more.
+  const int scene_threads = engine.requested_threads() == 0 && mpi_ranks() > 1 ? 1 : engine.requested_threads();
+  const int requested_threads = options.threads.value_or(scene_threads);
   const int threads = requested_threads > 0 ? requested_threads : omp_get_max_threads();
   const bool solves_once = engine.dt() == 0;
   const RestartPoint* restart = solves_once ? nullptr : context.restart;
@@ -63,26 +67,33 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
   const int checkpoint_every = options.checkpoint_every.value_or(scene.output.checkpoint_every);
   const auto started = fs::file_time_type::clock::now();
 
+  // In a distributed run every rank holds the whole state, and rank 0 alone writes the output.
+  const bool writes_output = mpi_rank() == 0;
   RunResult result;
   result.out_dir = output_directory_path(options.out_dir, scene.name);
   const bool continuing = restart && same_directory(restart->header.out_dir, result.out_dir);
-  if (continuing) {
-    writable_directory(result.out_dir);
-    resume_output_directory(result.out_dir, restart->header.frames, restart->header.appended_files);
-  } else {
-    result.out_dir = run_output_directory(options.out_dir, scene.name);
+  std::optional<ProbeCsv> csv;
+  if (writes_output) {
+    if (continuing) {
+      writable_directory(result.out_dir);
+      resume_output_directory(result.out_dir, restart->header.frames, restart->header.appended_files);
+    } else {
+      result.out_dir = run_output_directory(options.out_dir, scene.name);
+    }
+    engine.open_frames(result.out_dir, scene.name, continuing ? restart->header.frames : FrameSeries{});
+    csv.emplace(result.out_dir, engine.probe_columns(), continuing);
   }
-  engine.open_frames(result.out_dir, scene.name, continuing ? restart->header.frames : FrameSeries{});
-  ProbeCsv csv(result.out_dir, engine.probe_columns(), continuing);
   std::vector<Real> values;
   auto sample = [&] {
+    if (!writes_output) return;
     values.clear();
     engine.sample_probes(values);
-    csv.write_row(engine.time(), values);
+    csv->write_row(engine.time(), values);
     if (scene.output.formats.any()) engine.write_frame();
   };
   auto checkpoint = [&] {
-    csv.flush();
+    if (!writes_output) return;
+    csv->flush();
     CheckpointHeader header = context.identity;
     header.time = engine.time();
     header.steps = context.steps_taken;
@@ -93,10 +104,10 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
     write_checkpoint(result.checkpoint, header, engine);
   };
 
-  ProgressBar progress(options.progress && !solves_once, duration);
-  if (!solves_once && !continuing) {
+  ProgressBar progress(options.progress && !solves_once && writes_output, duration);
+  if (!solves_once && !continuing && writes_output) {
     sample();
-    csv.flush();
+    csv->flush();
     check_output_budget(result.out_dir, steps, scene.output.every, started);
   }
   double wall = 0;
@@ -122,7 +133,8 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
       if (checkpointed) checkpoint();
       progress.update(engine.time(), result.steps, wall);
       // Stopped by a signal: no extra sample, so that the resumed run's output is the uninterrupted one's.
-      if (const int signal = stop_signal.exchange(0); signal != 0 && !last) {
+      // In a distributed run all ranks stop at the same step, when any of them was signalled.
+      if (const int signal = largest_over_ranks(stop_signal.exchange(0)); signal != 0 && !last) {
         result.stopped_by_signal = signal;
         status = "interrupted";
         message = fmt::format("stopped by signal {} after step {} (t = {:.9g} s)", signal, step, engine.time());
@@ -135,15 +147,20 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
     message = e.what();
   }
   progress.finish();
+  result.wall_time_s = wall;
+  if (!writes_output) {
+    if (status == "failed") throw NumericalError(message);
+    return result;
+  }
   for (const std::string& w : engine.warnings()) fmt::print(stderr, "warning: {}\n", w);
   if (status != "interrupted") engine.write_final_output(result.out_dir);
-  result.wall_time_s = wall;
 
   nlohmann::json j = run_summary_json({scene.name, scene.file, scene.solver, status, message, engine.dt(),
                                        engine.time(), wall, threads, result.steps});
   if (!result.checkpoint.empty()) j["checkpoint"] = "checkpoint.bin";
   if (restart)
     j["restarted_from"] = {{"checkpoint", restart->path}, {"time", restart->header.time}, {"step", restart->header.steps}};
+  if (mpi_ranks() > 1) j["mpi_ranks"] = mpi_ranks();
   engine.add_run_fields(j, status == "completed");
   write_file_atomically(result.out_dir + "/run.json", j.dump(2) + '\n');
   if (status == "failed") throw NumericalError(message);

@@ -12,6 +12,7 @@
 
 #include "moreau/errors.hpp"
 #include "moreau/fem/bodies/coupled_step.hpp"
+#include "moreau/fem/distributed/mpi_ranks.hpp"
 #include "moreau/fem/scene/fem_output.hpp"
 #include "moreau/fem/solids/fem_assembly.hpp"
 #include "moreau/io/binary_archive.hpp"
@@ -111,7 +112,7 @@ SolidEngine::SolidEngine(Scene& scene) : scene_(scene), problem_(*scene.fem) {
   }
   VectorX force;
   state.energy = assemble_internal_forces(model, state.u, force, nullptr).energy;
-  if (problem_.linear.petsc) solver_.use_petsc(problem_.linear, solid_unknown_layout(model));
+  if (problem_.linear.petsc) solver_.use_petsc(problem_.linear, solid_unknown_layout(model, mpi_world()));
 }
 
 NewtonResult SolidEngine::advance(const NewtonSettings& newton) {

@@ -358,6 +358,7 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
     return;
   }
   if (settings) read_solid_settings(*settings, problem);
+  require_petsc_when_distributed(top, settings ? &*settings : nullptr, problem.linear.petsc);
   FemModel& model = problem.model;
   problem.threads = threads;
   if (objects.solids.empty()) model.dim = 3;

@@ -13,6 +13,7 @@
 
 #include "moreau/scene/memory_estimate.hpp"
 #include "moreau/errors.hpp"
+#include "moreau/fem/distributed/mpi_ranks.hpp"
 #include "moreau/fem/petsc/petsc_plugin_loader.hpp"
 #include "moreau/scene/fem_scene.hpp"
 
@@ -32,6 +33,17 @@ void require_petsc(const JsonObject& linear_solver, const std::string& options) 
     linear_solver.fail(linear_solver.has("petsc_options") ? "petsc_options" : "preconditioner",
                        "PETSc does not accept these options: " + failure +
                            "; the KSP and PC types PETSc knows are listed in its manual pages (KSPType, PCType)");
+}
+
+void require_petsc_when_distributed(const JsonObject& top, const JsonObject* settings, bool uses_petsc) {
+  if (uses_petsc || mpi_ranks() <= 1) return;
+  const std::string message = fmt::format(
+      "this run has {} MPI ranks, which share the FEM engine's linear solves through PETSc: set "
+      "\"linear_solver\": {{\"type\": \"petsc\"}} in \"settings\", or run on one process (without mpirun)",
+      mpi_ranks());
+  if (!settings) top.fail("settings", message);
+  if (auto linear = settings->optional_object("linear_solver")) linear->fail("type", message);
+  settings->fail("linear_solver", message);
 }
 
 Vec3 read_point(const JsonObject& j, const std::string& key, int dim) {

@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "moreau/fem/petsc/petsc_presets.hpp"
+#include "moreau/fem/distributed/mpi_ranks.hpp"
 #include "moreau/scene/fem_scene.hpp"
 
 namespace moreau {
@@ -306,7 +307,10 @@ void build_flow_scene(const JsonObject& top, const JsonObject& fluid, const std:
     continuation.finish();
   }
 
-  setup_navier_stokes(m);
+  require_petsc_when_distributed(top, settings, problem.linear.method == FlowLinearMethod::petsc);
+  if (mpi_ranks() > 1 && (!solids.empty() || !rigid_bodies.empty()))
+    top.fail("objects", fmt::format("a flow with immersed solids runs on one process, not on {} MPI ranks", mpi_ranks()));
+  setup_navier_stokes(m, mpi_world());
   problem.initial = VectorX::Zero(m.dof_count());
   if (fluid.has("initial_velocity")) {
     const auto initial = read_components(fluid, "initial_velocity", m.dim(), false);

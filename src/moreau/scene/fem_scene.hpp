@@ -36,6 +36,9 @@ void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& 
 /// (the preset's and the user's); fails naming linear_solver.type, with where the plugin was looked
 /// for, if it cannot be loaded, or naming petsc_options if PETSc rejects them.
 void require_petsc(const JsonObject& linear_solver, const std::string& options);
+/// In a distributed run (more than one MPI rank) the FEM systems are solved by PETSc: fails at
+/// settings.linear_solver.type unless `uses_petsc`.
+void require_petsc_when_distributed(const JsonObject& top, const JsonObject* settings, bool uses_petsc);
 
 /// A solid's "material": a hyperelastic model with Young's modulus and Poisson's ratio or Lame's
 /// parameters, and its density.

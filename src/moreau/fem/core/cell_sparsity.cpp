@@ -57,8 +57,9 @@ std::vector<Index> cell_slots(const FemMesh& mesh, Index node_begin, int fields,
   const int* inner = pattern.innerIndexPtr();
   for (Index e = 0; e < mesh.cell_count(); ++e)
     free_pairs(mesh, e, node_begin, fields, free_index, [&](int r, int q, Index row, Index col) {
-      const int* at = std::lower_bound(inner + outer[col], inner + outer[col + 1], row);
-      slots[static_cast<size_t>(e) * n * n + r * n + q] = static_cast<Index>(at - inner);
+      const int* end = inner + outer[col + 1];
+      const int* at = std::lower_bound(inner + outer[col], end, row);
+      if (at != end && *at == row) slots[static_cast<size_t>(e) * n * n + r * n + q] = static_cast<Index>(at - inner);
     });
   return slots;
 }

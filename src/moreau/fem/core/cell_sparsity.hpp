@@ -23,7 +23,8 @@ void add_cell_couplings(const FemMesh& mesh, Index node_begin, int fields, const
                         std::vector<Eigen::Triplet<Real, int>>& entries);
 
 /// Per cell and local (row, column) pair, row-major, the position in `pattern`'s value array, or
-/// -1 when either dof is prescribed. `pattern` must be compressed and contain every coupling.
+/// -1 when either dof is prescribed or the pattern leaves the pair out (a distributed system keeps
+/// its rank's rows only). `pattern` must be compressed.
 std::vector<Index> cell_slots(const FemMesh& mesh, Index node_begin, int fields, const std::vector<Index>& free_index,
                               const SparseMatrix& pattern);
 

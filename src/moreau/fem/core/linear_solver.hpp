@@ -41,8 +41,10 @@ struct SolidLinearSettings {
 };
 
 /// The free unknowns of a solid model as the PETSc plugin sees them: per free dof, its component
-/// and its node's reference position (for the rigid-body modes).
-petsc_plugin::UnknownLayout solid_unknown_layout(const FemModel& model);
+/// and its node's reference position (for the rigid-body modes), and with `ranks` of more than one
+/// process (a distributed run) the rank that owns its row: its node's, the solids' nodes divided
+/// among the ranks by METIS. Every rank still assembles the whole solid; only the solve is shared.
+petsc_plugin::UnknownLayout solid_unknown_layout(const FemModel& model, const petsc_plugin::Communicator* ranks = nullptr);
 
 class SparseSymmetricSolver {
  public:

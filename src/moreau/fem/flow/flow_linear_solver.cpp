@@ -70,13 +70,16 @@ std::string FlowLinearSolver::name() const {
   return iterative_ ? "gmres+ilut" : "umfpack";
 }
 
-void FlowLinearSolver::set_layout(const std::vector<Index>& free_index, int fields, Index free_count) {
+void FlowLinearSolver::set_layout(const std::vector<Index>& free_index, int fields, Index free_count,
+                                  const std::vector<int>* owner) {
   if (!petsc_) return;
   std::vector<int> field(free_count, 0);
   for (size_t dof = 0; dof < free_index.size(); ++dof)
     if (free_index[dof] >= 0 && static_cast<int>(dof % fields) == fields - 1) field[free_index[dof]] = 1;
-  if (field == petsc_->layout.field) return;
+  std::vector<int> owners = owner ? *owner : std::vector<int>{};
+  if (field == petsc_->layout.field && owners == petsc_->layout.owner) return;
   petsc_->layout.field = std::move(field);
+  petsc_->layout.owner = std::move(owners);
   petsc_->solver.reset();  // its index sets were of the old unknowns
 }
 

@@ -26,7 +26,8 @@
 //   fem/petsc/petsc_presets.hpp for what each "preconditioner" means). Inexact Newton like gmres,
 //   with `tolerance` relative to the true (unpreconditioned) residual; the preconditioner is
 //   built again for every Jacobian, its symbolic setup kept while the pattern is.
-// All are serial and deterministic.
+// direct and gmres are serial; all are deterministic. In a distributed run (mpirun) only petsc
+// solves, across the ranks.
 #include <memory>
 #include <string>
 #include <vector>
@@ -74,8 +75,10 @@ class FlowLinearSolver {
   /// The unknowns of the next Jacobians: per dof, its index among the free dofs (-1 if
   /// prescribed), with `fields` dofs per node of which the last is the pressure. Needed before the
   /// first factorize by petsc's field split (without it, PETSc refuses a field split); the other
-  /// methods ignore it.
-  void set_layout(const std::vector<Index>& free_index, int fields, Index free_count);
+  /// methods ignore it. `owner`, in a distributed run: per free dof, the rank that owns its row
+  /// (the Jacobians then need to be right in this rank's rows only).
+  void set_layout(const std::vector<Index>& free_index, int fields, Index free_count,
+                  const std::vector<int>* owner = nullptr);
 
   /// Takes the Jacobian of the next solve; J must stay alive and unchanged until then. False if
   /// it is singular (direct) or its incomplete factorization breaks down (gmres).

@@ -8,6 +8,7 @@
 
 #include "moreau/errors.hpp"
 #include "moreau/fem/core/newton.hpp"
+#include "moreau/fem/distributed/mesh_partition.hpp"
 #include "moreau/fem/flow/flow_source_assembly.hpp"
 
 namespace moreau {
@@ -159,7 +160,8 @@ void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeS
       *matrix = m.pattern;
       std::fill(matrix->valuePtr(), matrix->valuePtr() + matrix->nonZeros(), 0.0);
     }
-  for_each_cell_by_colour(m.colours, how.threads, [&](Index e) {
+  const bool own_rows_only = how.own_rows_only && m.partition;
+  for_each_cell_by_colour(own_rows_only ? m.partition->colours : m.colours, how.threads, [&](Index e) {
     CellVector Re;
     CellMatrix Je, Se;
     Real local[kMaxCellDofs], local1[kMaxCellDofs], local2[kMaxCellDofs], local_f[kMaxCellDofs];
@@ -188,7 +190,7 @@ void assemble_flow(const NavierStokesModel& m, const VectorX& x, const FlowTimeS
 }
 
 
-void setup_navier_stokes(NavierStokesModel& m) {
+void setup_navier_stokes(NavierStokesModel& m, const petsc_plugin::Communicator* ranks) {
   FemMesh& mesh = m.mesh;
   if (mesh.element != ElementType::quad4 && mesh.element != ElementType::hex8)
     throw InputError(fmt::format("the flow solver uses quad4 (2D) or hex8 (3D) cells, not {}", element_name(mesh.element)));
@@ -232,6 +234,21 @@ void setup_navier_stokes(NavierStokesModel& m) {
   m.free_count = number_free_dofs(m.dof_count(), m.prescribed, m.free_index);
   std::vector<Eigen::Triplet<Real, int>> entries;
   add_cell_couplings(mesh, 0, F, m.free_index, entries);
+  m.partition.reset();
+  if (ranks && ranks->size() > 1) {
+    auto partition = std::make_shared<FlowPartition>();
+    const std::vector<int> node_owner = partition_nodes({{&mesh, 0}}, mesh.node_count(), ranks->size());
+    partition->rows = own_rows_by_node(node_owner, m.free_index, F, m.free_count, *ranks);
+    for (const std::vector<Index>& colour : m.colours) {
+      std::vector<Index>& mine = partition->colours.emplace_back();
+      for (Index e : colour)
+        if (std::any_of(mesh.cell(e), mesh.cell(e) + nodes, [&](Index a) { return node_owner[a] == ranks->rank(); }))
+          mine.push_back(e);
+      partition->cells += static_cast<Index>(mine.size());
+    }
+    std::erase_if(entries, [&](const Eigen::Triplet<Real, int>& t) { return !partition->rows.owns(t.row()); });
+    m.partition = std::move(partition);
+  }
   m.pattern.resize(m.free_count, m.free_count);
   m.pattern.setFromTriplets(entries.begin(), entries.end());
   m.pattern.makeCompressed();
@@ -312,6 +329,10 @@ class FlowSystem final : public NewtonIterates<FlowIterate> {
       return 0;
     });
     at.R = gather_free(m_.free_index, m_.free_count, full);
+    if (m_.partition) timed(result_.assembly_s, [&] {
+        m_.partition->rows.complete(at.R);
+        return 0;
+      });
   }
   NewtonEvaluation measure(const VectorX& R) const {
     NewtonEvaluation e;
@@ -345,13 +366,14 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
                                     FlowLinearSolver& solver, const FlowSolveSettings& settings, const FlowSource* source) {
   FlowSolveResult result;
   for (const PrescribedDof& p : m.prescribed) x[p.dof] = p.value(t);
-  solver.set_layout(m.free_index, m.fields(), m.free_count);
+  solver.set_layout(m.free_index, m.fields(), m.free_count, m.partition ? &m.partition->rows.owner : nullptr);
   const VectorX start = x;
   NewtonSettings newton;
   newton.tolerance = settings.tolerance;
   newton.max_iterations = settings.max_iterations;
   newton.threads = settings.threads;
-  const FlowAssembly how{false, settings.viscosity, settings.threads};
+  const bool distributed = m.partition != nullptr;
+  const FlowAssembly how{false, distributed, settings.viscosity, settings.threads};
   {
     FlowSystem system(m, step, x, solver, how, settings.tolerance, result, source);
     const bool converged = newton_solve(system, newton, "Newton's method", result);
@@ -370,7 +392,7 @@ FlowSolveResult solve_navier_stokes(const NavierStokesModel& m, Real t, const Fl
   NewtonSettings picard_settings = newton;
   picard_settings.max_iterations = settings.max_picard_iterations;
   picard_settings.line_search = false;  // Picard's direction need not decrease |R|
-  FlowSystem picard_system(m, step, x, solver, {true, settings.viscosity, settings.threads}, settings.picard_reduction, picard, source);
+  FlowSystem picard_system(m, step, x, solver, {true, distributed, settings.viscosity, settings.threads}, settings.picard_reduction, picard, source);
   const bool picard_converged = newton_solve(picard_system, picard_settings, "Picard's iteration", picard);
   x = picard_system.solution();
   result.picard_iterations += picard.iterations;

@@ -23,10 +23,12 @@
 // balance), and the PSPG-modified continuity holds at t_{n+1/2} too. (Continuity at n+1 with the
 // PSPG residual at n+1/2 mixes time levels in one equation and was measured first order.)
 #include <functional>
+#include <memory>
 #include <vector>
 
 #include "moreau/fem/core/fem_mesh.hpp"
 #include "moreau/fem/core/mesh_locator.hpp"
+#include "moreau/fem/distributed/row_ownership.hpp"
 #include "moreau/fem/solids/fem_model.hpp"
 #include "moreau/fem/flow/flow_linear_solver.hpp"
 #include "moreau/fem/solids/static_solver.hpp"
@@ -59,8 +61,17 @@ struct FlowSolveSettings {
 /// How one assembly evaluates the equations.
 struct FlowAssembly {
   bool picard = false;  // the advecting velocity frozen too (Picard's Jacobian)
+  bool own_rows_only = false;  // a distributed run: only this rank's cells (R and J right in its rows only)
   Real viscosity = 0;   // Pa s; 0: the model's
   int threads = 0;      // 0: all cores
+};
+
+/// This rank's share of a distributed flow: the rows it owns and the cells it assembles (every cell
+/// with a node of its own, so that its rows receive all their terms).
+struct FlowPartition {
+  RowOwnership rows;
+  std::vector<std::vector<Index>> colours;  // this rank's cells, in the model's colours
+  Index cells = 0;
 };
 
 struct NavierStokesModel {
@@ -82,7 +93,8 @@ struct NavierStokesModel {
   std::vector<std::vector<Index>> colours;
   std::vector<Index> free_index, slots;
   Index free_count = 0;
-  SparseMatrix pattern;
+  SparseMatrix pattern;  // distributed: this rank's rows only
+  std::shared_ptr<const FlowPartition> partition;  // null on one process
 
   int dim() const { return mesh.dim; }
   int fields() const { return mesh.dim + 1; }
@@ -91,7 +103,9 @@ struct NavierStokesModel {
 };
 
 /// Quadrature, colours, the free dofs and the Jacobian's sparsity; after `prescribed` is set.
-void setup_navier_stokes(NavierStokesModel& model);
+/// With `ranks` of more than one process (a distributed run, solved by PETSc): the mesh's nodes
+/// divided among them (METIS), and `partition` and `pattern` made this rank's.
+void setup_navier_stokes(NavierStokesModel& model, const petsc_plugin::Communicator* ranks = nullptr);
 
 /// A force density on the fluid beyond its cells' own (a source's, N/m^3): `values` per dof, at
 /// the velocity dofs of each node (pressure entries unused), interpolated by the shape functions.

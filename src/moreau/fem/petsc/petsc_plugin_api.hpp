@@ -7,6 +7,11 @@
 // compiled into both sides; it holds plain data and abstract classes only, and the version below
 // is checked when the plugin is loaded. Matrices cross it in compressed sparse column form (Eigen's
 // default layout), vectors as contiguous doubles.
+//
+// A distributed run (`mpirun -np N moreau run`) keeps the whole mesh and state on every rank; the
+// unknowns' rows are divided among the ranks (UnknownLayout::owner), each rank hands the solver
+// its own rows of the matrix, and every rank receives the whole solution. The plugin starts MPI
+// (through PETSc) and lends the engine the few collective operations it needs (Communicator).
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,7 +19,7 @@
 namespace moreau::petsc_plugin {
 
 /// Raised when the engine and the plugin were built from different versions of this header.
-constexpr int kInterfaceVersion = 1;
+constexpr int kInterfaceVersion = 2;
 
 /// What is known about the unknowns of the system beyond its matrix, for the preconditioners that
 /// need it. Every vector is empty or has one entry per unknown (row).
@@ -28,6 +33,23 @@ struct UnknownLayout {
   std::vector<int> component;
   std::vector<double> position;  // 3 per unknown, m
   int dim = 3;
+  /// Per unknown, the MPI rank that owns its row in a distributed run; empty on one process. The
+  /// solver then takes only this rank's rows of each matrix (the others' may be missing or
+  /// incomplete) and returns the whole solution on every rank.
+  std::vector<int> owner;
+};
+
+/// The processes of the run: MPI's world when started by mpirun, else this process alone.
+class Communicator {
+ public:
+  virtual ~Communicator() = default;
+  virtual int rank() const = 0;
+  virtual int size() const = 0;
+  /// Every rank gives counts[rank] values; every rank receives all of them, rank 0's first
+  /// (MPI_Allgatherv). `all` holds the sum of `counts`.
+  virtual void all_gather(const double* mine, const int* counts, double* all) const = 0;
+  /// The sum over the ranks of one value, the same bits on every rank.
+  virtual double sum(double value) const = 0;
 };
 
 /// A Krylov solver with its preconditioner, set up from a PETSc options string.
@@ -60,7 +82,8 @@ class LinearSolver {
   virtual bool set_matrix(int n, const int* column_starts, const int* rows, const double* values,
                           std::string& failure) = 0;
   /// Solves A x = b for the last matrix from a zero initial guess (Newton's corrections have no
-  /// better one).
+  /// better one). b and x are whole vectors on every rank; in a distributed run each rank reads
+  /// its own rows of b, and x is the same on every rank.
   virtual SolveReport solve(const double* b, double* x) = 0;
   /// The KSP and PC types actually used ("gmres+fieldsplit"), after the first set_matrix.
   virtual std::string describe() const = 0;
@@ -74,6 +97,8 @@ class Backend {
                                                     std::string& failure) = 0;
   /// PETSc's version, "3.18.5", and whether it was built with hypre and MUMPS.
   virtual std::string version() const = 0;
+  /// The run's processes (MPI was started with the backend).
+  virtual const Communicator& world() const = 0;
 };
 
 }  // namespace moreau::petsc_plugin

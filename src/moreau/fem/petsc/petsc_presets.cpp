@@ -33,14 +33,16 @@ const std::vector<std::string>& solid_petsc_preconditioners() {
 std::string flow_petsc_options(const std::string& preconditioner, int restart) {
   const std::string krylov = fmt::format("-ksp_gmres_restart {} -ksp_pc_side right ", restart);
   if (preconditioner == "fieldsplit" || preconditioner == "fieldsplit_ilu") {
-    const std::string velocity = preconditioner == "fieldsplit" ? boomeramg("fieldsplit_u_") : "-fieldsplit_u_pc_type ilu ";
+    // ILU(0) is sequential: block Jacobi applies it to each rank's rows (on one process, the whole).
+    const std::string velocity = preconditioner == "fieldsplit" ? boomeramg("fieldsplit_u_")
+                                                                : "-fieldsplit_u_pc_type bjacobi -fieldsplit_u_sub_pc_type ilu ";
     return "-ksp_type fgmres " + krylov +
            "-pc_type fieldsplit -pc_fieldsplit_type schur -pc_fieldsplit_schur_fact_type upper "
            "-pc_fieldsplit_schur_precondition selfp -fieldsplit_u_ksp_type preonly -fieldsplit_p_ksp_type preonly " +
            velocity + boomeramg("fieldsplit_p_");
   }
   if (preconditioner == "amg") return "-ksp_type gmres " + krylov + boomeramg("");
-  if (preconditioner == "ilu") return "-ksp_type gmres " + krylov + "-pc_type ilu";
+  if (preconditioner == "ilu") return "-ksp_type gmres " + krylov + "-pc_type bjacobi -sub_pc_type ilu";
   return "-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps";
 }
 

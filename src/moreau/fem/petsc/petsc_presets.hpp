@@ -19,10 +19,11 @@ const std::vector<std::string>& solid_petsc_preconditioners();
 ///   iterations than "lower"; the full factorization needed 11-21 % more and costs a second
 ///   velocity solve per iteration (30 % more time).
 /// - fieldsplit_ilu: the same with ILU(0) for A instead of multigrid: cheaper per iteration, more
-///   iterations as the mesh is refined.
+///   iterations as the mesh is refined. In a distributed run each rank factors its own rows of A
+///   (block Jacobi), so the iterations grow with the ranks too.
 /// - amg: one BoomerAMG V-cycle on the whole system (PSPG gives the pressure rows a diagonal, so
 ///   the saddle point is not singular on the diagonal).
-/// - ilu: PETSc's ILU(0) of the whole system.
+/// - ilu: PETSc's ILU(0) of the whole system (of each rank's rows, block Jacobi, when distributed).
 /// - lu: MUMPS's parallel sparse LU (Amestoy et al. 2001, SIAM J. Matrix Anal. Appl. 23) as a
 ///   direct solve.
 std::string flow_petsc_options(const std::string& preconditioner, int restart);

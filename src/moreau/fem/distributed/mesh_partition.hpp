@@ -1,0 +1,22 @@
+#pragma once
+// The division of a FEM problem's nodes among the ranks of a distributed run.
+#include <vector>
+
+#include "moreau/fem/core/fem_mesh.hpp"
+
+namespace moreau {
+
+/// A mesh whose nodes are numbered from node_begin in the problem's node numbering.
+struct MeshNodes {
+  const FemMesh* mesh = nullptr;
+  Index node_begin = 0;
+};
+
+/// Per node of the problem (node_count of them, covering the meshes'), the rank that owns it, in
+/// 0 .. parts - 1: METIS's multilevel k-way partition of the graph whose edges join the nodes of
+/// a common cell (Karypis & Kumar 1998, SIAM J. Sci. Comput. 20), which balances the nodes and
+/// minimises the edges cut, the matrix entries that couple two ranks. METIS's random choices use
+/// a fixed seed, so every rank computes the same partition. Throws std::runtime_error if METIS fails.
+std::vector<int> partition_nodes(const std::vector<MeshNodes>& meshes, Index node_count, int parts);
+
+}  // namespace moreau

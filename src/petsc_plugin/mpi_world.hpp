@@ -1,0 +1,18 @@
+#pragma once
+// The engine's view of MPI (petsc_plugin_api.hpp's Communicator) on PETSc's world communicator:
+// all of MPI_COMM_WORLD under mpirun, this process alone otherwise.
+#include "moreau/fem/petsc/petsc_plugin_api.hpp"
+
+namespace moreau::petsc_plugin {
+
+class MpiWorld final : public Communicator {
+ public:
+  int rank() const override;
+  int size() const override;
+  void all_gather(const double* mine, const int* counts, double* all) const override;
+  /// Gathers the values and adds them in rank order on every rank: MPI_Allreduce may add them in
+  /// another order on each rank, and the engine's ranks must take the same decisions.
+  double sum(double value) const override;
+};
+
+}  // namespace moreau::petsc_plugin
