@@ -43,10 +43,76 @@ void free_pairs(const FemMesh& mesh, Index e, Index node_begin, int fields, cons
 
 }  // namespace
 
-void add_cell_couplings(const FemMesh& mesh, Index node_begin, int fields, const std::vector<Index>& free_index,
-                        std::vector<Eigen::Triplet<Real, int>>& entries) {
-  for (Index e = 0; e < mesh.cell_count(); ++e)
-    free_pairs(mesh, e, node_begin, fields, free_index, [&](int, int, Index row, Index col) { entries.emplace_back(row, col, 0.0); });
+NodeGraph node_graph(const std::vector<MeshNodes>& meshes, Index node_count, bool with_self) {
+  // Node -> cells incidence (compressed), then each node's neighbours collected with a marker.
+  std::vector<Index> cell_start(static_cast<size_t>(node_count) + 1, 0);
+  for (const MeshNodes& m : meshes)
+    for (Index e = 0; e < m.mesh->cell_count(); ++e)
+      for (int a = 0; a < m.mesh->nodes_per_cell(); ++a) ++cell_start[m.node_begin + m.mesh->cell(e)[a] + 1];
+  for (Index a = 0; a < node_count; ++a) cell_start[a + 1] += cell_start[a];
+  std::vector<std::pair<const MeshNodes*, Index>> cells_of(cell_start[node_count]);
+  std::vector<Index> next(cell_start.begin(), cell_start.end() - 1);
+  for (const MeshNodes& m : meshes)
+    for (Index e = 0; e < m.mesh->cell_count(); ++e)
+      for (int a = 0; a < m.mesh->nodes_per_cell(); ++a) cells_of[next[m.node_begin + m.mesh->cell(e)[a]]++] = {&m, e};
+  NodeGraph graph;
+  graph.start.assign(1, 0);
+  std::vector<Index> marked(static_cast<size_t>(node_count), -1);
+  for (Index a = 0; a < node_count; ++a) {
+    const size_t first = graph.neighbour.size();
+    for (Index k = cell_start[a]; k < cell_start[a + 1]; ++k) {
+      const auto [m, e] = cells_of[k];
+      for (int b = 0; b < m->mesh->nodes_per_cell(); ++b) {
+        const Index node = m->node_begin + m->mesh->cell(e)[b];
+        if (marked[node] == a || (node == a && !with_self)) continue;
+        marked[node] = a;
+        graph.neighbour.push_back(node);
+      }
+    }
+    std::sort(graph.neighbour.begin() + static_cast<std::ptrdiff_t>(first), graph.neighbour.end());
+    graph.start.push_back(static_cast<Index>(graph.neighbour.size()));
+  }
+  return graph;
+}
+
+SparseMatrix cell_coupling_pattern(const std::vector<MeshNodes>& meshes, Index node_count, int fields,
+                                   const std::vector<Index>& free_index, Index free_count,
+                                   const std::vector<char>& kept_rows) {
+  const NodeGraph graph = node_graph(meshes, node_count, true);
+  // Column free_index[node * fields + g] holds the free dofs of the node's neighbours (with itself).
+  // Free dofs are numbered in dof order, so the columns come in order, and so do the rows of each
+  // (neighbours sorted, fields ascending). Two passes: the columns' sizes, then their rows.
+  const auto for_each_row = [&](Index node, auto visit) {
+    for (Index k = graph.start[node]; k < graph.start[node + 1]; ++k)
+      for (int f = 0; f < fields; ++f) {
+        const Index row = free_index[graph.neighbour[k] * fields + f];
+        if (row >= 0 && (kept_rows.empty() || kept_rows[row])) visit(row);
+      }
+  };
+  SparseMatrix pattern(free_count, free_count);
+  int* column_start = pattern.outerIndexPtr();
+  column_start[0] = 0;
+  Index column = 0;
+  for (Index node = 0; node < node_count; ++node) {
+    int size = 0;
+    for_each_row(node, [&](Index) { ++size; });
+    for (int g = 0; g < fields; ++g)
+      if (free_index[node * fields + g] >= 0) {
+        column_start[column + 1] = column_start[column] + size;
+        ++column;
+      }
+  }
+  pattern.resizeNonZeros(column_start[free_count]);
+  int* rows = pattern.innerIndexPtr();
+  std::fill(pattern.valuePtr(), pattern.valuePtr() + pattern.nonZeros(), 0.0);
+  column = 0;
+  for (Index node = 0; node < node_count; ++node)
+    for (int g = 0; g < fields; ++g)
+      if (free_index[node * fields + g] >= 0) {
+        int at = column_start[column++];
+        for_each_row(node, [&](Index row) { rows[at++] = static_cast<int>(row); });
+      }
+  return pattern;
 }
 
 std::vector<Index> cell_slots(const FemMesh& mesh, Index node_begin, int fields, const std::vector<Index>& free_index,

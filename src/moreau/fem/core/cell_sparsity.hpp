@@ -18,9 +18,28 @@ using SparseMatrix = Eigen::SparseMatrix<Real, Eigen::ColMajor, int>;
 /// Greedy colouring: no two cells of a colour share a node (unbounded number of colours).
 std::vector<std::vector<Index>> colour_cells(const FemMesh& mesh);
 
-/// Appends a zero entry for every (free row, free column) pair of every cell.
-void add_cell_couplings(const FemMesh& mesh, Index node_begin, int fields, const std::vector<Index>& free_index,
-                        std::vector<Eigen::Triplet<Real, int>>& entries);
+/// A mesh whose nodes are numbered from node_begin in its problem's node numbering.
+struct MeshNodes {
+  const FemMesh* mesh = nullptr;
+  Index node_begin = 0;
+};
+
+/// Which nodes share a cell, in compressed rows: the neighbours of node a are
+/// neighbour[start[a]] .. neighbour[start[a + 1] - 1], sorted; a node is its own neighbour only
+/// if `with_self`.
+struct NodeGraph {
+  std::vector<Index> start, neighbour;
+};
+NodeGraph node_graph(const std::vector<MeshNodes>& meshes, Index node_count, bool with_self);
+
+/// The sparsity of the free-dof matrix of cells on these meshes: an entry (zero) for every
+/// (free row, free column) pair of dofs of a common cell, built column by column from the node
+/// graph. `kept_rows`, if not empty, has one flag per free dof and leaves out the rows without it
+/// (a distributed system keeps its rank's rows). Free dofs must be numbered in dof order
+/// (number_free_dofs does).
+SparseMatrix cell_coupling_pattern(const std::vector<MeshNodes>& meshes, Index node_count, int fields,
+                                   const std::vector<Index>& free_index, Index free_count,
+                                   const std::vector<char>& kept_rows = {});
 
 /// Per cell and local (row, column) pair, row-major, the position in `pattern`'s value array, or
 /// -1 when either dof is prescribed or the pattern leaves the pair out (a distributed system keeps

@@ -13,25 +13,8 @@ static_assert(sizeof(idx_t) == sizeof(int), "Debian's METIS uses 32-bit indices"
 std::vector<int> partition_nodes(const std::vector<MeshNodes>& meshes, Index node_count, int parts) {
   std::vector<int> owner(static_cast<size_t>(node_count), 0);
   if (parts <= 1 || node_count == 0) return owner;
-  // The node graph in compressed rows (METIS's xadj, adjncy): per node its cell neighbours, sorted.
-  std::vector<std::vector<idx_t>> neighbours(static_cast<size_t>(node_count));
-  for (const MeshNodes& m : meshes) {
-    const int per_cell = m.mesh->nodes_per_cell();
-    for (Index e = 0; e < m.mesh->cell_count(); ++e) {
-      const Index* cell = m.mesh->cell(e);
-      for (int a = 0; a < per_cell; ++a)
-        for (int b = 0; b < per_cell; ++b)
-          if (a != b) neighbours[m.node_begin + cell[a]].push_back(static_cast<idx_t>(m.node_begin + cell[b]));
-    }
-  }
-  std::vector<idx_t> starts(1, 0), adjacent;
-  for (auto& list : neighbours) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-    adjacent.insert(adjacent.end(), list.begin(), list.end());
-    starts.push_back(static_cast<idx_t>(adjacent.size()));
-    list = {};
-  }
+  const NodeGraph graph = node_graph(meshes, node_count, false);
+  std::vector<idx_t> starts(graph.start.begin(), graph.start.end()), adjacent(graph.neighbour.begin(), graph.neighbour.end());
   idx_t vertices = static_cast<idx_t>(node_count), constraints = 1, nparts = parts, cut = 0;
   idx_t options[METIS_NOPTIONS];
   METIS_SetDefaultOptions(options);

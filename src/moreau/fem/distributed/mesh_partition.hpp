@@ -2,15 +2,9 @@
 // The division of a FEM problem's nodes among the ranks of a distributed run.
 #include <vector>
 
-#include "moreau/fem/core/fem_mesh.hpp"
+#include "moreau/fem/core/cell_sparsity.hpp"
 
 namespace moreau {
-
-/// A mesh whose nodes are numbered from node_begin in the problem's node numbering.
-struct MeshNodes {
-  const FemMesh* mesh = nullptr;
-  Index node_begin = 0;
-};
 
 /// Per node of the problem (node_count of them, covering the meshes'), the rank that owns it, in
 /// 0 .. parts - 1: METIS's multilevel k-way partition of the graph whose edges join the nodes of

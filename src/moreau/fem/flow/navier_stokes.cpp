@@ -232,9 +232,8 @@ void setup_navier_stokes(NavierStokesModel& m, const petsc_plugin::Communicator*
     }
   m.colours = colour_cells(mesh);
   m.free_count = number_free_dofs(m.dof_count(), m.prescribed, m.free_index);
-  std::vector<Eigen::Triplet<Real, int>> entries;
-  add_cell_couplings(mesh, 0, F, m.free_index, entries);
   m.partition.reset();
+  std::vector<char> kept_rows;  // distributed: this rank's
   if (ranks && ranks->size() > 1) {
     auto partition = std::make_shared<FlowPartition>();
     const std::vector<int> node_owner = partition_nodes({{&mesh, 0}}, mesh.node_count(), ranks->size());
@@ -246,12 +245,11 @@ void setup_navier_stokes(NavierStokesModel& m, const petsc_plugin::Communicator*
           mine.push_back(e);
       partition->cells += static_cast<Index>(mine.size());
     }
-    std::erase_if(entries, [&](const Eigen::Triplet<Real, int>& t) { return !partition->rows.owns(t.row()); });
+    kept_rows.resize(m.free_count);
+    for (Index row = 0; row < m.free_count; ++row) kept_rows[row] = partition->rows.owns(row);
     m.partition = std::move(partition);
   }
-  m.pattern.resize(m.free_count, m.free_count);
-  m.pattern.setFromTriplets(entries.begin(), entries.end());
-  m.pattern.makeCompressed();
+  m.pattern = cell_coupling_pattern({{&mesh, 0}}, mesh.node_count(), F, m.free_index, m.free_count, kept_rows);
   m.slots = cell_slots(mesh, 0, F, m.free_index, m.pattern);
 }
 

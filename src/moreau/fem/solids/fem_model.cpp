@@ -92,11 +92,9 @@ Index number_free_dofs(Index dof_count, const std::vector<PrescribedDof>& prescr
 
 void finalize_fem_model(FemModel& model) {
   model.free_count = number_free_dofs(model.dof_count(), model.prescribed, model.free_index);
-  std::vector<Eigen::Triplet<Real, int>> entries;
-  for (const FemSolid& s : model.solids) add_cell_couplings(s.mesh, s.node_begin, model.dim, model.free_index, entries);
-  model.pattern.resize(model.free_count, model.free_count);
-  model.pattern.setFromTriplets(entries.begin(), entries.end());
-  model.pattern.makeCompressed();
+  std::vector<MeshNodes> meshes;
+  for (const FemSolid& s : model.solids) meshes.push_back({&s.mesh, s.node_begin});
+  model.pattern = cell_coupling_pattern(meshes, model.node_count, model.dim, model.free_index, model.free_count);
   for (FemSolid& s : model.solids) {
     s.colours = colour_cells(s.mesh);
     s.slots = cell_slots(s.mesh, s.node_begin, model.dim, model.free_index, model.pattern);
