@@ -55,11 +55,16 @@ class SolidEngine final : public Engine {
   FrameSeries frame_series() const override { return frames_ ? frames_->series() : FrameSeries{}; }
 
   // The mass matrix is assembled again at the first step; the linear solvers' symbolic analyses
-  // depend on the (fixed) pattern only, and every Newton iteration factorizes afresh.
-  void save_state(ArchiveWriter& out) const override { archive(out, std::tie(run_, steps_, last_iterations_, max_iterations_, total_iterations_)); }
+  // depend on the (fixed) pattern only, and every Newton iteration factorizes afresh (the
+  // solver's checkpoint holds its counters and its choice of Krylov method).
+  void save_state(ArchiveWriter& out) const override {
+    archive(out, std::tie(run_, steps_, last_iterations_, max_iterations_, total_iterations_));
+    solver_.save(out);
+  }
   void load_state(ArchiveReader& in) override {
     auto fields = std::tie(run_, steps_, last_iterations_, max_iterations_, total_iterations_);
     unarchive(in, fields);
+    solver_.load(in);
   }
 
   void add_run_fields(nlohmann::json& j, bool completed) const override;

@@ -9,6 +9,7 @@
 #include "moreau/fem/petsc/petsc_matrix.hpp"
 #include "moreau/fem/petsc/petsc_plugin_loader.hpp"
 #include "moreau/fem/petsc/petsc_presets.hpp"
+#include "moreau/io/binary_archive.hpp"
 
 namespace moreau {
 
@@ -161,6 +162,24 @@ VectorX SparseSymmetricSolver::solve(const VectorX& b) const {
   assert(!petsc_ && "a PETSc solve can fail: use solve(b, x)");
   if (method_ == "cholmod") return cholesky_.solve(b);
   return lu_.solve(b);
+}
+
+void SparseSymmetricSolver::save(ArchiveWriter& out) const {
+  const bool cg_indefinite = petsc_ && petsc_->cg_indefinite;
+  archive(out, std::tie(krylov_iterations_, max_krylov_iterations_, cg_indefinite));
+}
+
+void SparseSymmetricSolver::load(ArchiveReader& in) {
+  bool cg_indefinite = false;
+  auto fields = std::tie(krylov_iterations_, max_krylov_iterations_, cg_indefinite);
+  unarchive(in, fields);
+  if (cg_indefinite && !petsc_) throw ArchiveError("the checkpoint's solid was solved by PETSc, this scene's is not");
+  if (petsc_ && petsc_->cg_indefinite != cg_indefinite) {
+    petsc_->cg_indefinite = cg_indefinite;
+    petsc_->symmetric.reset();
+    petsc_->general.reset();
+    petsc_->last = nullptr;
+  }
 }
 
 }  // namespace moreau

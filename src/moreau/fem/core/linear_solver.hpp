@@ -16,6 +16,9 @@
 
 namespace moreau {
 
+class ArchiveWriter;
+class ArchiveReader;
+
 /// UMFPACK's LU of a square sparse matrix; the symbolic analysis is done for the first matrix and
 /// reused for every later one with the same sparsity (a matrix with another pattern, such as a
 /// flow's with an immersed solid that moved to other cells, is analysed again).
@@ -69,6 +72,12 @@ class SparseSymmetricSolver {
   /// Krylov iterations over all solves and the most in one (petsc only).
   long krylov_iterations() const { return krylov_iterations_; }
   int max_krylov_iterations() const { return max_krylov_iterations_; }
+
+  /// Checkpoints: the Krylov counters and, with PETSc, whether CG has given way to GMRES (a
+  /// restored run must go on with the solver the uninterrupted one would use). The direct
+  /// solvers keep nothing between steps but their symbolic analyses, which depend on the pattern.
+  void save(ArchiveWriter& out) const;
+  void load(ArchiveReader& in);
 
  private:
   struct Petsc;

@@ -47,7 +47,10 @@ std::string flow_petsc_options(const std::string& preconditioner, int restart) {
 }
 
 std::string solid_petsc_options(const std::string& preconditioner) {
-  if (preconditioner == "amg") return "-ksp_type cg -pc_type gamg";
+  // GAMG keeps the interpolation of the first tangent for the later ones by default; built again
+  // for each, the preconditioner depends on the tangent alone, and a run restored from a
+  // checkpoint continues bit for bit.
+  if (preconditioner == "amg") return "-ksp_type cg -pc_type gamg -pc_gamg_reuse_interpolation false";
   if (preconditioner == "cholesky") return "-ksp_type preonly -pc_type cholesky -pc_factor_mat_solver_type mumps";
   return "-ksp_type preonly -pc_type lu -pc_factor_mat_solver_type mumps";
 }
