@@ -256,6 +256,9 @@ void FlowEngine::add_run_fields(nlohmann::json& j, bool /*completed*/) const {
   j["integrator"] = flow_integrator_name(problem_.integrator);
   j["counts"] = {{"fluid_nodes", model.mesh.node_count()}, {"cells", model.mesh.cell_count()},
                  {"unknowns", model.dof_count()}, {"free_unknowns", model.free_count}};
+  // A distributed run (written by rank 0): how the rows were divided, and rank 0's share of cells.
+  if (model.partition)
+    j["partition"] = {{"rows_per_rank", model.partition->rows.counts}, {"cells_assembled_by_rank_0", model.partition->cells}};
   j["newton"] = {{"iterations", total_iterations_},    {"picard_iterations", picard_iterations_},
                  {"max_iterations_per_step", max_iterations_}, {"tolerance", problem_.solve.tolerance},
                  {"assembly_s", assembly_s_},           {"solve_s", solve_s_}};

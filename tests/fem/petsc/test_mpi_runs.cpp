@@ -112,6 +112,13 @@ TEST_F(MpiRuns, TwoRanksSolveTheSteadyCavityOfOne) {
   const nlohmann::json run = run_json(two);
   EXPECT_EQ(run["mpi_ranks"], 2);
   EXPECT_EQ(run["status"], "completed");
+  // METIS balances the nodes within 3 %; rank 0 assembles about half the cells and a shared layer.
+  const auto rows = run["partition"]["rows_per_rank"].get<std::vector<int>>();
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[0] + rows[1], run["counts"]["free_unknowns"].get<int>());
+  EXPECT_NEAR(rows[0], rows[1], 0.03 * (rows[0] + rows[1]));
+  EXPECT_GT(run["partition"]["cells_assembled_by_rank_0"].get<int>(), 32 * 32 / 2);
+  EXPECT_LT(run["partition"]["cells_assembled_by_rank_0"].get<int>(), 32 * 32 / 2 + 2 * 33);
   EXPECT_EQ(run_json(one).count("mpi_ranks"), 0u);
 }
 
