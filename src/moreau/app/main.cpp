@@ -195,7 +195,8 @@ int main(int argc, char** argv) {
     const moreau::RunResult r = world.run(options);
     if (r.stopped_by_signal != 0 && !root) return 128 + r.stopped_by_signal;
     if (r.stopped_by_signal != 0) {
-      std::string resume = "moreau run " + scene_path;
+      std::string resume = (moreau::mpi_ranks() > 1 ? fmt::format("mpirun -np {} ", moreau::mpi_ranks()) : std::string()) +
+                           "moreau run " + scene_path;
       for (const std::string& o : overrides) resume += " --set '" + o + "'";
       if (!out_dir.empty()) resume += " --out " + out_dir;
       fmt::print(stderr, "moreau: stopped by {} at t = {:.6g} s after {} steps; checkpoint {}\nmoreau: resume with: {} --restart {}\n",
