@@ -16,6 +16,8 @@
 #include <algorithm>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 #include <string>
 
@@ -32,6 +34,17 @@ constexpr int kExitOther = 1, kExitBadInput = 2, kExitNumerical = 3;
 extern "C" void stop_after_step(int signal_number) {
   moreau::request_stop(signal_number);
   std::signal(signal_number, SIG_DFL);
+}
+
+// A rank of a distributed run that fails leaves at once, without MPI_Finalize: an error may be
+// one rank's alone (rank 0 cannot write the output directory; a file missing on one node), and
+// MPI_Finalize would wait for ranks that are waiting for it in the next collective operation.
+// mpirun sees the exit code and ends the other ranks.
+int leave_distributed_run(int code) {
+  if (moreau::mpi_ranks() <= 1) return code;
+  std::fflush(stdout);
+  std::fflush(stderr);
+  std::_Exit(code);
 }
 }
 
@@ -211,12 +224,12 @@ int main(int argc, char** argv) {
   } catch (const moreau::InputError& e) {
     // Every rank reads the same scene and takes the same decisions: rank 0 speaks for all.
     if (root) fmt::print(stderr, "moreau: error: {}\n", e.what());
-    return kExitBadInput;
+    return leave_distributed_run(kExitBadInput);
   } catch (const moreau::NumericalError& e) {
     if (root) fmt::print(stderr, "moreau: numerical failure: {}\n", e.what());
-    return kExitNumerical;
+    return leave_distributed_run(kExitNumerical);
   } catch (const std::exception& e) {
     fmt::print(stderr, "moreau: {}internal error: {}\n", rank_prefix(), e.what());
-    return kExitOther;
+    return leave_distributed_run(kExitOther);
   }
 }

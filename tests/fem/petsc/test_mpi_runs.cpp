@@ -25,12 +25,13 @@ namespace fs = std::filesystem;
 
 // mpirun with `ranks` processes of the moreau program. --oversubscribe: more ranks than free cores
 // (CI has two, and ctest runs two tests at once); --bind-to none for the same reason. Open MPI
-// refuses to run as root unless told twice (CI's containers run as root).
+// refuses to run as root unless told twice (CI's containers run as root). A run that hangs (ranks
+// waiting for each other) is ended after 5 minutes, and fails its test by the exit code (124).
 test::CommandResult run_on_ranks(int ranks, const std::string& args) {
   const std::string log = test::temp_dir("mpi_cli") + "/log.txt";
-  const std::string command =
-      fmt::format("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 {} -np {} --oversubscribe --bind-to none {} {} > {} 2>&1",
-                  MOREAU_MPIEXEC, ranks, MOREAU_BINARY, args, log);
+  const std::string command = fmt::format(
+      "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 timeout 300 {} -np {} --oversubscribe --bind-to none {} {} > {} 2>&1",
+      MOREAU_MPIEXEC, ranks, MOREAU_BINARY, args, log);
   const int status = std::system(command.c_str());
   std::ifstream in(log);
   return {WEXITSTATUS(status), std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>())};
@@ -159,6 +160,15 @@ TEST_F(MpiRuns, ScenesThatCannotBeDistributedAreBadInput) {
   direct["settings"]["linear_solver"] = {{"type", "direct"}};
   refused(test::write_scene("mpi_direct", direct.dump()), "settings.linear_solver.type: this run has 2 MPI ranks");
   refused(test::scene_path("rigid_playground.json"), "settings.solver: \"xpbd\" runs on one process");
+}
+
+// Rank 0 alone cannot create the output directory: it reports it and leaves, and the other rank,
+// already waiting for rank 0 in the first step, is ended by mpirun instead of waiting for ever.
+TEST_F(MpiRuns, AnErrorOfOneRankEndsTheWholeRun) {
+  const std::string path = test::write_scene("mpi_one_rank_fails", kSteadyCavity);
+  const auto r = run_on_ranks(2, fmt::format("run {} --out /proc/no-such-directory --quiet", path));
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("cannot prepare the output directory"), std::string::npos) << r.output;
 }
 
 }  // namespace
