@@ -12,7 +12,7 @@
 
 #include "moreau/errors.hpp"
 #include "moreau/fem/bodies/coupled_step.hpp"
-#include "moreau/fem/distributed/mpi_ranks.hpp"
+#include "moreau/fem/solids/solid_partition.hpp"
 #include "moreau/fem/scene/fem_output.hpp"
 #include "moreau/fem/solids/fem_assembly.hpp"
 #include "moreau/io/binary_archive.hpp"
@@ -117,7 +117,7 @@ SolidEngine::SolidEngine(Scene& scene) : scene_(scene), problem_(*scene.fem) {
   }
   VectorX force;
   state.energy = assemble_internal_forces(model, state.u, force, nullptr).energy;
-  if (problem_.linear.petsc) solver_.use_petsc(problem_.linear, solid_unknown_layout(model, mpi_world()));
+  if (problem_.linear.petsc) solver_.use_petsc(problem_.linear, solid_unknown_layout(model));
 }
 
 NewtonResult SolidEngine::advance(const NewtonSettings& newton) {
@@ -199,6 +199,10 @@ void SolidEngine::add_run_fields(nlohmann::json& j, bool completed) const {
                           {"tolerance", problem_.linear.tolerance},
                           {"krylov_iterations", solver_.krylov_iterations()},
                           {"max_krylov_iterations_per_solve", solver_.max_krylov_iterations()}};
+  // A distributed run (written by rank 0): how the rows were divided, and rank 0's share of cells.
+  if (model.partition)
+    j["partition"] = {{"rows_per_rank", model.partition->rows.counts},
+                      {"cells_assembled_by_rank_0", model.partition->assembled_cells}};
   if (completed) {
     Real kinetic = kinetic_energy(model, run_.solids.v);
     for (size_t b = 0; b < run_.bodies.size(); ++b) kinetic += kinetic_energy(problem_.rigid_bodies[b].body, run_.bodies[b]);

@@ -8,7 +8,9 @@
 #include <limits>
 #include <memory>
 
+#include "moreau/fem/distributed/mpi_ranks.hpp"
 #include "moreau/fem/solids/fem_assembly.hpp"
+#include "moreau/fem/solids/solid_partition.hpp"
 #include "moreau/math/expression.hpp"
 #include "moreau/fem/petsc/petsc_presets.hpp"
 #include "moreau/scene/fem_scene.hpp"
@@ -420,6 +422,8 @@ void build_fem_scene(const JsonObject& top, FemProblem& problem, const Vec3& gra
     top.fail("joints", "solids joined to rigid bodies are solved as one system by UMFPACK; \"linear_solver\": "
                        "{\"type\": \"petsc\"} is for solids without joints");
   for (const JsonObject& probe : top.object_list("probes")) problem.probes.push_back(read_fem_probe(probe, problem));
+  // A distributed run (PETSc required above, joints refused with it): each rank assembles its part.
+  if (const petsc_plugin::Communicator* ranks = mpi_world()) distribute_fem_model(model, *ranks);
 }
 
 }  // namespace moreau

@@ -5,23 +5,17 @@
 #include <algorithm>
 #include <cassert>
 
-#include "moreau/fem/distributed/mesh_partition.hpp"
 #include "moreau/fem/petsc/petsc_matrix.hpp"
 #include "moreau/fem/petsc/petsc_plugin_loader.hpp"
 #include "moreau/fem/petsc/petsc_presets.hpp"
+#include "moreau/fem/solids/solid_partition.hpp"
 #include "moreau/io/binary_archive.hpp"
 
 namespace moreau {
 
-petsc_plugin::UnknownLayout solid_unknown_layout(const FemModel& model, const petsc_plugin::Communicator* ranks) {
+petsc_plugin::UnknownLayout solid_unknown_layout(const FemModel& model) {
   petsc_plugin::UnknownLayout layout;
-  std::vector<int> node_owner;
-  if (ranks && ranks->size() > 1) {
-    std::vector<MeshNodes> meshes;
-    for (const FemSolid& solid : model.solids) meshes.push_back({&solid.mesh, solid.node_begin});
-    node_owner = partition_nodes(meshes, model.node_count, ranks->size());
-    layout.owner.resize(model.free_count);
-  }
+  if (model.partition) layout.owner = model.partition->rows.owner;
   layout.dim = model.dim;
   layout.component.resize(model.free_count);
   layout.position.resize(3 * static_cast<size_t>(model.free_count));
@@ -29,7 +23,6 @@ petsc_plugin::UnknownLayout solid_unknown_layout(const FemModel& model, const pe
     const Index row = model.free_index[d];
     if (row < 0) continue;
     layout.component[row] = d % model.dim;
-    if (!node_owner.empty()) layout.owner[row] = node_owner[d / model.dim];
     const Vec3 X = model.reference_position(d / model.dim);
     for (int k = 0; k < 3; ++k) layout.position[3 * row + k] = X[k];
   }

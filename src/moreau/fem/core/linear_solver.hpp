@@ -44,10 +44,9 @@ struct SolidLinearSettings {
 };
 
 /// The free unknowns of a solid model as the PETSc plugin sees them: per free dof, its component
-/// and its node's reference position (for the rigid-body modes), and with `ranks` of more than one
-/// process (a distributed run) the rank that owns its row: its node's, the solids' nodes divided
-/// among the ranks by METIS. Every rank still assembles the whole solid; only the solve is shared.
-petsc_plugin::UnknownLayout solid_unknown_layout(const FemModel& model, const petsc_plugin::Communicator* ranks = nullptr);
+/// and its node's reference position (for the rigid-body modes), and in a distributed model
+/// (model.partition) the rank that owns its row.
+petsc_plugin::UnknownLayout solid_unknown_layout(const FemModel& model);
 
 class SparseSymmetricSolver {
  public:

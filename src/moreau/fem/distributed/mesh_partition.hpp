@@ -13,4 +13,10 @@ namespace moreau {
 /// a fixed seed, so every rank computes the same partition. Throws std::runtime_error if METIS fails.
 std::vector<int> partition_nodes(const std::vector<MeshNodes>& meshes, Index node_count, int parts);
 
+/// The cells a rank assembles: those with a node it owns (node_owner per node of the problem; the
+/// mesh's nodes numbered from node_begin), which complete its rows. Kept in the given colours,
+/// in their order, so its rows receive their cells in the same order as on one process.
+std::vector<std::vector<Index>> cells_of_rank(const std::vector<std::vector<Index>>& colours, const MeshNodes& mesh,
+                                              const std::vector<int>& node_owner, int rank);
+
 }  // namespace moreau

@@ -2,14 +2,11 @@
 
 namespace moreau {
 
-RowOwnership own_rows_by_node(const std::vector<int>& node_owner, const std::vector<Index>& free_index, int fields,
-                              Index free_count, const petsc_plugin::Communicator& world) {
+RowOwnership own_items(std::vector<int> owner, const petsc_plugin::Communicator& world) {
   RowOwnership rows;
   rows.world = &world;
   rows.rank = world.rank();
-  rows.owner.assign(static_cast<size_t>(free_count), 0);
-  for (size_t d = 0; d < free_index.size(); ++d)
-    if (free_index[d] >= 0) rows.owner[free_index[d]] = node_owner[d / fields];
+  rows.owner = std::move(owner);
   rows.counts.assign(static_cast<size_t>(world.size()), 0);
   for (int o : rows.owner) ++rows.counts[o];
   std::vector<Index> next(rows.counts.size(), 0);
@@ -17,6 +14,14 @@ RowOwnership own_rows_by_node(const std::vector<int>& node_owner, const std::vec
   rows.by_rank.resize(rows.owner.size());
   for (size_t i = 0; i < rows.owner.size(); ++i) rows.by_rank[next[rows.owner[i]]++] = static_cast<Index>(i);
   return rows;
+}
+
+RowOwnership own_rows_by_node(const std::vector<int>& node_owner, const std::vector<Index>& free_index, int fields,
+                              Index free_count, const petsc_plugin::Communicator& world) {
+  std::vector<int> owner(static_cast<size_t>(free_count), 0);
+  for (size_t d = 0; d < free_index.size(); ++d)
+    if (free_index[d] >= 0) owner[free_index[d]] = node_owner[d / fields];
+  return own_items(std::move(owner), world);
 }
 
 void RowOwnership::complete(VectorX& v) const {

@@ -23,6 +23,9 @@ struct RowOwnership {
   void complete(VectorX& v) const;
 };
 
+/// Items (rows, cells, ...) owned by the given ranks, one entry of `owner` per item.
+RowOwnership own_items(std::vector<int> owner, const petsc_plugin::Communicator& world);
+
 /// Rows owned by their nodes' ranks: node_owner per node, dofs node-major with `fields` per node,
 /// free_index per dof (-1 if prescribed).
 RowOwnership own_rows_by_node(const std::vector<int>& node_owner, const std::vector<Index>& free_index, int fields,

@@ -238,13 +238,8 @@ void setup_navier_stokes(NavierStokesModel& m, const petsc_plugin::Communicator*
     auto partition = std::make_shared<FlowPartition>();
     const std::vector<int> node_owner = partition_nodes({{&mesh, 0}}, mesh.node_count(), ranks->size());
     partition->rows = own_rows_by_node(node_owner, m.free_index, F, m.free_count, *ranks);
-    for (const std::vector<Index>& colour : m.colours) {
-      std::vector<Index>& mine = partition->colours.emplace_back();
-      for (Index e : colour)
-        if (std::any_of(mesh.cell(e), mesh.cell(e) + nodes, [&](Index a) { return node_owner[a] == ranks->rank(); }))
-          mine.push_back(e);
-      partition->cells += static_cast<Index>(mine.size());
-    }
+    partition->colours = cells_of_rank(m.colours, {&mesh, 0}, node_owner, ranks->rank());
+    for (const std::vector<Index>& colour : partition->colours) partition->cells += static_cast<Index>(colour.size());
     kept_rows.resize(m.free_count);
     for (Index row = 0; row < m.free_count; ++row) kept_rows[row] = partition->rows.owns(row);
     m.partition = std::move(partition);

@@ -2,18 +2,27 @@
 
 #include <functional>
 
+#include "moreau/fem/solids/solid_partition.hpp"
+
 namespace moreau {
 
 namespace {
 
-// For every cell of solid s: gathers its nodal values of u (and of u_next, if given), lets
-// `compute(e, local_u, local_u_next, out)` fill the element output and `visit(e, out)` scatter it,
-// by colours (for_each_cell_by_colour: race-free and deterministic).
+// The cells of solid `index` that this process assembles, in colours: all of them, or in a
+// distributed run those that complete its rows.
+const std::vector<std::vector<Index>>& assembled_cells(const FemModel& model, size_t index) {
+  return model.partition ? model.partition->colours[index] : model.solids[index].colours;
+}
+
+// For every cell of solid `index` this process assembles: gathers its nodal values of u (and of
+// u_next, if given), lets `compute(e, local_u, local_u_next, out)` fill the element output and
+// `visit(e, out)` scatter it, by colours (for_each_cell_by_colour: race-free and deterministic).
 template <class Compute, class Visit>
-void for_each_cell(const FemModel& model, const FemSolid& s, const VectorX& u, const VectorX* u_next, int threads,
+void for_each_cell(const FemModel& model, size_t index, const VectorX& u, const VectorX* u_next, int threads,
                    Compute compute, Visit visit) {
+  const FemSolid& s = model.solids[index];
   const int dim = model.dim, nodes = s.mesh.nodes_per_cell();
-  for_each_cell_by_colour(s.colours, threads, [&](Index e) {
+  for_each_cell_by_colour(assembled_cells(model, index), threads, [&](Index e) {
     ElementOutput out;
     Real local_u[kMaxElementDofs], local_next[kMaxElementDofs];
     const Index* c = s.mesh.cell(e);
@@ -40,17 +49,21 @@ InternalForceResult scatter_cells(const FemModel& model, const VectorX& u, const
   }
   Real* values = with_tangent && tangent ? tangent->valuePtr() : nullptr;
   const int dim = model.dim;
-  for (const FemSolid& s : model.solids) {
+  // Per cell of every solid, numbered solid after solid: its energy and whether it is valid (1/0).
+  Index cell_count = 0;
+  for (const FemSolid& s : model.solids) cell_count += s.mesh.cell_count();
+  VectorX cell_energy = VectorX::Zero(cell_count), cell_valid = VectorX::Ones(cell_count);
+  Index first_cell = 0;
+  for (size_t index = 0; index < model.solids.size(); ++index) {
+    const FemSolid& s = model.solids[index];
     const int nodes = s.mesh.nodes_per_cell(), n = nodes * dim;
-    std::vector<Real> cell_energy(s.mesh.cell_count(), 0.0);
-    std::vector<char> cell_valid(s.mesh.cell_count(), 1);
     for_each_cell(
-        model, s, u, u_next, threads,
+        model, index, u, u_next, threads,
         [&](Index e, const Real* a, const Real* b, ElementOutput& out) { compute(s, e, a, b, out); },
         [&](Index e, const ElementOutput& out) {
-          cell_energy[e] = out.energy;
+          cell_energy[first_cell + e] = out.energy;
           if (!out.valid) {
-            cell_valid[e] = 0;
+            cell_valid[first_cell + e] = 0;
             return;
           }
           const Index* c = s.mesh.cell(e);
@@ -62,14 +75,25 @@ InternalForceResult scatter_cells(const FemModel& model, const VectorX& u, const
             for (int q = 0; q < n; ++q)
               if (slots[r * n + q] >= 0) values[slots[r * n + q]] += out.tangent(r, q);
         });
+    first_cell += s.mesh.cell_count();
+  }
+  if (const SolidPartition* part = model.partition.get()) {
+    part->dofs.complete(force);
+    part->cells.complete(cell_energy);
+    part->cells.complete(cell_valid);
+  }
+  // The energy summed in cell order, on every rank the same bits as on one process.
+  first_cell = 0;
+  for (const FemSolid& s : model.solids) {
     for (Index e = 0; e < s.mesh.cell_count(); ++e) {
-      result.energy += cell_energy[e];
-      if (!cell_valid[e] && result.valid) {
+      result.energy += cell_energy[first_cell + e];
+      if (cell_valid[first_cell + e] == 0 && result.valid) {
         result.valid = false;
         result.invalid_solid = s.name;
         result.invalid_cell = e;
       }
     }
+    first_cell += s.mesh.cell_count();
   }
   return result;
 }
@@ -97,10 +121,11 @@ InternalForceResult assemble_step_forces(const FemModel& model, const VectorX& u
 VectorX tangent_times(const FemModel& model, const VectorX& u, const VectorX& direction) {
   VectorX product = VectorX::Zero(model.dof_count());
   const int dim = model.dim;
-  for (const FemSolid& s : model.solids) {
+  for (size_t index = 0; index < model.solids.size(); ++index) {
+    const FemSolid& s = model.solids[index];
     const int nodes = s.mesh.nodes_per_cell();
     for_each_cell(
-        model, s, u, nullptr, 0,
+        model, index, u, nullptr, 0,
         [&](Index e, const Real* local_u, const Real*, ElementOutput& out) {
           solid_element(s.material, s.volume, s.cell_quadrature(e), dim, local_u, true, out);
         },
@@ -115,6 +140,7 @@ VectorX tangent_times(const FemModel& model, const VectorX& u, const VectorX& di
             for (int k = 0; k < dim; ++k) product[model.dof(s.node_begin + c[a], k)] += Kd[a * dim + k];
         });
   }
+  if (model.partition) model.partition->dofs.complete(product);
   return product;
 }
 

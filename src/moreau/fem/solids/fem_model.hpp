@@ -8,6 +8,7 @@
 // [node_begin, node_begin + mesh.node_count())). The free ones are numbered 0..free_count-1 in the
 // same order; matrices (tangent, mass) live on the free ones only.
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -17,6 +18,8 @@
 #include "moreau/materials/hyperelastic.hpp"
 
 namespace moreau {
+
+struct SolidPartition;  // solid_partition.hpp
 
 struct FemSolid {
   std::string name;
@@ -70,6 +73,8 @@ struct FemModel {
   std::vector<Index> free_index;  // per dof; -1 if prescribed
   Index free_count = 0;
   SparseMatrix pattern;           // free x free, values zero: the structure of every tangent
+                                  // (distributed: this rank's rows only)
+  std::shared_ptr<const SolidPartition> partition;  // null unless divided among MPI ranks
 
   Index dof_count() const { return node_count * dim; }
   Index dof(Index node, int component) const { return node * dim + component; }
