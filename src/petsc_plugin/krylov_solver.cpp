@@ -265,6 +265,25 @@ void KrylovSolver::attach_layout() {
 
 bool KrylovSolver::set_matrix(int n, const int* column_starts, const int* rows, const double* values,
                               std::string& failure) {
+  const bool set = set_matrix_here(n, column_starts, rows, values, failure);
+  if (!distribution_) return set;
+  // The ranks must agree, or those that succeeded would go on to a solve the others never join.
+  // The lowest failed rank is named (its own message is printed only if it is rank 0).
+  int size = 0, rank = 0, first_failed = 0;
+  MPI_Comm_size(PETSC_COMM_WORLD, &size);
+  MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
+  const int mine = set ? size : rank;
+  if (MPI_Allreduce(&mine, &first_failed, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD) != MPI_SUCCESS) {
+    failure = "MPI_Allreduce failed after setting up the preconditioner";
+    return false;
+  }
+  if (first_failed == size) return true;
+  if (set) failure = "PETSc could not set up the preconditioner on rank " + std::to_string(first_failed);
+  return false;
+}
+
+bool KrylovSolver::set_matrix_here(int n, const int* column_starts, const int* rows, const double* values,
+                                   std::string& failure) {
   try {
     const size_t laid_out = layout_.field.empty() ? layout_.component.size() : layout_.field.size();
     if (laid_out != 0 && laid_out != static_cast<size_t>(n))

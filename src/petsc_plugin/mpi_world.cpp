@@ -29,14 +29,4 @@ void MpiWorld::all_gather(const double* mine, const int* counts, double* all) co
     throw PetscFailure("MPI_Allgatherv failed");
 }
 
-double MpiWorld::sum(double value) const {
-  const int ranks = size();
-  std::vector<int> ones(ranks, 1);
-  std::vector<double> values(ranks);
-  all_gather(&value, ones.data(), values.data());
-  double total = 0;
-  for (double v : values) total += v;
-  return total;
-}
-
 }  // namespace moreau::petsc_plugin

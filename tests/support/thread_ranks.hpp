@@ -43,13 +43,6 @@ class ThreadRanks {
       std::copy(all_->buffer_.begin(), all_->buffer_.end(), all);
       all_->sync_.arrive_and_wait();
     }
-    double sum(double value) const override {
-      std::vector<int> ones(static_cast<size_t>(all_->size_), 1);
-      std::vector<double> values(ones.size());
-      all_gather(&value, ones.data(), values.data());
-      return std::accumulate(values.begin(), values.end(), 0.0);
-    }
-
    private:
     ThreadRanks* all_;
     int rank_;

@@ -47,7 +47,6 @@ class TwoRankStandIn final : public petsc_plugin::Communicator {
     std::copy(rank0_values.begin(), rank0_values.begin() + counts[0], all);
     std::copy(mine, mine + counts[1], all + counts[0]);
   }
-  double sum(double value) const override { return value; }
 };
 
 TEST(RowOwnership, RowsFollowTheirNodesAndTheGatheredResidualLandsInPlace) {

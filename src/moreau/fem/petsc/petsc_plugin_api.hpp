@@ -19,7 +19,7 @@
 namespace moreau::petsc_plugin {
 
 /// Raised when the engine and the plugin were built from different versions of this header.
-constexpr int kInterfaceVersion = 2;
+constexpr int kInterfaceVersion = 3;
 
 /// What is known about the unknowns of the system beyond its matrix, for the preconditioners that
 /// need it. Every vector is empty or has one entry per unknown (row).
@@ -48,8 +48,6 @@ class Communicator {
   /// Every rank gives counts[rank] values; every rank receives all of them, rank 0's first
   /// (MPI_Allgatherv). `all` holds the sum of `counts`.
   virtual void all_gather(const double* mine, const int* counts, double* all) const = 0;
-  /// The sum over the ranks of one value, the same bits on every rank.
-  virtual double sum(double value) const = 0;
 };
 
 /// A Krylov solver with its preconditioner, set up from a PETSc options string.
@@ -78,7 +76,8 @@ class LinearSolver {
   /// Takes a square matrix of n rows in compressed sparse column form (column_starts: n + 1
   /// entries; rows and values: one per stored entry). A matrix with the pattern of the previous one
   /// only updates the values and keeps the preconditioner's symbolic setup. False, with `failure`
-  /// set, if the preconditioner cannot be built.
+  /// set, if the preconditioner cannot be built; in a distributed run the ranks agree (false on
+  /// every rank when it fails on one).
   virtual bool set_matrix(int n, const int* column_starts, const int* rows, const double* values,
                           std::string& failure) = 0;
   /// Solves A x = b for the last matrix from a zero initial guess (Newton's corrections have no
