@@ -285,6 +285,7 @@ bool KrylovSolver::set_matrix(int n, const int* column_starts, const int* rows, 
 bool KrylovSolver::set_matrix_here(int n, const int* column_starts, const int* rows, const double* values,
                                    std::string& failure) {
   try {
+    if (!ksp_) create_ksp();
     const size_t laid_out = layout_.field.empty() ? layout_.component.size() : layout_.field.size();
     if (laid_out != 0 && laid_out != static_cast<size_t>(n))
       throw PetscFailure("the layout has " + std::to_string(laid_out) + " unknowns, the matrix " + std::to_string(n));
@@ -306,8 +307,37 @@ bool KrylovSolver::set_matrix_here(int n, const int* column_starts, const int* r
     return true;
   } catch (const PetscFailure& e) {
     failure = e.what();
+    discard_setup();
     return false;
   }
+}
+
+// A setup that failed leaves the KSP half built (a field split without its blocks, which PETSc
+// would dereference at the next setup): the next set_matrix starts from a new KSP and matrix. The
+// broken KSP is dropped without KSPDestroy, which crashes on it too (PETSc 3.18, in
+// KSPReset_FGMRES after a failed field-split setup); this leaks one KSP per failed setup.
+void KrylovSolver::discard_setup() {
+  VecScatterDestroy(&gather_all_);
+  VecDestroy(&x_all_);
+  VecDestroy(&b_);
+  VecDestroy(&x_);
+  column_starts_.clear();
+  ksp_ = nullptr;
+  matrix_ = nullptr;  // still referenced by the dropped KSP
+}
+
+std::vector<std::string> KrylovSolver::unused_options() const {
+  PetscInt count = 0;
+  char** names = nullptr;
+  char** values = nullptr;
+  std::vector<std::string> unused;
+  if (PetscOptionsLeftGet(nullptr, &count, &names, &values) != 0) return unused;
+  for (PetscInt i = 0; i < count; ++i) {
+    const std::string name = names[i];
+    if (name.rfind(prefix_, 0) == 0) unused.push_back("-" + name.substr(prefix_.size()));
+  }
+  PetscOptionsLeftRestore(nullptr, &count, &names, &values);
+  return unused;
 }
 
 SolveReport KrylovSolver::solve(const double* b, double* x) {
@@ -329,7 +359,9 @@ SolveReport KrylovSolver::solve(const double* b, double* x) {
     read_report(report);
   } catch (const PetscFailure& e) {
     report.converged = false;
+    report.error = true;
     report.reason = e.what();
+    discard_setup();
   }
   return report;
 }
@@ -361,6 +393,7 @@ void KrylovSolver::read_report(SolveReport& report) const {
 }
 
 std::string KrylovSolver::describe() const {
+  if (!ksp_) return "?";
   KSPType ksp_type = nullptr;
   PCType pc_type = nullptr;
   PC pc;

@@ -26,10 +26,12 @@ class KrylovSolver final : public LinearSolver {
                   std::string& failure) override;
   SolveReport solve(const double* b, double* x) override;
   std::string describe() const override;
+  std::vector<std::string> unused_options() const override;
 
  private:
   // set_matrix on this rank alone (false with `failure` on a PETSc error).
   bool set_matrix_here(int n, const int* column_starts, const int* rows, const double* values, std::string& failure);
+  void discard_setup();
   bool same_pattern(int n, const int* column_starts, const int* rows) const;
   void create_ksp();
   void create_matrix(int n, const int* column_starts, const int* rows);

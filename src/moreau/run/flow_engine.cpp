@@ -50,6 +50,10 @@ class FlowEngine final : public Engine {
   double dt() const override { return steady() ? 0 : scene_.fem->dt; }
   int requested_threads() const override { return threads_; }
   void step(int threads) override { steady() ? solve_steady(threads) : step_transient(threads); }
+  std::vector<std::string> warnings() const override {
+    if (problem_.linear.options_warning.empty()) return {};
+    return {problem_.linear.options_warning};
+  }
 
   std::vector<std::string> probe_columns() const override {
     return probe_table_columns(problem_.probes, [&](const FlowProbe& p) { return flow_probe_columns(p, problem_.model.dim()); });

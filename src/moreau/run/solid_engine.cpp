@@ -41,6 +41,10 @@ class SolidEngine final : public Engine {
   double dt() const override { return problem_.dt; }
   int requested_threads() const override { return problem_.threads; }
   void step(int threads) override;
+  std::vector<std::string> warnings() const override {
+    if (problem_.linear.options_warning.empty()) return {};
+    return {problem_.linear.options_warning};
+  }
 
   std::vector<std::string> probe_columns() const override {
     return probe_table_columns(problem_.probes, [&](const FemProbe& p) { return fem_probe_columns(p, problem_.model.dim); });

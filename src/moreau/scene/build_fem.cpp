@@ -293,7 +293,8 @@ void read_solid_settings(const JsonObject& settings, FemProblem& problem) {
       s.tolerance = linear->number("tolerance", s.tolerance, Range::open(0, 1));
       s.max_iterations = linear->integer("max_iterations", s.max_iterations, 1, 1000000);
       if (linear->has("petsc_options")) s.petsc_options = linear->string("petsc_options");
-      require_petsc(*linear, solid_petsc_options(s.preconditioner) + " " + s.petsc_options);
+      s.options_warning = require_petsc(*linear, solid_petsc_options(s.preconditioner) + " " + s.petsc_options,
+                                        PetscSystemKind::solid);
     }
     linear->finish();
   }

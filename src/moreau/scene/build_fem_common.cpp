@@ -19,20 +19,27 @@
 
 namespace moreau {
 
-void require_petsc(const JsonObject& linear_solver, const std::string& options) {
+std::string require_petsc(const JsonObject& linear_solver, const std::string& options, PetscSystemKind kind) {
   petsc_plugin::Backend* backend = nullptr;
   try {
     backend = &petsc_backend();
   } catch (const std::runtime_error& e) {
     linear_solver.fail("type", std::string("\"petsc\" is not available here: ") + e.what());
   }
-  // A solver made and dropped at once: PETSc reads the options now, and rejects an unknown
-  // solver or preconditioner type before the run starts rather than at its first solve.
-  std::string failure;
-  if (!backend->make_solver({.prefix = "scene_check_", .options = options}, {}, failure))
+  // PETSc rejects an unknown solver or preconditioner type, of the inner solvers too, before the
+  // run starts rather than at its first solve.
+  const PetscOptionCheck check = check_petsc_options(*backend, options, kind);
+  if (!check.failure.empty())
     linear_solver.fail(linear_solver.has("petsc_options") ? "petsc_options" : "preconditioner",
-                       "PETSc does not accept these options: " + failure +
+                       "PETSc does not accept these options: " + check.failure +
                            "; the KSP and PC types PETSc knows are listed in its manual pages (KSPType, PCType)");
+  if (check.unused.empty()) return "";
+  std::string names;
+  for (const std::string& name : check.unused) names += (names.empty() ? "" : ", ") + name;
+  return fmt::format("{}: PETSc did not read {} when it built the preconditioner on a small test system: "
+                     "misspelt, or meant for a solver or preconditioner these options do not create (options of "
+                     "multigrid levels that a small system lacks are read only on the scene's own)",
+                     linear_solver.path_of("petsc_options"), names);
 }
 
 void require_petsc_when_distributed(const JsonObject& top, const JsonObject* settings, bool uses_petsc) {

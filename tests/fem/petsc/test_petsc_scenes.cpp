@@ -51,10 +51,38 @@ TEST(PetscScenes, BadPetscSettingsAreRefusedBeforeTheRun) {
              {"settings.linear_solver.preconditioner", "fieldsplit, fieldsplit_ilu, amg, ilu, lu"});
   expect_bad_scene("petsc_options", cavity(R"({"type": "petsc", "petsc_options": "-pc_type nonsense"})"),
              {"settings.linear_solver.petsc_options", "PETSc does not accept", "nonsense"});
+  // Inner solvers read their options only when the preconditioner is built (the field split's
+  // blocks) or first applied (block Jacobi's sub-solvers): the check builds one and solves once.
+  expect_bad_scene("petsc_inner_options", cavity(R"({"type": "petsc", "petsc_options": "-fieldsplit_u_pc_type nonsense"})"),
+             {"settings.linear_solver.petsc_options", "PETSc does not accept", "nonsense"});
+  expect_bad_scene("petsc_block_options",
+                   cavity(R"({"type": "petsc", "preconditioner": "fieldsplit_ilu", "petsc_options": "-fieldsplit_u_sub_pc_type nonsense"})"),
+                   {"settings.linear_solver.petsc_options", "PETSc does not accept", "nonsense"});
   expect_bad_scene("petsc_gmres_key", cavity(R"({"type": "petsc", "drop_tolerance": 1e-3})"),
              {"settings.linear_solver.drop_tolerance", "\"type\": \"gmres\""});
   expect_bad_scene("petsc_key_on_direct", cavity(R"({"type": "direct", "preconditioner": "amg"})"),
              {"settings.linear_solver.preconditioner", "\"type\": \"petsc\""});
+}
+
+// A misspelt option is not an error to PETSc (it is never read): the run goes on and warns, naming
+// it; the presets' own options are all read, so they never warn.
+TEST(PetscScenes, OptionsPetscDoesNotReadAreNamedInAWarning) {
+  const std::string out = test::temp_dir("petsc_unused") + "/out";
+  const auto typo = test::run_moreau(fmt::format(
+      "run {} --out {} --quiet",
+      test::write_scene("petsc_unused", cavity(R"({"type": "petsc", "petsc_options": "-fieldsplit_u_pc_typ jacobi"})")), out));
+  EXPECT_EQ(typo.exit_code, 0) << typo.output;
+  EXPECT_NE(typo.output.find("warning: settings.linear_solver.petsc_options: PETSc did not read -fieldsplit_u_pc_typ"),
+            std::string::npos)
+      << typo.output;
+  for (const char* preset : {"fieldsplit", "fieldsplit_ilu", "amg", "ilu", "lu"}) {
+    const auto clean = test::run_moreau(fmt::format(
+        "run {} --out {} --quiet --duration 1",
+        test::write_scene("petsc_preset", cavity(fmt::format(R"({{"type": "petsc", "preconditioner": "{}"}})", preset))),
+        test::temp_dir("petsc_preset") + "/out"));
+    EXPECT_EQ(clean.exit_code, 0) << clean.output;
+    EXPECT_EQ(clean.output.find("warning"), std::string::npos) << preset << ": " << clean.output;
+  }
 }
 
 TEST(PetscScenes, AMissingPluginIsBadInputThatSaysWhereItWasLookedFor) {

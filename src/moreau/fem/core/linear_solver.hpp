@@ -41,6 +41,7 @@ struct SolidLinearSettings {
   Real tolerance = 1e-8;               // petsc: the Krylov solve's relative residual
   int max_iterations = 1000;           // petsc: Krylov iterations per solve
   std::string petsc_options;           // petsc: PETSc options after the preset's
+  std::string options_warning;         // petsc: the options PETSc did not read when the scene was checked
 };
 
 /// The free unknowns of a solid model as the PETSc plugin sees them: per free dof, its component

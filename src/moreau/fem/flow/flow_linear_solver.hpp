@@ -50,6 +50,7 @@ struct FlowLinearSettings {
   // petsc only:
   std::string preconditioner = "fieldsplit";  // a name of flow_petsc_preconditioners()
   std::string petsc_options;                  // PETSc options after the preset's ("-ksp_monitor")
+  std::string options_warning;                // the options PETSc did not read when the scene was checked
   // gmres only:
   Real drop_tolerance = 1e-2;  // ILUT: entries below this times the row's norm are dropped
   int fill_factor = 2;         // ILUT: entries kept per row of L plus U, relative to J's average row

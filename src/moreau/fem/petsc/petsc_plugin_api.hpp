@@ -67,7 +67,8 @@ struct SolveReport {
   bool converged = false;
   int iterations = 0;
   double residual = 0;  // the final residual norm KSP monitored
-  std::string reason;   // PETSc's converged or diverged reason, as its name
+  std::string reason;   // PETSc's converged or diverged reason, as its name, or its error message
+  bool error = false;   // PETSc raised an error (reason holds its message); set_matrix starts afresh
 };
 
 class LinearSolver {
@@ -86,6 +87,9 @@ class LinearSolver {
   virtual SolveReport solve(const double* b, double* x) = 0;
   /// The KSP and PC types actually used ("gmres+fieldsplit"), after the first set_matrix.
   virtual std::string describe() const = 0;
+  /// This solver's options that PETSc has not read (misspelt, or for a solver or preconditioner that
+  /// was not created), as given ("-fieldsplit_u_pc_typ"); inner solvers read theirs at set_matrix.
+  virtual std::vector<std::string> unused_options() const = 0;
 };
 
 class Backend {
