@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <sstream>
+#include <set>
 #include <unistd.h>
 
 #include "moreau/scene/memory_estimate.hpp"
@@ -33,9 +35,21 @@ std::string require_petsc(const JsonObject& linear_solver, const std::string& op
     linear_solver.fail(linear_solver.has("petsc_options") ? "petsc_options" : "preconditioner",
                        "PETSc does not accept these options: " + check.failure +
                            "; the KSP and PC types PETSc knows are listed in its manual pages (KSPType, PCType)");
-  if (check.unused.empty()) return "";
+  // Only the user's own options are named: a preset's option may go unread because the user's
+  // replaced what it was for (a preconditioner type, say). PETSc's names ignore case.
+  const auto lower = [](std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return std::tolower(c); });
+    return s;
+  };
+  std::set<std::string> given;
+  if (linear_solver.has("petsc_options")) {
+    std::istringstream tokens(linear_solver.string("petsc_options"));
+    for (std::string token; tokens >> token;) given.insert(lower(token));
+  }
   std::string names;
-  for (const std::string& name : check.unused) names += (names.empty() ? "" : ", ") + name;
+  for (const std::string& name : check.unused)
+    if (given.count(lower(name))) names += (names.empty() ? "" : ", ") + name;
+  if (names.empty()) return "";
   return fmt::format("{}: PETSc did not read {} when it built the preconditioner on a small test system: "
                      "misspelt, or meant for a solver or preconditioner these options do not create (options of "
                      "multigrid levels that a small system lacks are read only on the scene's own)",

@@ -65,7 +65,8 @@ TEST(PetscScenes, BadPetscSettingsAreRefusedBeforeTheRun) {
 }
 
 // A misspelt option is not an error to PETSc (it is never read): the run goes on and warns, naming
-// it; the presets' own options are all read, so they never warn.
+// it. The presets' own options are all read, and those a user's option leaves unread (BoomerAMG's,
+// when the velocity block is given LU) are not the user's to fix: neither warns.
 TEST(PetscScenes, OptionsPetscDoesNotReadAreNamedInAWarning) {
   const std::string out = test::temp_dir("petsc_unused") + "/out";
   const auto typo = test::run_moreau(fmt::format(
@@ -75,13 +76,15 @@ TEST(PetscScenes, OptionsPetscDoesNotReadAreNamedInAWarning) {
   EXPECT_NE(typo.output.find("warning: settings.linear_solver.petsc_options: PETSc did not read -fieldsplit_u_pc_typ"),
             std::string::npos)
       << typo.output;
-  for (const char* preset : {"fieldsplit", "fieldsplit_ilu", "amg", "ilu", "lu"}) {
+  for (const std::string settings : {R"("preconditioner": "fieldsplit")", R"("preconditioner": "fieldsplit_ilu")",
+                                     R"("preconditioner": "amg")", R"("preconditioner": "ilu")", R"("preconditioner": "lu")",
+                                     R"("petsc_options": "-fieldsplit_u_pc_type lu")"}) {
     const auto clean = test::run_moreau(fmt::format(
-        "run {} --out {} --quiet --duration 1",
-        test::write_scene("petsc_preset", cavity(fmt::format(R"({{"type": "petsc", "preconditioner": "{}"}})", preset))),
+        "run {} --out {} --quiet",
+        test::write_scene("petsc_preset", cavity(fmt::format(R"({{"type": "petsc", {}}})", settings))),
         test::temp_dir("petsc_preset") + "/out"));
     EXPECT_EQ(clean.exit_code, 0) << clean.output;
-    EXPECT_EQ(clean.output.find("warning"), std::string::npos) << preset << ": " << clean.output;
+    EXPECT_EQ(clean.output.find("warning"), std::string::npos) << settings << ": " << clean.output;
   }
 }
 
