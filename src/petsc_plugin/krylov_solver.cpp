@@ -267,19 +267,25 @@ bool KrylovSolver::set_matrix(int n, const int* column_starts, const int* rows, 
                               std::string& failure) {
   const bool set = set_matrix_here(n, column_starts, rows, values, failure);
   if (!distribution_) return set;
-  // The ranks must agree, or those that succeeded would go on to a solve the others never join.
-  // The lowest failed rank is named (its own message is printed only if it is rank 0).
-  int size = 0, rank = 0, first_failed = 0;
+  const int first_failed = first_failed_rank(!set);
+  if (first_failed < 0) return true;
+  if (set) {
+    failure = "PETSc could not set up the preconditioner on rank " + std::to_string(first_failed);
+    discard_setup();  // as the failed rank did: every rank builds its KSP and matrix afresh, together
+  }
+  return false;
+}
+
+// The ranks must agree on a failure, or those that succeeded would go on to collective calls the
+// others never join. (This cannot help with an error raised inside a collective call, which the
+// other ranks then wait in.)
+int KrylovSolver::first_failed_rank(bool failed) const {
+  int size = 0, rank = 0, first = 0;
   MPI_Comm_size(PETSC_COMM_WORLD, &size);
   MPI_Comm_rank(PETSC_COMM_WORLD, &rank);
-  const int mine = set ? size : rank;
-  if (MPI_Allreduce(&mine, &first_failed, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD) != MPI_SUCCESS) {
-    failure = "MPI_Allreduce failed after setting up the preconditioner";
-    return false;
-  }
-  if (first_failed == size) return true;
-  if (set) failure = "PETSc could not set up the preconditioner on rank " + std::to_string(first_failed);
-  return false;
+  const int mine = failed ? rank : size;
+  if (MPI_Allreduce(&mine, &first, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD) != MPI_SUCCESS) return rank;
+  return first == size ? -1 : first;
 }
 
 bool KrylovSolver::set_matrix_here(int n, const int* column_starts, const int* rows, const double* values,
@@ -345,24 +351,32 @@ SolveReport KrylovSolver::solve(const double* b, double* x) {
   try {
     if (distribution_) {
       solve_distributed(b, x, report);
-      return report;
-    }
-    petsc_call(VecPlaceArray(b_, const_cast<double*>(b)), "VecPlaceArray");
-    if (const PetscErrorCode placed = VecPlaceArray(x_, x)) {
+    } else {
+      petsc_call(VecPlaceArray(b_, const_cast<double*>(b)), "VecPlaceArray");
+      if (const PetscErrorCode placed = VecPlaceArray(x_, x)) {
+        VecResetArray(b_);
+        petsc_call(placed, "VecPlaceArray");
+      }
+      const PetscErrorCode code = KSPSolve(ksp_, b_, x_);
       VecResetArray(b_);
-      petsc_call(placed, "VecPlaceArray");
+      VecResetArray(x_);
+      petsc_call(code, "KSPSolve");
+      read_report(report);
     }
-    const PetscErrorCode code = KSPSolve(ksp_, b_, x_);
-    VecResetArray(b_);
-    VecResetArray(x_);
-    petsc_call(code, "KSPSolve");
-    read_report(report);
   } catch (const PetscFailure& e) {
     report.converged = false;
     report.error = true;
     report.reason = e.what();
-    discard_setup();
   }
+  if (distribution_) {
+    const int first_failed = first_failed_rank(report.error);
+    if (first_failed >= 0 && !report.error) {
+      report.converged = false;
+      report.error = true;
+      report.reason = "PETSc failed in the solve on rank " + std::to_string(first_failed);
+    }
+  }
+  if (report.error) discard_setup();
   return report;
 }
 

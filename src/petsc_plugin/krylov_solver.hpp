@@ -32,6 +32,8 @@ class KrylovSolver final : public LinearSolver {
   // set_matrix on this rank alone (false with `failure` on a PETSc error).
   bool set_matrix_here(int n, const int* column_starts, const int* rows, const double* values, std::string& failure);
   void discard_setup();
+  // The lowest rank whose `failed` is true, or -1 (every rank calls it; one process: its own).
+  int first_failed_rank(bool failed) const;
   bool same_pattern(int n, const int* column_starts, const int* rows) const;
   void create_ksp();
   void create_matrix(int n, const int* column_starts, const int* rows);

@@ -10,8 +10,6 @@ class MpiWorld final : public Communicator {
   int rank() const override;
   int size() const override;
   void all_gather(const double* mine, const int* counts, double* all) const override;
-  /// Gathers the values and adds them in rank order on every rank: MPI_Allreduce may add them in
-  /// another order on each rank, and the engine's ranks must take the same decisions.
 };
 
 }  // namespace moreau::petsc_plugin

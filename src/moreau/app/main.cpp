@@ -18,7 +18,6 @@
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
-#include <filesystem>
 #include <sstream>
 #include <string>
 
@@ -95,7 +94,7 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 1 << 30));
   run->add_option("--restart", restart_path,
                   "resume from a checkpoint of this scene; runs what is left of settings.duration (or --duration more) "
-                  "and continues the checkpoint's output directory (or writes to --out)");
+                  "and continues the output directory the checkpoint's run wrote (or writes to --out)");
 
   CLI::App* check = app.add_subcommand("check", "validate a scene and print what it builds");
   check->add_option("scene", scene_path, "scene file (JSON)")->required();
@@ -198,8 +197,6 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (!restart_path.empty()) world.restore(restart_path);
-    // A restart continues the directory its checkpoint is in, unless --out names another.
-    if (!restart_path.empty() && out_dir.empty()) out_dir = std::filesystem::path(restart_path).parent_path().string();
     moreau::RunOptions options;
     options.out_dir = out_dir;
     if (duration > 0) options.duration = duration;

@@ -70,7 +70,10 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
   // In a distributed run every rank holds the whole state, and rank 0 alone writes the output.
   const bool writes_output = mpi_rank() == 0;
   RunResult result;
-  result.out_dir = output_directory_path(options.out_dir, scene.name);
+  // Without --out, a restart continues the directory the checkpoint's run wrote, if it is still there.
+  std::string out_dir = options.out_dir;
+  if (out_dir.empty() && restart && fs::is_directory(restart->header.out_dir)) out_dir = restart->header.out_dir;
+  result.out_dir = output_directory_path(out_dir, scene.name);
   const bool continuing = restart && same_directory(restart->header.out_dir, result.out_dir);
   std::optional<ProbeCsv> csv;
   if (writes_output) {
@@ -78,7 +81,7 @@ RunResult run_engine(Engine& engine, const Scene& scene, const RunOptions& optio
       writable_directory(result.out_dir);
       resume_output_directory(result.out_dir, restart->header.frames, restart->header.appended_files);
     } else {
-      result.out_dir = run_output_directory(options.out_dir, scene.name);
+      result.out_dir = run_output_directory(out_dir, scene.name);
     }
     engine.open_frames(result.out_dir, scene.name, continuing ? restart->header.frames : FrameSeries{});
     csv.emplace(result.out_dir, engine.probe_columns(), continuing);

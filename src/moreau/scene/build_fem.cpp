@@ -280,6 +280,7 @@ namespace {
 
 // The solids' "integrator" and "newton" settings.
 void read_solid_settings(const JsonObject& settings, FemProblem& problem) {
+  const std::string integrator = settings.choice("integrator", "energy_momentum", {"static", "midpoint", "energy_momentum"});
   if (auto linear = settings.optional_object("linear_solver")) {
     SolidLinearSettings& s = problem.linear;
     s.petsc = linear->choice("type", "direct", {"direct", "petsc"}) == "petsc";
@@ -293,12 +294,14 @@ void read_solid_settings(const JsonObject& settings, FemProblem& problem) {
       s.tolerance = linear->number("tolerance", s.tolerance, Range::open(0, 1));
       s.max_iterations = linear->integer("max_iterations", s.max_iterations, 1, 1000000);
       if (linear->has("petsc_options")) s.petsc_options = linear->string("petsc_options");
-      s.options_warning = require_petsc(*linear, solid_petsc_options(s.preconditioner) + " " + s.petsc_options,
-                                        PetscSystemKind::solid);
+      // The energy-momentum scheme's tangents are not symmetric: its solver is the general one. The
+      // symmetric solver's CG may fall back to that one too, so both are checked then.
+      std::vector<std::string> solvers = {solid_solver_options(s, false)};
+      if (integrator != "energy_momentum") solvers.insert(solvers.begin(), solid_solver_options(s, true));
+      s.options_warning = require_petsc(*linear, solvers, PetscSystemKind::solid);
     }
     linear->finish();
   }
-  const std::string integrator = settings.choice("integrator", "energy_momentum", {"static", "midpoint", "energy_momentum"});
   problem.integrator = integrator == "static"     ? FemIntegrator::static_load_steps
                        : integrator == "midpoint" ? FemIntegrator::midpoint
                                                   : FemIntegrator::energy_momentum;

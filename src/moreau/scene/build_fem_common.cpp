@@ -21,7 +21,8 @@
 
 namespace moreau {
 
-std::string require_petsc(const JsonObject& linear_solver, const std::string& options, PetscSystemKind kind) {
+std::string require_petsc(const JsonObject& linear_solver, const std::vector<std::string>& solvers_options,
+                          PetscSystemKind kind) {
   petsc_plugin::Backend* backend = nullptr;
   try {
     backend = &petsc_backend();
@@ -30,11 +31,15 @@ std::string require_petsc(const JsonObject& linear_solver, const std::string& op
   }
   // PETSc rejects an unknown solver or preconditioner type, of the inner solvers too, before the
   // run starts rather than at its first solve.
-  const PetscOptionCheck check = check_petsc_options(*backend, options, kind);
-  if (!check.failure.empty())
-    linear_solver.fail(linear_solver.has("petsc_options") ? "petsc_options" : "preconditioner",
-                       "PETSc does not accept these options: " + check.failure +
-                           "; the KSP and PC types PETSc knows are listed in its manual pages (KSPType, PCType)");
+  std::vector<std::vector<std::string>> unread;
+  for (const std::string& options : solvers_options) {
+    const PetscOptionCheck check = check_petsc_options(*backend, options, kind);
+    if (!check.failure.empty())
+      linear_solver.fail(linear_solver.has("petsc_options") ? "petsc_options" : "preconditioner",
+                         "PETSc does not accept these options: " + check.failure +
+                             "; the KSP and PC types PETSc knows are listed in its manual pages (KSPType, PCType)");
+    unread.push_back(check.unused);
+  }
   // Only the user's own options are named: a preset's option may go unread because the user's
   // replaced what it was for (a preconditioner type, say). PETSc's names ignore case.
   const auto lower = [](std::string s) {
@@ -46,9 +51,14 @@ std::string require_petsc(const JsonObject& linear_solver, const std::string& op
     std::istringstream tokens(linear_solver.string("petsc_options"));
     for (std::string token; tokens >> token;) given.insert(lower(token));
   }
+  // Named if no solver read it.
   std::string names;
-  for (const std::string& name : check.unused)
-    if (given.count(lower(name))) names += (names.empty() ? "" : ", ") + name;
+  for (const std::string& name : unread.front()) {
+    const bool everywhere = std::all_of(unread.begin(), unread.end(), [&](const std::vector<std::string>& list) {
+      return std::find(list.begin(), list.end(), name) != list.end();
+    });
+    if (everywhere && given.count(lower(name))) names += (names.empty() ? "" : ", ") + name;
+  }
   if (names.empty()) return "";
   return fmt::format("{}: PETSc did not read {} when it built the preconditioner on a small test system: "
                      "misspelt, or meant for a solver or preconditioner these options do not create (options of "

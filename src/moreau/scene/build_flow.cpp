@@ -235,7 +235,7 @@ void read_flow_settings(const JsonObject* settings, const JsonObject& fluid, Flo
     if (s.method == FlowLinearMethod::petsc) {
       s.preconditioner = linear->choice("preconditioner", s.preconditioner, flow_petsc_preconditioners());
       if (linear->has("petsc_options")) s.petsc_options = linear->string("petsc_options");
-      s.options_warning = require_petsc(*linear, flow_petsc_options(s.preconditioner, s.restart) + " " + s.petsc_options,
+      s.options_warning = require_petsc(*linear, {flow_petsc_options(s.preconditioner, s.restart) + " " + s.petsc_options},
                                         PetscSystemKind::flow);
     }
     linear->finish();

@@ -34,11 +34,12 @@ void read_immersed_solids(const JsonObject& top, const std::vector<JsonObject>& 
 // --- shared readers ---
 
 /// Loads the PETSc plugin for `"type": "petsc"` in `linear_solver` and has PETSc build a
-/// preconditioner with `options` (the preset's and the user's) on a small system of `kind`
-/// (petsc_option_check.hpp); fails naming linear_solver.type, with where the plugin was looked
-/// for, if it cannot be loaded, or naming petsc_options if PETSc rejects them. Returns a warning
-/// for the options PETSc did not read, or "".
-std::string require_petsc(const JsonObject& linear_solver, const std::string& options, PetscSystemKind kind);
+/// preconditioner with the options of each of the scene's solvers (the preset's and the user's)
+/// on a small system of `kind` (petsc_option_check.hpp); fails naming linear_solver.type, with
+/// where the plugin was looked for, if it cannot be loaded, or naming petsc_options if PETSc
+/// rejects them. Returns a warning for the user's options that no solver read, or "".
+std::string require_petsc(const JsonObject& linear_solver, const std::vector<std::string>& solvers_options,
+                          PetscSystemKind kind);
 /// In a distributed run (more than one MPI rank) the FEM systems are solved by PETSc: fails at
 /// settings.linear_solver.type unless `uses_petsc`.
 void require_petsc_when_distributed(const JsonObject& top, const JsonObject* settings, bool uses_petsc);

@@ -86,6 +86,21 @@ TEST(PetscScenes, OptionsPetscDoesNotReadAreNamedInAWarning) {
     EXPECT_EQ(clean.exit_code, 0) << clean.output;
     EXPECT_EQ(clean.output.find("warning"), std::string::npos) << settings << ": " << clean.output;
   }
+  // A static solid's CG falls back to GMRES around the same multigrid: an option of that solver
+  // alone is read by it, and so not named.
+  const auto solid = test::run_moreau(fmt::format(
+      "run {} --out {} --quiet",
+      test::write_scene("petsc_solid_options", R"({"name": "block", "settings": {"solver": "fem", "integrator": "static",
+          "dt": 1, "duration": 1, "gravity": [0, 0, 0],
+          "linear_solver": {"type": "petsc", "petsc_options": "-ksp_gmres_restart 80 -pc_gamg_threshol 0.01"}},
+        "objects": [{"name": "b", "kind": "solid", "mesh": {"type": "box", "min": [0, 0, 0], "max": [1, 1, 1], "cells": [3, 3, 3], "element": "hex8"},
+          "material": {"model": "neo_hookean", "youngs_modulus": 1e6, "poisson_ratio": 0.3, "density": 1000},
+          "loads": [{"type": "traction", "where": {"boundary": "top"}, "value": [0, -1e3, 0]}],
+          "dirichlet": [{"where": {"boundary": "bottom"}, "value": [0, 0, 0]}]}]})"),
+      test::temp_dir("petsc_solid_options") + "/out"));
+  EXPECT_EQ(solid.exit_code, 0) << solid.output;
+  EXPECT_NE(solid.output.find("PETSc did not read -pc_gamg_threshol when"), std::string::npos) << solid.output;
+  EXPECT_EQ(solid.output.find("-ksp_gmres_restart"), std::string::npos) << solid.output;
 }
 
 TEST(PetscScenes, AMissingPluginIsBadInputThatSaysWhereItWasLookedFor) {

@@ -29,6 +29,13 @@ petsc_plugin::UnknownLayout solid_unknown_layout(const FemModel& model) {
   return layout;
 }
 
+std::string solid_solver_options(const SolidLinearSettings& settings, bool symmetric) {
+  const std::string& name = settings.preconditioner;
+  std::string options = solid_petsc_options(symmetric || name != "cholesky" ? name : "lu");
+  if (!symmetric) options += " -ksp_type " + std::string(name == "amg" ? "gmres -ksp_pc_side right" : "preonly");
+  return options + " " + settings.petsc_options;
+}
+
 // Two PETSc solvers, made when first needed: one for symmetric tangents (the static and midpoint
 // ones), one for the energy-momentum scheme's nonsymmetric ones.
 struct SparseSymmetricSolver::Petsc {
@@ -60,10 +67,7 @@ bool SparseSymmetricSolver::factorize_petsc(const SparseMatrix& K, bool symmetri
   if (!solver) {
     petsc_plugin::SolverSpec spec;
     spec.prefix = symmetric ? "solid_" : "solid_general_";
-    const std::string& name = p.settings.preconditioner;
-    spec.options = solid_petsc_options(symmetric || name != "cholesky" ? name : "lu");
-    if (!symmetric) spec.options += " -ksp_type " + std::string(name == "amg" ? "gmres -ksp_pc_side right" : "preonly");
-    spec.options += " " + p.settings.petsc_options;
+    spec.options = solid_solver_options(p.settings, symmetric);
     spec.relative_tolerance = p.settings.tolerance;
     spec.max_iterations = p.settings.max_iterations;
     solver = petsc_backend().make_solver(spec, p.layout, failure_);
@@ -100,6 +104,10 @@ bool SparseSymmetricSolver::solve(const VectorX& b, VectorX& x) {
     max_krylov_iterations_ = std::max(max_krylov_iterations_, report.iterations);
   }
   if (report.converged) return true;
+  if (report.error) {
+    failure_ = "PETSc failed in the solve: " + report.reason;
+    return false;
+  }
   failure_ = fmt::format(
       "PETSc's {} stopped with {} after {} iterations (residual {:.2e}, tolerance {:.1e} relative); raise "
       "settings.linear_solver.max_iterations, or choose another \"preconditioner\"",

@@ -44,6 +44,11 @@ struct SolidLinearSettings {
   std::string options_warning;         // petsc: the options PETSc did not read when the scene was checked
 };
 
+/// The PETSc options of a solid's solver: the preset's, then the user's. `symmetric`: the solver
+/// of symmetric tangents (static and midpoint steps); else the energy-momentum scheme's, or the
+/// one CG falls back to (GMRES around the same multigrid, or LU in place of Cholesky).
+std::string solid_solver_options(const SolidLinearSettings& settings, bool symmetric);
+
 /// The free unknowns of a solid model as the PETSc plugin sees them: per free dof, its component
 /// and its node's reference position (for the rigid-body modes), and in a distributed model
 /// (model.partition) the rank that owns its row.

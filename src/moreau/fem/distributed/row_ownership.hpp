@@ -13,7 +13,7 @@ namespace moreau {
 struct RowOwnership {
   const petsc_plugin::Communicator* world = nullptr;
   int rank = 0;
-  std::vector<int> owner;      // per free unknown, its rank
+  std::vector<int> owner;      // per item (a free unknown, a dof, a cell), its rank
   std::vector<int> counts;     // per rank, how many it owns
   std::vector<Index> by_rank;  // the free unknowns, rank 0's first, each rank's in order
 

@@ -108,6 +108,10 @@ bool FlowLinearSolver::solve_petsc(const VectorX& b, VectorX& dx) {
   statistics_.iterations += report.iterations;
   statistics_.max_iterations = std::max(statistics_.max_iterations, report.iterations);
   if (report.converged) return true;
+  if (report.error) {
+    failure_ = "PETSc failed in the solve: " + report.reason;
+    return false;
+  }
   failure_ = fmt::format(
       "PETSc's {} stopped with {} after {} iterations (residual {:.2e}, tolerance {:.1e} relative); raise "
       "settings.linear_solver.max_iterations, or choose another \"preconditioner\" or \"type\"",

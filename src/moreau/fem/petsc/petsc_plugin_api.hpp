@@ -88,7 +88,8 @@ class LinearSolver {
   /// The KSP and PC types actually used ("gmres+fieldsplit"), after the first set_matrix.
   virtual std::string describe() const = 0;
   /// This solver's options that PETSc has not read (misspelt, or for a solver or preconditioner that
-  /// was not created), as given ("-fieldsplit_u_pc_typ"); inner solvers read theirs at set_matrix.
+  /// was not created), as given ("-fieldsplit_u_pc_typ"); inner solvers read theirs when the
+  /// preconditioner is built (set_matrix) or first applied (solve).
   virtual std::vector<std::string> unused_options() const = 0;
 };
 

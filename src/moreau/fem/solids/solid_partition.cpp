@@ -19,7 +19,6 @@ void distribute_fem_model(FemModel& model, const petsc_plugin::Communicator& ran
   partition->dofs = own_rows_by_node(node_owner, every_dof, model.dim, model.dof_count(), ranks);
   std::vector<int> cell_owner;
   for (const FemSolid& s : model.solids) {
-    partition->cell_begin.push_back(static_cast<Index>(cell_owner.size()));
     for (Index e = 0; e < s.mesh.cell_count(); ++e) cell_owner.push_back(node_owner[s.node_begin + s.mesh.cell(e)[0]]);
     partition->colours.push_back(cells_of_rank(s.colours, {&s.mesh, s.node_begin}, node_owner, rank));
     for (const std::vector<Index>& colour : partition->colours.back())

@@ -15,8 +15,8 @@ namespace moreau {
 struct SolidPartition {
   RowOwnership rows;   // the free unknowns (the tangent's rows), by their nodes' ranks
   RowOwnership dofs;   // every degree of freedom, prescribed ones included, by their nodes' ranks
-  RowOwnership cells;  // every cell of every solid, by the rank of its first node (which assembles it)
-  std::vector<Index> cell_begin;                        // per solid, its first cell in `cells`
+  RowOwnership cells;  // every cell of every solid, solid after solid, by the rank of its first node
+                       // (which assembles it)
   std::vector<std::vector<std::vector<Index>>> colours;  // per solid, this rank's cells in its colours
   Index assembled_cells = 0;                            // this rank's, over all solids
 };
