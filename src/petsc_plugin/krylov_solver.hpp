@@ -32,7 +32,7 @@ class KrylovSolver final : public LinearSolver {
   // set_matrix on this rank alone (false with `failure` on a PETSc error).
   bool set_matrix_here(int n, const int* column_starts, const int* rows, const double* values, std::string& failure);
   void discard_setup();
-  // The lowest rank whose `failed` is true, or -1 (every rank calls it; one process: its own).
+  // Distributed: the lowest rank whose `failed` is true, or -1 (a collective call: every rank makes it).
   int first_failed_rank(bool failed) const;
   bool same_pattern(int n, const int* column_starts, const int* rows) const;
   void create_ksp();
