@@ -73,9 +73,8 @@ struct FluidSolidSamples {
   std::vector<Vec3> body_point;                // m
   std::vector<Real> body_weight;               // 1/kg
   // The particle fluids' wall friction at the sample, in [0, 1] (fluid_viscosity.hpp; rigid bodies
-  // with `fluid_friction`, 0 elsewhere), and a rigid sample's body-frame outward face normal.
+  // with `fluid_friction`, 0 elsewhere).
   std::vector<Real> friction;
-  std::vector<Vec3> body_normal;
   bool any_friction = false;                   // some sample has friction
   // The bodies with samples and their contiguous sample ranges [body_begin[j], body_begin[j+1]).
   std::vector<Index> sampled_body;

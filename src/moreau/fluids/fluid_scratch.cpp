@@ -1,5 +1,7 @@
 #include "moreau/fluids/fluid_scratch.hpp"
 
+#include <algorithm>
+
 #include "moreau/fluids/fluid_model.hpp"
 
 namespace moreau {
@@ -12,9 +14,12 @@ void FluidScratch::fit(const FluidModel& fm) {
   const std::size_t heat_size = fm.thermal ? capacity : 0;
   const bool rough_solids = implicit_viscosity && fm.solid.any_friction;
   const std::size_t rough_samples = rough_solids ? samples : 0, rough_size = rough_solids ? capacity : 0;
+  std::size_t rough_bodies = 0;
+  if (rough_solids)
+    for (Index b : fm.solid.sampled_body) rough_bodies = std::max(rough_bodies, static_cast<std::size_t>(b) + 1);
   if (lambda.size() == capacity && solid_reaction.size() == samples && solid_share.size() == coupled &&
       solve_residual.size() == solve_size && temperature.size() == heat_size && stress_slope.size() == rough_size &&
-      solid_wall_velocity.size() == rough_samples)
+      solid_viscous_force.size() == rough_samples && rough_body.size() == rough_bodies)
     return;
   substep_start.assign(capacity, Vec3::Zero());
   lambda.assign(capacity, 0);
@@ -36,9 +41,8 @@ void FluidScratch::fit(const FluidModel& fm) {
   wall_sum.assign(solve_size, Vec3::Zero());
   wall_velocity_sum.assign(solve_size, Mat3::Zero());
   velocity_gradient.assign(solve_size, Mat3::Zero());
-  solid_wall_velocity.assign(rough_samples, Vec3::Zero());
-  solid_wall_normal.assign(rough_samples, Vec3::Zero());
   solid_viscous_force.assign(rough_samples, Vec3::Zero());
+  rough_body.assign(rough_bodies, RigidSurfaceMotion{});
   stress_slope.assign(rough_size, {Mat3::Zero(), Mat3::Zero(), Mat3::Zero()});
   for (std::vector<Vec3>* v : {&solve_residual, &solve_shadow, &solve_direction, &solve_direction_image,
                                 &solve_preconditioned, &solve_intermediate, &solve_intermediate_image})

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "moreau/collision/point_query.hpp"
 #include "moreau/fluids/neighbor_loop.hpp"
 #include "moreau/fluids/pair_chunks.hpp"
 #include "moreau/fluids/wall_extrapolation.hpp"
@@ -35,20 +36,27 @@ Mat3 floored_inverse(const Mat3& moment) {
   return eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
 }
 
-/// Calls visit(s, friction, r, d2, beta) for every solid sample s with fluid friction (a rigid
-/// body's surface) within the kernel support of fluid particle k, r = x_k - x_s, d2 = |r|^2. The
-/// sample lies r_p (the particle radius) behind its face along the outward normal n_s, so the
-/// particle's distance from the surface is d_k = r . n_s - r_p, and beta = 1 + r_p / max(d_k, r_p)
-/// as for the collider walls (wall_extrapolation.hpp). d_k is the distance to the plane of the
-/// sample's own face: exact on a face, short of the true distance for a particle beyond the face's
-/// edge, where the extrapolation then grips harder (beta up to 2, as at the surface).
-template <class Visit>
+/// Calls visit(s, friction, r, d2) for every solid sample s with fluid friction (a rigid body's
+/// surface) within the kernel support of fluid particle k, r = x_k - x_s, d2 = |r|^2; with
+/// `kExtrapolate`, visit(s, friction, r, d2, beta, u_wall) for the wall terms. As at the collider walls (wall_extrapolation.hpp), the sample takes the velocity that
+/// extrapolates the particle's linearly through the surface (Morris, Fox & Zhu 1997):
+///   u_k - u_s = beta (u_k - u_wall),  beta = 1 + r_p / max(d_k, r_p),
+/// r_p the depth of the samples behind the surface and d_k the particle's distance from the body's
+/// surface (point_query.hpp; computed once per body the particle meets; a mesh body with no
+/// triangle near the particle gives d_k = infinity and beta = 1). u_wall is the body's velocity
+/// where the segment from x_k to x_s crosses the surface, x_k - r / beta (the segment is split
+/// d_k : r_p there), so that a liquid turning with the body has u_s = the body's velocity at x_s
+/// and no shear. (The body's velocity at the sample's own surface point instead would put a shear
+/// on liquid next to a turning body, beta times the body's turning across r.)
+template <bool kExtrapolate, class Visit>
 void for_each_rough_solid_sample(const Model& model, const FluidState& fluid, const FluidScratch& s, Index k,
                                  Visit&& visit) {
   const FluidModel& fm = model.fluid;
   if (!fm.solid.any_friction) return;
   const Real h2 = fm.kernel.h2, depth = fm.particle_radius;
   const Vec3 xk = fluid.position[k];
+  Index cached_body = -1;
+  Real beta = 1;
   const Index* row = fluid.solid_neighbors.row(k);
   for (Index n = 0; n < fluid.solid_neighbors.count[k]; ++n) {
     const Index sample = row[n];
@@ -57,8 +65,19 @@ void for_each_rough_solid_sample(const Model& model, const FluidState& fluid, co
     const Vec3 r = xk - fluid.solid_position[sample];
     const Real d2 = r.squaredNorm();
     if (d2 >= h2) continue;
-    const Real distance = r.dot(s.solid_wall_normal[sample]) - depth;
-    visit(sample, friction, r, d2, 1 + depth / std::max(distance, depth));
+    if constexpr (kExtrapolate) {
+      const Index b = fm.solid.body[sample];
+      const FluidScratch::RigidSurfaceMotion& body = s.rough_body[b];
+      if (b != cached_body) {
+        cached_body = b;
+        const Real distance = nearest_surface_point(model.rigid.body_shape[b], body.pose.to_local(xk)).distance;
+        beta = 1 + depth / std::max(distance, depth);
+      }
+      const Vec3 crossing = xk - r / beta;
+      visit(sample, friction, r, d2, beta, Vec3(body.velocity + body.angular_velocity.cross(crossing - body.pose.position)));
+    } else {
+      visit(sample, friction, r, d2);
+    }
   }
 }
 
@@ -78,12 +97,13 @@ void wall_sums(const Model& model, const FluidState& fluid, const FluidScratch& 
         wall_sum += (weight * beta) * r;
         wall_velocity_sum += (weight * beta) * c.velocity * r.transpose();
       });
-  for_each_rough_solid_sample(model, fluid, s, k, [&](Index sample, Real friction, const Vec3& r, Real d2, Real beta) {
-    const Real weight = friction * fm.solid.volume[sample] * fm.kernel.gradient_factor(std::sqrt(d2));
-    moment -= weight * r * r.transpose();
-    wall_sum += (weight * beta) * r;
-    wall_velocity_sum += (weight * beta) * s.solid_wall_velocity[sample] * r.transpose();
-  });
+  for_each_rough_solid_sample<true>(
+      model, fluid, s, k, [&](Index sample, Real friction, const Vec3& r, Real d2, Real beta, const Vec3& wall_velocity) {
+        const Real weight = friction * fm.solid.volume[sample] * fm.kernel.gradient_factor(std::sqrt(d2));
+        moment -= weight * r * r.transpose();
+        wall_sum += (weight * beta) * r;
+        wall_velocity_sum += (weight * beta) * wall_velocity * r.transpose();
+      });
 }
 
 /// Over the fluid neighbours j of k, in chunks the compiler vectorises (pair_chunks.hpp):
@@ -205,7 +225,7 @@ Vec3 wall_traction(const Model& model, const FluidState& fluid, const FluidScrat
     if (d2 >= fm.kernel.h2) continue;
     traction += wall_sample_traction(model, Sk, slope, r, d2, friction, samples.volume[b]);
   }
-  for_each_rough_solid_sample(model, fluid, s, k, [&](Index sample, Real friction, const Vec3& r, Real d2, Real) {
+  for_each_rough_solid_sample<false>(model, fluid, s, k, [&](Index sample, Real friction, const Vec3& r, Real d2) {
     traction += wall_sample_traction(model, Sk, slope, r, d2, friction, fm.solid.volume[sample]);
   });
   return fm.particle_volume * traction;
@@ -438,20 +458,18 @@ void implicit_solve(const Model& model, FluidState& fluid, FluidScratch& s, Real
 
 /// Every rough sample placed at its body's current pose, x_s = x_b + q_b s (the last placement,
 /// before the density solve under XPBD and before the step's motion under nmd, lags the body by
-/// what the contacts, joints or the step moved it since), its outward normal q_b n_s, and the
-/// velocity of the surface point r_p in front of it, v_b + w_b x (x_s + r_p n - x_b).
+/// what the contacts, joints or the step moved it since), and each body's pose and velocities
+/// kept for the extrapolation through its surface (for_each_rough_solid_sample).
 void place_rough_samples(const Model& model, FluidState& fluid, const RigidBodyState& rigid, FluidScratch& s) {
   const FluidSolidSamples& samples = model.fluid.solid;
-  const Real depth = model.fluid.particle_radius;
+#pragma omp single
+  for (Index b : samples.sampled_body)
+    s.rough_body[b] = {Pose{rigid.position[b], rigid.orientation[b]}, rigid.velocity[b], rigid.angular_velocity[b]};
 #pragma omp for schedule(static)
   for (Index sample = 0; sample < samples.size(); ++sample) {
     const Index b = samples.body[sample];
     if (samples.friction[sample] == 0 || b < 0) continue;
-    const Vec3 lever = rigid.orientation[b] * samples.body_point[sample];
-    const Vec3 normal = rigid.orientation[b] * samples.body_normal[sample];
-    fluid.solid_position[sample] = rigid.position[b] + lever;
-    s.solid_wall_normal[sample] = normal;
-    s.solid_wall_velocity[sample] = rigid.velocity[b] + rigid.angular_velocity[b].cross(lever + depth * normal);
+    fluid.solid_position[sample] = rigid.position[b] + rigid.orientation[b] * samples.body_point[sample];
   }
 }
 
@@ -472,7 +490,7 @@ void apply_rough_solid_reactions(const Model& model, FluidState& fluid, FluidScr
 #pragma omp for schedule(static)
   for (Index k = 0; k < fluid.count; ++k) {
     bool rough = false;
-    for_each_rough_solid_sample(model, fluid, s, k, [&](Index, Real, const Vec3&, Real, Real) { rough = true; });
+    for_each_rough_solid_sample<false>(model, fluid, s, k, [&](Index, Real, const Vec3&, Real) { rough = true; });
     if (rough) s.stress_slope[k] = stress_slope(model, fluid, s, k);
   }
 #pragma omp for schedule(static)

@@ -61,7 +61,6 @@ struct Sampler {
     out.body_point.push_back(Vec3::Zero());
     out.body_weight.push_back(0);
     out.friction.push_back(0);
-    out.body_normal.push_back(Vec3::Zero());
     rest.push_back(x);
   }
 
@@ -146,7 +145,6 @@ struct Sampler {
         out.body_point.push_back(q);
         out.body_weight.push_back(m.body_inv_mass[b] + q.squaredNorm() * max_inv_inertia);
         out.friction.push_back(model.objects[object].fluid_friction);
-        out.body_normal.push_back(-inward);
         rest.push_back(q);  // the body frame is as good as any for the volumes
       }
     }
