@@ -42,8 +42,9 @@ Mat3 floored_inverse(const Mat3& moment) {
 /// extrapolates the particle's linearly through the surface (Morris, Fox & Zhu 1997):
 ///   u_k - u_s = beta (u_k - u_wall),  beta = 1 + r_p / max(d_k, r_p),
 /// r_p the depth of the samples behind the surface and d_k the particle's distance from the body's
-/// surface (point_query.hpp; computed once per body the particle meets; a mesh body with no
-/// triangle near the particle gives d_k = infinity and beta = 1). u_wall is the body's velocity
+/// surface (point_query.hpp; computed again whenever the next sample in the particle's list
+/// belongs to another body; a mesh body with no triangle within one grid cell of the particle
+/// gives d_k = infinity and beta = 1). u_wall is the body's velocity
 /// where the segment from x_k to x_s crosses the surface, x_k - r / beta (the segment is split
 /// d_k : r_p there), so that a liquid turning with the body has u_s = the body's velocity at x_s
 /// and no shear. (The body's velocity at the sample's own surface point instead would put a shear

@@ -42,8 +42,10 @@
 //   terms of G would, gives half the wall shear stress of Poiseuille flow.
 // - Rigid bodies with `fluid_friction` f are walls of the same kind: their surface samples
 //   (solid_sampling.hpp, r behind each face) enter the sums with weight f V_s, move with the body,
-//   v_s = v_b + w_b x (x_s - x_b), and extrapolate as above with d_k measured along the face's
-//   outward normal. The body takes the opposite of their traction (apply_implicit_fluid_viscosity).
+//   and extrapolate as above with d_k the particle's distance from the body's shape and v_c the
+//   body's velocity v_b + w_b x (x - x_b) at the point x where the segment from the particle to
+//   the sample crosses the surface (so liquid turning with the body has no shear). The body takes
+//   the opposite of their traction (apply_implicit_fluid_viscosity).
 //
 // Time stepping: backward Euler over dt (the substep under XPBD, the step under nmd), from the
 // velocity v* after the position solve (m_k = rho0 V):
