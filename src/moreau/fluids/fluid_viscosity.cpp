@@ -38,17 +38,19 @@ Mat3 floored_inverse(const Mat3& moment) {
 
 /// Calls visit(s, friction, r, d2) for every solid sample s with fluid friction (a rigid body's
 /// surface) within the kernel support of fluid particle k, r = x_k - x_s, d2 = |r|^2; with
-/// `kExtrapolate`, visit(s, friction, r, d2, beta, u_wall) for the wall terms. As at the collider walls (wall_extrapolation.hpp), the sample takes the velocity that
+/// `kExtrapolate`, visit(s, friction, r, d2, beta, u_wall) for the wall terms.
+///
+/// As at the collider walls (wall_extrapolation.hpp), the sample takes the velocity that
 /// extrapolates the particle's linearly through the surface (Morris, Fox & Zhu 1997):
 ///   u_k - u_s = beta (u_k - u_wall),  beta = 1 + r_p / max(d_k, r_p),
-/// r_p the depth of the samples behind the surface and d_k the particle's distance from the body's
-/// surface (point_query.hpp; computed again whenever the next sample in the particle's list
+/// with r_p the depth of the samples behind the surface and d_k the particle's distance from the
+/// body's shape (point_query.hpp; computed again whenever the next sample in the particle's list
 /// belongs to another body; a mesh body with no triangle within one grid cell of the particle
-/// gives d_k = infinity and beta = 1). u_wall is the body's velocity
-/// where the segment from x_k to x_s crosses the surface, x_k - r / beta (the segment is split
-/// d_k : r_p there), so that a liquid turning with the body has u_s = the body's velocity at x_s
-/// and no shear. (The body's velocity at the sample's own surface point instead would put a shear
-/// on liquid next to a turning body, beta times the body's turning across r.)
+/// gives d_k = infinity and beta = 1). u_wall is the body's velocity where the segment from x_k to
+/// x_s crosses the surface, x_k - r / beta (the segment is split d_k : r_p there), so that liquid
+/// turning with the body has u_s = the body's velocity at x_s and no shear. (The body's velocity
+/// at the sample's own surface point instead puts a shear on liquid next to a turning body: beta
+/// times the body's turning across r.)
 template <bool kExtrapolate, class Visit>
 void for_each_rough_solid_sample(const Model& model, const FluidState& fluid, const FluidScratch& s, Index k,
                                  Visit&& visit) {
