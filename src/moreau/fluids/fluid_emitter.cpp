@@ -9,6 +9,20 @@ namespace moreau {
 Index emit_fluid(const Model& model, FluidState& fluid, Real time) {
   const FluidModel& fm = model.fluid;
   const Real d = 2 * fm.particle_radius;
+  // Free the particles whose layer has left its nozzle by now.
+  if (fluid.any_held) {
+    fluid.any_held = false;
+    for (Index i = 0; i < fluid.count; ++i) {
+      Real& release = fluid.release_time[i];
+      if (release <= 0) continue;
+      if (release <= time) {
+        release = 0;
+        set_fluid_particle_state(fm.phases[fluid.phase[i]], fluid, i);
+      } else {
+        fluid.any_held = true;
+      }
+    }
+  }
   Index added = 0;
   for (std::size_t e = 0; e < fm.emitters.size(); ++e) {
     const FluidEmitter& emitter = fm.emitters[e];
@@ -16,6 +30,7 @@ Index emit_fluid(const Model& model, FluidState& fluid, Real time) {
     Index& released = fluid.emitted_layers[e];
     while (released < emitter.layers && emitter.birth(released, d) <= time) {
       const Real age = time - emitter.birth(released, d);
+      const Real release = emitter.birth(released, d) + emitter.nozzle_length / emitter.speed;
       const Vec3 layer_center = emitter.center + emitter.speed * age * emitter.normal;
       for (const Vec3& offset : emitter.opening) {
         const Index i = fluid.count++;
@@ -28,6 +43,8 @@ Index emit_fluid(const Model& model, FluidState& fluid, Real time) {
         fluid.density[i] = phase.rest_density;
         fluid.enthalpy[i] = fluid_enthalpy(phase, phase.temperature);
         fluid.smoke[i] = phase.gas ? 1 : 0;
+        fluid.release_time[i] = release > time ? release : 0;
+        fluid.any_held |= release > time;
         set_fluid_particle_state(phase, fluid, i);
         ++added;
       }

@@ -8,6 +8,12 @@
 // Layers are released at the start of each step; a layer born during the previous step is placed
 // where it would be by now, x = c + v (t - t_k) n, with velocity v n. Emission ends at `stop`
 // (by default the scene file's duration): the fluid arrays are sized for every layer up to then.
+// The nozzle: a layer is held at the speed v until it has travelled `nozzle_length` past the
+// opening (by default 4r = h, two layers: a full kernel of held fluid behind the first free
+// layer), as if it were still in the pipe. Held particles have inverse mass 0: the density and
+// viscosity solves move the free fluid against them and leave them on their course, so the pipe
+// carries the weight and the tension of the stream below (a viscous thread hangs from it instead
+// of falling freely, layer by layer). FluidState::release_time marks them.
 // The stream is assumed to flow freely: an opening blocked by fluid that has not moved away
 // would receive overlapping particles (the density constraint then pushes them apart violently).
 #include <vector>
@@ -25,6 +31,7 @@ struct FluidEmitter {
   Real speed = 1;                  // v, m/s
   Real start = 0, stop = 0;        // s
   Index layers = 0;                // layers released between start and stop
+  Real nozzle_length = 0;          // m, the stream is held at `speed` this far past the opening
 
   Index capacity() const { return layers * static_cast<Index>(opening.size()); }
   /// Birth time of layer k, s.
@@ -34,8 +41,9 @@ struct FluidEmitter {
 struct Model;
 struct FluidState;
 
-/// Releases every layer born by `time`. Returns the number of particles added. Serial; call
-/// outside parallel regions (marks the neighbour lists stale when it adds particles).
+/// Releases every layer born by `time`, and frees the particles whose layer has left its nozzle by
+/// then. Returns the number of particles added. Serial; call outside parallel regions (marks the
+/// neighbour lists stale when it adds particles).
 Index emit_fluid(const Model& model, FluidState& fluid, Real time);
 
 }  // namespace moreau

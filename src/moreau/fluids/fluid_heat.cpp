@@ -77,8 +77,9 @@ void set_fluid_particle_state(const FluidPhase& phase, FluidState& fluid, Index 
   const Real H = fluid.enthalpy[i];
   fluid.viscosity[i] = fluid_particle_viscosity(phase, H);
   const bool solid = phase.melting_point && fluid_liquid_fraction(phase, H) == 0;
-  fluid.inv_mass[i] = solid ? 0 : 1 / fluid.mass[i];
-  if (solid) fluid.velocity[i].setZero();
+  const bool held = fluid.release_time[i] > 0;  // in its emitter's nozzle: moves on at the emitter's speed
+  fluid.inv_mass[i] = solid || held ? 0 : 1 / fluid.mass[i];
+  if (solid && !held) fluid.velocity[i].setZero();
 }
 
 Real fluid_heat_step_limit(const FluidModel& fm) {

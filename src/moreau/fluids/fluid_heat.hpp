@@ -79,7 +79,8 @@ Real fluid_weight_factor(const FluidPhase& phase, Real enthalpy);
 Real fluid_particle_viscosity(const FluidPhase& phase, Real enthalpy);
 
 /// Sets particle i's viscosity from its enthalpy, and makes it immovable (inverse mass 0, at rest)
-/// while it is solid or movable (1 / m) once it melts.
+/// while it is solid or movable (1 / m) once it melts. A particle held in its emitter's nozzle
+/// (FluidState::release_time > 0) keeps inverse mass 0 and its velocity, solid or not.
 void set_fluid_particle_state(const FluidPhase& phase, FluidState& fluid, Index i);
 
 /// The longest explicit part of a step (s) that conduction with these phases is stable for

@@ -47,6 +47,7 @@ void permute_particles(FluidState& fluid, FluidScratch& scratch) {
   permute(fluid.enthalpy, scratch.reorder_real, order, n);
   permute(fluid.viscosity, scratch.reorder_real, order, n);
   permute(fluid.smoke, scratch.reorder_real, order, n);
+  permute(fluid.release_time, scratch.reorder_real, order, n);
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) fluid.listed_position[i] = fluid.position[i];
 }

@@ -16,6 +16,7 @@ FluidState make_fluid_state(const FluidModel& fm) {
   s.mass.assign(capacity, 0);
   s.enthalpy.assign(capacity, 0);
   s.smoke.assign(capacity, 0);
+  s.release_time.assign(capacity, 0);
   s.viscosity.assign(capacity, 0);
   for (Index i = 0; i < s.count; ++i) {
     s.position[i] = fm.initial_position[i];

@@ -25,7 +25,9 @@ constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
 // 4: the fluid's force on every immersed solid and the solids' forces on the fluid over the last step.
 // 5: each fluid particle's enthalpy and viscosity (fluid_heat.hpp).
 // 6: each fluid particle's smoke concentration (ambient_air.hpp).
-constexpr std::uint32_t kFormatVersion = 7;
+// 7: the solids' Krylov counters and their CG-to-GMRES switch.
+// 8: when each fluid particle held in an emitter's nozzle goes free (fluid_emitter.hpp).
+constexpr std::uint32_t kFormatVersion = 8;
 
 // The checksum of a checkpoint's header and state.
 std::uint64_t checksum(const std::string& header, const std::string& state) { return fnv1a(state, fnv1a(header)); }

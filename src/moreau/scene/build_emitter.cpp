@@ -26,6 +26,7 @@ EmitterSpec read_emitter(const JsonObject& e) {
   spec.mass_rate = read_optional_number(e, "mass_rate");  // grains this one: their builders say so
   spec.start = e.number("start", spec.start);
   spec.stop = read_optional_number(e, "stop");
+  spec.nozzle_length = read_optional_number(e, "nozzle_length");  // fluids only
   e.finish();
   return spec;
 }

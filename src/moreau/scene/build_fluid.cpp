@@ -77,6 +77,7 @@ FluidEmitter make_emitter(const FluidEmitterSpec& spec, const SpecPlace& e, Real
   emitter.start = opening.start;
   emitter.stop = opening.stop;
   emitter.layers = emitter_layers(opening, e, emitter.speed, d);
+  emitter.nozzle_length = e.number("nozzle_length", spec.nozzle_length.value_or(2 * d), Range::non_negative());
   return emitter;
 }
 

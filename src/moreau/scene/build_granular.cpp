@@ -128,6 +128,8 @@ GrainEmitter pour_grains(const EmitterSpec& spec, const SpecPlace& e, GrainLatti
   for (const Vec3& point : opening.points) emitter.reach = std::max(emitter.reach, point.norm());
   emitter.reach += r_max;
   if (spec.flow_rate) e.fail("flow_rate", "grains are poured at a \"mass_rate\" (kg/s) or a \"speed\" (m/s)");
+  if (spec.nozzle_length)
+    e.fail("nozzle_length", "grains leave the opening freely; a nozzle holds a fluid's stream (fluid emitters only)");
   if (spec.speed.has_value() == spec.mass_rate.has_value())
     e.fail("speed", "give exactly one of \"speed\" (m/s) or \"mass_rate\" (kg/s)");
   // A layer of N grains every d / v: the mass rate is N m v / d for grains of mean mass m.
