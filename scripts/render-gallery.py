@@ -25,6 +25,7 @@ GALLERY = [
     ("fem_flying_l", 6, None, "velocity"),
     ("cylinder_re100", None, None, "velocity"),
     ("putty_balls", 0.5, 0.4, "plastic_strain"),
+    ("honey_coiling", None, None, "velocity"),
 ]
 
 
