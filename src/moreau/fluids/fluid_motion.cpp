@@ -15,8 +15,8 @@ void predict_fluid(const Model& model, FluidState& fluid, FluidScratch& scratch,
   for (Index i = 0; i < n; ++i) {
     scratch.substep_start[i] = fluid.position[i];
     fluid.pressure[i] = 0;
-    if (fluid.inv_mass[i] == 0) {  // a solid particle stays at rest, a held one moves on (fluid_emitter.hpp)
-      fluid.position[i] += h * fluid.velocity[i];
+    if (fluid.inv_mass[i] == 0) {  // a solid particle (fluid_heat.hpp) stays, a held one moves on (fluid_emitter.hpp)
+      if (fluid.release_time[i] > 0) fluid.position[i] += h * fluid.velocity[i];
       continue;
     }
     if (buoyant)
