@@ -285,7 +285,7 @@ struct EmitterSpec {
   double start = 0;                  // s
   std::optional<double> stop;        // s; default the scene's duration
   std::optional<double> mass_rate;   // kg/s (grains), instead of speed
-  std::optional<double> nozzle_length;  // m (fluids): the stream is held at `speed` this far past the opening
+  std::optional<double> nozzle_length;  // m (fluids): the stream is held at `speed` this far past the opening; default 4r
 };
 using FluidEmitterSpec = EmitterSpec;
 

@@ -25,7 +25,7 @@ void apply_ambient_air(const Model& model, FluidState& fluid, Real dt) {
         fluid.enthalpy[i] = ambient + (fluid.enthalpy[i] - ambient) * kept;
       }
     }
-    if (fluid.inv_mass[i] == 0) continue;  // a frozen particle (fluid_heat.hpp) stays at rest
+    if (fluid.inv_mass[i] == 0) continue;  // a frozen particle stays at rest, a held one on its course
     fluid.velocity[i] = phase.wind + (fluid.velocity[i] - phase.wind) * std::exp(-phase.gas_drag * open * dt);
   }
 }

@@ -36,6 +36,7 @@ void apply_fluid_corrections(const Model& model, FluidState& fluid, const FluidS
   for (Index i = 0; i < n; ++i) {
     Vec3 x = fluid.position[i] + scratch.correction[i];
     fluid.pressure[i] += pressure_scale * scratch.lambda[i];
+    if (fluid.release_time[i] > 0) continue;  // held in its nozzle: on its course (fluid_emitter.hpp)
     for (const Collider& c : model.colliders) x = keep_clear_of_collider(c, c.position_at(time), x, r);
     fluid.position[i] = x;
   }
@@ -45,7 +46,9 @@ void update_fluid_velocity(FluidState& fluid, const FluidScratch& scratch, Real 
   const Real inv_h = 1 / h;
   const Index n = fluid.count;
 #pragma omp for schedule(static)
-  for (Index i = 0; i < n; ++i) fluid.velocity[i] = (fluid.position[i] - scratch.substep_start[i]) * inv_h;
+  for (Index i = 0; i < n; ++i)
+    if (fluid.release_time[i] == 0)  // a particle held in its nozzle keeps the emitter's velocity
+      fluid.velocity[i] = (fluid.position[i] - scratch.substep_start[i]) * inv_h;
 }
 
 Real fluid_cfl_number(const Model& model, FluidState& fluid, Real h) {

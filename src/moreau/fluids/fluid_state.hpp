@@ -41,13 +41,13 @@ struct FluidState {
   std::vector<Index> phase, id;
   Index next_id = 0;                     // id of the next emitted particle
   std::vector<Index> emitted_layers;     // per emitter: layers released so far
-  std::vector<Real> inv_mass, mass;      // 1/kg, kg (copies of the phase's, sorted with the particles)
+  std::vector<Real> inv_mass, mass;      // 1/kg, kg (the phase's; inverse mass 0 while solid or held in a nozzle)
   std::vector<Real> pressure;            // Pa, -sum over the substep's iterations of lambda / (V h^2)
   std::vector<Real> density;             // kg/m^3 at the last evaluation
   std::vector<Real> enthalpy;            // J/kg, specific (fluid_heat.hpp; unused unless the model is thermal)
   std::vector<Real> viscosity;           // m^2/s, kinematic: the phase's, or its state's (fluid_heat.hpp)
   std::vector<Real> smoke;               // a gas's marker concentration, 1 as released (ambient_air.hpp; 0 for liquids)
-  std::vector<Real> release_time;        // s, when a particle held in its emitter's nozzle goes free; 0: free (fluid_emitter.hpp)
+  std::vector<Real> release_time;        // s, when a particle held in its emitter's nozzle goes free; 0: free
   bool any_held = false;                 // some release_time is set
 
   // Collider wall samples in world space at the time of the current substep.

@@ -59,7 +59,7 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
     const FluidPhase& pi = fm.phases[fluid.phase[i]];
     const Vec3 xi = x[i], vi = v[i];
     const Real w_i = w[i];
-    if (w_i == 0) {  // a solid particle (fluid_heat.hpp) stays at rest
+    if (w_i == 0) {  // a solid particle or one held in a nozzle keeps its velocity
       v_new[i] = vi;
       continue;
     }

@@ -256,7 +256,7 @@ MOREAU_TARGET_CLONES Vec3 viscous_force(const Model& model, const FluidState& fl
   const Mat3& Sk = s.corrected_stress[k];
   const Mat3& Gk = s.velocity_gradient[k];
   const Real w_k = fluid.inv_mass[k], nu_k = fluid.viscosity[k];
-  if (w_k == 0) {  // a solid particle (fluid_heat.hpp) stays at rest: its row is m_k u_k, so its change stays 0
+  if (w_k == 0) {  // a solid or held particle (fluid_heat.hpp, fluid_emitter.hpp): its row is m_k u_k, so its change stays 0
     if (diagonal) diagonal->setZero();
     return Vec3::Zero();
   }
@@ -504,7 +504,7 @@ void apply_rough_solid_reactions(const Model& model, FluidState& fluid, FluidScr
       const Index* row = fluid.solid_fluids.row(sample);
       for (Index n = 0; n < fluid.solid_fluids.count[sample]; ++n) {
         const Index k = row[n];
-        if (fluid.inv_mass[k] == 0) continue;  // a solid particle (fluid_heat.hpp): the solve leaves it at rest
+        if (fluid.inv_mass[k] == 0) continue;  // a solid or held particle: the solve leaves its velocity
         const Vec3 r = fluid.position[k] - fluid.solid_position[sample];
         const Real d2 = r.squaredNorm();
         if (d2 >= fm.kernel.h2) continue;

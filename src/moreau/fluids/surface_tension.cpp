@@ -67,7 +67,7 @@ void apply_fluid_surface_tension(const Model& model, FluidState& fluid, FluidScr
   for (Index i = 0; i < n; ++i) {
     const FluidPhase& phase = fm.phases[fluid.phase[i]];
     v_new[i] = fluid.velocity[i];
-    if (phase.surface_tension <= 0 || fluid.inv_mass[i] == 0) continue;  // none, or a solid particle at rest
+    if (phase.surface_tension <= 0 || fluid.inv_mass[i] == 0) continue;  // none, or a solid or held particle
     const Real gamma = phase.surface_tension, rho0 = phase.rest_density;
     Vec3 force = Vec3::Zero();
     for_each_same_phase_pair(i, [&](Index j, const Vec3& r, Real d) {
