@@ -52,9 +52,9 @@ TEST_P(NozzleOnEverySolver, AViscousThreadHangsFromItsNozzle) {
   const Real t = scene.state.time;
   const ThreadEnd end = thread_end(f);
   // The viscosity acts on the velocities after the positions have moved with the weight's
-  // velocity change, so a hanging thread sags by g h_v each step h_v of the viscosity solve (the
-  // substep under xpbd, the step under nmd): the first layer, free from t = 0.04 s, by
-  // g h_v (t - 0.04). First order in h_v: 1.58 mm at two substeps, 0.79 at four.
+  // velocity change, so a hanging thread creeps down g h_v faster than it is fed, h_v the step of
+  // the viscosity solve (the substep under xpbd, the step under nmd): the first layer, free from
+  // t = 0.04 s, by g h_v (t - 0.04). First order in h_v: 1.58 mm at two substeps, 0.79 at four.
   const Real h_v = GetParam() == "xpbd" ? 0.0005 : 0.002, sag = kGravity * h_v * (t - 0.04);
   const Real held_course = kOpeningHeight - kSpeed * t;
   std::printf("%s: lowest particle %.3f mm below the held course (the splitting's sag %.3f mm), "
