@@ -19,9 +19,8 @@ namespace moreau::test {
 
 /// The sphere of `radius` about `center`, from an octahedron whose faces are split in four four
 /// times: its vertices include the six axis points, so its bounding box is exact. Vertices are
-/// numbered from `first_vertex` (OBJ counts from 1). Returns the number of vertices written (1,026),
-/// so that a second shell in the same file can be numbered after them.
-inline int write_sphere_shell(std::ofstream& out, int first_vertex, Real radius, const Vec3& center) {
+/// numbered from `first_vertex` (OBJ counts from 1); there are 1,026 of them.
+inline void write_sphere_shell(std::ofstream& out, int first_vertex, Real radius, const Vec3& center) {
   std::vector<Vec3> v = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
   std::vector<std::array<int, 3>> faces = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4},
                                            {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
@@ -43,7 +42,6 @@ inline int write_sphere_shell(std::ofstream& out, int first_vertex, Real radius,
   for (const Vec3& p : v) out << fmt::format("v {:.9f} {:.9f} {:.9f}\n", center.x() + radius * p.x(),
                                             center.y() + radius * p.y(), center.z() + radius * p.z());
   for (const auto& [a, b, c] : faces) out << fmt::format("f {} {} {}\n", first_vertex + a, first_vertex + b, first_vertex + c);
-  return static_cast<int>(v.size());
 }
 
 /// drop.obj (the sphere) and surround.obj (the liquid's box |x|, |z| <= half_width, 0 <= y <=

@@ -10,17 +10,11 @@ Index emit_fluid(const Model& model, FluidState& fluid, Real time) {
   const FluidModel& fm = model.fluid;
   const Real d = 2 * fm.particle_radius;
   // Free the particles whose layer has left its nozzle by now.
-  if (fluid.any_held) {
-    fluid.any_held = false;
-    for (Index i = 0; i < fluid.count; ++i) {
-      Real& release = fluid.release_time[i];
-      if (release <= 0) continue;
-      if (release <= time) {
-        release = 0;
-        set_fluid_particle_state(fm.phases[fluid.phase[i]], fluid, i);
-      } else {
-        fluid.any_held = true;
-      }
+  for (Index i = 0; i < fluid.count; ++i) {
+    Real& release = fluid.release_time[i];
+    if (release > 0 && release <= time) {
+      release = 0;
+      set_fluid_particle_state(fm.phases[fluid.phase[i]], fluid, i);
     }
   }
   Index added = 0;
@@ -44,7 +38,6 @@ Index emit_fluid(const Model& model, FluidState& fluid, Real time) {
         fluid.enthalpy[i] = fluid_enthalpy(phase, phase.temperature);
         fluid.smoke[i] = phase.gas ? 1 : 0;
         fluid.release_time[i] = release > time ? release : 0;
-        fluid.any_held |= release > time;
         set_fluid_particle_state(phase, fluid, i);
         ++added;
       }

@@ -15,8 +15,8 @@ void predict_fluid(const Model& model, FluidState& fluid, FluidScratch& scratch,
   for (Index i = 0; i < n; ++i) {
     scratch.substep_start[i] = fluid.position[i];
     fluid.pressure[i] = 0;
-    if (fluid.inv_mass[i] == 0) {  // a solid particle (fluid_heat.hpp) stays, a held one moves on (fluid_emitter.hpp)
-      if (fluid.release_time[i] > 0) fluid.position[i] += h * fluid.velocity[i];
+    if (fluid.inv_mass[i] == 0) {  // kinematic: a solid particle (v = 0) stays, a held one moves on
+      fluid.position[i] += h * fluid.velocity[i];
       continue;
     }
     if (buoyant)
@@ -36,7 +36,7 @@ void apply_fluid_corrections(const Model& model, FluidState& fluid, const FluidS
   for (Index i = 0; i < n; ++i) {
     Vec3 x = fluid.position[i] + scratch.correction[i];
     fluid.pressure[i] += pressure_scale * scratch.lambda[i];
-    if (fluid.release_time[i] > 0) continue;  // held in its nozzle: on its course (fluid_emitter.hpp)
+    if (fluid.inv_mass[i] == 0) continue;  // kinematic: stays on its course
     for (const Collider& c : model.colliders) x = keep_clear_of_collider(c, c.position_at(time), x, r);
     fluid.position[i] = x;
   }
@@ -47,7 +47,7 @@ void update_fluid_velocity(FluidState& fluid, const FluidScratch& scratch, Real 
   const Index n = fluid.count;
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i)
-    if (fluid.release_time[i] == 0)  // a particle held in its nozzle keeps the emitter's velocity
+    if (fluid.inv_mass[i] != 0)  // a kinematic particle keeps its velocity
       fluid.velocity[i] = (fluid.position[i] - scratch.substep_start[i]) * inv_h;
 }
 

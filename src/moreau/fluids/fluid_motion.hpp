@@ -16,16 +16,16 @@ namespace moreau {
 struct Model;
 
 /// x_start = x; v += h g; x += h v. Also clears the substep's pressure sum. Particles of inverse
-/// mass 0 feel no weight: a solid one (fluid_heat.hpp) stays, one held in its emitter's nozzle
-/// (fluid_emitter.hpp) moves on at its velocity.
+/// mass 0 are kinematic: they feel no weight and move on at their velocity, zero for a solid one
+/// (fluid_heat.hpp), the emitter's for one held in its nozzle (fluid_emitter.hpp).
 void predict_fluid(const Model& model, FluidState& fluid, FluidScratch& scratch, Real h);
 
 /// x += dx of the last density iteration, accumulates the pressure p = -lambda / (V h^2), and
-/// pushes particles out of colliders placed at `time` (not those held in a nozzle: they stay on
-/// their course).
+/// pushes particles out of colliders placed at `time` (not kinematic ones: they stay on their
+/// course).
 void apply_fluid_corrections(const Model& model, FluidState& fluid, const FluidScratch& scratch, Real h, Real time);
 
-/// v = (x - x_start) / h, except for particles held in a nozzle, which keep the emitter's velocity.
+/// v = (x - x_start) / h, except for kinematic particles (inverse mass 0), which keep theirs.
 void update_fluid_velocity(FluidState& fluid, const FluidScratch& scratch, Real h);
 
 /// The CFL number max|v| h / (2 r) of this substep length h; records it in the state. Serial.

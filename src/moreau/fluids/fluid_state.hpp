@@ -48,7 +48,6 @@ struct FluidState {
   std::vector<Real> viscosity;           // m^2/s, kinematic: the phase's, or its state's (fluid_heat.hpp)
   std::vector<Real> smoke;               // a gas's marker concentration, 1 as released (ambient_air.hpp; 0 for liquids)
   std::vector<Real> release_time;        // s, when a particle held in its emitter's nozzle goes free; 0: free
-  bool any_held = false;                 // some release_time is set
 
   // Collider wall samples in world space at the time of the current substep.
   std::vector<Vec3> boundary_position;

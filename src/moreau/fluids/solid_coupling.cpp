@@ -191,7 +191,7 @@ void project_solid_contacts(const Model& model, State& state, FluidScratch& scra
   const Real r = fm.particle_radius;
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
-    if (scratch.solid_contacts[i] == 0 || fluid.release_time[i] > 0) continue;  // held: on its course
+    if (scratch.solid_contacts[i] == 0 || fluid.inv_mass[i] == 0) continue;  // kinematic: on its course
     Vec3 xi = fluid.position[i] + scratch.correction[i];
     for (const Collider& c : model.colliders) xi = keep_clear_of_collider(c, c.position_at(time), xi, r);
     fluid.position[i] = xi;

@@ -189,7 +189,7 @@ void ConstraintFluid::integrate(const Model& model, State& state, Real h, Real t
   const Real r = model.fluid.particle_radius;
   for (Index i = 0; i < fluid.count; ++i) {
     Vec3 x = fluid.position[i] + h * fluid.velocity[i];
-    if (fluid.release_time[i] == 0)  // a particle held in its nozzle stays on its course (fluid_emitter.hpp)
+    if (fluid.inv_mass[i] != 0)  // a kinematic particle (solid, or held in a nozzle) stays on its course
       for (const Collider& c : model.colliders) x = keep_clear_of_collider(c, c.position_at(time), x, r);
     fluid.position[i] = x;
   }

@@ -75,7 +75,7 @@ void VelocitySpace::apply_forces(const Model& model, const State& state, Real h)
     for (int c = 0; c < 3; ++c) v[3 * p + c] += dv[c];
   }
   for (Index i = 0; i < fluids; ++i) {
-    // A particle held in an emitter's nozzle (inverse mass 0) moves on at the emitter's speed.
+    // A kinematic particle (inverse mass 0: held in an emitter's nozzle) moves on at its velocity.
     if (fluid_inv_mass[i] <= 0) continue;
     // Buoyant fluids weigh by their temperature (fluid_heat.hpp).
     const Vec3 dv_i = model.fluid.buoyant ? Vec3(fluid_weight_factor(model.fluid.phases[state.fluid.phase[i]],
