@@ -209,6 +209,7 @@ struct ClothSpec {
   Vector3 velocity{};
   bool self_collision = true;
   bool fluid_coupling = true;
+  double fluid_friction = 0;                // the particle fluids' wall friction at the sheet: 0 free slip, 1 no slip
   ContactMaterial contact;
   std::vector<PinSpec> pin;
 };
@@ -262,6 +263,7 @@ struct SoftBodySpec {
   Vector3 angular_velocity{};               // rad/s, about the centre of mass
   bool self_collision = false;
   bool fluid_coupling = true;
+  double fluid_friction = 0;                // the particle fluids' wall friction at its surface: 0 free slip, 1 no slip
   ContactMaterial contact;
   std::vector<PinSpec> pin;
   std::optional<SuctionSpec> suction;

@@ -234,6 +234,18 @@ TEST(CommandLine, FluidInputErrorsNameTheirKey) {
                    {"objects[2].fluid_friction", "viscosity"});
   expect_bad_input("body_friction_no_fluid", with_fluid_settings("{}", tank + ", " + paddle + R"("fluid_friction": 1})"),
                    {"objects[1].fluid_friction", "no particle fluid"});
+  const std::string sheet = R"({"name": "sheet", "kind": "cloth", "material": {"area_density": 0.2},
+      "mesh": {"type": "grid", "size": [0.2, 0.2], "resolution": [3, 3], "center": [0.2, 0.3, 0]}, )";
+  expect_bad_input("cloth_friction_range", with_fluid_settings("{}", tank + ", " + honey + ", " + sheet + R"("fluid_friction": 1.5})"),
+                   {"objects[2].fluid_friction", "out of range"});
+  expect_bad_input("cloth_friction_uncoupled",
+                   with_fluid_settings("{}", tank + ", " + honey + ", " + sheet + R"("fluid_friction": 1, "fluid_coupling": false})"),
+                   {"objects[2].fluid_friction", "fluid_coupling"});
+  expect_bad_input("soft_friction_explicit",
+                   with_fluid_settings(R"({"viscosity_solver": "explicit"})", tank + ", " + water + R"(, {"name": "cube",
+      "kind": "soft_body", "fluid_friction": 0.5, "mesh": {"type": "box", "min": [0.1, 0.1, -0.1], "max": [0.3, 0.3, 0.1], "cells": [1, 1, 1]},
+      "material": {"youngs_modulus": 1e5, "poisson_ratio": 0.3, "density": 500}})"),
+                   {"objects[2].fluid_friction", "implicit"});
   expect_bad_input("bulk_modulus", scene(R"({"name": "w", "kind": "fluid", "particle_radius": 0.05, "bulk_modulus": 0,
       "block": {"min": [-0.5, 0, -0.5], "max": [0, 0.5, 0]}})"),
                    {"objects[1].bulk_modulus", "out of range"});

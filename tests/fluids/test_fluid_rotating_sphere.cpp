@@ -50,7 +50,7 @@ TEST(FluidRigidFriction, LiquidTurningWithATurningSphereFeelsNoShearFromIt) {
   }
   for (Index i = 0; i < f.count; ++i) f.velocity[i] = omega.cross(f.position[i] - center);
 #pragma omp parallel num_threads(1)
-  apply_implicit_fluid_viscosity(scene.model, f, scratch, scene.state.rigid, 1.0 / 1200);
+  apply_implicit_fluid_viscosity(scene.model, scene.state, scratch, 1.0 / 1200);
   // Bound: 1e-4 of Omega R, the solve's relative residual. Measured: 2e-16 (the right-hand side
   // vanishes). With the body's velocity taken at each sample's own surface point instead, the wall
   // terms dragged the particles next to the sphere off rigid rotation by 2.9e-2 of Omega R in this

@@ -72,8 +72,8 @@ struct FluidSolidSamples {
   std::vector<Index> body;
   std::vector<Vec3> body_point;                // m
   std::vector<Real> body_weight;               // 1/kg
-  // The particle fluids' wall friction at the sample, in [0, 1] (fluid_viscosity.hpp; rigid bodies
-  // with `fluid_friction`, 0 elsewhere).
+  // The particle fluids' wall friction at the sample, in [0, 1] (fluid_viscosity.hpp): its object's
+  // `fluid_friction` (cloth, soft bodies, rigid bodies; 0 for continua).
   std::vector<Real> friction;
   bool any_friction = false;                   // some sample has friction
   // The bodies with samples and their contiguous sample ranges [body_begin[j], body_begin[j+1]).

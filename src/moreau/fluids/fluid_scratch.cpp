@@ -19,7 +19,8 @@ void FluidScratch::fit(const FluidModel& fm) {
     for (Index b : fm.solid.sampled_body) rough_bodies = std::max(rough_bodies, static_cast<std::size_t>(b) + 1);
   if (lambda.size() == capacity && solid_reaction.size() == samples && solid_share.size() == coupled &&
       solve_residual.size() == solve_size && temperature.size() == heat_size && stress_slope.size() == rough_size &&
-      solid_viscous_force.size() == rough_samples && rough_body.size() == rough_bodies)
+      solid_viscous_force.size() == rough_samples && solid_wall_velocity.size() == rough_samples &&
+      rough_body.size() == rough_bodies)
     return;
   substep_start.assign(capacity, Vec3::Zero());
   lambda.assign(capacity, 0);
@@ -42,6 +43,7 @@ void FluidScratch::fit(const FluidModel& fm) {
   wall_velocity_sum.assign(solve_size, Mat3::Zero());
   velocity_gradient.assign(solve_size, Mat3::Zero());
   solid_viscous_force.assign(rough_samples, Vec3::Zero());
+  solid_wall_velocity.assign(rough_samples, Vec3::Zero());
   rough_body.assign(rough_bodies, RigidSurfaceMotion{});
   stress_slope.assign(rough_size, {Mat3::Zero(), Mat3::Zero(), Mat3::Zero()});
   for (std::vector<Vec3>* v : {&solve_residual, &solve_shadow, &solve_direction, &solve_direction_image,

@@ -10,6 +10,7 @@
 #include "moreau/fluids/wall_extrapolation.hpp"
 #include "moreau/math/target_clones.hpp"
 #include "moreau/model/model.hpp"
+#include "moreau/model/state.hpp"
 
 namespace moreau {
 namespace {
@@ -36,9 +37,15 @@ Mat3 floored_inverse(const Mat3& moment) {
   return eigen.eigenvectors() * inverse.asDiagonal() * eigen.eigenvectors().transpose();
 }
 
-/// Calls visit(s, friction, r, d2) for every solid sample s with fluid friction (a rigid body's
-/// surface) within the kernel support of fluid particle k, r = x_k - x_s, d2 = |r|^2; with
-/// `kExtrapolate`, visit(s, friction, r, d2, beta, u_wall) for the wall terms.
+/// Calls visit(s, friction, r, d2) for every solid sample s with fluid friction (the surface of a
+/// rigid body, a cloth or a soft body) within the kernel support of fluid particle k,
+/// r = x_k - x_s, d2 = |r|^2; with `kExtrapolate`, visit(s, friction, r, d2, beta, u_wall) for the
+/// wall terms.
+///
+/// A cloth or soft-body sample moves with its particles, u_wall = sum_i b_i v_i
+/// (place_rough_samples), and is not extrapolated (beta = 1): a sheet's samples lie on the sheet
+/// itself, so the fluid sticks to it there; a soft body's lie r inside its surface, where the
+/// fluid's velocity then matches the body's (a slip length of about r at a shear).
 ///
 /// As at the collider walls (wall_extrapolation.hpp), the sample takes the velocity that
 /// extrapolates the particle's linearly through the surface (Morris, Fox & Zhu 1997):
@@ -70,6 +77,10 @@ void for_each_rough_solid_sample(const Model& model, const FluidState& fluid, co
     if (d2 >= h2) continue;
     if constexpr (kExtrapolate) {
       const Index b = fm.solid.body[sample];
+      if (b < 0) {
+        visit(sample, friction, r, d2, Real(1), s.solid_wall_velocity[sample]);
+        continue;
+      }
       const FluidScratch::RigidSurfaceMotion& body = s.rough_body[b];
       if (b != cached_body) {
         cached_body = b;
@@ -459,36 +470,56 @@ void implicit_solve(const Model& model, FluidState& fluid, FluidScratch& s, Real
   }
 }
 
-/// Every rough sample placed at its body's current pose, x_s = x_b + q_b s (the last placement,
-/// before the density solve under XPBD and before the step's motion under nmd, lags the body by
-/// what the contacts, joints or the step moved it since), and each body's pose and velocities
-/// kept for the extrapolation through its surface (for_each_rough_solid_sample).
-void place_rough_samples(const Model& model, FluidState& fluid, const RigidBodyState& rigid, FluidScratch& s) {
+/// Every rough sample placed where its solid is now (the last placement, before the density solve
+/// under XPBD and before the step's motion under nmd, lags the solid by what the contacts, joints
+/// or the step moved it since): a rigid body's at x_s = x_b + q_b s, with each body's pose and
+/// velocities kept for the extrapolation through its surface (for_each_rough_solid_sample); a
+/// cloth or soft-body sample at x_s = sum_i b_i x_i with the velocity u_s = sum_i b_i v_i.
+void place_rough_samples(const Model& model, State& state, FluidScratch& s) {
   const FluidSolidSamples& samples = model.fluid.solid;
+  const RigidBodyState& rigid = state.rigid;
 #pragma omp single
   for (Index b : samples.sampled_body)
     s.rough_body[b] = {Pose{rigid.position[b], rigid.orientation[b]}, rigid.velocity[b], rigid.angular_velocity[b]};
 #pragma omp for schedule(static)
   for (Index sample = 0; sample < samples.size(); ++sample) {
+    if (samples.friction[sample] == 0) continue;
     const Index b = samples.body[sample];
-    if (samples.friction[sample] == 0 || b < 0) continue;
-    fluid.solid_position[sample] = rigid.position[b] + rigid.orientation[b] * samples.body_point[sample];
+    if (b >= 0) {
+      state.fluid.solid_position[sample] = rigid.position[b] + rigid.orientation[b] * samples.body_point[sample];
+      continue;
+    }
+    Vec3 x = Vec3::Zero(), v = Vec3::Zero();
+    for (int slot = 0; slot < 4; ++slot) {
+      const Index p = samples.particle[sample][slot];
+      const Real weight = samples.weight[sample][slot];
+      x += weight * state.position[p];
+      v += weight * state.velocity[p];
+    }
+    state.fluid.solid_position[sample] = x;
+    s.solid_wall_velocity[sample] = v;
   }
 }
 
-/// The viscous reaction on the rigid bodies with fluid friction, after the solve has set the
-/// velocities v = v* + dv. Backward Euler made the fluid's velocity change the impulse h f(v), so
-/// the walls' share of it is h times their traction at v: each sample s takes the opposite,
+/// The viscous reaction on the solids with fluid friction, after the solve has set the velocities
+/// v = v* + dv. Backward Euler made the fluid's velocity change the impulse h f(v), so the walls'
+/// share of it is h times their traction at v: each sample s takes the opposite,
 ///   F_s = -sum_k t_ks(v),   t_ks = V f V_s g_ks (S_s + S_k) r_ks     (wall_sample_traction),
-/// summed over the sample's fluid particles (the reverse lists, in their fixed order), and each
-/// dynamic body the impulse of its samples' forces at their points:
-///   v_b += h/m sum_s F_s,   w_b += h I_b^-1 sum_s (x_s - x_b) x F_s.
+/// summed over the sample's fluid particles (the reverse lists, in their fixed order). Each
+/// dynamic rigid body takes the impulse of its samples' forces at their points,
+///   v_b += h/m sum_s F_s,   w_b += h I_b^-1 sum_s (x_s - x_b) x F_s,
+/// and each cloth or soft-body particle its share by the samples' barycentric weights,
+///   v_i += h w_i sum_s b_si F_s.
 /// Momentum is then kept to the solve's tolerance: the fluid's other viscous terms are pairwise
-/// equal and opposite. The body's change is explicit (it follows the fluid's implicit one), which
-/// is stable while the body outweighs the fluid its surface drags within a substep.
-void apply_rough_solid_reactions(const Model& model, FluidState& fluid, FluidScratch& s, RigidBodyState& rigid, Real h) {
+/// equal and opposite. The solid's change is explicit (it follows the fluid's implicit one), which
+/// is stable while the solid outweighs the fluid its surface drags within a substep: per unit of
+/// area, about rho sqrt(nu h) of fluid against the mass of the solid's surface layer (a
+/// particle's mass over its share of the surface).
+void apply_rough_solid_reactions(const Model& model, State& state, FluidScratch& s, Real h) {
   const FluidModel& fm = model.fluid;
   const FluidSolidSamples& samples = fm.solid;
+  FluidState& fluid = state.fluid;
+  RigidBodyState& rigid = state.rigid;
   gradient_pass(model, fluid, s, fluid.velocity.data(), true);
 #pragma omp for schedule(static)
   for (Index k = 0; k < fluid.count; ++k) {
@@ -528,6 +559,18 @@ void apply_rough_solid_reactions(const Model& model, FluidState& fluid, FluidScr
     rigid.velocity[b] += (h * inv_mass) * force;
     rigid.angular_velocity[b] += h * (R * model.rigid.body_inv_inertia[b].asDiagonal() * R.transpose() * torque);
   }
+  // Each particle gathers its samples' forces in the table's fixed order.
+  const Index particles = static_cast<Index>(samples.coupled_particle.size());
+#pragma omp for schedule(static)
+  for (Index q = 0; q < particles; ++q) {
+    const Index p = samples.coupled_particle[q];
+    const Real inv_mass = model.particle_inv_mass[p];
+    if (inv_mass <= 0) continue;
+    Vec3 force = Vec3::Zero();
+    for (Index e = samples.coupled_begin[q]; e < samples.coupled_begin[q + 1]; ++e)
+      force += samples.coupled_weight[e] * s.solid_viscous_force[samples.coupled_sample[e]];
+    state.velocity[p] += (h * inv_mass) * force;
+  }
 }
 
 }  // namespace
@@ -538,15 +581,15 @@ bool fluid_has_viscosity(const Model& model) {
   return false;
 }
 
-void apply_implicit_fluid_viscosity(const Model& model, FluidState& fluid, FluidScratch& scratch, RigidBodyState& rigid,
-                                    Real h) {
+void apply_implicit_fluid_viscosity(const Model& model, State& state, FluidScratch& scratch, Real h) {
   if (model.fluid.viscosity_solver != ViscositySolver::implicit_solve || !fluid_has_viscosity(model)) return;
+  FluidState& fluid = state.fluid;
   const bool rough_solids = model.fluid.solid.any_friction;
-  if (rough_solids) place_rough_samples(model, fluid, rigid, scratch);
+  if (rough_solids) place_rough_samples(model, state, scratch);
   implicit_solve(model, fluid, scratch, h);
 #pragma omp for schedule(static)
   for (Index k = 0; k < fluid.count; ++k) fluid.velocity[k] += scratch.viscous_change[k];
-  if (rough_solids) apply_rough_solid_reactions(model, fluid, scratch, rigid, h);
+  if (rough_solids) apply_rough_solid_reactions(model, state, scratch, h);
 }
 
 }  // namespace moreau

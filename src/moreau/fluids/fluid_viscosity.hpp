@@ -46,6 +46,10 @@
 //   body's velocity v_b + w_b x (x - x_b) at the point x where the segment from the particle to
 //   the sample crosses the surface (so liquid turning with the body has no shear). The body takes
 //   the opposite of their traction (apply_implicit_fluid_viscosity).
+// - Cloth and soft bodies with `fluid_friction` f are walls too: their samples (on a sheet's
+//   mid-surface; r inside a soft body's boundary faces) move with their particles,
+//   u_s = sum_i b_i v_i, and are not extrapolated (beta = 1). The particles take the opposite of
+//   the samples' traction, split by the barycentric weights.
 //
 // Time stepping: backward Euler over dt (the substep under XPBD, the step under nmd), from the
 // velocity v* after the position solve (m_k = rho0 V):
@@ -64,18 +68,18 @@
 namespace moreau {
 
 struct Model;
-struct RigidBodyState;
+struct State;
 
 /// Solves the implicit viscosity over h and adds the change to the velocities, if the model's
 /// viscosity is implicit and some phase has one; counts the solver's work in fluid.viscosity_stats. Call inside an OpenMP parallel region (every
 /// thread): the XPBD formulations call it every substep after the velocity update (once per step
 /// of 10 substeps let a very viscous fluid between no-slip walls go unstable together with the
 /// density solve, docs/validation.md), the velocity-level one once per step.
-/// Rigid bodies with `fluid_friction` grip the fluid at their surface samples as the collider walls
-/// do, each sample moving with its body, and take the opposite of the viscous force they exert
-/// (apply_rough_solid_reactions): `rigid` gives their motion and receives the reaction.
-void apply_implicit_fluid_viscosity(const Model& model, FluidState& fluid, FluidScratch& scratch, RigidBodyState& rigid,
-                                    Real h);
+/// Rigid bodies, cloth and soft bodies with `fluid_friction` grip the fluid at their surface samples
+/// as the collider walls do, each sample moving with its solid, and take the opposite of the
+/// viscous force they exert (apply_rough_solid_reactions): `state` gives their motion and
+/// receives the reaction (the rigid bodies' velocities, the particles' velocities).
+void apply_implicit_fluid_viscosity(const Model& model, State& state, FluidScratch& scratch, Real h);
 
 /// True if any phase has a viscosity.
 bool fluid_has_viscosity(const Model& model);

@@ -60,7 +60,7 @@ struct Sampler {
     out.body.push_back(-1);
     out.body_point.push_back(Vec3::Zero());
     out.body_weight.push_back(0);
-    out.friction.push_back(0);
+    out.friction.push_back(model.objects[object].fluid_friction);
     rest.push_back(x);
   }
 

@@ -134,7 +134,7 @@ void add_cloth(const ClothSpec& spec, const SpecPlace& place, ObjectInfo& info, 
   add_particles(ctx, info, mesh.vertices, masses, radius, gap, place.vector("velocity", spec.velocity));
   info.kind = ObjectKind::cloth;
   info.self_collision = spec.self_collision;
-  info.fluid_coupling = spec.fluid_coupling;
+  set_fluid_coupling(spec.fluid_coupling, spec.fluid_friction, place, info);
   set_contact_material(spec.contact, place, info);
   add_pins(spec.pin, place, info, ctx);
 

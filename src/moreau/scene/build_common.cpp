@@ -58,6 +58,14 @@ ContactMaterial read_contact_material(const JsonObject& object) {
   return m;
 }
 
+void set_fluid_coupling(bool coupling, double friction, const SpecPlace& place, ObjectInfo& info) {
+  info.fluid_coupling = coupling;
+  info.fluid_friction = place.number("fluid_friction", friction, Range::closed(0, 1));
+  if (info.fluid_friction > 0 && !info.fluid_coupling)
+    place.fail("fluid_friction", "an object with \"fluid_coupling\": false has no surface samples to carry the "
+                                 "fluid's wall friction; remove \"fluid_friction\" or couple the object");
+}
+
 void set_contact_material(const ContactMaterial& contact, const SpecPlace& place, ObjectInfo& info) {
   // One coefficient (static = dynamic) is the scene file's "friction": mu.
   if (contact.static_friction == contact.dynamic_friction) {

@@ -316,12 +316,12 @@ void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& o
           .fail("temperature", "no fluid of the scene carries heat: give the fluids a \"thermal\" entry, or remove "
                                "the wall's \"temperature\"");
   }
-  // A rigid body's fluid friction grips the particle fluids through their viscosity: without a
-  // viscous fluid it would do nothing.
+  // A solid's fluid friction grips the particle fluids through their viscosity: without a viscous
+  // fluid it would do nothing.
   for (std::size_t k = 0; k < model.objects.size(); ++k)
     if (model.objects[k].fluid_friction > 0 && !fluid_has_viscosity(model))
       object_place(static_cast<Index>(k))
-          .fail("fluid_friction", fm.empty() ? "the scene has no particle fluid for the body's surface to grip; remove "
+          .fail("fluid_friction", fm.empty() ? "the scene has no particle fluid for the surface to grip; remove "
                                                "\"fluid_friction\""
                                              : "the surface grips the particle fluids through their viscosity, and no "
                                                "fluid of the scene has one; give a fluid a \"viscosity\" or remove "

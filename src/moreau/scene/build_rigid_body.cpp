@@ -174,11 +174,7 @@ void add_rigid_body(const RigidBodySpec& spec, const SpecPlace& place, ObjectInf
   info.kind = ObjectKind::rigid_body;
   info.body = m.count();
   info.body_count = 1;
-  info.fluid_coupling = spec.fluid_coupling;
-  info.fluid_friction = place.number("fluid_friction", spec.fluid_friction, Range::closed(0, 1));
-  if (info.fluid_friction > 0 && !info.fluid_coupling)
-    place.fail("fluid_friction", "a body with \"fluid_coupling\": false has no surface samples to carry the fluid's "
-                                 "wall friction; remove \"fluid_friction\" or couple the body");
+  set_fluid_coupling(spec.fluid_coupling, spec.fluid_friction, place, info);
   const Vec3 v = place.vector("velocity", spec.velocity), w = place.vector("angular_velocity", spec.angular_velocity);
   if (fixed && (v != Vec3::Zero() || w != Vec3::Zero()))
     place.fail("velocity", "a fixed body cannot move; use \"kinematic\": true for prescribed motion");

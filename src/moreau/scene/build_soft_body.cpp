@@ -146,7 +146,7 @@ void add_soft_body(const SoftBodySpec& spec, const SpecPlace& place, ObjectInfo&
 
   info.kind = ObjectKind::soft_body;
   info.self_collision = spec.self_collision;
-  info.fluid_coupling = spec.fluid_coupling;
+  set_fluid_coupling(spec.fluid_coupling, spec.fluid_friction, place, info);
   set_contact_material(spec.contact, place, info);
   add_pins(spec.pin, place, info, ctx);
 

@@ -108,13 +108,14 @@ ContactMaterial read_contact_material(const JsonObject& object);
 /// {"vertices": [...]}, each with an optional "compliance" in m/N and "damping").
 std::vector<PinSpec> read_pins(const JsonObject& object);
 /// The keys cloth and soft bodies share: collision_radius, velocity, self_collision,
-/// fluid_coupling, the contact material and the pins.
+/// fluid_coupling, fluid_friction, the contact material and the pins.
 template <class ParticleObjectSpec>
 void read_particle_object_keys(const JsonObject& object, ParticleObjectSpec& spec) {
   spec.collision_radius = read_optional_number(object, "collision_radius");
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   spec.self_collision = object.boolean("self_collision", spec.self_collision);
   spec.fluid_coupling = object.boolean("fluid_coupling", spec.fluid_coupling);
+  spec.fluid_friction = object.number("fluid_friction", spec.fluid_friction);
   spec.contact = read_contact_material(object);
   spec.pin = read_pins(object);
 }
@@ -143,6 +144,9 @@ MeshFile read_mesh_file(const JsonObject& mesh);
 Mat3 rotation_from_degrees(const Vec3& degrees);
 /// The contact material, checked, as the object's (ObjectInfo::static_friction, ...).
 void set_contact_material(const ContactMaterial& contact, const SpecPlace& place, ObjectInfo& info);
+/// The object's fluid_coupling and its `fluid_friction` in [0, 1], checked (a wall friction needs the
+/// coupling's samples to act at), as ObjectInfo::fluid_coupling and ::fluid_friction.
+void set_fluid_coupling(bool coupling, double friction, const SpecPlace& place, ObjectInfo& info);
 /// Mesh cells (triangles, tetrahedra) given in code: every index names one of `vertex_count`
 /// vertices, and there is at least one cell.
 template <size_t N>

@@ -198,7 +198,7 @@ void ConstraintFluid::integrate(const Model& model, State& state, Real h, Real t
 void ConstraintFluid::finish_step(const Model& model, State& state, Real dt, Real h, int threads) {
 #pragma omp parallel num_threads(threads)
   {
-    apply_implicit_fluid_viscosity(model, state.fluid, scratch_, state.rigid, dt);
+    apply_implicit_fluid_viscosity(model, state, scratch_, dt);
     apply_fluid_velocity_corrections(model, state.fluid, scratch_, dt);
     apply_ambient_air(model, state.fluid, dt);
     apply_fluid_surface_tension(model, state.fluid, scratch_, dt);

@@ -205,7 +205,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
     if (fluids) update_fluid_velocity(fluid, work.fluid, h);
     lap(XpbdStage::update_velocity);
     if (fluids && implicit_viscosity) {
-      apply_implicit_fluid_viscosity(model, fluid, work.fluid, state.rigid, h);
+      apply_implicit_fluid_viscosity(model, state, work.fluid, h);
       lap(XpbdStage::fluid_velocity);
     }
     if (extension) {
