@@ -76,6 +76,7 @@ struct FluidSolidSamples {
   // `fluid_friction` (cloth, soft bodies, rigid bodies; 0 for continua).
   std::vector<Real> friction;
   bool any_friction = false;                   // some sample has friction
+  bool any_particle_friction = false;          // some cloth or soft-body sample has friction
   // The bodies with samples and their contiguous sample ranges [body_begin[j], body_begin[j+1]).
   std::vector<Index> sampled_body;
   std::vector<Index> body_begin;

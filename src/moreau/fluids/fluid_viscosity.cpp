@@ -560,6 +560,7 @@ void apply_rough_solid_reactions(const Model& model, State& state, FluidScratch&
     rigid.angular_velocity[b] += h * (R * model.rigid.body_inv_inertia[b].asDiagonal() * R.transpose() * torque);
   }
   // Each particle gathers its samples' forces in the table's fixed order.
+  if (!samples.any_particle_friction) return;
   const Index particles = static_cast<Index>(samples.coupled_particle.size());
 #pragma omp for schedule(static)
   for (Index q = 0; q < particles; ++q) {

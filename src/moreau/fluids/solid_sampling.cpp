@@ -198,6 +198,7 @@ FluidSolidSamples sample_fluid_solids(const Model& model, Real particle_radius, 
     s.body_begin.push_back(s.size());
   }
   s.any_friction = std::any_of(s.friction.begin(), s.friction.end(), [](Real f) { return f > 0; });
+  for (Index k = 0; k < s.size(); ++k) s.any_particle_friction |= s.body[k] < 0 && s.friction[k] > 0;
 
   // Particle -> (sample, weight), ordered by particle, then sample: each particle gathers its
   // reaction in a fixed order.
