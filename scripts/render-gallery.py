@@ -26,6 +26,7 @@ GALLERY = [
     ("cylinder_re100", None, None, "velocity"),
     ("putty_balls", 0.5, 0.4, "plastic_strain"),
     ("honey_coiling", None, None, "velocity"),
+    ("candle_jar", None, None, "liquid_fraction"),
 ]
 
 
