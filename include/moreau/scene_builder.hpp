@@ -479,6 +479,7 @@ struct ContinuumSpec {
   Vector3 velocity{};                       // m/s
   ContactMaterial contact;                  // against colliders and other objects
   bool fluid_coupling = true;               // the particles are a two-way boundary of the fluids
+  double fluid_friction = 0;                // the particle fluids' wall friction at its particles: 0 free slip, 1 no slip
 };
 
 using ObjectSpec = std::variant<ColliderSpec, ClothSpec, SoftBodySpec, FluidSpec, RigidBodySpec, RodSpec, GranularSpec,

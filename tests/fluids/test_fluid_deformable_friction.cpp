@@ -1,7 +1,8 @@
-// The particle fluids' wall friction at cloth and soft bodies (`fluid_friction` on a cloth or a
-// soft body, fluid_viscosity.hpp), under xpbd (a viscosity solve every substep) and nmd (one every
-// step): a pinned sheet holds start-up Couette flow as a still no-slip wall, and a free soft plate
-// or sheet sliding along a viscous layer gives its momentum to the liquid and keeps the total. The
+// The particle fluids' wall friction at cloth, soft bodies and continua (`fluid_friction` on a
+// cloth, a soft body or a continuum, fluid_viscosity.hpp), under xpbd (a viscosity solve every
+// substep) and nmd (one every step), and xpbi for the continuum: a pinned sheet holds start-up
+// Couette flow as a still no-slip wall, and a free soft plate, sheet or continuum plate sliding
+// along a viscous layer gives its momentum to the liquid and keeps the total. The
 // gap, the liquid and the moving plate are those of the rigid-body tests
 // (test_fluid_rigid_friction.cpp).
 #include <gtest/gtest.h>
@@ -184,6 +185,25 @@ TEST_P(DeformableFrictionOnEverySolver, AFreeSheetDragsTheLiquidAlongAndKeepsThe
   std::printf("%s: free sheet after 0.75 s: sheet %.5f, liquid %.5f m/s against m U / (m + M) = %.5f; y momentum "
               "drift at most %.2e of the start's\n",
               GetParam().c_str(), end.plate_speed, end.liquid_speed, together, end.worst_drift);
+  EXPECT_NEAR(end.plate_speed / together, 1, 0.01);
+  EXPECT_NEAR(end.liquid_speed / together, 1, 0.01);
+  EXPECT_LT(end.worst_drift, 1e-3);
+}
+
+// The same with an elastic continuum plate of the plate's mass under xpbi: two layers of particles
+// at the fluid's spacing 2 r, the first at x = H + r where the soft plate's samples lie (a
+// continuum's samples are its particles). Its particles take the reaction as velocity, which the
+// continuum's XSPH pass carries into their motion. Same bounds, same reasons.
+TEST(DeformableFriction, AFreeContinuumPlateDragsTheLiquidAlongAndKeepsTheMomentum) {
+  const Real particles = 2 * 75 * 6, cell = 0.004 * 0.004 * 0.004;
+  Scene scene = scene_from_json(free_plate_scene("xpbi", R"({"name": "plate", "kind": "continuum", "fluid_friction": 1,
+      "velocity": [0, 0.1, 0], "friction": 0, "blocks": [{"min": [0.040, 0.25, 0], "max": [0.048, 0.55, 0.024]}],
+      "spacing": 0.004, "youngs_modulus": 1e5, "density": )" + fmt::format("{}", kPlateMass / (particles * cell)) + "}"));
+  const SharedMomentum end = share_momentum(scene, 90);  // 0.75 s
+  const Real together = kPlateMass * kU / (kPlateMass + end.liquid_mass);
+  std::printf("xpbi: free continuum plate after 0.75 s: plate %.5f, liquid %.5f m/s against m U / (m + M) = %.5f; y "
+              "momentum drift at most %.2e of the start's\n",
+              end.plate_speed, end.liquid_speed, together, end.worst_drift);
   EXPECT_NEAR(end.plate_speed / together, 1, 0.01);
   EXPECT_NEAR(end.liquid_speed / together, 1, 0.01);
   EXPECT_LT(end.worst_drift, 1e-3);

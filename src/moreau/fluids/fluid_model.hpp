@@ -73,10 +73,10 @@ struct FluidSolidSamples {
   std::vector<Vec3> body_point;                // m
   std::vector<Real> body_weight;               // 1/kg
   // The particle fluids' wall friction at the sample, in [0, 1] (fluid_viscosity.hpp): its object's
-  // `fluid_friction` (cloth, soft bodies, rigid bodies; 0 for continua).
+  // `fluid_friction` (cloth, soft bodies, rigid bodies, continua).
   std::vector<Real> friction;
   bool any_friction = false;                   // some sample has friction
-  bool any_particle_friction = false;          // some cloth or soft-body sample has friction
+  bool any_particle_friction = false;          // some cloth, soft-body or continuum sample has friction
   // The bodies with samples and their contiguous sample ranges [body_begin[j], body_begin[j+1]).
   std::vector<Index> sampled_body;
   std::vector<Index> body_begin;

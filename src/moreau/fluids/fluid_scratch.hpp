@@ -44,7 +44,7 @@ struct FluidScratch {
   std::vector<Mat3> wall_velocity_sum;  // 1/s
   std::vector<Mat3> velocity_gradient;  // 1/s, G_k of the last gradient pass
   // Solid surfaces with fluid friction (empty without): per rigid body with samples its pose and
-  // velocities this substep; per solid sample its velocity (cloth and soft bodies) and the viscous
+  // velocities this substep; per solid sample its velocity (cloth, soft bodies, continua) and the viscous
   // force the fluid puts on it; per particle
   // the gradient of its corrected stress, dS/dx_c, that extrapolates it to the samples.
   struct RigidSurfaceMotion {
@@ -52,7 +52,7 @@ struct FluidScratch {
     Vec3 velocity = Vec3::Zero(), angular_velocity = Vec3::Zero();  // m/s, rad/s
   };
   std::vector<RigidSurfaceMotion> rough_body;  // by body index
-  std::vector<Vec3> solid_wall_velocity;  // m/s, per cloth or soft-body sample: sum_i b_i v_i of its particles
+  std::vector<Vec3> solid_wall_velocity;  // m/s, per particle-borne sample: sum_i b_i v_i of its particles
   std::vector<Vec3> solid_viscous_force;  // N
   std::vector<std::array<Mat3, 3>> stress_slope;
   // BiCGSTAB's vectors: residual r, shadow residual, direction p, A y, preconditioned y (and z),

@@ -42,10 +42,11 @@ Mat3 floored_inverse(const Mat3& moment) {
 /// r = x_k - x_s, d2 = |r|^2; with `kExtrapolate`, visit(s, friction, r, d2, beta, u_wall) for the
 /// wall terms.
 ///
-/// A cloth or soft-body sample moves with its particles, u_wall = sum_i b_i v_i
+/// A cloth, soft-body or continuum sample moves with its particles, u_wall = sum_i b_i v_i
 /// (place_rough_samples), and is not extrapolated (beta = 1): a sheet's samples lie on the sheet
-/// itself, so the fluid sticks to it there; a soft body's lie r inside its surface, where the
-/// fluid's velocity then matches the body's (a slip length of about r at a shear).
+/// itself, so the fluid sticks to it there; a soft body's lie r inside its surface and a
+/// continuum's at its particles' centres, half its spacing inside, where the fluid's velocity then
+/// matches the solid's (a slip length of about that depth at a shear).
 ///
 /// As at the collider walls (wall_extrapolation.hpp), the sample takes the velocity that
 /// extrapolates the particle's linearly through the surface (Morris, Fox & Zhu 1997):
@@ -474,7 +475,7 @@ void implicit_solve(const Model& model, FluidState& fluid, FluidScratch& s, Real
 /// under XPBD and before the step's motion under nmd, lags the solid by what the contacts, joints
 /// or the step moved it since): a rigid body's at x_s = x_b + q_b s, with each body's pose and
 /// velocities kept for the extrapolation through its surface (for_each_rough_solid_sample); a
-/// cloth or soft-body sample at x_s = sum_i b_i x_i with the velocity u_s = sum_i b_i v_i.
+/// cloth, soft-body or continuum sample at x_s = sum_i b_i x_i with the velocity u_s = sum_i b_i v_i.
 void place_rough_samples(const Model& model, State& state, FluidScratch& s) {
   const FluidSolidSamples& samples = model.fluid.solid;
   const RigidBodyState& rigid = state.rigid;
@@ -508,7 +509,8 @@ void place_rough_samples(const Model& model, State& state, FluidScratch& s) {
 /// summed over the sample's fluid particles (the reverse lists, in their fixed order). Each
 /// dynamic rigid body takes the impulse of its samples' forces at their points,
 ///   v_b += h/m sum_s F_s,   w_b += h I_b^-1 sum_s (x_s - x_b) x F_s,
-/// and each cloth or soft-body particle its share by the samples' barycentric weights,
+/// and each cloth, soft-body or continuum particle its share by the samples' barycentric weights
+/// (under xpbi the continuum's XSPH pass then smooths that velocity and moves the particle with it),
 ///   v_i += h w_i sum_s b_si F_s.
 /// Momentum is then kept to the solve's tolerance: the fluid's other viscous terms are pairwise
 /// equal and opposite. The solid's change is explicit (it follows the fluid's implicit one), which

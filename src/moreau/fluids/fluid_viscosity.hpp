@@ -46,8 +46,9 @@
 //   body's velocity v_b + w_b x (x - x_b) at the point x where the segment from the particle to
 //   the sample crosses the surface (so liquid turning with the body has no shear). The body takes
 //   the opposite of their traction (apply_implicit_fluid_viscosity).
-// - Cloth and soft bodies with `fluid_friction` f are walls too: their samples (on a sheet's
-//   mid-surface; r inside a soft body's boundary faces) move with their particles,
+// - Cloth, soft bodies and continua with `fluid_friction` f are walls too: their samples (on a
+//   sheet's mid-surface; r inside a soft body's boundary faces; a continuum's particles) move with
+//   their particles,
 //   u_s = sum_i b_i v_i, and are not extrapolated (beta = 1). The particles take the opposite of
 //   the samples' traction, split by the barycentric weights.
 //
@@ -75,7 +76,7 @@ struct State;
 /// thread): the XPBD formulations call it every substep after the velocity update (once per step
 /// of 10 substeps let a very viscous fluid between no-slip walls go unstable together with the
 /// density solve, docs/validation.md), the velocity-level one once per step.
-/// Rigid bodies, cloth and soft bodies with `fluid_friction` grip the fluid at their surface samples
+/// Rigid bodies, cloth, soft bodies and continua with `fluid_friction` grip the fluid at their surface samples
 /// as the collider walls do, each sample moving with its solid, and take the opposite of the
 /// viscous force they exert (apply_rough_solid_reactions): `state` gives their motion and
 /// receives the reaction (the rigid bodies' velocities, the particles' velocities).

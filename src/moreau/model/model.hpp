@@ -39,7 +39,7 @@ struct ObjectInfo {
   Index rod = -1;                             // index into Model::rods (rods only)
   bool self_collision = false;                // particle contacts within the object
   bool fluid_coupling = true;                 // cloth, soft body, rigid body, continuum: a two-way boundary of the fluids
-  Real fluid_friction = 0;                    // cloth, soft body, rigid body: the fluids' wall friction at its surface, [0, 1]
+  Real fluid_friction = 0;                    // cloth, soft body, rigid body, continuum: the fluids' wall friction, [0, 1]
   Real static_friction = 0.5, dynamic_friction = 0.5, restitution = 0;
   Real adhesion = 0;                          // N per contact point under nmd: rigid contacts, and cloth and soft-body particles on bodies and colliders
   Real cohesion = 0;                          // granular: N, the largest pull of a bond between two grains

@@ -114,6 +114,7 @@ ContinuumSpec read_continuum(const JsonObject& object) {
   spec.velocity = read_vector(object, "velocity", spec.velocity);
   spec.contact = read_contact_material(object);
   spec.fluid_coupling = object.boolean("fluid_coupling", spec.fluid_coupling);
+  spec.fluid_friction = object.number("fluid_friction", spec.fluid_friction);
   return spec;
 }
 
@@ -141,7 +142,7 @@ void add_continuum(const ContinuumSpec& spec, const SpecPlace& place, ObjectInfo
   set_contact_material(spec.contact, place, info);
   info.kind = ObjectKind::continuum;
   info.self_collision = false;  // the continuum's constraints hold its particles apart
-  info.fluid_coupling = spec.fluid_coupling;
+  set_fluid_coupling(spec.fluid_coupling, spec.fluid_friction, place, info);
   const Real volume = r * r * r;
   add_particles(ctx, info, points, std::vector<Real>(points.size(), material.density * volume), r / 2, r / 2,
                 place.vector("velocity", spec.velocity));
