@@ -7,6 +7,7 @@
 #include "moreau/collision/point_query.hpp"
 #include "moreau/fluids/neighbor_loop.hpp"
 #include "moreau/fluids/pair_chunks.hpp"
+#include "moreau/fluids/solid_gather.hpp"
 #include "moreau/fluids/wall_extrapolation.hpp"
 #include "moreau/math/target_clones.hpp"
 #include "moreau/model/model.hpp"
@@ -561,19 +562,10 @@ void apply_rough_solid_reactions(const Model& model, State& state, FluidScratch&
     rigid.velocity[b] += (h * inv_mass) * force;
     rigid.angular_velocity[b] += h * (R * model.rigid.body_inv_inertia[b].asDiagonal() * R.transpose() * torque);
   }
-  // Each particle gathers its samples' forces in the table's fixed order.
-  if (!samples.any_particle_friction) return;
-  const Index particles = static_cast<Index>(samples.coupled_particle.size());
-#pragma omp for schedule(static)
-  for (Index q = 0; q < particles; ++q) {
-    const Index p = samples.coupled_particle[q];
-    const Real inv_mass = model.particle_inv_mass[p];
-    if (inv_mass <= 0) continue;
-    Vec3 force = Vec3::Zero();
-    for (Index e = samples.coupled_begin[q]; e < samples.coupled_begin[q + 1]; ++e)
-      force += samples.coupled_weight[e] * s.solid_viscous_force[samples.coupled_sample[e]];
-    state.velocity[p] += (h * inv_mass) * force;
-  }
+  if (samples.any_particle_friction)
+    gather_to_solid_particles(model, s.solid_viscous_force.data(), [&](Index p, Real w, const Vec3& force) {
+      state.velocity[p] += (h * w) * force;
+    });
 }
 
 }  // namespace

@@ -5,6 +5,7 @@
 
 #include "moreau/collision/collider.hpp"
 #include "moreau/fluids/pair_chunks.hpp"
+#include "moreau/fluids/solid_gather.hpp"
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/body_handle.hpp"
 
@@ -12,21 +13,10 @@ namespace moreau {
 
 namespace {
 
-// dx_p = w_p sum_s b_ps R_s for every particle of a coupled solid (the table lists each
-// particle's samples in a fixed order). Every thread; orphaned omp for.
+// dx_p = w_p sum_s b_ps R_s for every particle of a coupled solid. Every thread.
 void move_solid_particles(const Model& model, const FluidScratch& scratch, Vec3* x) {
-  const FluidSolidSamples& s = model.fluid.solid;
-  const Index particles = static_cast<Index>(s.coupled_particle.size());
-#pragma omp for schedule(static)
-  for (Index q = 0; q < particles; ++q) {
-    const Index p = s.coupled_particle[q];
-    const Real w = model.particle_inv_mass[p];
-    if (w <= 0) continue;
-    Vec3 dx = Vec3::Zero();
-    for (Index e = s.coupled_begin[q]; e < s.coupled_begin[q + 1]; ++e)
-      dx += s.coupled_weight[e] * scratch.solid_reaction[s.coupled_sample[e]];
-    x[p] += w * dx;
-  }
+  gather_to_solid_particles(model, scratch.solid_reaction.data(),
+                            [&](Index p, Real w, const Vec3& reaction) { x[p] += w * reaction; });
 }
 
 // Each dynamic sampled body takes the reactions of its samples (see the header). Every thread;
