@@ -384,6 +384,37 @@ TEST(CommandLine, AdhesionUnderXpbdIsAWarningNamingTheObjects) {
   EXPECT_EQ(n.output.find("adhesion"), std::string::npos) << n.output;
 }
 
+TEST(CommandLine, ALightSheetGrippingAViscousFluidIsAWarning) {
+  // A free sheet sliding along 10 Pa s liquid with fluid friction: at 0.83 ms substeps the liquid
+  // it drags in one viscosity step weighs rho0 sqrt(nu h) = 2.9 kg/m^2 a side. A 0.3 kg/m^2 sheet
+  // is warned about (it was flung to 2 m/s); a 3 kg/m^2 one, which slowed smoothly, is not.
+  auto scene = [](double area_density) {
+    return fmt::format(R"({{"name": "gap", "settings": {{"dt": 0.008333333333333333, "substeps": 10, "gravity": [0, 0, 0],
+        "duration": 0.017}},
+      "objects": [
+        {{"name": "box", "kind": "collider", "inside": true, "friction": 0,
+          "shape": {{"type": "box", "center": [0.02, 0.3, 0.012], "half_extents": [0.03, 0.4, 0.012]}}}},
+        {{"name": "sheet", "kind": "cloth", "fluid_friction": 1, "velocity": [0, 0.1, 0], "friction": 0, "collider_gap": 0,
+          "mesh": {{"type": "grid", "size": [0.3, 0.022], "resolution": [31, 4], "center": [0.042, 0.4, 0.012],
+                   "rotation_deg": [0, 0, 90]}},
+          "material": {{"area_density": {}, "stretch_compliance": 0}}}},
+        {{"name": "liquid", "kind": "fluid", "particle_radius": 0.002, "viscosity": 10, "xsph": 0,
+          "block": {{"min": [0, 0.3, 0], "max": [0.04, 0.5, 0.024]}}}}]}})",
+                       area_density);
+  };
+  const std::string light = write_scene("light_sheet", scene(0.3));
+  const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet", light, (fs::path(light).parent_path() / "out").string()));
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("warning: 'sheet' grips the particle fluid (\"fluid_friction\") but its surface weighs 0.3 "
+                          "kg/m^2, less than the 2.89 kg/m^2"),
+            std::string::npos)
+      << r.output;
+  const std::string heavy = write_scene("heavy_sheet", scene(3.0));
+  const auto n = test::run_moreau(fmt::format("run {} --out {} --quiet", heavy, (fs::path(heavy).parent_path() / "out").string()));
+  ASSERT_EQ(n.exit_code, 0) << n.output;
+  EXPECT_EQ(n.output.find("grips the particle fluid"), std::string::npos) << n.output;
+}
+
 TEST(CommandLine, VersionHelpAndOutputDirectory) {
   EXPECT_EQ(test::run_moreau("--version").exit_code, 0);
   EXPECT_EQ(test::run_moreau("--help").exit_code, 0);

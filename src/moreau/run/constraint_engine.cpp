@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "moreau/fluids/fluid_viscosity.hpp"
+#include "moreau/fluids/friction_stability.hpp"
 #include "moreau/io/binary_archive.hpp"
 #include "moreau/io/frame_writer.hpp"
 #include "moreau/io/probe_csv.hpp"
@@ -127,6 +128,13 @@ std::vector<std::string> ConstraintEngine::warnings() const {
         "up to {:.2g}, tolerance {:.2g}); raise the iteration limit or the tolerance",
         model_.fluid.viscosity_max_iterations, viscosity.unconverged, viscosity.worst_residual,
         model_.fluid.viscosity_tolerance));
+  const Real viscosity_step = scene_.solver == "nmd" ? model_.settings.dt : model_.settings.dt / model_.settings.substeps;
+  for (const GrippingSolid& solid : light_gripping_solids(model_, viscosity_step))
+    out.push_back(fmt::format(
+        "'{}' grips the particle fluid (\"fluid_friction\") but its surface weighs {:.3g} kg/m^2, less than the {:.3g} "
+        "kg/m^2 of liquid it drags in one viscosity step (rho0 sqrt(nu h); twice that for a sheet wetted on both sides): "
+        "its viscous reaction may fling it about; make it heavier or shorten the step",
+        solid.name, solid.surface_density, solid.dragged_density));
   // Adhesion is a bound of the velocity-level contact rows; the position-level solver has none.
   if (scene_.solver != "nmd") {
     std::string glued;
