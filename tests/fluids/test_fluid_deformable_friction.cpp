@@ -192,7 +192,7 @@ TEST_P(DeformableFrictionOnEverySolver, AFreeSheetDragsTheLiquidAlongAndKeepsThe
 // The same with an elastic continuum plate of the plate's mass under xpbi: two layers of particles
 // at the fluid's spacing 2 r, the first at x = H + r where the soft plate's samples lie (a
 // continuum's samples are its particles). Its particles take the reaction as velocity, which the
-// continuum's XSPH pass carries into their motion. Same bounds, same reasons.
+// continuum's end of substep carries into their motion (x = x^n + h v). Same bounds, same reasons.
 TEST(DeformableFriction, AFreeContinuumPlateDragsTheLiquidAlongAndKeepsTheMomentum) {
   const Real particles = 2 * 75 * 6, cell = 0.004 * 0.004 * 0.004;
   Scene scene = scene_from_json(free_plate_scene("xpbi", R"({"name": "plate", "kind": "continuum", "fluid_friction": 1,

@@ -7,6 +7,7 @@
 // kernel support h = 4 r; phases differ in rest density (mass m = rho0 V), viscosity and
 // vorticity confinement. Fluid particles live in their own arrays (FluidState), which are
 // re-sorted along a z-order curve whenever the neighbour lists are rebuilt.
+#include <algorithm>
 #include <array>
 #include <optional>
 #include <string>
@@ -62,6 +63,12 @@ struct FluidBoundarySamples {
 /// four particles of the model (a cloth triangle, or the soft-body tetrahedron that holds a point r
 /// inside the surface); a rigid-body sample is a fixed point of its body's frame. Either way it
 /// moves with the solid and passes the fluid's push back to it.
+/// The largest kinematic viscosity (m^2/s) a particle of the phase can have: the liquid's, or, with
+/// a melting point, the solid's if that is larger.
+inline Real largest_viscosity(const FluidPhase& phase) {
+  return phase.melting_point ? std::max(phase.viscosity, phase.solid_viscosity) : phase.viscosity;
+}
+
 struct FluidSolidSamples {
   std::vector<std::array<Index, 4>> particle;  // model particle indices (unused slots, rigid samples: weight 0)
   std::vector<std::array<Real, 4>> weight;     // barycentric weights, summing to 1 (all 0 for rigid samples)

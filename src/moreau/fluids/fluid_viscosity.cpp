@@ -511,11 +511,11 @@ void place_rough_samples(const Model& model, State& state, FluidScratch& s) {
 /// dynamic rigid body takes the impulse of its samples' forces at their points,
 ///   v_b += h/m sum_s F_s,   w_b += h I_b^-1 sum_s (x_s - x_b) x F_s,
 /// and each cloth, soft-body or continuum particle its share by the samples' barycentric weights
-/// (under xpbi the continuum's XSPH pass then smooths that velocity and moves the particle with it),
+/// (under xpbi the continuum's end of substep then moves the particle by x = x^n + h v with it),
 ///   v_i += h w_i sum_s b_si F_s.
 /// Momentum is then kept to the solve's tolerance: the fluid's other viscous terms are pairwise
 /// equal and opposite. The solid's change is explicit (it follows the fluid's implicit one), which
-/// is stable while the solid outweighs the fluid its surface drags within a substep: per unit of
+/// is stable while the solid outweighs the fluid its surface drags within a viscosity step: per unit of
 /// area, about rho sqrt(nu h) of fluid against the mass of the solid's surface layer (a
 /// particle's mass over its share of the surface).
 void apply_rough_solid_reactions(const Model& model, State& state, FluidScratch& s, Real h) {

@@ -32,21 +32,20 @@ std::vector<GrippingSolid> light_gripping_solids(const Model& model, Real h) {
   // rho0 sqrt(nu h) of the heaviest drag any fluid of the scene puts on a surface.
   Real dragged = 0;
   for (const FluidPhase& phase : model.fluid.phases) {
-    const Real nu = phase.melting_point ? std::max(phase.viscosity, phase.solid_viscosity) : phase.viscosity;
-    dragged = std::max(dragged, phase.rest_density * std::sqrt(nu * h));
+    dragged = std::max(dragged, phase.rest_density * std::sqrt(largest_viscosity(phase) * h));
   }
   std::vector<GrippingSolid> light;
   for (const ObjectInfo& object : model.objects) {
     if (object.fluid_friction <= 0 || !object.has_particles()) continue;
     bool free = false;
-    for (Index p = object.particle_begin; p < object.particle_end; ++p) free |= model.particle_inv_mass[p] > 0;
+    for (Index p = object.particle_begin; p < object.particle_end && !free; ++p) free = model.particle_inv_mass[p] > 0;
     if (!free) continue;
     Real density = 0;
     if (object.kind == ObjectKind::continuum)
       density = model.particle_mass[object.particle_begin] / (model.continuum.spacing * model.continuum.spacing);
     else
       density = triangle_surface_density(model, object);
-    if (density < dragged) light.push_back({object.name, density, dragged});
+    if (density > 0 && density < dragged) light.push_back({object.name, density, dragged});  // 0: no surface
   }
   return light;
 }

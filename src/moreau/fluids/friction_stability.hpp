@@ -17,8 +17,9 @@ namespace moreau {
 struct Model;
 
 /// The surface mass per area (kg/m^2) of each cloth, soft body or continuum with fluid friction:
-/// a cloth's mass over its area; a soft body's boundary vertices' mass over its boundary area; a
-/// continuum's particle mass over r^2 (a particle per r^2 of surface).
+/// a cloth's mass over its area; a soft body's boundary vertices' mass over its boundary area (the
+/// layer the fluid's reaction first moves; a stiff, thick body resists with more); a continuum's
+/// particle mass over r^2 (a particle per r^2 of surface).
 struct GrippingSolid {
   std::string name;
   Real surface_density;   // kg/m^2

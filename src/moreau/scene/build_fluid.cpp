@@ -22,11 +22,6 @@ namespace {
 // nu dt / h^2 above which "auto" solves the viscosity implicitly (explicit is stable to 0.125).
 constexpr Real kStrongViscosity = 0.01;
 
-// The largest kinematic viscosity a particle of the phase can have: the liquid's, or the solid's.
-Real largest_viscosity(const FluidPhase& phase) {
-  return phase.melting_point ? std::max(phase.viscosity, phase.solid_viscosity) : phase.viscosity;
-}
-
 // Explicit viscosity is stable for dt <= 0.125 h^2 / nu (Monaghan 2005, sec. 6.4).
 Real explicit_viscosity_limit(const FluidModel& fm, const FluidPhase& phase) {
   return 0.125 * fm.kernel.h2 / std::max(largest_viscosity(phase), 1e-300);
