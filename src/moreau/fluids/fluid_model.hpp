@@ -46,6 +46,12 @@ struct FluidPhase {
   Vec3 wind = Vec3::Zero();        // m/s
 };
 
+/// The largest kinematic viscosity (m^2/s) a particle of the phase can have: the liquid's, or, with
+/// a melting point, the solid's if that is larger.
+inline Real largest_viscosity(const FluidPhase& phase) {
+  return phase.melting_point ? std::max(phase.viscosity, phase.solid_viscosity) : phase.viscosity;
+}
+
 /// Collider walls sampled with particles (Akinci et al. 2012): each sample carries the volume
 /// V_b = 1 / sum_k W(x_b - x_k) over the samples k of its neighbourhood, so a wall contributes
 /// the density of the fluid it replaces and the fluid next to it is not particle-deficient.
@@ -63,12 +69,6 @@ struct FluidBoundarySamples {
 /// four particles of the model (a cloth triangle, or the soft-body tetrahedron that holds a point r
 /// inside the surface); a rigid-body sample is a fixed point of its body's frame. Either way it
 /// moves with the solid and passes the fluid's push back to it.
-/// The largest kinematic viscosity (m^2/s) a particle of the phase can have: the liquid's, or, with
-/// a melting point, the solid's if that is larger.
-inline Real largest_viscosity(const FluidPhase& phase) {
-  return phase.melting_point ? std::max(phase.viscosity, phase.solid_viscosity) : phase.viscosity;
-}
-
 struct FluidSolidSamples {
   std::vector<std::array<Index, 4>> particle;  // model particle indices (unused slots, rigid samples: weight 0)
   std::vector<std::array<Real, 4>> weight;     // barycentric weights, summing to 1 (all 0 for rigid samples)

@@ -39,7 +39,7 @@ Mat3 floored_inverse(const Mat3& moment) {
 }
 
 /// Calls visit(s, friction, r, d2) for every solid sample s with fluid friction (the surface of a
-/// rigid body, a cloth or a soft body) within the kernel support of fluid particle k,
+/// rigid body, a cloth, a soft body or a continuum) within the kernel support of fluid particle k,
 /// r = x_k - x_s, d2 = |r|^2; with `kExtrapolate`, visit(s, friction, r, d2, beta, u_wall) for the
 /// wall terms.
 ///
