@@ -314,6 +314,12 @@ struct FluidGasSpec {
 
 /// "kind": "fluid": particles on a lattice of spacing 2 r filling a block, blocks or a closed OBJ
 /// surface, and/or released by an emitter.
+/// The tension of the interface between a fluid and another liquid of the scene (interfacial_tension.hpp).
+struct FluidInterfaceSpec {
+  std::string fluid;   // the other fluid's name
+  double tension = 0;  // N/m
+};
+
 struct FluidSpec {
   std::string name;
   std::optional<double> particle_radius;  // m, the same for every fluid of the scene
@@ -322,6 +328,7 @@ struct FluidSpec {
   double xsph = 0.01;                // [0, 1]
   double vorticity = 0;              // m/s
   double surface_tension = 0;        // N/m, gamma against air
+  std::vector<FluidInterfaceSpec> interfacial_tension;  // against other liquids; none given: 0
   double relaxation = 0.01;          // [0, 1e6]
   double bulk_modulus = 2.2e9;       // Pa, K of the density rows under "nmd" (water: 2.2e9)
   std::optional<FluidBlock> block;

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <vector>
 
+#include "damped_oscillation.hpp"
 #include "drop_meshes.hpp"
 #include "moreau/errors.hpp"
 #include "test_helpers.hpp"
@@ -47,48 +48,11 @@ Real quadrupole(const FluidState& f) {
   return sum / static_cast<Real>(f.count);
 }
 
-struct DampedOscillation {
-  Real decay, frequency;  // alpha (1/s) and omega_d (rad/s) of c + e^(-alpha t) (a cos omega_d t + b sin omega_d t)
-  Real natural() const { return std::sqrt(frequency * frequency + decay * decay); }  // omega_0
-};
-
-// Least squares fit of c + e^(-alpha t)(a cos w t + b sin w t) to q(t): (c, a, b) solved exactly for
-// each (alpha, w) of a grid (alpha 0-30 1/s by 0.25, w 2-80 rad/s by 0.1), the best pair kept. The
-// residual is q.q - coef.b at the normal equations' solution.
-DampedOscillation fit_damped_oscillation(const std::vector<Real>& t, const std::vector<Real>& q) {
-  const size_t m = t.size();
-  Real qq = 0;
-  for (Real value : q) qq += value * value;
-  std::vector<Real> cosine(m), sine(m), decay(121 * m);  // decay[ia * m + k] = e^(-alpha_ia t_k)
-  for (int ia = 0; ia <= 120; ++ia)
-    for (size_t k = 0; k < m; ++k) decay[ia * m + k] = std::exp(-0.25 * ia * t[k]);
-  DampedOscillation best{0, 0};
-  Real best_error = INFINITY;
-  for (int iw = 0; iw <= 780; ++iw) {
-    const Real w = 2 + 0.1 * iw;
-    for (size_t k = 0; k < m; ++k) cosine[k] = std::cos(w * t[k]), sine[k] = std::sin(w * t[k]);
-    for (int ia = 0; ia <= 120; ++ia) {
-      const Real alpha = 0.25 * ia;
-      Mat3 A = Mat3::Zero();
-      Vec3 b = Vec3::Zero();
-      for (size_t k = 0; k < m; ++k) {
-        const Real e = decay[ia * m + k];
-        const Vec3 basis(1, e * cosine[k], e * sine[k]);
-        A += basis * basis.transpose();
-        b += q[k] * basis;
-      }
-      const Real error = qq - A.ldlt().solve(b).dot(b);
-      if (error < best_error) best_error = error, best = {alpha, w};
-    }
-  }
-  return best;
-}
-
 // Brings the drop to rest (0.1 s with the velocities zeroed after each step: the filled lattice's
 // corners settle), starts the l = 2 mode with the potential flow v = A (-x, -y, 2z) about the
 // centroid, A = 0.05 omega_Rayleigh (the poles move out by 0.1 R, the equator in by 0.05 R), and
 // fits 0.6 s of its quadrupole.
-DampedOscillation oscillate(Real gamma) {
+test::DampedOscillation oscillate(Real gamma) {
   Scene scene = drop_scene(gamma);
   FluidState& f = scene.state.fluid;
   EXPECT_EQ(f.count, 4224);
@@ -113,7 +77,7 @@ DampedOscillation oscillate(Real gamma) {
   const Vec3 end = centroid(f);
   for (Index i = 0; i < f.count; ++i) escaped += (f.position[i] - end).norm() > 1.25 * kDropRadius;
   EXPECT_EQ(escaped, 0) << "particles left the drop";
-  return fit_damped_oscillation(t, q);
+  return test::fit_damped_oscillation(t, q);
 }
 
 TEST(FluidSurfaceTension, ADropOscillatesAtRayleighsFrequency) {
@@ -122,7 +86,7 @@ TEST(FluidSurfaceTension, ADropOscillatesAtRayleighsFrequency) {
   // under the numerical damping alpha. Tolerance 5 % (the validation target). Measured: -1.5 %
   // (water) and +0.4 % (0.15 N/m); damping ratios 0.06.
   for (Real gamma : {0.072, 0.15}) {
-    const DampedOscillation fit = oscillate(gamma);
+    const test::DampedOscillation fit = oscillate(gamma);
     const Real rayleigh = std::sqrt(8 * gamma / (kDensity * std::pow(kDropRadius, 3)));
     std::printf("gamma %.3f N/m: omega_0 %.2f rad/s against Rayleigh's %.2f (%+.2f %%); damping ratio %.3f\n", gamma,
                 fit.natural(), rayleigh, 100 * (fit.natural() / rayleigh - 1), fit.decay / fit.natural());

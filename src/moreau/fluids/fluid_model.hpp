@@ -25,7 +25,7 @@ struct FluidPhase {
   Real particle_mass = 0;          // kg, rho0 V
   Real xsph = 0;                   // XSPH velocity smoothing c, applied once per step (dimensionless)
   Real viscosity = 0;              // kinematic viscosity nu, m^2/s
-  Real surface_tension = 0;        // gamma, N/m (surface_tension.hpp)
+  Real surface_tension = 0;        // gamma against air, N/m (surface_tension.hpp)
   Real vorticity = 0;              // vorticity-confinement strength epsilon, m/s (see fluid_velocity.hpp)
   Real relaxation = 0;             // epsilon of the density constraint, 1/(kg m^2) (scaled, see density_constraint.hpp)
   Real compliance = 0;             // eps of the density row under "nmd", 1/J: 1 / (K V) (solvers/nmd/constraint_fluid.hpp)
@@ -44,6 +44,12 @@ struct FluidPhase {
   Real gas_drag = 0;               // k, 1/s
   Real gas_mixing = 0;             // m, 1/s: the air dilutes the smoke (and a buoyant gas's heat)
   Vec3 wind = Vec3::Zero();        // m/s
+};
+
+/// An interface between two liquids with a tension of its own (interfacial_tension.hpp).
+struct FluidInterface {
+  Index phase_a = -1, phase_b = -1;
+  Real tension = 0;  // sigma, N/m
 };
 
 /// The largest kinematic viscosity (m^2/s) a particle of the phase can have: the liquid's, or, with
@@ -121,6 +127,7 @@ struct FluidModel {
   Real heat_step_limit = 0;        // s, the longest stable explicit part of the heat update
 
   std::vector<FluidPhase> phases;
+  std::vector<FluidInterface> interfaces;  // pairs of liquids whose interface has a tension
   // Initial particles.
   std::vector<Vec3> initial_position, initial_velocity;  // m, m/s
   std::vector<Index> initial_phase;

@@ -43,40 +43,56 @@ void apply_fluid_surface_tension(const Model& model, FluidState& fluid, FluidScr
   const Index n = fluid.count;
   std::vector<Vec3>& normal = scratch.correction;  // free between steps
   std::vector<Vec3>& v_new = scratch.reorder_vec;
-  // Calls pair(j, r, d) for the neighbours j of i in i's phase with 0 < d = |r| < h, r = x_i - x_j.
-  auto for_each_same_phase_pair = [&](Index i, auto&& pair) {
+  auto is_gas = [&](Index i) { return fm.phases[fluid.phase[i]].gas; };
+  // Calls pair(j, r, d) for the liquid neighbours j of i (of any liquid phase) with 0 < d = |r| < h,
+  // r = x_i - x_j. Counting every liquid makes the forces vanish where two liquids meet with a full
+  // neighbourhood: surface tension acts where liquid meets air (or a wall), and the interface
+  // between two liquids has its own tension (interfacial_tension.hpp).
+  auto for_each_liquid_pair = [&](Index i, auto&& pair) {
     const Index* row = fluid.fluid_neighbors.row(i);
     for (Index k = 0; k < fluid.fluid_neighbors.count[i]; ++k) {
       const Index j = row[k];
-      if (fluid.phase[j] != fluid.phase[i]) continue;
+      if (is_gas(j)) continue;
       const Vec3 r = fluid.position[i] - fluid.position[j];
       const Real d = r.norm();
       if (d < h && d > 0) pair(j, r, d);
     }
   };
 
-  // n_i = h V sum_j grad W(x_i - x_j) over the same phase: dimensionless, ~0 inside the fluid.
+  // n_i = h V sum_j grad W(x_i - x_j) over the liquids: dimensionless, ~0 inside the liquid.
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
     Vec3 sum = Vec3::Zero();
-    for_each_same_phase_pair(i, [&](Index, const Vec3& r, Real d) { sum += kernel.gradient_factor(d) * r; });
+    if (!is_gas(i))
+      for_each_liquid_pair(i, [&](Index, const Vec3& r, Real d) { sum += kernel.gradient_factor(d) * r; });
     normal[i] = h * V * sum;
   }
 
+  // A pair of particles of different liquids takes the mean of their gammas, 2 / (rho_i / rho0_i +
+  // rho_j / rho0_j) as its symmetrisation: its forces stay equal and opposite, and two liquids of
+  // equal gamma pull on each other as on themselves.
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) {
-    const FluidPhase& phase = fm.phases[fluid.phase[i]];
+    const Index own = fluid.phase[i];
+    const FluidPhase& phase = fm.phases[own];
     v_new[i] = fluid.velocity[i];
-    if (phase.surface_tension <= 0 || fluid.inv_mass[i] == 0) continue;  // none, or a solid or held particle
+    if (phase.gas || fluid.inv_mass[i] == 0) continue;  // a gas, or a solid or held particle
     const Real gamma = phase.surface_tension, rho0 = phase.rest_density;
-    Vec3 force = Vec3::Zero();
-    for_each_same_phase_pair(i, [&](Index j, const Vec3& r, Real d) {
-      const Real symmetry = 2 * rho0 / (fluid.density[i] + fluid.density[j]);
+    Vec3 same = Vec3::Zero(), mixed = Vec3::Zero();  // per unit gamma, and with the pairs' gammas
+    for_each_liquid_pair(i, [&](Index j, const Vec3& r, Real d) {
       const Vec3 cohesion = -cohesion_scale * spline(d) / d * r;
       const Vec3 curvature = -curvature_scale * (normal[i] - normal[j]);
-      force += symmetry * (cohesion + curvature);
+      if (fluid.phase[j] == own) {
+        same += 2 * rho0 / (fluid.density[i] + fluid.density[j]) * (cohesion + curvature);
+        return;
+      }
+      const FluidPhase& other = fm.phases[fluid.phase[j]];
+      const Real pair_gamma = 0.5 * (gamma + other.surface_tension);
+      if (pair_gamma == 0) return;
+      const Real symmetry = 2 / (fluid.density[i] / rho0 + fluid.density[j] / other.rest_density);
+      mixed += pair_gamma * symmetry * (cohesion + curvature);
     });
-    v_new[i] += dt * fluid.inv_mass[i] * gamma * force;
+    v_new[i] += dt * fluid.inv_mass[i] * gamma * same + dt * fluid.inv_mass[i] * mixed;
   }
 #pragma omp for schedule(static)
   for (Index i = 0; i < n; ++i) fluid.velocity[i] = v_new[i];

@@ -1,13 +1,14 @@
 #pragma once
 // Surface tension in N/m: the cohesion and curvature forces of Akinci, Akinci & Teschner 2013
 // ("Versatile surface tension and adhesion for SPH fluids", ACM TOG 32(6)), written with the
-// surface tension gamma (N/m) and calibrated so that a drop's shape oscillates at Rayleigh's
-// frequency. Applied to the velocities once per step, like viscosity (sums over the neighbours j
-// of the same phase within h, r = x_i - x_j, V the particle volume):
+// surface tension gamma (N/m) against air and calibrated so that a drop's shape oscillates at
+// Rayleigh's frequency. Applied to the velocities once per step, like viscosity (sums over the
+// liquid neighbours j within h, of any liquid, r = x_i - x_j, V the particle volume):
 //   surface normal   n_i = h V sum_j grad W(r)                 (dimensionless, ~0 inside the fluid)
 //   cohesion         F_ij = -a_coh gamma (V^2 / h^2) C(|r|) r / |r|
 //   curvature        F_ij = -a_curv gamma h (n_i - n_j)
-//   symmetrisation   K_ij = 2 rho0 / (rho_i + rho_j)           (stronger where the fluid is sparse)
+//   symmetrisation   K_ij = 2 rho0 / (rho_i + rho_j)           (stronger where the fluid is sparse;
+//                    2 / (rho_i / rho0_i + rho_j / rho0_j) for a pair of two liquids)
 //   v_i += dt / m_i sum_j K_ij (F_cohesion + F_curvature)
 // with Akinci's cohesion spline (support h; repelling below 0.27 h, attracting beyond, strongest at h/2)
 //   C(r) = 32 / (pi h^9) * { (h - r)^3 r^3                 h/2 < r <= h
@@ -35,8 +36,10 @@
 // The pair forces are equal and opposite (the curvature term uses the pair's common weight), so
 // linear momentum is conserved. Sign: with grad W(r) = g(|r|) r, g < 0, the normal as written
 // points into the fluid; with the opposite sign the curvature term is anti-diffusive and a blob
-// blows apart. Pairs of different phases do not attract (immiscible fluids), and walls do not
-// attract the liquid. The fluid's `pressure` (the density multipliers') includes the cohesive
+// blows apart. A pair of particles of two liquids takes the mean of their gammas: where two
+// liquids meet, each particle's neighbourhood is full and the normals vanish, so these forces act
+// where liquid meets air and leave the interface between liquids to its own tension
+// (interfacial_tension.hpp). Gas particles take no part, and walls do not attract the liquid. The fluid's `pressure` (the density multipliers') includes the cohesive
 // tension the constraint holds: about 0.73 gamma / h more than the mechanical pressure inside the
 // liquid.
 #include "moreau/fluids/fluid_scratch.hpp"

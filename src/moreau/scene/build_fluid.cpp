@@ -138,6 +138,11 @@ FluidSpec read_fluid(const JsonObject& object) {
   spec.xsph = object.number("xsph", spec.xsph);
   spec.vorticity = object.number("vorticity", spec.vorticity);
   spec.surface_tension = object.number("surface_tension", spec.surface_tension);
+  if (object.has("interfacial_tension")) {
+    // {"<other fluid>": sigma, ...}: the names are the scene's, checked when every fluid is known.
+    const JsonObject tensions = object.object("interfacial_tension");
+    for (const std::string& fluid : tensions.keys()) spec.interfacial_tension.push_back({fluid, tensions.number(fluid)});
+  }
   spec.relaxation = object.number("relaxation", spec.relaxation);
   spec.bulk_modulus = object.number("bulk_modulus", spec.bulk_modulus);
   if (object.has("block")) spec.block = read_block(object.object("block"));

@@ -211,6 +211,13 @@ std::vector<JsonObject> JsonObject::object_list(const std::string& key) const {
   return out;
 }
 
+std::vector<std::string> JsonObject::keys() const {
+  std::vector<std::string> out;
+  for (auto it = j_->begin(); it != j_->end(); ++it) out.push_back(it.key());
+  known_.insert(out.begin(), out.end());
+  return out;
+}
+
 void JsonObject::finish() const {
   for (auto it = j_->begin(); it != j_->end(); ++it)
     if (!known_.count(it.key())) fail_unknown(it.key(), "");

@@ -48,6 +48,9 @@ class JsonObject {
   std::optional<JsonObject> optional_object(const std::string& key) const;
   std::vector<JsonObject> object_list(const std::string& key) const;
   const nlohmann::json& raw(const std::string& key) const;
+  /// The object's keys (sorted), each recorded as known: for an object whose keys are names the
+  /// scene chooses, read with number(key) and the like.
+  std::vector<std::string> keys() const;
 
   /// Rejects keys that no accessor asked for.
   void finish() const;

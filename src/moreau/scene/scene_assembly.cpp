@@ -74,6 +74,7 @@ Scene assemble_scene(const SceneSpec& spec, const std::string& source, const std
     scene.model.objects.push_back(std::move(info));
   }
   check_removed_colliders(scene.model, entry);
+  add_fluid_interfaces(spec.objects, scene.model, [&](Index k) { return entry("objects", k); });
   scene.model.color_constraints();
   finish_fluids(scene.model, [&](Index k) { return entry("objects", k); });
   for (size_t k = 0; k < spec.joints.size(); ++k) add_joint(spec.joints[k], entry("joints", k), scene.model);

@@ -75,6 +75,10 @@ void finish_joints(Model& model);
 /// After all objects: samples collider walls for the fluids (refusing walls whose samples would
 /// not fit in memory, at `object_place` of the collider) and sets the derived fluid constants.
 void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& object_place);
+/// The fluids' "interfacial_tension" entries, once every object is added: each names another liquid
+/// of the scene, and a pair of liquids is given one tension (build_fluid_interfaces.cpp).
+void add_fluid_interfaces(const std::vector<ObjectSpec>& objects, Model& model,
+                          const std::function<SpecPlace(Index object)>& object_place);
 /// A probe bound to the model's objects, particles and joints.
 Probe bind_probe(const ProbeSpec& spec, const SpecPlace& place, const Model& model);
 

@@ -12,6 +12,7 @@
 #include "moreau/fluids/fluid_neighbors.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
+#include "moreau/fluids/interfacial_tension.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/model/model.hpp"
@@ -202,6 +203,7 @@ void ConstraintFluid::finish_step(const Model& model, State& state, Real dt, Rea
     apply_fluid_velocity_corrections(model, state.fluid, scratch_, dt);
     apply_ambient_air(model, state.fluid, dt);
     apply_fluid_surface_tension(model, state.fluid, scratch_, dt);
+    apply_fluid_interfacial_tension(model, state.fluid, scratch_, dt);
     apply_fluid_heat(model, state.fluid, scratch_, dt);
   }
   fluid_cfl_number(model, state.fluid, h);

@@ -13,6 +13,7 @@
 #include "moreau/fluids/fluid_neighbors.hpp"
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
+#include "moreau/fluids/interfacial_tension.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/granular/grain_emitter.hpp"
@@ -230,6 +231,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
     apply_fluid_velocity_corrections(model, fluid, work.fluid, dt);
     apply_ambient_air(model, fluid, dt);
     apply_fluid_surface_tension(model, fluid, work.fluid, dt);
+    apply_fluid_interfacial_tension(model, fluid, work.fluid, dt);
     lap(XpbdStage::fluid_velocity);
     if (model.fluid.thermal) {
       apply_fluid_heat(model, fluid, work.fluid, dt);
