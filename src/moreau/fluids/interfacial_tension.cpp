@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "moreau/fluids/neighbor_loop.hpp"
 #include "moreau/model/model.hpp"
 
 namespace moreau {
@@ -18,7 +19,7 @@ void apply_fluid_interfacial_tension(const Model& model, FluidState& fluid, Flui
   const FluidModel& fm = model.fluid;
   if (fm.interfaces.empty()) return;
   const CubicSplineKernel& kernel = fm.kernel;
-  const Real h = kernel.h, V = fm.particle_volume, smallest_gradient = kNormalThreshold / h;
+  const Real V = fm.particle_volume, smallest_gradient = kNormalThreshold / kernel.h;
   const Index n = fluid.count;
   std::vector<Vec3>& gradient = scratch.correction;  // free between steps (after the surface tension)
   std::vector<Vec3>& normal = scratch.reorder_vec;  // free after the surface tension's velocity pass
@@ -27,17 +28,11 @@ void apply_fluid_interfacial_tension(const Model& model, FluidState& fluid, Flui
   for (const FluidInterface& face : fm.interfaces) {
     // +1 on side A, -1 on side B, 0 for particles of neither liquid.
     auto side = [&](Index i) -> int { return fluid.phase[i] == face.phase_a ? 1 : fluid.phase[i] == face.phase_b ? -1 : 0; };
-    // Calls pair(j, r, d, s_j) for the neighbours j of i on either side with 0 < d = |r| < h.
+    // Calls pair(j, r, g, s_j) for the neighbours j of i within h of either liquid (neighbor_loop.hpp).
     auto for_each_interface_pair = [&](Index i, auto&& pair) {
-      const Index* row = fluid.fluid_neighbors.row(i);
-      for (Index k = 0; k < fluid.fluid_neighbors.count[i]; ++k) {
-        const Index j = row[k];
-        const int s = side(j);
-        if (s == 0) continue;
-        const Vec3 r = fluid.position[i] - fluid.position[j];
-        const Real d = r.norm();
-        if (d < h && d > 0) pair(j, r, d, s);
-      }
+      for_each_fluid_neighbor(fluid, kernel, i, [&](Index j, const Vec3& r, Real g) {
+        if (const int s_j = side(j)) pair(j, r, g, s_j);
+      });
     };
 
     // g_i = -V sum_{j other} grad W_ij: the gradient of i's own colour.
@@ -46,8 +41,8 @@ void apply_fluid_interfacial_tension(const Model& model, FluidState& fluid, Flui
       const int s = side(i);
       Vec3 sum = Vec3::Zero();
       if (s != 0)
-        for_each_interface_pair(i, [&](Index, const Vec3& r, Real d, int s_j) {
-          if (s_j != s) sum += kernel.gradient_factor(d) * r;
+        for_each_interface_pair(i, [&](Index, const Vec3& r, Real g, int s_j) {
+          if (s_j != s) sum += g * r;
         });
       gradient[i] = -V * sum;
     }
@@ -66,12 +61,11 @@ void apply_fluid_interfacial_tension(const Model& model, FluidState& fluid, Flui
       const int s = side(i);
       if (s == 0 || normal[i].isZero(0)) continue;
       Real divergence = 0, weight = 0;
-      for_each_interface_pair(i, [&](Index j, const Vec3& r, Real d, int s_j) {
+      for_each_interface_pair(i, [&](Index j, const Vec3& r, Real g, int s_j) {  // grad W_ij = g r, g < 0
         if (normal[j].isZero(0)) return;
         const Vec3 normal_j = s_j == s ? normal[j] : Vec3(-normal[j]);  // in i's colour
-        const Real g = kernel.gradient_factor(d);                     // grad W_ij = g r, g < 0
         divergence += (normal_j - normal[i]).dot(g * r);
-        weight += -g * d * d;                                         // |x_ij| |grad W_ij|
+        weight += -g * r.squaredNorm();                               // |x_ij| |grad W_ij|
       });
       if (weight > 0) curvature[i] = -3 * divergence / weight;
     }
