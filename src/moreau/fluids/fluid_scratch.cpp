@@ -39,6 +39,7 @@ void FluidScratch::fit(const FluidModel& fm) {
   gradient_correction.assign(solve_size, Mat3::Identity());
   fluid_gradient_correction.assign(solve_size, Mat3::Identity());
   corrected_stress.assign(solve_size, Mat3::Zero());
+  stress_viscosity.assign(solve_size, 0);
   wall_sum.assign(solve_size, Vec3::Zero());
   wall_velocity_sum.assign(solve_size, Mat3::Zero());
   velocity_gradient.assign(solve_size, Mat3::Zero());

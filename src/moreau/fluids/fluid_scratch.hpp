@@ -40,6 +40,7 @@ struct FluidScratch {
   // P; the solver's vectors, the inverse diagonal blocks and the per-block partial dot products.
   std::vector<Vec3> viscous_change;     // m/s
   std::vector<Mat3> gradient_correction, fluid_gradient_correction, corrected_stress;
+  std::vector<Real> stress_viscosity;   // Pa s, mu_k of the stress (interface_viscosity.hpp)
   std::vector<Vec3> wall_sum;           // 1/m
   std::vector<Mat3> wall_velocity_sum;  // 1/s
   std::vector<Mat3> velocity_gradient;  // 1/s, G_k of the last gradient pass

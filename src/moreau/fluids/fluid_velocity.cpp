@@ -1,6 +1,7 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 
 #include "moreau/fluids/fluid_viscosity.hpp"
+#include "moreau/fluids/interface_viscosity.hpp"
 #include "moreau/fluids/neighbor_loop.hpp"
 #include "moreau/fluids/pair_chunks.hpp"
 #include "moreau/math/target_clones.hpp"
@@ -64,7 +65,7 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
       continue;
     }
     const Real omega_i = any_vorticity ? omega_norm[i] : 0;
-    // nu_ij is the mean of the two particles' viscosities; XSPH uses particle i's coefficient.
+    // nu_ij is the pair's viscosity (interface_viscosity.hpp); XSPH uses particle i's coefficient.
     PairChunk chunk;
     alignas(64) Real vx[kPairChunk], vy[kPairChunk], vz[kPairChunk], nu[kPairChunk];
     alignas(64) Real visc_x[kPairChunk] = {}, visc_y[kPairChunk] = {}, visc_z[kPairChunk] = {};
@@ -85,7 +86,7 @@ void apply_fluid_velocity_corrections(const Model& model, FluidState& fluid, Flu
       else if (one_viscosity)
         store(nu, Lanes{} + pi.viscosity);
       else
-        for (int k = 0; k < kPairChunk; ++k) nu[k] = 0.5 * (fluid.viscosity[i] + fluid.viscosity[lanes[k]]);
+        for (int k = 0; k < kPairChunk; ++k) nu[k] = pair_viscosity(fm, fluid, i, lanes[k]);
       chunk.evaluate(kernel);
 #pragma omp simd
       for (int k = 0; k < kPairChunk; ++k) {

@@ -21,7 +21,9 @@
 // Between particles of different mass, the viscosity and XSPH pair terms carry the factor
 // mu_ij = 2 m_j / (m_i + m_j) (1 for equal masses), so m_i dv_i = -m_j dv_j: both conserve linear
 // momentum in multi-fluid scenes too. Viscosity acts along x_ij and also conserves angular
-// momentum; XSPH does not (it damps rigid rotation near a free surface).
+// momentum; XSPH does not (it damps rigid rotation near a free surface). A pair of two different
+// liquids takes the harmonic mean of their dynamic viscosities (interface_viscosity.hpp), a pair
+// within one liquid the mean of the two particles' nu.
 // All three read the velocities from before the pass (Jacobi), so the result is order-free.
 #include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/fluids/fluid_state.hpp"

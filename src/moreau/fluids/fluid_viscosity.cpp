@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "moreau/collision/point_query.hpp"
+#include "moreau/fluids/interface_viscosity.hpp"
 #include "moreau/fluids/neighbor_loop.hpp"
 #include "moreau/fluids/pair_chunks.hpp"
 #include "moreau/fluids/solid_gather.hpp"
@@ -19,10 +20,6 @@ namespace {
 constexpr Real kCorrectionFloor = 0.2;  // smallest eigenvalue of M_k kept (1 in a full neighbourhood)
 constexpr Index kDotBlock = 512;        // particles per partial dot product
 constexpr Real kLaplacianFactor = 10;   // 2 (d + 2), d = 3: Monaghan's compact Laplacian
-
-Real dynamic_viscosity(const FluidModel& fm, const FluidState& fluid, Index k) {
-  return fluid.viscosity[k] * fm.phases[fluid.phase[k]].rest_density;
-}
 
 /// M^-1 with M's eigenvalues floored at kCorrectionFloor. For a symmetric positive semidefinite M,
 /// lambda_min = det / (lambda_mid lambda_max) >= 4 det / trace^2 (as lambda_mid + lambda_max <= trace),
@@ -182,6 +179,7 @@ void gradient_pass(const Model& model, const FluidState& fluid, FluidScratch& s,
     gradient *= V;
     moment *= V;
     if (setup) {
+      s.stress_viscosity[k] = stress_viscosity(fm, fluid, k);
       const Mat3 fluid_moment = moment;
       wall_sums(model, fluid, s, k, moment, s.wall_sum[k], s.wall_velocity_sum[k]);
       s.gradient_correction[k] = floored_inverse(moment);
@@ -193,7 +191,7 @@ void gradient_pass(const Model& model, const FluidState& fluid, FluidScratch& s,
     const Mat3& correction = s.gradient_correction[k];
     const Mat3 G = gradient * correction;
     s.velocity_gradient[k] = G;
-    s.corrected_stress[k] = (dynamic_viscosity(fm, fluid, k) * (G + G.transpose())) * correction;
+    s.corrected_stress[k] = (s.stress_viscosity[k] * (G + G.transpose())) * correction;
   }
 }
 
@@ -268,7 +266,7 @@ MOREAU_TARGET_CLONES Vec3 viscous_force(const Model& model, const FluidState& fl
   const Vec3 xk = x[k], uk = u[k];
   const Mat3& Sk = s.corrected_stress[k];
   const Mat3& Gk = s.velocity_gradient[k];
-  const Real w_k = fluid.inv_mass[k], nu_k = fluid.viscosity[k];
+  const Real w_k = fluid.inv_mass[k];
   if (w_k == 0) {  // a solid or held particle (fluid_heat.hpp, fluid_emitter.hpp): its row is m_k u_k, so its change stays 0
     if (diagonal) diagonal->setZero();
     return Vec3::Zero();
@@ -288,7 +286,7 @@ MOREAU_TARGET_CLONES Vec3 viscous_force(const Model& model, const FluidState& fl
     for (int l = 0; l < kPairChunk; ++l) {
       const Index j = begin + l < count ? row[begin + l] : k;  // pad lanes have g = 0
       ux[l] = u[j].x(), uy[l] = u[j].y(), uz[l] = u[j].z();
-      nu[l] = 0.5 * (nu_k + fluid.viscosity[j]);
+      nu[l] = pair_viscosity(fm, fluid, k, j);
       for (int a = 0; a < 3; ++a)
         for (int b = 0; b < 3; ++b) {
           S[3 * a + b][l] = s.corrected_stress[j](a, b);
@@ -340,10 +338,10 @@ Mat3 inverse_diagonal_block(const Model& model, const FluidState& fluid, const F
   for_each_fluid_neighbor(fluid, kernel, k, [&](Index i, const Vec3& r, Real g) {
     own += (V * g) * r;
     const Vec3 c = -(V * g) * (s.gradient_correction[i] * r);  // c_ik = V g_ik L_i r_ik, r_ik = -r
-    block += dynamic_viscosity(fm, fluid, i) * (c.squaredNorm() * Mat3::Identity() + c * c.transpose());
+    block += s.stress_viscosity[i] * (c.squaredNorm() * Mat3::Identity() + c * c.transpose());
   });
   const Vec3 c = -(s.gradient_correction[k] * own);
-  block += dynamic_viscosity(fm, fluid, k) * (c.squaredNorm() * Mat3::Identity() + c * c.transpose());
+  block += s.stress_viscosity[k] * (c.squaredNorm() * Mat3::Identity() + c * c.transpose());
   return (fluid.mass[k] * Mat3::Identity() + (dt * V) * block - dt * stabilising_diagonal).inverse();
 }
 

@@ -7,7 +7,8 @@
 // corrected kernel gradients (Bonet & Lok 1999, "Variational and momentum preservation aspects of
 // SPH formulations", CMAME 180, sec. 3-4), so the velocity gradient is exact for linear fields on
 // any neighbourhood (r_kj = x_k - x_j, grad W_kj = g_kj r_kj, V = (2r)^3, mu_k = rho0 nu_k with nu_k the
-// particle's kinematic viscosity, its phase's or its state's, fluid_heat.hpp):
+// particle's kinematic viscosity, its phase's or its state's, fluid_heat.hpp; next to another
+// liquid, mu_k is the harmonic mean over the kernel, interface_viscosity.hpp):
 //   M_k = -sum_j V g_kj r_kj r_kj^T,  L_k = M_k^-1     (eigenvalues of M_k floored at 0.2; 1 in a full
 //                                                        neighbourhood, so spray droplets stay bounded)
 //   G_k = sum_j V g_kj (v_j - v_k) r_kj^T L_k            (velocity gradient)
@@ -23,7 +24,8 @@
 // each pair's departure from the corrected gradients,
 //   e_kj = v_k - v_j - (G_k + G_j) r_kj / 2      (zero for any quadratic v: trapezoidal rule)
 //   f_k += m_k 10 sum_j V mu_kj nu_kj g_kj (r_kj . e_kj) r_kj / (|r_kj|^2 + 0.01 h^2)
-// with mu_kj = 2 m_j / (m_i + m_j) and nu_kj the mean of the particles' viscosities. It leaves smooth
+// with mu_kj = 2 m_j / (m_i + m_j) and nu_kj the pair's viscosity (the mean of the two within a
+// phase, interface_viscosity.hpp). It leaves smooth
 // flow unchanged, and as e_kj = -e_jk along r_kj it conserves linear and angular momentum.
 //
 // Walls: a wall sample b of collider c moves with the collider's velocity v_c and enters the sums

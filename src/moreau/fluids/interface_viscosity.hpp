@@ -1,0 +1,67 @@
+#pragma once
+// The viscosity where two liquids of different viscosity meet.
+//
+// Across a phase interface the viscosity jumps while the shear stress is continuous, so the
+// velocity gradient jumps with it: the layers on either side are sheared in series, and the
+// viscosity of the pair is the harmonic mean of the two, 2 mu_i mu_j / (mu_i + mu_j), as in
+// multi-phase SPH (Hu & Adams 2006, "A multi-phase SPH method for macroscopic and mesoscopic
+// flows", J. Comput. Phys. 213). A drop of honey smaller than a kernel then shears the water about
+// it with about twice water's viscosity, as a small rigid drop would; the arithmetic mean gave the
+// water next to it half the honey's. Within one phase nothing changes: the viscosity varies only
+// with the temperature there, smoothly, and the pairs keep the mean of the two.
+#include <algorithm>
+
+#include "moreau/fluids/fluid_model.hpp"
+#include "moreau/fluids/fluid_state.hpp"
+
+namespace moreau {
+
+/// nu_ij, m^2/s, of a pair of the explicit Laplacian and of the implicit viscosity's stabilising
+/// term, where particle i's change is mu nu_ij (...) with mu = 2 m_j / (m_i + m_j). Within a phase
+/// the mean of the two kinematic viscosities. Between phases the harmonic mean of the dynamic
+/// ones, mu_ij, written as nu_ij = mu_ij / rho_ij with rho_ij the harmonic mean of the rest
+/// densities, so that m_i mu nu_ij = V mu_ij: the pair's momentum exchange has the viscosity mu_ij.
+inline Real pair_viscosity(const FluidModel& fm, const FluidState& fluid, Index i, Index j) {
+  const Index phase_i = fluid.phase[i], phase_j = fluid.phase[j];
+  if (phase_i == phase_j) return 0.5 * (fluid.viscosity[i] + fluid.viscosity[j]);
+  const Real rho_i = fm.phases[phase_i].rest_density, rho_j = fm.phases[phase_j].rest_density;
+  const Real mu_i = fluid.viscosity[i] * rho_i, mu_j = fluid.viscosity[j] * rho_j;
+  if (mu_i <= 0 || mu_j <= 0) return 0;
+  // mu_ij / rho_ij = (2 mu_i mu_j / (mu_i + mu_j)) (rho_i + rho_j) / (2 rho_i rho_j)
+  return mu_i * mu_j * (rho_i + rho_j) / ((mu_i + mu_j) * rho_i * rho_j);
+}
+
+/// mu_k, Pa s, of particle k's stress in the implicit viscosity (fluid_viscosity.hpp): its own
+/// dynamic viscosity, except where its kernel holds particles of another phase. There the stress
+/// 2 mu_k sym(G_k) takes a velocity gradient averaged over both sides, so a particle's own
+/// viscosity would spread over its whole kernel (one particle of honey in water would stiffen the
+/// water a kernel around it); instead mu_k is the kernel-weighted harmonic mean of the viscosities
+/// in the kernel, the series average,
+///   1 / mu_k = sum_j W_kj / mu_j / sum_j W_kj       (j over the fluid particles in the kernel, k included),
+/// whose integral across a flat interface is that of 1 / mu: the layers' shear in series.
+inline Real stress_viscosity(const FluidModel& fm, const FluidState& fluid, Index k) {
+  const Index phase_k = fluid.phase[k];
+  const Real mu_k = fluid.viscosity[k] * fm.phases[phase_k].rest_density;
+  const CubicSplineKernel& kernel = fm.kernel;
+  const Vec3 xk = fluid.position[k];
+  const Index* row = fluid.fluid_neighbors.row(k);
+  const Index count = fluid.fluid_neighbors.count[k];
+  bool mixed = false;
+  for (Index n = 0; n < count && !mixed; ++n) mixed = fluid.phase[row[n]] != phase_k;
+  if (!mixed) return mu_k;
+  if (mu_k <= 0) return 0;
+  Real weight = kernel.value(0), fluidity = weight / mu_k;
+  for (Index n = 0; n < count; ++n) {
+    const Index j = row[n];
+    const Real d2 = (xk - fluid.position[j]).squaredNorm();
+    if (d2 >= kernel.h2) continue;
+    const Real mu_j = fluid.viscosity[j] * fm.phases[fluid.phase[j]].rest_density;
+    if (mu_j <= 0) return 0;  // an inviscid liquid in the kernel: the series has no resistance
+    const Real w = kernel.value(std::sqrt(d2));
+    weight += w;
+    fluidity += w / mu_j;
+  }
+  return weight / fluidity;
+}
+
+}  // namespace moreau
