@@ -9,7 +9,7 @@
 // it with about twice water's viscosity, as a small rigid drop would; the arithmetic mean gave the
 // water next to it half the honey's. Within one phase nothing changes: the viscosity varies only
 // with the temperature there, smoothly, and the pairs keep the mean of the two.
-#include <algorithm>
+#include <cmath>
 
 #include "moreau/fluids/fluid_model.hpp"
 #include "moreau/fluids/fluid_state.hpp"
@@ -38,7 +38,11 @@ inline Real pair_viscosity(const FluidModel& fm, const FluidState& fluid, Index 
 /// water a kernel around it); instead mu_k is the kernel-weighted harmonic mean of the viscosities
 /// in the kernel, the series average,
 ///   1 / mu_k = sum_j W_kj / mu_j / sum_j W_kj       (j over the fluid particles in the kernel, k included),
-/// whose integral across a flat interface is that of 1 / mu: the layers' shear in series.
+/// whose integral across a flat interface is that of 1 / mu: the layers' shear in series. The cost
+/// is in shear along the interface, where each liquid keeps its own stress: there the viscous
+/// liquid's particles within a kernel of the other shear as the thinner mix does. Next to an
+/// inviscid liquid (mu = 0) the mean is 0: the interface slips freely, and a kernel-deep skin of
+/// the viscous liquid carries no viscous stress of its own.
 inline Real stress_viscosity(const FluidModel& fm, const FluidState& fluid, Index k) {
   const Index phase_k = fluid.phase[k];
   const Real mu_k = fluid.viscosity[k] * fm.phases[phase_k].rest_density;
@@ -46,8 +50,10 @@ inline Real stress_viscosity(const FluidModel& fm, const FluidState& fluid, Inde
   const Vec3 xk = fluid.position[k];
   const Index* row = fluid.fluid_neighbors.row(k);
   const Index count = fluid.fluid_neighbors.count[k];
+  // Only a neighbour within h counts (the lists also hold pairs in the Verlet skin beyond it).
   bool mixed = false;
-  for (Index n = 0; n < count && !mixed; ++n) mixed = fluid.phase[row[n]] != phase_k;
+  for (Index n = 0; n < count && !mixed; ++n)
+    mixed = fluid.phase[row[n]] != phase_k && (xk - fluid.position[row[n]]).squaredNorm() < kernel.h2;
   if (!mixed) return mu_k;
   if (mu_k <= 0) return 0;
   Real weight = kernel.value(0), fluidity = weight / mu_k;
