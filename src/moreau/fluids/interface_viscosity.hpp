@@ -16,6 +16,11 @@
 
 namespace moreau {
 
+/// mu_k = rho0 nu_k, Pa s: particle k's dynamic viscosity (its phase's, or its state's).
+inline Real dynamic_viscosity(const FluidModel& fm, const FluidState& fluid, Index k) {
+  return fluid.viscosity[k] * fm.phases[fluid.phase[k]].rest_density;
+}
+
 /// nu_ij, m^2/s, of a pair of the explicit Laplacian and of the implicit viscosity's stabilising
 /// term, where particle i's change is mu nu_ij (...) with mu = 2 m_j / (m_i + m_j). Within a phase
 /// the mean of the two kinematic viscosities. Between phases the harmonic mean of the dynamic
@@ -25,7 +30,7 @@ inline Real pair_viscosity(const FluidModel& fm, const FluidState& fluid, Index 
   const Index phase_i = fluid.phase[i], phase_j = fluid.phase[j];
   if (phase_i == phase_j) return 0.5 * (fluid.viscosity[i] + fluid.viscosity[j]);
   const Real rho_i = fm.phases[phase_i].rest_density, rho_j = fm.phases[phase_j].rest_density;
-  const Real mu_i = fluid.viscosity[i] * rho_i, mu_j = fluid.viscosity[j] * rho_j;
+  const Real mu_i = dynamic_viscosity(fm, fluid, i), mu_j = dynamic_viscosity(fm, fluid, j);
   if (mu_i <= 0 || mu_j <= 0) return 0;
   // mu_ij / rho_ij = (2 mu_i mu_j / (mu_i + mu_j)) (rho_i + rho_j) / (2 rho_i rho_j)
   return mu_i * mu_j * (rho_i + rho_j) / ((mu_i + mu_j) * rho_i * rho_j);
@@ -44,30 +49,25 @@ inline Real pair_viscosity(const FluidModel& fm, const FluidState& fluid, Index 
 /// inviscid liquid (mu = 0) the mean is 0: the interface slips freely, and a kernel-deep skin of
 /// the viscous liquid carries no viscous stress of its own.
 inline Real stress_viscosity(const FluidModel& fm, const FluidState& fluid, Index k) {
-  const Index phase_k = fluid.phase[k];
-  const Real mu_k = fluid.viscosity[k] * fm.phases[phase_k].rest_density;
+  const Real mu_k = dynamic_viscosity(fm, fluid, k);
   const CubicSplineKernel& kernel = fm.kernel;
   const Vec3 xk = fluid.position[k];
   const Index* row = fluid.fluid_neighbors.row(k);
-  const Index count = fluid.fluid_neighbors.count[k];
-  // Only a neighbour within h counts (the lists also hold pairs in the Verlet skin beyond it).
   bool mixed = false;
-  for (Index n = 0; n < count && !mixed; ++n)
-    mixed = fluid.phase[row[n]] != phase_k && (xk - fluid.position[row[n]]).squaredNorm() < kernel.h2;
-  if (!mixed) return mu_k;
-  if (mu_k <= 0) return 0;
-  Real weight = kernel.value(0), fluidity = weight / mu_k;
-  for (Index n = 0; n < count; ++n) {
+  Real weight = kernel.value(0), fluidity = 0;  // sum_j W_kj, sum_j W_kj / mu_j without k's own term
+  for (Index n = 0; n < fluid.fluid_neighbors.count[k]; ++n) {
     const Index j = row[n];
     const Real d2 = (xk - fluid.position[j]).squaredNorm();
-    if (d2 >= kernel.h2) continue;
-    const Real mu_j = fluid.viscosity[j] * fm.phases[fluid.phase[j]].rest_density;
-    if (mu_j <= 0) return 0;  // an inviscid liquid in the kernel: the series has no resistance
-    const Real w = kernel.value(std::sqrt(d2));
+    if (d2 >= kernel.h2) continue;  // the lists also hold pairs in the Verlet skin beyond h
+    mixed = mixed || fluid.phase[j] != fluid.phase[k];
+    const Real w = kernel.value(std::sqrt(d2)), mu_j = dynamic_viscosity(fm, fluid, j);
     weight += w;
-    fluidity += w / mu_j;
+    fluidity = mu_j > 0 ? fluidity + w / mu_j : kInfinity;
   }
-  return weight / fluidity;
+  if (!mixed) return mu_k;
+  // An inviscid liquid in the kernel: the series has no resistance.
+  if (mu_k <= 0 || fluidity == kInfinity) return 0;
+  return weight / (fluidity + kernel.value(0) / mu_k);
 }
 
 }  // namespace moreau
