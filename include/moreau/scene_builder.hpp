@@ -283,11 +283,12 @@ struct EmitterSpec {
   Vector2 size{};                    // m (rectangle)
   Vector3 tangent{};                 // the rectangle's first side; zero: any
   std::optional<double> speed;       // m/s; or
-  std::optional<double> flow_rate;   // m^3/s (fluids); or
+  std::optional<double> flow_rate;   // m^3/s (fluids, continua); or
   double start = 0;                  // s
   std::optional<double> stop;        // s; default the scene's duration
-  std::optional<double> mass_rate;   // kg/s (grains), instead of speed
-  std::optional<double> nozzle_length;  // m (fluids): the stream is held at `speed` this far past the opening; default 4r
+  std::optional<double> mass_rate;   // kg/s (grains, continua), instead of speed
+  std::optional<double> nozzle_length;  // m (fluids, continua): the stream is held at `speed` this far past the
+                                        // opening; default one kernel support (fluids 4r, continua 2r)
 };
 using FluidEmitterSpec = EmitterSpec;
 
@@ -477,7 +478,8 @@ struct ContinuumPlasticity {
 /// (docs/scene-format.md, "Continua").
 struct ContinuumSpec {
   std::string name;
-  FilledRegions regions;                    // what the particles fill
+  FilledRegions regions;                    // what the particles fill (or an emitter pours them)
+  std::optional<EmitterSpec> emitter;       // pours particles through an opening during the run
   double spacing = 0;                       // m, r (required)
   double density = 1000;                    // kg/m^3
   std::optional<double> youngs_modulus;     // Pa, E (required)

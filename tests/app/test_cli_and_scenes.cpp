@@ -263,7 +263,7 @@ TEST(CommandLine, FluidInputErrorsNameTheirKey) {
                    {"objects[1].emitter.nozzle_length", "out of range"});
   expect_bad_input("grain_nozzle", scene(R"({"name": "sand", "kind": "granular", "radius": 0.01, "emitter":
       {"shape": "disc", "center": [0, 0.5, 0], "direction": [0, -1, 0], "radius": 0.05, "speed": 1, "nozzle_length": 0.02}})"),
-                   {"objects[1].emitter.nozzle_length", "fluid emitters only"});
+                   {"objects[1].emitter.nozzle_length", "a nozzle holds a stream of fluid or continuum"});
   // A second tank beside the first: the water in the first lies outside the second.
   expect_bad_input("two_tanks", scene(water + R"(, {"name": "second_tank", "kind": "collider", "inside": true,
       "shape": {"type": "box", "center": [2, 0.5, 0], "half_extents": [0.5, 0.5, 0.5]}})"),

@@ -4,8 +4,12 @@
 
 namespace moreau {
 
+// The particles an emitter has not released (the object's last, model/particle_emitter.hpp) are
+// left out.
 ObjectFrame continuum_frame(const Model& model, const ObjectInfo& object, const State& state) {
-  const Index b = object.particle_begin, n = object.particle_count();
+  const Index b = object.particle_begin;
+  Index n = object.particle_count();
+  while (n > 0 && !state.live(b + n - 1)) --n;
   const ContinuumModel& continuum = model.continuum;
   const ContinuumState& deformation = state.continuum;
   const Index first = continuum.index_of(b);

@@ -55,7 +55,7 @@ ObjectFrame fluid_frame(const Model& model, const ObjectInfo& object, const Flui
 
 // Grains or shape-matched particles: position, velocity, displacement and radius; grains also
 // their angular velocity and, with settings.sleep, whether each sleeps (1) or not (0). The grains
-// an emitter has not released (the object's last, grain_emitter.hpp) are left out.
+// an emitter has not released (the object's last, model/particle_emitter.hpp) are left out.
 ObjectFrame grain_frame(const Model& model, const ObjectInfo& object, const State& state) {
   const Index b = object.particle_begin;
   Index n = object.particle_count();

@@ -9,7 +9,7 @@ Index Model::find_object(const std::string& name) const {
 }
 
 Index Model::initial_particle_end(Index object) const {
-  for (const GrainEmitter& e : grain_emitters)
+  for (const ParticleEmitter& e : particle_emitters)
     if (e.object == object) return e.first;
   return objects[object].particle_end;
 }

@@ -11,7 +11,7 @@
 #include "moreau/constraints/particle_families.hpp"
 #include "moreau/constraints/suction_cavity.hpp"
 #include "moreau/fluids/fluid_model.hpp"
-#include "moreau/granular/grain_emitter.hpp"
+#include "moreau/model/particle_emitter.hpp"
 #include "moreau/rigid/joint_tree.hpp"
 #include "moreau/constraints/joints/joint.hpp"
 #include "moreau/rigid/rigid_bodies.hpp"
@@ -114,7 +114,7 @@ struct Model {
   std::vector<Joint> joints;
   std::vector<RodModel> rods;                 // rods: their segments are bodies of `rigid`, their junctions joints
   ShapeMatchClusters shape_matching;          // the clusters of shape-matched objects
-  std::vector<GrainEmitter> grain_emitters;   // granular objects' emitters: their grains are particles from the start
+  std::vector<ParticleEmitter> particle_emitters;  // granular and continuum objects' emitters: their particles exist from the start
   std::vector<SuctionCup> suction_cups;       // soft bodies with a sealed cavity (nmd only)
   ContinuumModel continuum;                   // the inelastic continua's particles and materials (xpbi only)
   JointForest joint_forest;                   // joints solved directly (empty for Gauss-Seidel)
@@ -124,8 +124,8 @@ struct Model {
   Index particle_count() const { return static_cast<Index>(particle_inv_mass.size()); }
   /// Object index by name, or -1.
   Index find_object(const std::string& name) const;
-  /// The end of the object's particles that exist from the start: the grains its emitter
-  /// releases during the run come after (grain_emitter.hpp); joints and probes take only these.
+  /// The end of the object's particles that exist from the start: the particles its emitter
+  /// releases during the run come after (model/particle_emitter.hpp); joints and probes take only these.
   Index initial_particle_end(Index object) const;
   /// One family of `constraints`, e.g. family<DistanceConstraints>().
   template <class Family>

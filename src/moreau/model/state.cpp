@@ -21,7 +21,7 @@ State make_rest_state(const Model& model) {
   s.rigid.angular_velocity = rb.initial_angular_velocity;
   s.joint_lambda.assign(model.joints.size(), JointMultipliers{});
   s.suction.assign(model.suction_cups.size(), SuctionCupState{});
-  prepare_grain_emitters(model, s);
+  prepare_particle_emitters(model, s);
   s.continuum = make_continuum_state(model.continuum);
   return s;
 }

@@ -6,7 +6,7 @@
 #include "moreau/collision/particle_contacts.hpp"
 #include "moreau/continuum/continuum_state.hpp"
 #include "moreau/fluids/fluid_state.hpp"
-#include "moreau/granular/grain_emitter.hpp"
+#include "moreau/model/particle_emitter.hpp"
 #include "moreau/model/model.hpp"
 #include "moreau/collision/particle_body_contacts.hpp"
 #include "moreau/collision/rigid_contacts.hpp"
@@ -38,13 +38,15 @@ struct State {
   std::vector<JointMultipliers> joint_lambda;  // per joint, this substep (JointSlot)
   std::vector<SuctionCupState> suction;         // per Model::suction_cups
   GrainSleepState sleep;                        // sleeping grains (settings.sleep)
-  GrainEmitterState emitters;                   // what the grain emitters have released
+  ParticleEmitterState emitters;                // what the particle emitters have released
   ContinuumState continuum;                     // the inelastic continua's deformation (per Model::continuum particle)
   NmdRowMemory nmd_rows;                        // nmd: last step's impulses of rows the families' multipliers do not hold
 
-  /// Whether particle p takes part in the run: every particle but a grain its emitter has not
-  /// released (grain_emitter.hpp).
+  /// Whether particle p takes part in the run: every particle but one its emitter has not
+  /// released (model/particle_emitter.hpp).
   bool live(Index p) const { return emitters.unborn.empty() || !emitters.unborn[p]; }
+  /// Whether particle p is held in its emitter's nozzle: it moves on at the emitter's velocity.
+  bool held(Index p) const { return !emitters.held.empty() && emitters.held[p]; }
   /// The particles of the particle contacts that are live.
   const std::vector<Index>& live_contact_particles(const Model& model) const {
     return emitters.unborn.empty() ? model.contact_particle : emitters.live_contact_particle;
@@ -59,6 +61,12 @@ void for_each_live_particle(const Model& model, const State& state, Index object
   const Index end = object >= 0 ? model.objects[object].particle_end : model.particle_count();
   for (Index p = begin; p < end; ++p)
     if (state.live(p)) f(p);
+}
+
+/// The inverse mass (1/kg) particle p has in a step's projections: the model's, or 0 while it is
+/// held in its emitter's nozzle (model/particle_emitter.hpp).
+inline Real moving_inverse_mass(const Model& model, const State& state, Index p) {
+  return state.held(p) ? 0 : model.particle_inv_mass[p];
 }
 
 /// A state at rest in the model's rest configuration, with all buffers sized.

@@ -1,7 +1,7 @@
 // "kind": "continuum" objects: particles on a cubic lattice of spacing r (one per cell, at its
-// centre) filling boxes, cylinders, spheres or a closed mesh, each carrying the mass and rest
-// volume r^3 of its cell, a deformation gradient and its material's elastic law and plastic flow
-// (continuum/continuum_model.hpp). Simulated by XPBI (solvers/xpbi/).
+// centre) filling boxes, cylinders, spheres or a closed mesh, or poured by an emitter, each
+// carrying the mass and rest volume r^3 of its cell, a deformation gradient and its material's
+// elastic law and plastic flow (continuum/continuum_model.hpp). Simulated by XPBI (solvers/xpbi/).
 #include <fmt/format.h>
 
 #include "moreau/geometry/cell_grid.hpp"
@@ -101,11 +101,48 @@ void fill_lattice(const SpecPlace& place, const std::string& field, const Vec3& 
       }
 }
 
+// "emitter": the particles of every layer it will release, on the opening's lattice of spacing r,
+// appended (after the filled particles) layer after layer (model/particle_emitter.hpp). The rate
+// is a speed v, a flow rate Q = N r^2 v (m^3/s) or a mass rate rho N r^2 v (kg/s) for an opening
+// of N lattice points.
+ParticleEmitter pour_continuum(const EmitterSpec& spec, const SpecPlace& e, Real r, Real density, Real scene_duration,
+                               Index filled, std::vector<Vec3>& points) {
+  const EmitterOpening opening = place_emitter_opening(spec, e, r, "particle spacing", scene_duration);
+  ParticleEmitter emitter;
+  emitter.center = opening.center;
+  emitter.normal = opening.normal;
+  emitter.spacing = r;
+  emitter.per_layer = static_cast<Index>(opening.points.size());
+  emitter.start = opening.start;
+  // A layer waits while a particle lies within r/2 + 0.4 r of its plane: 10 % short of the
+  // spacing, so the layer released before it, one spacing on, never holds it back by round-off.
+  emitter.max_radius = 0.4 * r;
+  for (const Vec3& point : opening.points) emitter.reach = std::max(emitter.reach, point.norm());
+  emitter.reach += emitter.max_radius;
+  const int rates = spec.speed.has_value() + spec.flow_rate.has_value() + spec.mass_rate.has_value();
+  if (rates != 1)
+    e.fail("speed", "give exactly one of \"speed\" (m/s), \"flow_rate\" (m^3/s) or \"mass_rate\" (kg/s)");
+  const Real area = emitter.per_layer * r * r;  // what the lattice opening carries
+  if (spec.speed) emitter.speed = e.number("speed", *spec.speed, Range::positive());
+  if (spec.flow_rate) emitter.speed = e.number("flow_rate", *spec.flow_rate, Range::positive()) / area;
+  if (spec.mass_rate) emitter.speed = e.number("mass_rate", *spec.mass_rate, Range::positive()) / (density * area);
+  emitter.nozzle_length = e.number("nozzle_length", spec.nozzle_length.value_or(2 * r), Range::non_negative());
+  emitter.layers = emitter_layers(opening, e, emitter.speed, r);
+  if (static_cast<double>(filled) + static_cast<double>(emitter.layers) * emitter.per_layer > kMaxContinuumParticles)
+    e.fail("stop", fmt::format("the continuum would hold {:.3g} particles with the emitted ones; at most {} per object",
+                               static_cast<double>(filled) + static_cast<double>(emitter.layers) * emitter.per_layer,
+                               kMaxContinuumParticles));
+  for (Index k = 0; k < emitter.layers; ++k)
+    for (const Vec3& point : opening.points) points.push_back(opening.center + point);
+  return emitter;
+}
+
 }  // namespace
 
 ContinuumSpec read_continuum(const JsonObject& object) {
   ContinuumSpec spec;
   spec.regions = read_filled_regions(object);
+  if (object.has("emitter")) spec.emitter = read_emitter(object.object("emitter"));
   spec.spacing = object.number("spacing");
   spec.density = object.number("density", spec.density);
   spec.youngs_modulus = read_optional_number(object, "youngs_modulus");
@@ -126,9 +163,9 @@ void add_continuum(const ContinuumSpec& spec, const SpecPlace& place, ObjectInfo
                                       "other's neighbours); an earlier one has {} m",
                                       m.continuum.spacing));
   const ContinuumMaterial material = continuum_material(spec, place);
-  if (spec.regions.empty())
+  if (spec.regions.empty() && !spec.emitter)
     place.fail("blocks", "a continuum needs a block {\"min\", \"max\"}, a cylinder {\"base\", \"radius\", \"height\"}, a "
-                         "sphere {\"center\", \"radius\"} or a closed \"mesh\" to fill");
+                         "sphere {\"center\", \"radius\"} or a closed \"mesh\" to fill, or an \"emitter\" to pour it");
 
   std::vector<Vec3> points;
   fill_regions(spec.regions, place, ctx, {r, 0, "particle spacing"},
@@ -136,8 +173,12 @@ void add_continuum(const ContinuumSpec& spec, const SpecPlace& place, ObjectInfo
                  fill_lattice(at, field, lo, hi, r, keep, points);
                },
                [&] { return points.size(); });
+  if (!points.empty()) points = in_z_order(points, r);
+  const Index filled = static_cast<Index>(points.size());
+  ParticleEmitter emitter;
+  if (spec.emitter)
+    emitter = pour_continuum(*spec.emitter, place.at("emitter"), r, material.density, ctx.duration, filled, points);
   if (points.size() < 2) place.fail("blocks", "a continuum needs at least two particles");
-  points = in_z_order(points, r);
 
   set_contact_material(spec.contact, place, info);
   info.kind = ObjectKind::continuum;
@@ -155,6 +196,12 @@ void add_continuum(const ContinuumSpec& spec, const SpecPlace& place, ObjectInfo
     continuum.particle.push_back(p);
     continuum.rest_volume.push_back(volume);
     continuum.material.push_back(material_index);
+  }
+  if (spec.emitter) {
+    emitter.object = static_cast<Index>(m.objects.size());  // the object being added
+    emitter.first = info.particle_begin + filled;
+    for (Index p = emitter.first; p < info.particle_end; ++p) ctx.initial_velocity[p] = Vec3::Zero();  // set when released
+    m.particle_emitters.push_back(emitter);
   }
 }
 

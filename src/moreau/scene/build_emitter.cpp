@@ -1,5 +1,5 @@
 // "emitter" of fluids and granular objects: the opening's lattice points, the flow direction
-// and the window of time in which layers are released (fluid_emitter.hpp, grain_emitter.hpp).
+// and the window of time in which layers are released (fluid_emitter.hpp, model/particle_emitter.hpp).
 #include <fmt/format.h>
 
 #include <cmath>

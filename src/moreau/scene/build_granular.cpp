@@ -113,12 +113,12 @@ class GrainLattice {
 };
 
 // "emitter": the grains of every layer it will release, drawn now (after the filled grains) on
-// the opening's lattice; layer k holds the opening's points in order (grain_emitter.hpp).
-GrainEmitter pour_grains(const EmitterSpec& spec, const SpecPlace& e, GrainLattice& lattice, Real r_max,
+// the opening's lattice; layer k holds the opening's points in order (model/particle_emitter.hpp).
+ParticleEmitter pour_grains(const EmitterSpec& spec, const SpecPlace& e, GrainLattice& lattice, Real r_max,
                          Real scene_duration) {
   const Real d = lattice.spacing();
   const EmitterOpening opening = place_emitter_opening(spec, e, d, "grain spacing 2.04 r_max", scene_duration);
-  GrainEmitter emitter;
+  ParticleEmitter emitter;
   emitter.center = opening.center;
   emitter.normal = opening.normal;
   emitter.spacing = d;
@@ -129,7 +129,7 @@ GrainEmitter pour_grains(const EmitterSpec& spec, const SpecPlace& e, GrainLatti
   emitter.reach += r_max;
   if (spec.flow_rate) e.fail("flow_rate", "grains are poured at a \"mass_rate\" (kg/s) or a \"speed\" (m/s)");
   if (spec.nozzle_length)
-    e.fail("nozzle_length", "grains leave the opening freely; a nozzle holds a fluid's stream (fluid emitters only)");
+    e.fail("nozzle_length", "grains leave the opening freely; a nozzle holds a stream of fluid or continuum");
   if (spec.speed.has_value() == spec.mass_rate.has_value())
     e.fail("speed", "give exactly one of \"speed\" (m/s) or \"mass_rate\" (kg/s)");
   // A layer of N grains every d / v: the mass rate is N m v / d for grains of mean mass m.
@@ -209,7 +209,7 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
                },
                [&] { return lattice.positions.size(); });
   const Index filled = static_cast<Index>(lattice.positions.size());
-  GrainEmitter emitter;
+  ParticleEmitter emitter;
   if (spec.emitter) emitter = pour_grains(*spec.emitter, place.at("emitter"), lattice, r_max, ctx.duration);
   const std::vector<Vec3>& positions = lattice.positions;
   const std::vector<Real>& masses = lattice.masses;
@@ -257,7 +257,7 @@ void add_granular(const GranularSpec& spec, const SpecPlace& place, ObjectInfo& 
     emitter.object = static_cast<Index>(m.objects.size());  // the object being added
     emitter.first = info.particle_begin + filled;
     for (Index p = emitter.first; p < info.particle_end; ++p) ctx.initial_velocity[p] = Vec3::Zero();  // set when released
-    m.grain_emitters.push_back(emitter);
+    m.particle_emitters.push_back(emitter);
   }
 }
 

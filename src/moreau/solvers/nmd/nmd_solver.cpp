@@ -69,7 +69,7 @@ void NmdSolver::solve(const Model& model, const State& state, int threads) {
 void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int threads) {
   threads = std::max(1, threads);
   timer.start();
-  if (!model.grain_emitters.empty()) emit_grains(model, state);
+  if (!model.particle_emitters.empty()) emit_particles(model, state);
   detect_particle_candidates(model, state, contact_scratch_, threads, !model.rigid.empty());
   if (!model.rigid.empty()) detect_rigid_contacts(model, state, threads);
   timer.lap(NmdStage::detect_contacts);

@@ -16,7 +16,7 @@
 #include "moreau/fluids/interfacial_tension.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
-#include "moreau/granular/grain_emitter.hpp"
+#include "moreau/model/particle_emitter.hpp"
 #include "moreau/collision/particle_body_contacts.hpp"
 #include "moreau/collision/particle_candidates.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
@@ -41,7 +41,7 @@ namespace {
 // Visits, on this thread's share, the particles a substep moves: every live particle, or with
 // settings.sleep those not asleep (a sleeping grain keeps its place and zero velocity, and takes
 // part in no contact; its substep start is set again in the first substep after it wakes). A
-// grain its emitter has not released is not live (grain_emitter.hpp).
+// grain its emitter has not released is not live (model/particle_emitter.hpp).
 template <class F>
 void for_each_moving_particle(const Model& model, const State& state, F&& f) {
   if (model.settings.sleep.enabled) {
@@ -66,6 +66,10 @@ void predict(const Model& model, State& state, XpbdWorkspace& work, Real h) {
   for_each_moving_particle(model, state, [&](Index p) {
     work.substep_start[p] = state.position[p];
     if (model.particle_inv_inertia[p] > 0) work.substep_turn[p] = h * state.angular_velocity[p];
+    if (state.held(p)) {  // in its emitter's nozzle: on at the emitter's velocity, gravity carried by the pipe
+      state.position[p] += h * state.velocity[p];
+      return;
+    }
     if (model.particle_inv_mass[p] <= 0) return;
     state.velocity[p] += dv;
     work.velocity_before[p] = state.velocity[p];
@@ -92,7 +96,7 @@ void predict(const Model& model, State& state, XpbdWorkspace& work, Real h) {
 // v = (x - x_start) / h; a grain's omega = theta / h, theta its rotation over the substep.
 void update_velocity(const Model& model, State& state, const XpbdWorkspace& work, Real h) {
   for_each_moving_particle(model, state, [&](Index p) {
-    if (model.particle_inv_mass[p] <= 0) return;
+    if (model.particle_inv_mass[p] <= 0 || state.held(p)) return;
     state.velocity[p] = (state.position[p] - work.substep_start[p]) / h;
     if (model.particle_inv_inertia[p] > 0) state.angular_velocity[p] = work.substep_turn[p] / h;
   });
@@ -106,7 +110,13 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   threads = std::max(1, threads);
   timer.start();
   work.fit(model);
-  if (!model.grain_emitters.empty()) emit_grains(model, state);
+  if (!model.particle_emitters.empty()) emit_particles(model, state);
+  const Real* inv_mass = model.particle_inv_mass.data();
+  if (!state.emitters.held.empty()) {  // particles in a nozzle do not yield to the projections
+    work.moving_inv_mass.resize(model.particle_count());
+    for (Index p = 0; p < model.particle_count(); ++p) work.moving_inv_mass[p] = moving_inverse_mass(model, state, p);
+    inv_mass = work.moving_inv_mass.data();
+  }
   // Rigid bodies, or joints alone (a joint may hold a particle to the world).
   const bool rigid = !model.rigid.empty() || !model.joints.empty();
   detect_particle_candidates(model, state, work.contact_scratch, threads, rigid);
@@ -118,7 +128,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   const Real h = dt / substeps;
   const SubstepContext ctx{.x = state.position.data(),
                            .x_start = work.substep_start.data(),
-                           .inv_mass = model.particle_inv_mass.data(),
+                           .inv_mass = inv_mass,
                            .h = h,
                            .turn = work.substep_turn.data(),
                            .inv_inertia = model.particle_inv_inertia.data()};

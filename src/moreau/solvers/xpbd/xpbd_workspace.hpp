@@ -25,6 +25,9 @@ struct XpbdWorkspace {
   std::vector<Real> joint_drive_start;  // per joint: hinge angle (rad) or slide (m) at the substep start
   ContactScratch contact_scratch;       // reused buffers of particle-pair detection
   FluidScratch fluid;                   // the particle fluid's substep and iteration buffers
+  // 1/kg, per particle: the inverse masses of this step's projections (moving_inverse_mass), kept
+  // only while an emitter holds particles in its nozzle; otherwise the model's are used.
+  std::vector<Real> moving_inv_mass;
 
   /// Sizes the buffers for `model` (nothing is reallocated when they already fit).
   void fit(const Model& model);

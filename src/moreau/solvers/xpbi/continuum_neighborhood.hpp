@@ -17,7 +17,9 @@
 namespace moreau {
 
 struct ContinuumNeighborhood {
-  NeighborSearch neighbors;          // continuum indices (Model::continuum), pairs closer than the support
+  std::vector<Index> live;           // continuum indices of the live particles (State::live), in order
+  std::vector<Vec3> live_start;      // m, x^n of each of them
+  NeighborSearch neighbors;          // places in `live`, pairs closer than the support
   std::vector<Vec3> start;           // m, x^n per continuum particle
   std::vector<Real> volume;          // m^3, V^n
   // m, the anti-clumping distance of each particle: settings.xpbi.min_distance r, shortened by the
@@ -30,7 +32,8 @@ struct ContinuumNeighborhood {
   // between them, and a particle's constraint moves only particles closer than the support to it
   // at x^n, so the constraints of two such blocks share no particle.
   CellGrid blocks;
-  std::vector<Index> sweep_order;  // continuum indices, block by block, colour after colour
+  std::vector<Index> sweep_order;  // continuum indices of the live particles, block by block, colour after colour
+  std::vector<Index> sweep_live;   // their places in `live`
   TileBatches sweep_batches;       // the blocks as tiles of sweep_order
 
   // What the iterations read, laid out in the sweep's order so that a sweep streams through it:
@@ -53,8 +56,11 @@ struct ContinuumNeighborhood {
   std::vector<std::vector<KernelNeighbor>> scratch;  // per thread: one particle's neighbours
 
   /// Rebuilds everything from state.position (x^n), the deformation gradients F^n and the
-  /// particles' inverse masses.
+  /// particles' inverse masses (0 in an emitter's nozzle: moving_inverse_mass).
   void build(const Model& model, const State& state, int threads);
+
+  /// The live particles: the sweep's positions are [0, live_count()).
+  Index live_count() const { return static_cast<Index>(sweep_order.size()); }
 
   /// h grad v_i = sum_b V_b^n (d_b - d_i) (L_i grad W_b)^T of the particle i at sweep position s,
   /// with d = x - x^n the motion over the substep (x and x_start indexed by global particle),

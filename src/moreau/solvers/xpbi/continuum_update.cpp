@@ -24,7 +24,7 @@ Real packing(const ContinuumModel& continuum, const ContinuumNeighborhood& aroun
 void finish_continuum_substep(const Model& model, State& state, const ContinuumNeighborhood& around,
                               const SubstepContext& ctx, ContinuumSubstepScratch& scratch) {
   const ContinuumModel& continuum = model.continuum;
-  const Index n = continuum.size();
+  const Index n = around.live_count();
   const Real c = model.settings.xpbi.xsph;
   // The passes below go through the particles in the sweep's order, in which the pairs are laid out.
 #pragma omp for schedule(static)
@@ -43,9 +43,9 @@ void finish_continuum_substep(const Model& model, State& state, const ContinuumN
     scratch.smoothed[i] = state.velocity[p] + c * dv;
   }
 #pragma omp for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    const Index p = continuum.particle[i];
-    if (ctx.inv_mass[p] <= 0) continue;
+  for (Index s = 0; s < n; ++s) {
+    const Index i = around.sweep_order[s], p = continuum.particle[i];
+    if (ctx.inv_mass[p] <= 0) continue;  // pinned, or held in an emitter's nozzle
     state.velocity[p] = scratch.smoothed[i];
     ctx.x[p] = ctx.x_start[p] + ctx.h * scratch.smoothed[i];
   }
