@@ -27,6 +27,7 @@ GALLERY = [
     ("putty_balls", 0.5, 0.4, "plastic_strain"),
     ("honey_coiling", None, None, "velocity"),
     ("candle_jar", None, None, "liquid_fraction"),
+    ("viscoelastic_coiling", None, 1.6, "velocity"),
 ]
 
 

@@ -21,15 +21,40 @@ bool layer_place_taken(const Model& model, const State& state, const ParticleEmi
   return false;
 }
 
-// Frees the layers that have travelled the nozzle's length past the opening by `time`.
-void free_nozzle_layers(const ParticleEmitter& emitter, ParticleEmitterState& s, std::size_t k, Real time) {
+// Whether a live particle that is not held lies in the nozzle: within r + r_max of the axis's
+// reach, from the opening's plane to half a spacing short of the nozzle's end. The layers it
+// frees are at its end and move away; a particle further in is material the stream has piled up
+// against the spout, or another object's.
+bool nozzle_blocked(const Model& model, const State& state, const ParticleEmitter& emitter) {
+  const Real end = emitter.nozzle_length - 0.5 * emitter.spacing;
+  for (Index p : state.emitters.live_contact_particle) {
+    if (state.held(p)) continue;
+    const Vec3 d = state.position[p] - emitter.center;
+    const Real along = d.dot(emitter.normal);
+    const Real r = model.particle_radius[p];
+    if (along <= -(r + emitter.max_radius) || along >= end) continue;
+    if ((d - along * emitter.normal).squaredNorm() < (r + emitter.reach) * (r + emitter.reach)) return true;
+  }
+  return false;
+}
+
+// Frees the layers that have travelled the nozzle's length past the opening, and sets the held
+// ones moving at v n, or standing while the nozzle is blocked.
+void update_nozzle(const Model& model, State& state, const ParticleEmitter& emitter, std::size_t k, bool blocked) {
+  ParticleEmitterState& s = state.emitters;
   Index& freed = s.freed[k];
-  const std::vector<Real>& left = s.left_opening[k];
-  while (freed < s.released[k] && left[freed] + emitter.nozzle_length / emitter.speed <= time) {
+  auto travelled = [&](Index layer) {
+    const Index p = emitter.first + layer * emitter.per_layer;
+    return (state.position[p] - model.particle_rest_position[p]).dot(emitter.normal);
+  };
+  while (freed < s.released[k] && travelled(freed) >= emitter.nozzle_length) {
     const Index begin = emitter.first + freed * emitter.per_layer;
     for (Index p = begin; p < begin + emitter.per_layer; ++p) s.held[p] = 0;
     ++freed;
   }
+  const Vec3 velocity = blocked ? Vec3::Zero() : Vec3(emitter.speed * emitter.normal);
+  for (Index p = emitter.first + freed * emitter.per_layer; p < emitter.first + s.released[k] * emitter.per_layer; ++p)
+    state.velocity[p] = velocity;
 }
 
 }  // namespace
@@ -40,7 +65,6 @@ void prepare_particle_emitters(const Model& model, State& state) {
   const std::size_t count = model.particle_emitters.size();
   s.released.assign(count, 0);
   s.freed.assign(count, 0);
-  s.left_opening.assign(count, {});
   s.wait.assign(count, 0);
   s.unborn.assign(model.particle_count(), 0);
   s.held.clear();
@@ -60,9 +84,12 @@ Index emit_particles(const Model& model, State& state) {
   for (std::size_t k = 0; k < model.particle_emitters.size(); ++k) {
     const ParticleEmitter& emitter = model.particle_emitters[k];
     Index& released = s.released[k];
-    while (released < emitter.layers && emitter.due(released) + s.wait[k] <= time) {
-      const Real left_opening = emitter.due(released) + s.wait[k];
-      const Real offset = emitter.speed * (time - left_opening);
+    // A blocked nozzle's held layers stand still for this step, so every later layer is due a step later.
+    const bool blocked = emitter.nozzle_length > 0 && nozzle_blocked(model, state, emitter);
+    if (blocked) s.wait[k] += model.settings.dt;
+    while (!blocked && released < emitter.layers && emitter.due(released) + s.wait[k] <= time) {
+      const Real age = time - (emitter.due(released) + s.wait[k]);
+      const Real offset = emitter.speed * age;
       if (layer_place_taken(model, state, emitter, offset)) {
         s.wait[k] = time + 0.5 * model.settings.dt - emitter.due(released);  // try again at the next step
         break;
@@ -79,11 +106,10 @@ Index emit_particles(const Model& model, State& state) {
         if (emitter.nozzle_length > 0) s.held[p] = 1;
         s.live_contact_particle.push_back(p);
       }
-      s.left_opening[k].push_back(left_opening);
       added += emitter.per_layer;
       ++released;
     }
-    if (emitter.nozzle_length > 0) free_nozzle_layers(emitter, s, k, time);
+    if (emitter.nozzle_length > 0) update_nozzle(model, state, emitter, k, blocked);
   }
   return added;
 }

@@ -23,6 +23,10 @@
 // (moving_inverse_mass), so the continuum's constraints move the free material against it and the
 // pipe carries the weight and the tension of the stream below. Without it the last layer of a
 // stream would be pulled out of the opening by the stream's weight and leave a gap to the next.
+// A particle that is not held inside the nozzle (short of its end by more than half a spacing:
+// the stream piled up to the spout, or another object) blocks it: the held layers stand still
+// and no layer is released until it has moved away, as a pipe stops when its outlet is shut,
+// instead of driving its held layers into it with an unbounded force.
 //
 // Every particle an emitter will release exists from the start: the last particles of its object,
 // layer after layer. Until released a particle is not live (State::live): it is not integrated,
@@ -55,7 +59,6 @@ struct ParticleEmitter {
 struct ParticleEmitterState {
   std::vector<Index> released;              // per emitter: layers released
   std::vector<Index> freed;                 // per emitter: layers that have left the nozzle
-  std::vector<std::vector<Real>> left_opening; // per emitter, per released layer: s, when it was in the opening's plane
   std::vector<Real> wait;                   // per emitter: s its layers have waited for a covered opening
   std::vector<char> unborn;                 // per particle: 1 while its emitter has not released it (empty: none)
   std::vector<char> held;                   // per particle: 1 while its layer is in the nozzle (empty: no nozzle)
