@@ -108,17 +108,9 @@ void fill_lattice(const SpecPlace& place, const std::string& field, const Vec3& 
 ParticleEmitter pour_continuum(const EmitterSpec& spec, const SpecPlace& e, Real r, Real density, Real scene_duration,
                                Index filled, std::vector<Vec3>& points) {
   const EmitterOpening opening = place_emitter_opening(spec, e, r, "particle spacing", scene_duration);
-  ParticleEmitter emitter;
-  emitter.center = opening.center;
-  emitter.normal = opening.normal;
-  emitter.spacing = r;
-  emitter.per_layer = static_cast<Index>(opening.points.size());
-  emitter.start = opening.start;
   // A layer waits while a particle lies within r/2 + 0.4 r of its plane: 10 % short of the
   // spacing, so the layer released before it, one spacing on, never holds it back by round-off.
-  emitter.max_radius = 0.4 * r;
-  for (const Vec3& point : opening.points) emitter.reach = std::max(emitter.reach, point.norm());
-  emitter.reach += emitter.max_radius;
+  ParticleEmitter emitter = particle_emitter_at(opening, r, 0.4 * r);
   const int rates = spec.speed.has_value() + spec.flow_rate.has_value() + spec.mass_rate.has_value();
   if (rates != 1)
     e.fail("speed", "give exactly one of \"speed\" (m/s), \"flow_rate\" (m^3/s) or \"mass_rate\" (kg/s)");

@@ -2,6 +2,7 @@
 // and the window of time in which layers are released (fluid_emitter.hpp, model/particle_emitter.hpp).
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "moreau/geometry/lattice_openings.hpp"
@@ -65,6 +66,19 @@ Index emitter_layers(const EmitterOpening& opening, const SpecPlace& e, Real spe
     e.fail("stop", fmt::format("the emitter would release {:.3g} particles by t = {} s (limit {:.0g}); lower the rate "
                                "or the stop time", layers * opening.points.size(), opening.stop, kMaxEmitted));
   return static_cast<Index>(layers);
+}
+
+ParticleEmitter particle_emitter_at(const EmitterOpening& opening, Real d, Real max_radius) {
+  ParticleEmitter emitter;
+  emitter.center = opening.center;
+  emitter.normal = opening.normal;
+  emitter.spacing = d;
+  emitter.per_layer = static_cast<Index>(opening.points.size());
+  emitter.start = opening.start;
+  emitter.max_radius = max_radius;
+  for (const Vec3& point : opening.points) emitter.reach = std::max(emitter.reach, point.norm());
+  emitter.reach += max_radius;
+  return emitter;
 }
 
 }  // namespace moreau

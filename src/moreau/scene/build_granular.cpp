@@ -118,15 +118,7 @@ ParticleEmitter pour_grains(const EmitterSpec& spec, const SpecPlace& e, GrainLa
                          Real scene_duration) {
   const Real d = lattice.spacing();
   const EmitterOpening opening = place_emitter_opening(spec, e, d, "grain spacing 2.04 r_max", scene_duration);
-  ParticleEmitter emitter;
-  emitter.center = opening.center;
-  emitter.normal = opening.normal;
-  emitter.spacing = d;
-  emitter.per_layer = static_cast<Index>(opening.points.size());
-  emitter.start = opening.start;
-  emitter.max_radius = r_max;
-  for (const Vec3& point : opening.points) emitter.reach = std::max(emitter.reach, point.norm());
-  emitter.reach += r_max;
+  ParticleEmitter emitter = particle_emitter_at(opening, d, r_max);
   if (spec.flow_rate) e.fail("flow_rate", "grains are poured at a \"mass_rate\" (kg/s) or a \"speed\" (m/s)");
   if (spec.nozzle_length)
     e.fail("nozzle_length", "grains leave the opening freely; a nozzle holds a stream of fluid or continuum");

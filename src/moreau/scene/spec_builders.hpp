@@ -102,6 +102,11 @@ EmitterOpening place_emitter_opening(const EmitterSpec& spec, const SpecPlace& e
 /// The layers released from start to stop at `speed` (m/s), each d further on; at most 5e7
 /// particles in all.
 Index emitter_layers(const EmitterOpening& opening, const SpecPlace& e, Real speed, Real d);
+/// A grain or continuum emitter at `opening` with layers d apart: its centre, direction, start,
+/// the points of a layer and how far from the axis they reach (plus `max_radius`, the radius a
+/// particle in the way is taken to have beyond its own). Speed, layers, object and first particle
+/// are the caller's.
+ParticleEmitter particle_emitter_at(const EmitterOpening& opening, Real d, Real max_radius);
 /// A box {"min": [x, y, z], "max": [x, y, z]} in m (fluid, granular and shape-matched blocks).
 FluidBlock read_block(const JsonObject& block);
 /// An integer of any value an int holds (the adder checks its range).
