@@ -200,6 +200,8 @@ TEST(XpbiEmitter, BadInputNamesItsPath) {
       {fmt::format(R"(, "emitter": {{{}, "flow_rate": -1}})", opening), {"objects[0].emitter.flow_rate", "out of range"}},
       {fmt::format(R"(, "emitter": {{{}, "speed": 1, "nozzle_length": -0.01}})", opening),
        {"objects[0].emitter.nozzle_length", "out of range"}},
+      {fmt::format(R"(, "emitter": {{{}, "speed": 1, "nozzle_length": 0.002}})", opening),
+       {"objects[0].emitter.nozzle_length", "0 (none) or at least r/2 = 0.005 m"}},
       {R"(, "emitter": {"shape": "disc", "center": [0, 0.5, 0], "direction": [0, -1, 0], "radius": 0.004, "speed": 1})",
        {"objects[0].emitter.radius", "half the particle spacing"}},
   };

@@ -155,8 +155,10 @@ struct Sampler {
   // counts in the fluid's density as the fluid filling its place would: water meets it at rest
   // density and a floating body displaces its own volume. Its surface lies half a spacing beyond
   // the outer samples (one fluid radius when the spacings match).
+  // The particles an emitter pours are not samples: they would stand at its opening until
+  // released (model/particle_emitter.hpp).
   void sample_continuum(Index object, const ObjectInfo& info) {
-    for (Index p = info.particle_begin; p < info.particle_end; ++p) {
+    for (Index p = info.particle_begin; p < model.initial_particle_end(object); ++p) {
       add(object, {p, p, p, p}, {1, 0, 0, 0});
       out.volume.push_back(model.continuum.rest_volume[model.continuum.index_of(p)]);
     }

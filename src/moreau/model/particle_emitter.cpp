@@ -84,9 +84,14 @@ Index emit_particles(const Model& model, State& state) {
   for (std::size_t k = 0; k < model.particle_emitters.size(); ++k) {
     const ParticleEmitter& emitter = model.particle_emitters[k];
     Index& released = s.released[k];
-    // A blocked nozzle's held layers stand still for this step, so every later layer is due a step later.
-    const bool blocked = emitter.nozzle_length > 0 && nozzle_blocked(model, state, emitter);
-    if (blocked) s.wait[k] += model.settings.dt;
+    // A blocked nozzle's held layers stand still for this step, so every later layer is due a step
+    // later; with none held, a layer due waits as for a covered opening.
+    const bool nozzle = emitter.nozzle_length > 0 && (released < emitter.layers || s.freed[k] < released);
+    const bool blocked = nozzle && nozzle_blocked(model, state, emitter);
+    if (blocked && s.freed[k] < released)
+      s.wait[k] += model.settings.dt;
+    else if (blocked && released < emitter.layers && emitter.due(released) + s.wait[k] <= time)
+      s.wait[k] = time + 0.5 * model.settings.dt - emitter.due(released);  // try again at the next step
     while (!blocked && released < emitter.layers && emitter.due(released) + s.wait[k] <= time) {
       const Real age = time - (emitter.due(released) + s.wait[k]);
       const Real offset = emitter.speed * age;
@@ -109,7 +114,8 @@ Index emit_particles(const Model& model, State& state) {
       added += emitter.per_layer;
       ++released;
     }
-    if (emitter.nozzle_length > 0) update_nozzle(model, state, emitter, k, blocked);
+    if (nozzle) update_nozzle(model, state, emitter, k, blocked);
+    if (emitter.nozzle_length <= 0) s.freed[k] = released;  // no nozzle: each layer goes at once
   }
   return added;
 }

@@ -58,11 +58,18 @@ struct ParticleEmitter {
 /// What the emitters have released.
 struct ParticleEmitterState {
   std::vector<Index> released;              // per emitter: layers released
-  std::vector<Index> freed;                 // per emitter: layers that have left the nozzle
+  std::vector<Index> freed;                 // per emitter: layers that have left the nozzle (all, without one)
   std::vector<Real> wait;                   // per emitter: s its layers have waited for a covered opening
   std::vector<char> unborn;                 // per particle: 1 while its emitter has not released it (empty: none)
   std::vector<char> held;                   // per particle: 1 while its layer is in the nozzle (empty: no nozzle)
   std::vector<Index> live_contact_particle; // Model::contact_particle without the unborn particles (with emitters)
+
+  /// Whether some emitter holds layers in its nozzle.
+  bool holds_layers() const {
+    for (std::size_t k = 0; k < freed.size(); ++k)
+      if (freed[k] < released[k]) return true;
+    return false;
+  }
 };
 
 struct Model;

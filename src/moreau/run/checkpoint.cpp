@@ -27,7 +27,8 @@ constexpr std::size_t kMagicSize = sizeof(kMagic) - 1;
 // 6: each fluid particle's smoke concentration (ambient_air.hpp).
 // 7: the solids' Krylov counters and their CG-to-GMRES switch.
 // 8: when each fluid particle held in an emitter's nozzle goes free (fluid_emitter.hpp).
-constexpr std::uint32_t kFormatVersion = 8;
+// 9: the particle emitters' freed layers and held particles (model/particle_emitter.hpp).
+constexpr std::uint32_t kFormatVersion = 9;
 
 // The checksum of a checkpoint's header and state.
 std::uint64_t checksum(const std::string& header, const std::string& state) { return fnv1a(state, fnv1a(header)); }

@@ -119,6 +119,8 @@ ParticleEmitter pour_continuum(const EmitterSpec& spec, const SpecPlace& e, Real
   if (spec.flow_rate) emitter.speed = e.number("flow_rate", *spec.flow_rate, Range::positive()) / area;
   if (spec.mass_rate) emitter.speed = e.number("mass_rate", *spec.mass_rate, Range::positive()) / (density * area);
   emitter.nozzle_length = e.number("nozzle_length", spec.nozzle_length.value_or(2 * r), Range::non_negative());
+  if (emitter.nozzle_length > 0 && emitter.nozzle_length < 0.5 * r)
+    e.fail("nozzle_length", fmt::format("a nozzle holds at least half a layer: 0 (none) or at least r/2 = {} m", 0.5 * r));
   emitter.layers = emitter_layers(opening, e, emitter.speed, r);
   if (static_cast<double>(filled) + static_cast<double>(emitter.layers) * emitter.per_layer > kMaxContinuumParticles)
     e.fail("stop", fmt::format("the continuum would hold {:.3g} particles with the emitted ones; at most {} per object",

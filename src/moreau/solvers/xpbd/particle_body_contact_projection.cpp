@@ -25,7 +25,7 @@ void project_particle_body_contacts(const Model& model, State& state, const Subs
     const ContactSpring& spring = c.spring[q];
     // A hard contact acts while it overlaps; a spring also while its push lasts, to let go of it.
     if (C >= 0 && (!spring.soft() || c.lambda_normal[q] <= 0)) continue;
-    const BodyHandle hp = particle_handle(state.position[p], model.particle_inv_mass[p]), hb = rigid_body_handle(model.rigid, s, b);
+    const BodyHandle hp = particle_handle(state.position[p], moving_inverse_mass(model, state, p)), hb = rigid_body_handle(model.rigid, s, b);
     const Vec3& n = near.normal;
     c.normal[q] = n;
     c.offset[q] = near.offset;
@@ -63,7 +63,7 @@ void particle_body_contact_velocities(const Model& model, State& state, const Ve
     const auto [b, p] = c.pair[q];
     const Vec3& n = c.normal[q];
     const Vec3& r = c.offset[q];
-    const BodyVelocityHandle vp = particle_velocity_handle(state.velocity[p], model.particle_inv_mass[p]);
+    const BodyVelocityHandle vp = particle_velocity_handle(state.velocity[p], moving_inverse_mass(model, state, p));
     const BodyVelocityHandle vb = rigid_body_velocity_handle(m, s, b);
     const Vec3 v = vp.point_velocity(Vec3::Zero()) - vb.point_velocity(r);
     const Vec3 before = velocity_before[p] - (bodies_before.velocity[b] + bodies_before.angular_velocity[b].cross(r));

@@ -73,6 +73,7 @@ void contact_velocity_pass(Real wi, Real wj, bool turns, const Vec3& n, Vec3& v_
                            const Vec3& v_rel_before, Real normal_multiplier, bool bounces, Real mu_k, Real e, Real h,
                            Real g) {
   const Real w = wi + wj;
+  if (w <= 0) return;  // neither side can move (a particle held in an emitter's nozzle)
   const Vec3 dv = turns     ? (bounces ? restitution_velocity_change(v_rel, v_rel_before, n, e, h, g) : Vec3::Zero())
                   : bounces ? contact_velocity_change(v_rel, v_rel_before, n, normal_multiplier, w, mu_k, e, h, g)
                            : friction_velocity_change(v_rel, n, normal_multiplier, w, mu_k, h);
@@ -95,6 +96,7 @@ void project_collider_contacts(const Model& model, State& state, const SubstepCo
       const ColliderDistance d = collider_distance(col, col.position_at(substep_end_time), s.x[p]);
       const Vec3& n = d.normal;
       c.normal[q] = n;
+      if (w <= 0) continue;  // held in an emitter's nozzle: it keeps its course
       const Real C = d.distance - model.particle_collider_gap[p];  // the normal row
       const ContactSpring& spring = c.spring[q];
       // A hard contact acts while it overlaps; a spring also while its push lasts, to let go of it.
@@ -128,6 +130,7 @@ void project_particle_contacts(const Model& model, State& state, const SubstepCo
     const auto [C, n] = pair_contact_normal(s.x[i], s.x[j], ri + rj);
     if (n.isZero()) return;  // coincident centres: no direction to push along
     c.normal[q] = n;
+    if (w <= 0) return;  // neither side can move (a particle held in an emitter's nozzle, one pinned)
     // Apart beyond the bond's reach (0 without cohesion): no contact, unless a spring's push is
     // to be let go of.
     const ContactSpring& spring = c.spring[q];
@@ -195,7 +198,7 @@ void collider_contact_velocities(const Model& model, State& state, const Vec3* v
       if (c.lambda_normal[q] <= 0) continue;
       const Index p = c.particle[q];
       const Vec3& vc = model.colliders[c.collider[q]].velocity;
-      contact_velocity_pass(model.particle_inv_mass[p], 0, model.particle_inv_inertia[p] > 0, c.normal[q],
+      contact_velocity_pass(moving_inverse_mass(model, state, p), 0, model.particle_inv_inertia[p] > 0, c.normal[q],
                             state.velocity[p], nullptr, state.velocity[p] - vc, velocity_before[p] - vc,
                             c.lambda_normal[q], !c.spring[q].soft(), c.dynamic_friction[q], c.restitution[q], h, g);
     }
@@ -217,7 +220,7 @@ void particle_contact_velocities(const Model& model, State& state, const Vec3* v
     }
     if (c.lambda_normal[q] + bond <= 0) return;
     const bool turns = model.particle_inv_inertia[i] > 0 || model.particle_inv_inertia[j] > 0;
-    contact_velocity_pass(model.particle_inv_mass[i], model.particle_inv_mass[j], turns, c.normal[q],
+    contact_velocity_pass(moving_inverse_mass(model, state, i), moving_inverse_mass(model, state, j), turns, c.normal[q],
                           state.velocity[i], &state.velocity[j],
                           state.velocity[i] - state.velocity[j], velocity_before[i] - velocity_before[j],
                           c.lambda_normal[q] + bond, c.lambda_normal[q] > 0 && !c.spring[q].soft(), c.dynamic_friction[q],

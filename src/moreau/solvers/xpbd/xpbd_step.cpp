@@ -67,6 +67,7 @@ void predict(const Model& model, State& state, XpbdWorkspace& work, Real h) {
     work.substep_start[p] = state.position[p];
     if (model.particle_inv_inertia[p] > 0) work.substep_turn[p] = h * state.angular_velocity[p];
     if (state.held(p)) {  // in its emitter's nozzle: on at the emitter's velocity, gravity carried by the pipe
+      work.velocity_before[p] = state.velocity[p];
       state.position[p] += h * state.velocity[p];
       return;
     }
@@ -112,7 +113,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   work.fit(model);
   if (!model.particle_emitters.empty()) emit_particles(model, state);
   const Real* inv_mass = model.particle_inv_mass.data();
-  if (!state.emitters.held.empty()) {  // particles in a nozzle do not yield to the projections
+  if (state.emitters.holds_layers()) {  // particles in a nozzle do not yield to the projections
     work.moving_inv_mass.resize(model.particle_count());
     for (Index p = 0; p < model.particle_count(); ++p) work.moving_inv_mass[p] = moving_inverse_mass(model, state, p);
     inv_mass = work.moving_inv_mass.data();
