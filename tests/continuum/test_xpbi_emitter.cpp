@@ -92,6 +92,8 @@ TEST(XpbiEmitter, PoursItsMassRateAndItsNozzleHoldsTheStream) {
              speed, N, released, mass_rate * scene.state.time, worst_mass, layer_mass,
              worst_held_place, worst_held_velocity, lowest);
   EXPECT_GE(held_seen, 2 * N);  // L = 2 r: two layers or more in the nozzle
+  // 1e-12: round-off. A held particle's velocity is set, never computed; its place is the sum of
+  // a few dozen substep moves of 0.1 mm on coordinates of 0.1 m (about 1e-17 m each).
   EXPECT_LT(worst_held_velocity, 1e-12);
   EXPECT_LT(worst_held_place, 1e-12);
   EXPECT_LT(lowest, 0.01);

@@ -8,34 +8,37 @@ namespace moreau {
 
 namespace {
 
-// Whether a live contact particle lies where the next layer would appear: within r + r_max of
-// the plane at `offset` along the normal, and within r + reach of the axis.
-bool layer_place_taken(const Model& model, const State& state, const ParticleEmitter& emitter, Real offset) {
+// Whether a live contact particle (not held in a nozzle, with `skip_held`) lies within r + reach
+// of the opening's axis, r its radius, at a distance `along` past the opening's plane that
+// `in_range(along, r)` accepts.
+template <class InRange>
+bool occupied(const Model& model, const State& state, const ParticleEmitter& emitter, bool skip_held, InRange in_range) {
   for (Index p : state.emitters.live_contact_particle) {
+    if (skip_held && state.held(p)) continue;
     const Vec3 d = state.position[p] - emitter.center;
     const Real along = d.dot(emitter.normal);
     const Real r = model.particle_radius[p];
-    if (std::abs(along - offset) >= r + emitter.max_radius) continue;
+    if (!in_range(along, r)) continue;
     if ((d - along * emitter.normal).squaredNorm() < (r + emitter.reach) * (r + emitter.reach)) return true;
   }
   return false;
 }
 
-// Whether a live particle that is not held lies in the nozzle: within r + r_max of the axis's
-// reach, from the opening's plane to half a spacing short of the nozzle's end. The layers it
-// frees are at its end and move away; a particle further in is material the stream has piled up
-// against the spout, or another object's.
+// Whether a particle lies where the next layer would appear: within r + r_max of the plane at
+// `offset` along the normal.
+bool layer_place_taken(const Model& model, const State& state, const ParticleEmitter& emitter, Real offset) {
+  return occupied(model, state, emitter, false,
+                  [&](Real along, Real r) { return std::abs(along - offset) < r + emitter.max_radius; });
+}
+
+// Whether a particle that is not held lies in the nozzle: from r + r_max behind the opening's
+// plane to half a spacing short of the nozzle's end. The layers it frees are at its end and move
+// away; a particle further in is material the stream has piled up against the spout, or another
+// object's.
 bool nozzle_blocked(const Model& model, const State& state, const ParticleEmitter& emitter) {
   const Real end = emitter.nozzle_length - 0.5 * emitter.spacing;
-  for (Index p : state.emitters.live_contact_particle) {
-    if (state.held(p)) continue;
-    const Vec3 d = state.position[p] - emitter.center;
-    const Real along = d.dot(emitter.normal);
-    const Real r = model.particle_radius[p];
-    if (along <= -(r + emitter.max_radius) || along >= end) continue;
-    if ((d - along * emitter.normal).squaredNorm() < (r + emitter.reach) * (r + emitter.reach)) return true;
-  }
-  return false;
+  return occupied(model, state, emitter, true,
+                  [&](Real along, Real r) { return along > -(r + emitter.max_radius) && along < end; });
 }
 
 // Frees the layers that have travelled the nozzle's length past the opening, and sets the held

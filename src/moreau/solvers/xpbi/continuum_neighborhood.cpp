@@ -25,16 +25,16 @@ void ContinuumNeighborhood::build(const Model& model, const State& state, int th
   // The live particles (State::live: an emitter's unreleased ones take no part), in continuum
   // order; the searches below index them by their place in this list.
   live.clear();
-  live_start.clear();
   for (Index i = 0; i < n; ++i)
-    if (state.live(continuum.particle[i])) {
-      live.push_back(i);
-      live_start.push_back(start[i]);
-    }
+    if (state.live(continuum.particle[i])) live.push_back(i);
   const Index m = static_cast<Index>(live.size());
-  neighbors.build(live_start, continuum.support(), threads);
+  live_start.clear();
+  if (m < n)
+    for (Index i : live) live_start.push_back(start[i]);
+  const std::vector<Vec3>& points = m < n ? live_start : start;  // every particle live: x^n itself
+  neighbors.build(points, continuum.support(), threads);
 
-  blocks.build(live_start.data(), m, GridFrame{Vec3::Zero(), 2 * continuum.support()});
+  blocks.build(points.data(), m, GridFrame{Vec3::Zero(), 2 * continuum.support()});
   std::array<std::vector<Index>, kTileColors> colour_blocks;
   for (Index c = 0; c < blocks.cell_count(); ++c) {
     const CellCoord& b = blocks.cell_coord(c);

@@ -18,7 +18,7 @@ namespace moreau {
 
 struct ContinuumNeighborhood {
   std::vector<Index> live;           // continuum indices of the live particles (State::live), in order
-  std::vector<Vec3> live_start;      // m, x^n of each of them
+  std::vector<Vec3> live_start;      // m, x^n of each of them, when some particle is not live
   NeighborSearch neighbors;          // places in `live`, pairs closer than the support
   std::vector<Vec3> start;           // m, x^n per continuum particle
   std::vector<Real> volume;          // m^3, V^n
