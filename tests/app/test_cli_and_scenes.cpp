@@ -437,12 +437,13 @@ TEST(Scenes, EveryExampleSceneRunsBriefly) {
     // A steady scene solves completely whatever --duration says; this one takes 20 s and is run
     // on a coarser mesh by FlowScenes.Cavity3DSceneWithGmresMatchesUmfpackAndIsMirrorSymmetric.
     if (entry.path().filename() == "cavity3d_re400.json") continue;
-    // The two-leaflet channel and the bodies falling in a fluid take a second or more per step: a
-    // few steps.
+    // The immersed scenes (the two-leaflet channel, the flag, the bodies falling in a fluid) take
+    // a second or more per step: a few steps.
     const std::string file = entry.path().filename().string();
     const char* duration = file == "two_leaflet_valve.json"   ? "0.003"
                            : file == "sedimenting_disc.json" ? "0.006"
                            : file == "fluttering_plate.json" ? "0.012"
+                           : file == "turek_hron_fsi2.json"  ? "0.015"
                                                              : "0.1";
     const std::string out = test::temp_dir("smoke") + "/out";
     const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet --duration {}", entry.path().string(), out, duration));

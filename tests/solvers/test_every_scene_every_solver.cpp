@@ -46,6 +46,7 @@ const std::map<std::string, std::vector<std::string>> kSmaller = {
     {"scenes/cylinder_re100.json", {"objects.fluid.mesh.parameters.N=1"}},
     {"scenes/cylinder_re20_immersed.json", {"objects.fluid.mesh.parameters.N=8", "objects.cylinder.mesh.parameters.n=8"}},
     {"bench/scenes/fem_block_20.json", {"objects.block.mesh.cells=[4,4,4]"}},
+    {"bench/scenes/sand_column_100k.json", {"objects.sand.spacing=0.0125"}},
     {"scenes/fluttering_plate.json", {"objects.water.mesh.cells=[24,64]"}},
     {"scenes/sedimenting_disc.json", {"objects.water.mesh.cells=[32,96]"}},
     {"scenes/turek_hron_fsi1.json",
