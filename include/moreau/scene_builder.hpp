@@ -329,6 +329,7 @@ struct FluidSpec {
   double xsph = 0.01;                // [0, 1]
   double vorticity = 0;              // m/s
   double surface_tension = 0;        // N/m, gamma against air
+  std::optional<double> contact_angle_deg;  // degrees, on the colliders (needs surface_tension); none: 180
   std::vector<FluidInterfaceSpec> interfacial_tension;  // against other liquids; none given: 0
   double relaxation = 0.01;          // [0, 1e6]
   double bulk_modulus = 2.2e9;       // Pa, K of the density rows under "nmd" (water: 2.2e9)

@@ -26,6 +26,7 @@ struct FluidPhase {
   Real xsph = 0;                   // XSPH velocity smoothing c, applied once per step (dimensionless)
   Real viscosity = 0;              // kinematic viscosity nu, m^2/s
   Real surface_tension = 0;        // gamma against air, N/m (surface_tension.hpp)
+  Real wall_adhesion = 0;          // W_a = gamma (1 + cos theta) on the colliders, N/m (wall_adhesion.hpp)
   Real vorticity = 0;              // vorticity-confinement strength epsilon, m/s (see fluid_velocity.hpp)
   Real relaxation = 0;             // epsilon of the density constraint, 1/(kg m^2) (scaled, see density_constraint.hpp)
   Real compliance = 0;             // eps of the density row under "nmd", 1/J: 1 / (K V) (solvers/nmd/constraint_fluid.hpp)

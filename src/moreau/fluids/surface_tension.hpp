@@ -39,9 +39,10 @@
 // blows apart. A pair of particles of two liquids takes the mean of their gammas: where two
 // liquids meet, each particle's neighbourhood is full and the normals vanish, so these forces act
 // where liquid meets air and leave the interface between liquids to its own tension
-// (interfacial_tension.hpp). Gas particles take no part, and walls do not attract the liquid. The fluid's `pressure` (the density multipliers') includes the cohesive
-// tension the constraint holds: about 0.73 gamma / h more than the mechanical pressure inside the
-// liquid.
+// (interfacial_tension.hpp). Gas particles take no part, and walls attract the liquid only where it
+// has a contact angle (wall_adhesion.hpp). The fluid's `pressure` (the density multipliers')
+// includes the cohesive tension the constraint holds: about 0.73 gamma / h more than the mechanical
+// pressure inside the liquid.
 #include "moreau/fluids/fluid_scratch.hpp"
 #include "moreau/fluids/fluid_state.hpp"
 

@@ -138,6 +138,7 @@ FluidSpec read_fluid(const JsonObject& object) {
   spec.xsph = object.number("xsph", spec.xsph);
   spec.vorticity = object.number("vorticity", spec.vorticity);
   spec.surface_tension = object.number("surface_tension", spec.surface_tension);
+  if (object.has("contact_angle_deg")) spec.contact_angle_deg = object.number("contact_angle_deg");
   if (object.has("interfacial_tension")) {
     // {"<other fluid>": sigma, ...}: the names are the scene's, checked when every fluid is known.
     const JsonObject tensions = object.object("interfacial_tension");
@@ -221,6 +222,14 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
                                         explicit_viscosity_limit(fm, phase), fm.kernel.h, largest_viscosity(phase),
                                         model.settings.dt));
 
+  if (spec.contact_angle_deg) {
+    if (phase.surface_tension == 0)
+      place.fail("contact_angle_deg", "a contact angle is a balance of surface tensions: give the fluid a "
+                                      "\"surface_tension\" (N/m) too");
+    // Young-Dupre's work of adhesion (wall_adhesion.hpp).
+    const Real theta = place.number("contact_angle_deg", *spec.contact_angle_deg, Range::closed(0, 180)) * kPi / 180;
+    phase.wall_adhesion = phase.surface_tension * (1 + std::cos(theta));
+  }
   if (phase.surface_tension > 0) {
     const Real limit = capillary_time_step(phase.rest_density, d, phase.surface_tension);
     if (model.settings.dt > limit)

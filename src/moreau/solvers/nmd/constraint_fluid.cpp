@@ -15,6 +15,7 @@
 #include "moreau/fluids/interfacial_tension.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
+#include "moreau/fluids/wall_adhesion.hpp"
 #include "moreau/model/model.hpp"
 #include "moreau/model/state.hpp"
 
@@ -203,6 +204,7 @@ void ConstraintFluid::finish_step(const Model& model, State& state, Real dt, Rea
     apply_fluid_velocity_corrections(model, state.fluid, scratch_, dt);
     apply_ambient_air(model, state.fluid, dt);
     apply_fluid_surface_tension(model, state.fluid, scratch_, dt);
+    apply_fluid_wall_adhesion(model, state.fluid, dt, state.time + dt);
     apply_fluid_interfacial_tension(model, state.fluid, scratch_, dt);
     apply_fluid_heat(model, state.fluid, scratch_, dt);
   }

@@ -16,6 +16,7 @@
 #include "moreau/fluids/interfacial_tension.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
+#include "moreau/fluids/wall_adhesion.hpp"
 #include "moreau/model/particle_emitter.hpp"
 #include "moreau/collision/particle_body_contacts.hpp"
 #include "moreau/collision/particle_candidates.hpp"
@@ -242,6 +243,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
     apply_fluid_velocity_corrections(model, fluid, work.fluid, dt);
     apply_ambient_air(model, fluid, dt);
     apply_fluid_surface_tension(model, fluid, work.fluid, dt);
+    apply_fluid_wall_adhesion(model, fluid, dt, start_time + dt);
     apply_fluid_interfacial_tension(model, fluid, work.fluid, dt);
     lap(XpbdStage::fluid_velocity);
     if (model.fluid.thermal) {
