@@ -223,6 +223,7 @@ void add_fluid(const FluidSpec& spec, const SpecPlace& place, ObjectInfo& info, 
                                         model.settings.dt));
 
   if (spec.contact_angle_deg) {
+    if (spec.gas) place.fail("contact_angle_deg", "a gas does not wet the walls; give the contact angle to a liquid");
     if (phase.surface_tension == 0)
       place.fail("contact_angle_deg", "a contact angle is a balance of surface tensions: give the fluid a "
                                       "\"surface_tension\" (N/m) too");

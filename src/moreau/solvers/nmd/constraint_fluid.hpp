@@ -44,9 +44,9 @@ class ConstraintFluid {
   /// x += h v for the fluid particles, then the hard guarantee of fluid_motion.hpp: every particle
   /// at least r clear of every collider placed at `time`.
   void integrate(const Model& model, State& state, Real h, Real time);
-  /// Once per step, after the last solve: viscosity, XSPH, vorticity confinement, surface and
-  /// interfacial tension over dt (fluid_velocity.hpp, surface_tension.hpp, interfacial_tension.hpp)
-  /// and the CFL monitor.
+  /// Once per step, after the last solve: viscosity, XSPH, vorticity confinement, surface tension,
+  /// the walls' adhesion and interfacial tension over dt (fluid_velocity.hpp, surface_tension.hpp,
+  /// wall_adhesion.hpp, interfacial_tension.hpp) and the CFL monitor.
   void finish_step(const Model& model, State& state, Real dt, Real h, int threads);
 
  private:
