@@ -138,7 +138,7 @@ FluidSpec read_fluid(const JsonObject& object) {
   spec.xsph = object.number("xsph", spec.xsph);
   spec.vorticity = object.number("vorticity", spec.vorticity);
   spec.surface_tension = object.number("surface_tension", spec.surface_tension);
-  if (object.has("contact_angle_deg")) spec.contact_angle_deg = object.number("contact_angle_deg");
+  spec.contact_angle_deg = read_optional_number(object, "contact_angle_deg");
   if (object.has("interfacial_tension")) {
     // {"<other fluid>": sigma, ...}: the names are the scene's, checked when every fluid is known.
     const JsonObject tensions = object.object("interfacial_tension");
