@@ -9,6 +9,7 @@
 #include "moreau/fluids/density_constraint.hpp"
 #include "moreau/fluids/fluid_heat.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
+#include "moreau/fluids/phase_drift.hpp"
 #include "moreau/fluids/solid_sampling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/geometry/point_in_mesh.hpp"
@@ -344,6 +345,7 @@ void finish_fluids(Model& model, const std::function<SpecPlace(Index object)>& o
   fm.tensile_reference = kReferenceGravity * fm.kernel.h;
   fm.neighbor_skin = fm.neighbor_skin_fraction * fm.kernel.h;
   fm.solid_contact_distance = 1.5 * fm.particle_radius;  // solid_coupling.hpp
+  if (fm.phase_drift) set_up_phase_drift(fm, model.settings.gravity.norm());
   // "auto": the implicit, accurate viscosity where it acts strongly within a step or walls have
   // fluid friction; the fast explicit one otherwise (water at any practical particle size).
   bool wall_friction = false;

@@ -49,6 +49,7 @@ SceneSettings read_settings(const JsonObject& settings) {
     if (fluid->has("viscosity_solver")) s.fluid.viscosity_solver = fluid->string("viscosity_solver");
     s.fluid.viscosity_tolerance = read_optional_number(*fluid, "viscosity_tolerance");
     if (fluid->has("viscosity_iterations")) s.fluid.viscosity_iterations = read_integer(*fluid, "viscosity_iterations");
+    if (fluid->has("phase_drift")) s.fluid.phase_drift = fluid->boolean("phase_drift", false);
     fluid->finish();
   }
   if (auto nmd = settings.optional_object("nmd")) {
@@ -121,6 +122,7 @@ void apply_settings(const SceneSettings& spec, const SpecPlace& place, Scene& sc
                                         Range::open(0, 1));
   fm.viscosity_max_iterations = fluid.integer(
       "viscosity_iterations", spec.fluid.viscosity_iterations.value_or(fm.viscosity_max_iterations), 1, 100000);
+  fm.phase_drift = spec.fluid.phase_drift.value_or(fm.phase_drift);
   NmdSettings& nmd = s.nmd;
   const NmdSolverSettings& ns = spec.nmd;
   const SpecPlace nmd_place = place.at("nmd");

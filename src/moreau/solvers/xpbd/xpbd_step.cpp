@@ -14,6 +14,7 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/interfacial_tension.hpp"
+#include "moreau/fluids/phase_drift.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/fluids/wall_adhesion.hpp"
@@ -141,6 +142,7 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
       fluids && model.fluid.viscosity_solver == ViscositySolver::implicit_solve && fluid_has_viscosity(model);
   FluidState& fluid = state.fluid;
   if (!model.fluid.emitters.empty()) emit_fluid(model, fluid, start_time);
+  if (model.fluid.phase_drift) drift_phases(model, fluid, start_time, threads);
 
   constexpr int extension_stage = xpbd_family_stage(kParticleFamilyCount);  // the extension's stages follow XPBD's
   auto lap = [&](auto stage) {

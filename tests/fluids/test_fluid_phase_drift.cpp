@@ -1,0 +1,181 @@
+// Sub-particle drift of immiscible liquids (settings.fluid.phase_drift, phase_drift.hpp): single
+// particles of oil dispersed in water rise at the terminal speed of a drop of one particle's
+// volume, by trading places with the water above them; a trade keeps momentum, each liquid's
+// mass and the set of occupied positions; a stable layering has none; runs repeat bit for bit on
+// one and two threads.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "moreau/fluids/phase_drift.hpp"
+#include "moreau/model/model.hpp"
+#include "test_helpers.hpp"
+
+namespace moreau {
+namespace {
+
+constexpr Real kGravity = 9.81;
+
+// The Schiller-Naumann balance in its two limits: Stokes' law for a small, slow sphere (Re << 1,
+// where C_d = 24/Re (1 + 0.15 Re^0.687) is 24/Re to within 0.15 Re^0.687) and Newton's regime
+// (C_d = 0.44) for an inviscid liquid.
+TEST(FluidPhaseDrift, TerminalSpeedMeetsStokesAndNewtonLimits) {
+  const Real d = 1e-5, mu = 1e-3, drop = 900, liquid = 1000;
+  const Real stokes = (liquid - drop) * kGravity * d * d / (18 * mu);
+  const Real u = terminal_drift_speed(d, drop, liquid, mu, kGravity);
+  const Real re = liquid * u * d / mu;
+  EXPECT_LT(re, 1e-3);
+  EXPECT_NEAR(u, stokes / (1 + 0.15 * std::pow(re, 0.687)), 1e-9 * stokes);
+  EXPECT_NEAR(u, stokes, 2e-3 * stokes);  // 0.15 Re^0.687 < 1.3e-3
+
+  const Real big = 0.01;  // 1 cm, inviscid: drag 0.44 rho u^2 pi d^2 / 8 = (rho_l - rho_d) g pi d^3 / 6
+  const Real newton = std::sqrt(4 * (liquid - drop) * kGravity * big / (3 * 0.44 * liquid));
+  EXPECT_NEAR(terminal_drift_speed(big, drop, liquid, 0, kGravity), newton, 1e-9 * newton);
+  EXPECT_EQ(terminal_drift_speed(big, liquid, liquid, mu, kGravity), 0);
+}
+
+// A 23 x 39 x 23 mm tank of water (r = 0.98 mm, 12 x 20 x 12 sites) with 32 single oil particles
+// on every third site of two low layers (three spacings apart, beyond each other's kernel support
+// of two).
+// Each lattice row is written as runs of one liquid.
+std::string dispersed_oil_scene(bool drift, Real oil_density = 900) {
+  constexpr int nx = 12, ny = 20;
+  auto oil_site = [](int i, int j, int k) { return (j == 1 || j == 4) && i % 3 == 1 && k % 3 == 1; };
+  // r = 2^-10 m (spacing 2^-9): the block corners are exact binary fractions, so each block is
+  // exactly whole spacings wide.
+  constexpr Real spacing = 1.0 / 512;
+  auto lo = [&](int i) { return (i - nx / 2) * spacing; };
+  std::string oil, water;
+  for (int k = 0; k < nx; ++k)
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx;) {
+        const bool is_oil = oil_site(i, j, k);
+        int end = i + 1;
+        while (end < nx && oil_site(end, j, k) == is_oil) ++end;
+        std::string& out = is_oil ? oil : water;
+        out += fmt::format(R"({}{{"min": [{}, {}, {}], "max": [{}, {}, {}]}})", out.empty() ? "" : ", ", lo(i),
+                           spacing * j, lo(k), lo(end), spacing * (j + 1), lo(k + 1));
+        i = end;
+      }
+  return fmt::format(R"({{"name": "drift", "settings": {{"dt": 0.004, "substeps": 2, "iterations": 4,
+      "fluid": {{"phase_drift": {}}}}},
+    "objects": [
+      {{"name": "tank", "kind": "collider", "inside": true,
+        "shape": {{"type": "box", "center": [0, 0.025, 0], "half_extents": [{}, 0.025, {}]}}}},
+      {{"name": "water", "kind": "fluid", "particle_radius": {}, "viscosity": 0.001, "blocks": [{}]}},
+      {{"name": "oil", "kind": "fluid", "particle_radius": {}, "density": {}, "viscosity": 0.001, "blocks": [{}]}}]}})",
+                     drift ? "true" : "false", lo(nx), lo(nx), spacing / 2, water, spacing / 2, oil_density, oil);
+}
+
+constexpr Index kOilPhase = 1;  // fluids get their phases in scene order
+
+Real mean_oil_height(const Scene& scene) {
+  const FluidState& f = scene.state.fluid;
+  Real sum = 0;
+  Index n = 0;
+  for (Index i = 0; i < f.count; ++i)
+    if (f.phase[i] == kOilPhase) sum += f.position[i].y(), ++n;
+  return sum / static_cast<Real>(n);
+}
+
+TEST(FluidPhaseDrift, DispersedOilRisesAtTheTerminalSpeedOfOneParticle) {
+  Scene drifting = test::scene_from_json(dispersed_oil_scene(true));
+  Scene jammed = test::scene_from_json(dispersed_oil_scene(false));
+  ASSERT_EQ(drifting.state.fluid.count, 12 * 20 * 12);
+  const FluidModel& fm = drifting.model.fluid;
+  const Real u = fm.drift_speed[kOilPhase * 2 + 0];  // oil dispersed in water
+  // d = (6 (2 r)^3 / pi)^(1/3) = 2.42 mm; the balance solved by hand (bisection, Python): Re = 141,
+  // u = 0.058230 m/s.
+  EXPECT_NEAR(u, 0.058230, 1e-6);
+  const Real start = mean_oil_height(drifting);
+  ASSERT_EQ(start, mean_oil_height(jammed));
+
+  // Over 0.3 s the drift alone would lift each particle by u T = 17 mm, in some eight trades; the
+  // twin without drift shows what the liquid's own motion does (it settles from the lattice; a
+  // particle does not rise by itself, docs/scene-format.md). Tolerance 15 %: three standard errors
+  // of a count of about 270 trades, each a chance event, over the 32 particles (measured: +2.7 %).
+  const long steps = 75;
+  const Real T = steps * drifting.model.settings.dt;
+  test::run_steps(drifting, steps);
+  test::run_steps(jammed, steps);
+  const Real rise = mean_oil_height(drifting) - start, own = mean_oil_height(jammed) - start;
+  std::printf("oil rise over %.2f s: %.2f mm with drift, %.2f mm without; drift speed %.4f m/s against u = %.4f m/s\n", T,
+              1e3 * rise, 1e3 * own, (rise - own) / T, u);
+  EXPECT_LT(std::abs(own), 1e-3);
+  EXPECT_NEAR((rise - own) / T, u, 0.15 * u);
+}
+
+TEST(FluidPhaseDrift, ATradeKeepsMomentumMassAndTheOccupiedPositions) {
+  Scene scene = test::scene_from_json(dispersed_oil_scene(true));
+  test::run_steps(scene, 10);
+  FluidState& f = scene.state.fluid;
+  auto momentum = [&] {
+    Vec3 p = Vec3::Zero();
+    for (Index i = 0; i < f.count; ++i) p += f.mass[i] * f.velocity[i];
+    return p;
+  };
+  auto sorted_positions = [&] {
+    std::vector<std::array<Real, 3>> x;
+    for (Index i = 0; i < f.count; ++i) x.push_back({f.position[i].x(), f.position[i].y(), f.position[i].z()});
+    std::sort(x.begin(), x.end());
+    return x;
+  };
+  auto potential = [&] {
+    Real e = 0;
+    for (Index i = 0; i < f.count; ++i) e += f.mass[i] * kGravity * f.position[i].y();
+    return e;
+  };
+  const Vec3 p0 = momentum();
+  const auto x0 = sorted_positions();
+  const Real e0 = potential();
+  const std::vector<Index> phase0 = f.phase;
+  // A late time draws other trades than the run's; repeat until some happen.
+  Index trades = 0;
+  for (int k = 0; k < 50 && trades == 0; ++k) trades = drift_phases(scene.model, f, 100 + k * scene.model.settings.dt, 1);
+  ASSERT_GT(trades, 0);
+  EXPECT_TRUE(f.lists_stale);
+  EXPECT_EQ(momentum(), p0);        // each particle keeps its mass and velocity, summed in the same order
+  EXPECT_EQ(sorted_positions(), x0);  // the same positions, occupied by other particles
+  EXPECT_EQ(f.phase, phase0);
+  EXPECT_LT(potential(), e0);       // the lighter went up
+}
+
+// Oil resting on water: no particle is dispersed below a heavier one, so nothing trades, and the
+// run matches the one without drift bit for bit.
+TEST(FluidPhaseDrift, AStableLayeringDoesNotTrade) {
+  const std::string layers = R"({"name": "layers", "settings": {"dt": 0.004, "substeps": 2, "iterations": 4,
+      "fluid": {"phase_drift": DRIFT}},
+    "objects": [
+      {"name": "tank", "kind": "collider", "inside": true,
+        "shape": {"type": "box", "center": [0, 0.025, 0], "half_extents": [0.012, 0.025, 0.012]}},
+      {"name": "water", "kind": "fluid", "particle_radius": 0.001, "block": {"min": [-0.012, 0, -0.012], "max": [0.012, 0.02, 0.012]}},
+      {"name": "oil", "kind": "fluid", "particle_radius": 0.001, "density": 900,
+       "block": {"min": [-0.012, 0.02, -0.012], "max": [0.012, 0.03, 0.012]}}]})";
+  auto with = [&](const char* drift) {
+    std::string s = layers;
+    s.replace(s.find("DRIFT"), 5, drift);
+    return test::scene_from_json(s);
+  };
+  Scene drifting = with("true"), plain = with("false");
+  test::run_steps(drifting, 50);
+  test::run_steps(plain, 50);
+  EXPECT_EQ(drifting.state.fluid.position, plain.state.fluid.position);
+}
+
+TEST(FluidPhaseDrift, RunsRepeatBitForBitOnOneAndTwoThreads) {
+  const std::string json = dispersed_oil_scene(true);
+  Scene one = test::scene_from_json(json, {"settings.threads=1"});
+  Scene two = test::scene_from_json(json, {"settings.threads=2"});
+  test::run_steps(one, 40);
+  test::run_steps(two, 40);
+  EXPECT_EQ(one.state.fluid.position, two.state.fluid.position);
+  EXPECT_EQ(one.state.fluid.phase, two.state.fluid.phase);
+}
+
+}  // namespace
+}  // namespace moreau
