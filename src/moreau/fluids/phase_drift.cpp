@@ -28,7 +28,6 @@ Real pair_draw(long step, Index a, Index b) {
   return static_cast<Real>(z >> 11) * 0x1.0p-53;
 }
 
-constexpr Real kDispersedFraction = 0.5;  // a particle is dispersed below this share of its own liquid
 constexpr Index kNone = -1;
 
 }  // namespace
@@ -74,51 +73,36 @@ Index drift_phases(const Model& model, FluidState& fluid, Real time, int threads
   const Real least_rise = 0.5 * fm.particle_radius;                 // a pair side by side does not trade
   auto movable = [&](Index i) { return fluid.inv_mass[i] > 0 && !fm.phases[fluid.phase[i]].gas; };
 
-  // 1. Which particles are dispersed in another liquid.
-  std::vector<char> dispersed(n, 0);
-  const Real self_weight = fm.kernel.value(0);
-#pragma omp parallel for schedule(static) num_threads(threads)
-  for (Index i = 0; i < n; ++i) {
-    Real own = self_weight, all = self_weight;
-    const Index pi = fluid.phase[i];
-    const Vec3 xi = fluid.position[i];
-    const Index* row = fluid.fluid_neighbors.row(i);
-    for (Index k = 0; k < fluid.fluid_neighbors.count[i]; ++k) {
-      const Index j = row[k];
-      const Real w = fm.kernel.value((xi - fluid.position[j]).norm());
-      all += w;
-      if (fluid.phase[j] == pi) own += w;
-    }
-    dispersed[i] = own < kDispersedFraction * all;
-  }
-
-  // 2. Each movable particle proposes the heavier particle of another liquid highest above it,
-  //    where one of the two is dispersed.
+  // 1. Each movable particle proposes the heavier particle of another liquid highest above it,
+  //    and counts its neighbours of its own liquid and of others (to say which is dispersed).
   std::vector<Index> proposal(n, kNone);
   std::vector<Real> rise(n, 0);
+  std::vector<char> minority(n, 0);  // fewer of i's neighbours are of its own liquid than of others
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (Index i = 0; i < n; ++i) {
     if (!movable(i)) continue;
     const Vec3 xi = fluid.position[i];
-    Index best = kNone;
+    Index best = kNone, own = 0, other = 0;
     Real best_rise = least_rise;
     const Index* row = fluid.fluid_neighbors.row(i);
     for (Index k = 0; k < fluid.fluid_neighbors.count[i]; ++k) {
       const Index j = row[k];
-      if (fluid.phase[j] == fluid.phase[i] || fluid.mass[j] <= fluid.mass[i] || !movable(j)) continue;
-      if (!dispersed[i] && !dispersed[j]) continue;
       const Vec3 r = fluid.position[j] - xi;
+      const Real r2 = r.squaredNorm();
+      if (r2 < fm.kernel.h2) ++(fluid.phase[j] == fluid.phase[i] ? own : other);
+      if (fluid.phase[j] == fluid.phase[i] || fluid.mass[j] <= fluid.mass[i] || !movable(j)) continue;
       const Real s = r.dot(up);
-      if (r.squaredNorm() >= reach2 || s < best_rise) continue;
+      if (r2 >= reach2 || s < best_rise) continue;
       if (s == best_rise && best != kNone && fluid.id[j] > fluid.id[best]) continue;
       best = j;
       best_rise = s;
     }
     proposal[i] = best;
     rise[i] = best_rise;
+    minority[i] = own < other;
   }
 
-  // 3. Each particle proposed to (and not proposing itself) accepts the proposal from the
+  // 2. Each particle proposed to (and not proposing itself) accepts the proposal from the
   //    particle furthest below it, and the pair trades with probability u dt / s.
   std::vector<Index> partner(n, kNone);
 #pragma omp parallel for schedule(static) num_threads(threads)
@@ -134,11 +118,11 @@ Index drift_phases(const Model& model, FluidState& fluid, Real time, int threads
     }
     if (chosen == kNone) continue;
     const Index light = fluid.phase[chosen], heavy = fluid.phase[j];
-    const Real u = dispersed[chosen] ? fm.drift_speed[light * phases + heavy] : fm.drift_speed[heavy * phases + light];
+    const Real u = minority[chosen] ? fm.drift_speed[light * phases + heavy] : fm.drift_speed[heavy * phases + light];
     if (pair_draw(step, fluid.id[chosen], fluid.id[j]) < u * dt / rise[chosen]) partner[j] = chosen;
   }
 
-  // 4. The trades: disjoint pairs, so their order does not matter.
+  // 3. The trades: disjoint pairs, so their order does not matter.
   Index trades = 0;
   for (Index j = 0; j < n; ++j) {
     if (partner[j] == kNone) continue;

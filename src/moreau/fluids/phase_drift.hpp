@@ -3,12 +3,15 @@
 //
 // The density constraint holds a settled liquid's particles in place as a packing of frictionless
 // grains: a particle passes its neighbours only by pushing them apart against the pressure, so a
-// drop of one or two particles of a slightly lighter liquid (oil in water) stays where it is,
-// where a real drop of that size rises at its terminal speed. The drift restores that motion at
-// the scale the particles cannot resolve: a particle of one liquid that is dispersed in another
-// (fewer than half of its kernel-weighted neighbourhood, itself included, is its own liquid)
-// trades places with a neighbour of the other liquid across gravity, the lighter going up, at the
-// rate at which a drop of one particle's volume would rise or sink through the surrounding liquid.
+// drop of a few particles of a slightly lighter liquid (oil in water) stays where it is, and a film
+// of it on the floor under the heavier one stays there (a wall's samples carry no multiplier, so a
+// light particle at a wall lacks the lift of the liquid around it), where a real drop of that size
+// rises at its terminal speed. The drift restores that slip at the scale the particles cannot
+// resolve: wherever a particle of a lighter liquid has one of a heavier liquid above it (within
+// 1.5 spacings, at least r/2 higher), the two trade places at the rate at which a drop of one
+// particle's volume rises or sinks through the liquid around it: the liquid of which the lighter
+// particle has fewer neighbours is the drop. A resolved drop of the lighter liquid rises at least
+// at that speed and sheds particles on its way, as its surface trades with the liquid above it.
 //
 // A trade exchanges two particles' positions and nothing else: each keeps its mass, velocity,
 // temperature and identity, so the momentum, each liquid's mass and the density constraints
