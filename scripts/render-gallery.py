@@ -28,6 +28,7 @@ GALLERY = [
     ("honey_coiling", None, None, "velocity"),
     ("candle_jar", None, None, "liquid_fraction"),
     ("viscoelastic_coiling", None, 1.6, "velocity"),
+    ("oil_and_water", None, None, ""),
 ]
 
 
