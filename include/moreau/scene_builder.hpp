@@ -39,7 +39,7 @@ struct FluidSolverSettings {
   std::string viscosity_solver = "auto";  // "auto", "explicit" or "implicit"
   std::optional<double> viscosity_tolerance;   // implicit: relative residual, (0, 1)
   std::optional<int> viscosity_iterations;     // implicit: BiCGSTAB iterations at most per solve
-  std::optional<bool> phase_drift;             // dispersed particles of one liquid drift through another
+  std::optional<bool> phase_drift;             // a lighter liquid's particles under a heavier one's trade places with them
 };
 
 /// settings.nmd: the velocity-level formulation's constants. Unset fields keep the engine defaults.

@@ -126,7 +126,7 @@ struct FluidModel {
   bool buoyant = false;            // some fluid's weight is not m g (an expansion, or a gas in open air)
   bool gas = false;                // some fluid is a gas in open air (ambient_air.hpp)
   Real heat_step_limit = 0;        // s, the longest stable explicit part of the heat update
-  bool phase_drift = false;        // dispersed particles of one liquid trade places across gravity (phase_drift.hpp)
+  bool phase_drift = false;        // a lighter liquid's particles under a heavier one's trade places with them (phase_drift.hpp)
   std::vector<Real> drift_speed;   // m/s, terminal speed of one particle of phase a in phase b at [a * phases + b]
 
   std::vector<FluidPhase> phases;

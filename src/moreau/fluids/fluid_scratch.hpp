@@ -62,6 +62,12 @@ struct FluidScratch {
       solve_intermediate, solve_intermediate_image;
   std::vector<Mat3> inverse_diagonal;   // 1/kg
   std::vector<Real> block_sum_a, block_sum_b;
+  // The drift's trades (phase_drift.hpp; sized by drift_phases on its first call): per particle
+  // the heavier particle it proposes to, how far that one lies above it, whether it has fewer
+  // neighbours of its own liquid than of others, and the particle it trades with.
+  std::vector<Index> drift_proposal, drift_partner;
+  std::vector<Real> drift_rise;         // m
+  std::vector<char> drift_minority;
 
   /// Sizes the buffers for the model's fluid (nothing is reallocated when they already fit).
   void fit(const FluidModel& fluid);

@@ -4,7 +4,8 @@
 #include <cmath>
 #include <cstdint>
 
-#include "moreau/fluids/neighbor_loop.hpp"
+#include "moreau/fluids/fluid_scratch.hpp"
+#include "moreau/fluids/fluid_state.hpp"
 #include "moreau/model/model.hpp"
 
 namespace moreau {
@@ -61,12 +62,11 @@ void set_up_phase_drift(FluidModel& fm, Real g) {
     }
 }
 
-Index drift_phases(const Model& model, FluidState& fluid, Real time, int threads) {
+Index drift_phases(const Model& model, FluidState& fluid, FluidScratch& scratch, long step, int threads) {
   const FluidModel& fm = model.fluid;
   const Real g = model.settings.gravity.norm();
-  if (!fm.phase_drift || fluid.lists_stale || g == 0) return 0;
+  if (!fm.phase_drift || fluid.list_builds == 0 || g == 0) return 0;
   const Real dt = model.settings.dt;
-  const long step = std::lround(time / dt);
   const Vec3 up = -model.settings.gravity / g;
   const Index n = fluid.count, phases = static_cast<Index>(fm.phases.size());
   const Real reach2 = 9 * fm.particle_radius * fm.particle_radius;  // pairs within 1.5 spacings
@@ -75,11 +75,20 @@ Index drift_phases(const Model& model, FluidState& fluid, Real time, int threads
 
   // 1. Each movable particle proposes the heavier particle of another liquid highest above it,
   //    and counts its neighbours of its own liquid and of others (to say which is dispersed).
-  std::vector<Index> proposal(n, kNone);
-  std::vector<Real> rise(n, 0);
-  std::vector<char> minority(n, 0);  // fewer of i's neighbours are of its own liquid than of others
+  if (scratch.drift_proposal.size() < static_cast<std::size_t>(n)) {  // once a run (the fluid's capacity)
+    const std::size_t capacity = std::max<std::size_t>(n, fm.capacity);
+    scratch.drift_proposal.resize(capacity);
+    scratch.drift_partner.resize(capacity);
+    scratch.drift_rise.resize(capacity);
+    scratch.drift_minority.resize(capacity);
+  }
+  Index* proposal = scratch.drift_proposal.data();
+  Index* partner = scratch.drift_partner.data();
+  Real* rise = scratch.drift_rise.data();
+  char* minority = scratch.drift_minority.data();  // fewer of i's neighbours are of its own liquid than of others
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (Index i = 0; i < n; ++i) {
+    proposal[i] = kNone;
     if (!movable(i)) continue;
     const Vec3 xi = fluid.position[i];
     Index best = kNone, own = 0, other = 0;
@@ -104,9 +113,9 @@ Index drift_phases(const Model& model, FluidState& fluid, Real time, int threads
 
   // 2. Each particle proposed to (and not proposing itself) accepts the proposal from the
   //    particle furthest below it, and the pair trades with probability u dt / s.
-  std::vector<Index> partner(n, kNone);
 #pragma omp parallel for schedule(static) num_threads(threads)
   for (Index j = 0; j < n; ++j) {
+    partner[j] = kNone;
     if (proposal[j] != kNone) continue;
     Index chosen = kNone;
     const Index* row = fluid.fluid_neighbors.row(j);
@@ -127,6 +136,7 @@ Index drift_phases(const Model& model, FluidState& fluid, Real time, int threads
   for (Index j = 0; j < n; ++j) {
     if (partner[j] == kNone) continue;
     std::swap(fluid.position[j], fluid.position[partner[j]]);
+    std::swap(fluid.pressure[j], fluid.pressure[partner[j]]);
     ++trades;
   }
   if (trades > 0) fluid.lists_stale = true;

@@ -10,11 +10,12 @@
 // resolve: wherever a particle of a lighter liquid has one of a heavier liquid above it (within
 // 1.5 spacings, at least r/2 higher), the two trade places at the rate at which a drop of one
 // particle's volume rises or sinks through the liquid around it: the liquid of which the lighter
-// particle has fewer neighbours is the drop. A resolved drop of the lighter liquid rises at least
-// at that speed and sheds particles on its way, as its surface trades with the liquid above it.
+// particle has fewer neighbours is the drop. A resolved drop of the lighter liquid sheds particles
+// on its way up, as its upper surface trades with the liquid above it.
 //
-// A trade exchanges two particles' positions and nothing else: each keeps its mass, velocity,
-// temperature and identity, so the momentum, each liquid's mass and the density constraints
+// A trade exchanges two particles' positions (and, for the nmd solver's warm start, the pressure
+// that goes with a position) and nothing else: each keeps its mass, velocity, temperature and
+// identity, so the momentum, each liquid's mass and the density constraints
 // (which read positions only) are unchanged; the weight's potential energy falls by
 // (m_heavy - m_light) |g| s, s the height the two swap across, as a drop's drag would dissipate it.
 //
@@ -23,8 +24,12 @@
 //   |rho_d - rho_c| g V = C_d(Re) rho_c u^2 pi d^2 / 8,   Re = rho_c u d / mu_c,
 // with the Schiller & Naumann (1933) drag coefficient C_d = 24/Re (1 + 0.15 Re^0.687) for
 // Re < 1000 and 0.44 above. A pair s apart across gravity trades with probability u dt / s per
-// step, so a dispersed particle climbs at u on average. The draw hashes the step and the two
-// particles' ids, so runs are reproducible and independent of the thread count.
+// step, so a particle surrounded by the other liquid climbs at u on average, as long as u dt / s
+// stays below 1: a particle trades at most once a step, so where u dt exceeds the height of the
+// pair (large density differences, long steps) the climb is capped at about s / dt. The draw
+// hashes the step and the two particles' ids, so runs are reproducible and independent of the
+// thread count. With three or more liquids, a particle that proposes a trade to a heavier one
+// does not accept one from a lighter one in the same step.
 #include <vector>
 
 #include "moreau/math/types.hpp"
@@ -32,6 +37,7 @@
 namespace moreau {
 
 struct FluidModel;
+struct FluidScratch;
 struct FluidState;
 struct Model;
 
@@ -42,9 +48,10 @@ Real terminal_drift_speed(Real d, Real rho_drop, Real rho_liquid, Real mu, Real 
 /// Fills fm.drift_speed (phase a dispersed in phase b at [a * phases + b]) for gravity g.
 void set_up_phase_drift(FluidModel& fm, Real g);
 
-/// One step's trades (call at the start of a step, outside a parallel region, with the neighbour
-/// lists of the previous step) on up to `threads` threads. The step's start time seeds the draw.
+/// One step's trades on up to `threads` threads: call at the start of a step, before particles are
+/// emitted, outside a parallel region, with the neighbour lists of the previous step (nothing
+/// trades before the lists were first built). `step`, the count of completed steps, seeds the draw.
 /// Returns the number of trades; marks the lists stale when there were some.
-Index drift_phases(const Model& model, FluidState& fluid, Real time, int threads);
+Index drift_phases(const Model& model, FluidState& fluid, FluidScratch& scratch, long step, int threads);
 
 }  // namespace moreau

@@ -13,6 +13,7 @@
 #include "moreau/fluids/fluid_velocity.hpp"
 #include "moreau/fluids/fluid_viscosity.hpp"
 #include "moreau/fluids/interfacial_tension.hpp"
+#include "moreau/fluids/phase_drift.hpp"
 #include "moreau/fluids/solid_coupling.hpp"
 #include "moreau/fluids/surface_tension.hpp"
 #include "moreau/fluids/wall_adhesion.hpp"
@@ -41,7 +42,11 @@ Real contact_reach(const Vec3& velocity, const Model& model, Real h) {
 
 }  // namespace
 
-void ConstraintFluid::start_step(const Model& model, State& state, Real time) {
+void ConstraintFluid::start_step(const Model& model, State& state, Real time, int threads) {
+  if (model.fluid.phase_drift) {  // before new particles, with the lists of the last step
+    scratch_.fit(model.fluid);
+    drift_phases(model, state.fluid, scratch_, state.step, threads);
+  }
   if (!model.fluid.emitters.empty()) emit_fluid(model, state.fluid, time);
 }
 

@@ -31,7 +31,7 @@ struct State;
 class ConstraintFluid {
  public:
   /// Once per step, before the first solve: releases the emitters' particles due at `time`.
-  void start_step(const Model& model, State& state, Real time);
+  void start_step(const Model& model, State& state, Real time, int threads);
   /// Before each solve (and before VelocitySpace::gather: a rebuild re-sorts the particles):
   /// places the wall and solid samples at `time` and updates the neighbour lists.
   void prepare(const Model& model, State& state, Real time, int threads);

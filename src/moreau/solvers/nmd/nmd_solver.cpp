@@ -8,7 +8,6 @@
 #include "moreau/collision/particle_candidates.hpp"
 #include "moreau/solvers/nmd/suction_rows.hpp"
 #include "moreau/errors.hpp"
-#include "moreau/fluids/phase_drift.hpp"
 #include "moreau/model/state.hpp"
 #include "moreau/rigid/rigid_motion.hpp"
 #include "moreau/solvers/nmd/nmd_assembly.hpp"
@@ -79,8 +78,7 @@ void NmdSolver::step(const Model& model, State& state, StageTimer& timer, int th
   const Real h = model.settings.dt / settings.substeps;
   const Real start_time = state.time;
   const bool fluids = !model.fluid.empty();
-  if (fluids) fluid_.start_step(model, state, start_time);
-  if (fluids && model.fluid.phase_drift) drift_phases(model, state.fluid, start_time, threads);
+  if (fluids) fluid_.start_step(model, state, start_time, threads);
   for (int sub = 0; sub < settings.substeps; ++sub) {
     const Real end_time = start_time + (sub + 1) * h;
     if (fluids) {

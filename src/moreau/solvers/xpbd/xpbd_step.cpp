@@ -141,8 +141,8 @@ void xpbd_step(const Model& model, State& state, XpbdWorkspace& work, StageTimer
   const bool implicit_viscosity =
       fluids && model.fluid.viscosity_solver == ViscositySolver::implicit_solve && fluid_has_viscosity(model);
   FluidState& fluid = state.fluid;
+  if (model.fluid.phase_drift) drift_phases(model, fluid, work.fluid, state.step, threads);  // before new particles
   if (!model.fluid.emitters.empty()) emit_fluid(model, fluid, start_time);
-  if (model.fluid.phase_drift) drift_phases(model, fluid, start_time, threads);
 
   constexpr int extension_stage = xpbd_family_stage(kParticleFamilyCount);  // the extension's stages follow XPBD's
   auto lap = [&](auto stage) {
