@@ -43,10 +43,8 @@ Real contact_reach(const Vec3& velocity, const Model& model, Real h) {
 }  // namespace
 
 void ConstraintFluid::start_step(const Model& model, State& state, Real time, int threads) {
-  if (model.fluid.phase_drift) {  // before new particles, with the lists of the last step
-    scratch_.fit(model.fluid);
-    drift_phases(model, state.fluid, scratch_, state.step, threads);
-  }
+  // Before new particles, with the lists of the last step (drift_phases sizes its own buffers).
+  if (model.fluid.phase_drift) drift_phases(model, state.fluid, scratch_, state.step, threads);
   if (!model.fluid.emitters.empty()) emit_fluid(model, state.fluid, time);
 }
 
