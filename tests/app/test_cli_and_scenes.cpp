@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "test_helpers.hpp"
@@ -438,13 +439,16 @@ TEST(Scenes, EveryExampleSceneRunsBriefly) {
     // on a coarser mesh by FlowScenes.Cavity3DSceneWithGmresMatchesUmfpackAndIsMirrorSymmetric.
     if (entry.path().filename() == "cavity3d_re400.json") continue;
     // The immersed scenes (the two-leaflet channel, the flag, the bodies falling in a fluid) take
-    // a second or more per step: a few steps.
+    // a second or more per step: a step or a few. The largest particle scenes (tens of thousands
+    // of grains or continuum particles, several seconds per 0.1 s) run 0.02 s.
+    static const std::map<std::string, const char*> kShortRuns = {
+        {"two_leaflet_valve.json", "0.003"}, {"sedimenting_disc.json", "0.006"}, {"fluttering_plate.json", "0.004"},
+        {"turek_hron_fsi2.json", "0.015"},   {"wheel_on_sand.json", "0.02"},     {"snowball_wall.json", "0.02"},
+        {"sand_column_xpbi.json", "0.02"},   {"sand_castle_wave.json", "0.02"},  {"suction_cup.json", "0.02"},
+        {"putty_balls.json", "0.02"}};
     const std::string file = entry.path().filename().string();
-    const char* duration = file == "two_leaflet_valve.json"   ? "0.003"
-                           : file == "sedimenting_disc.json" ? "0.006"
-                           : file == "fluttering_plate.json" ? "0.012"
-                           : file == "turek_hron_fsi2.json"  ? "0.015"
-                                                             : "0.1";
+    const auto short_run = kShortRuns.find(file);
+    const char* duration = short_run == kShortRuns.end() ? "0.1" : short_run->second;
     const std::string out = test::temp_dir("smoke") + "/out";
     const auto r = test::run_moreau(fmt::format("run {} --out {} --quiet --duration {}", entry.path().string(), out, duration));
     EXPECT_EQ(r.exit_code, 0) << entry.path() << ": " << r.output;
