@@ -20,7 +20,7 @@ and lift are the cylinder's boundary_force plus the fluid's force on the bar (do
   immersed surface is felt by the flow only to within a cell, which is why the bar's zone is
   refined (docs/validation.md).
 The fast subset runs CFD1 on B = 1 (6.25 mm cells throughout, the bar 3.2 cells thick, 70 × 4 bar
-cells) to t = 4 s and checks the drag within 5 % (14.68 N/m, +2.7 %, in 150 s on one core).
+cells) to t = 4 s and checks the drag within 5 % (14.68 N/m, +2.7 %, in 137 s on one core).
 
 References: Turek & Hron (2006), as tabulated on the Featflow benchmark pages: CFD1 drag 14.29
 and lift 1.119 N/m; FSI1 displacement of A (0.0227, 0.8209) mm, drag 14.295 and lift 0.7638 N/m.
