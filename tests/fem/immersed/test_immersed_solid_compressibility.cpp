@@ -1,8 +1,10 @@
 // An immersed solid keeps its own Poisson's ratio. The fluid's continuity equation holds over the
-// solid too, which would make the solid's motion incompressible; PSPG's continuity gives way to a
-// stressed solid instead (docs/validation.md, Turek & Hron's bar). Checked through the command
-// line: a cantilever at rest in a closed box of fluid, heavier than the fluid, settles where the
-// same cantilever alone settles under the same net load, not where an incompressible one would.
+// solid too, which would make the solid's motion incompressible, but it does not hold a solid
+// whose cells are as coarse as the fluid's or coarser: such a solid changes volume as it does
+// alone (why is not established; scaling PSPG's tau by 1e-3 moves the result below by less than
+// 1e-8 of it, so it is not a leak at a speed set by tau; docs/validation.md). Checked through the
+// command line: a cantilever at rest in a closed box of fluid, heavier than the fluid, settles where
+// the same cantilever alone settles under the same net load, not where an incompressible one would.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
@@ -19,15 +21,16 @@ namespace {
 namespace fs = std::filesystem;
 
 // A St. Venant-Kirchhoff cantilever 0.2 x 0.02 m (shear modulus 0.5 MPa, nu = 0.4, as Turek &
-// Hron's bar), 40 x 4 cells, clamped on its left end, under a net load of 20 N/m^3 downward.
+// Hron's bar), clamped on its left end, under a net load of 20 N/m^3 downward.
 constexpr const char* kBar = R"({{"name": "bar", "kind": "solid",
-    "mesh": {{"type": "rectangle", "min": [0.02, 0.04], "max": [0.22, 0.06], "cells": [40, 4]}},
+    "mesh": {{"type": "rectangle", "min": [0.02, 0.04], "max": [0.22, 0.06], "cells": [{}, {}]}},
     "material": {{"model": "{}", "lame_lambda": {}, "lame_mu": 5e5, "density": {}}},{}
     "dirichlet": [{{"where": {{"boundary": "left"}}, "value": [0, 0]}}]}})";
 constexpr const char* kTip = R"([{"name": "tip", "type": "point", "object": "bar", "nearest": [0.22, 0.05], "quantity": "displacement"}])";
 
-std::string bar(const char* model, Real lambda, Real density, const char* extra = "") {
-  return fmt::format(fmt::runtime(kBar), model, lambda, density, extra);
+// The bar of `along` x `across` cells (40 x 4: the fluid's 5 mm cells below).
+std::string bar(const char* model, Real lambda, Real density, const char* extra = "", int along = 40, int across = 4) {
+  return fmt::format(fmt::runtime(kBar), along, across, model, lambda, density, extra);
 }
 
 // The tip's vertical displacement of the last row of a run (m).
@@ -64,6 +67,15 @@ TEST(ImmersedSolid, AStressedSolidKeepsItsOwnPoissonsRatio) {
   // far from the incompressible answer.
   EXPECT_NEAR(in_fluid / compressible, 1, 0.005);
   EXPECT_LT(incompressible / compressible, 0.92);
+
+  // A bar of 20 x 2 cells (10 mm), coarser than the fluid: it too settles where it does alone
+  // (measured within 2e-10; with its coarser cells it bends 16 % less than the 40 x 4 bar).
+  const Real coarse_alone = final_tip_y("coarse-bar-alone", alone + bar("st_venant_kirchhoff", 2e6, 2, "", 20, 2) +
+                                                                "], \"probes\": " + kTip + "}");
+  const Real coarse_in_fluid = final_tip_y("coarse-bar-immersed", immersed + bar("st_venant_kirchhoff", 2e6, 1002, "", 20, 2) +
+                                                                      "], \"probes\": " + kTip + "}");
+  std::printf("20 x 2 bar: immersed %.6e m, alone %.6e m\n", coarse_in_fluid, coarse_alone);
+  EXPECT_NEAR(coarse_in_fluid / coarse_alone, 1, 0.005);
 }
 
 }  // namespace

@@ -19,22 +19,21 @@
 //   V_C = sum_A N_A(x_C) v_A                    (the IFEM mapping I(v) of the seed),
 // so that the same matrix M_CA = N_A(x_C) maps velocities to the solid and forces to the fluid,
 // and the power the fluid spends on the solid, v . M^T r, is exactly r . V.
-// The stabilization (SUPG, PSPG) of the fluid's cells does not see this force: their strong
-// momentum residual lacks it. Where the solid's stress balances a pressure gradient, PSPG's
-// continuity then lets the fluid through the solid at a speed of order tau/rho |grad p|, which is
-// negligible where tau is set by dt/2 and rho is large (blood, water at the usual steps) and
-// largest in creeping flow, where tau/rho ~ h^2/(4 mu). (Adding the spread force to that residual
-// as a nodal density, with its derivative lagged, changed the sheared ring's result by less than
-// 1e-5 and tripled Newton's iterations on the two leaflets; testing the nodal forces with the
-// stabilized test functions puts grad N_A at the solid's nodes, which jumps when a node crosses
-// a fluid cell's edge, and Newton stalled on it.)
+// The stabilization (SUPG, PSPG) of the fluid's cells sees this force as a nodal density: each
+// fluid node's share over its lumped volume joins their strong momentum residual, with its exact
+// derivative (flow_source_assembly.hpp). Where the solid holds the fluid, PSPG then does not read
+// the holding force as an error of the pressure gradient and let the fluid through the solid (a
+// released disc's added mass was a third of potential flow's without it). (Testing the nodal
+// forces with the stabilized test functions instead puts grad N_A at the solid's nodes, which
+// jumps when a node crosses a fluid cell's edge, and Newton stalled on it.)
 //
 // What is kept of the fluid's stress inside the solid (sigma_f~): the pressure, always. It is the
 // multiplier of the fluid's continuity equation, which holds over the whole domain, and the pressure
 // is shared (the immersed structural potential method of Gil, Arranz Carreno, Bonet & Hassan 2010,
-// JCP 229, does the same). That would make the solid's motion incompressible, but PSPG's continuity
-// gives way to a stressed solid: measured, Turek & Hron's bar (nu = 0.4) under a static load bends
-// and changes volume as it does alone, within 0.3 % (docs/validation.md). The fluid's
+// JCP 229, does the same). That would make the solid's motion incompressible, but it does not
+// hold a solid whose cells are as large as the fluid's or larger (why is not established; it does
+// not depend on PSPG's tau): measured, Turek & Hron's bar (nu = 0.4) under a static load bends and
+// changes volume as it does alone, within 0.3 % (docs/validation.md). The fluid's
 // viscous stress is replaced by the solid's own, 2 mu_s d: with the default mu_s = mu_f the solid is
 // a Kelvin-Voigt material with the fluid's viscosity and nothing is subtracted; mu_s = 0 removes
 // the fluid's viscous stress from the solid entirely, as the seed's formula writes.
