@@ -11,7 +11,9 @@ its tip) and computes the steady flow (CFD1's inflow, Re = 20) in two ways:
   probes on 14 segments of its top and bottom and on its end;
 - immersed: the bent bar (bench/scenes/meshes/turek_hron_bar_bent.geo, 70B x 4B cells) immersed in
   scenes/meshes/turek_hron_channel_refined.geo and made 1000 times stiffer than FSI1's bar, so that
-  the flow sees the bent shape and the bar's small extra deflection under the load is linear in it.
+  the flow sees the bent shape and the bar's small extra deflection under the load is linear in it
+  (the bar's force probe leaves out its clamped nodes: what the fluid exerts there counts with the
+  cylinder's reaction).
 
 Both report the deflection g(D) that load would give FSI1's bar at A: immersed, A's displacement
 times 1000; body-fitted, the Euler-Bernoulli cantilever's tip deflection under the segments'
@@ -79,26 +81,41 @@ def bar_alone_stiffness(moreau, work, b):
 
 
 def body_fitted(moreau, work, level, b, d_mm, ei):
-    walls = ["walls", "cylinder", "end"] + [f"{side}_{k}" for k in range(1, SEGMENTS + 1) for side in ("top", "bottom")]
-    probes = [{"name": name, "type": "boundary_force", "where": {"tag": name}} for name in walls[1:]]
+    top = [f"top_{k}" for k in range(1, SEGMENTS + 1)]
+    bottom = [f"bottom_{k}" for k in range(1, SEGMENTS + 1)]
+    walls = ["walls", "cylinder", "end"] + top + bottom
+    # A boundary_force probe sums the reactions at its tags' nodes, each node once, and neighbouring
+    # segments share a node; so the probes take growing runs of segments from the cylinder, and a
+    # segment's force is the difference of two (the node between segments k and k + 1 counts in k).
+    probes = [{"name": "cylinder", "type": "boundary_force", "where": {"tag": "cylinder"}},
+              {"name": "obstacle", "type": "boundary_force", "where": {"tag": ["cylinder", "end"] + top + bottom}},
+              {"name": "bar", "type": "boundary_force", "where": {"tag": ["end"] + top + bottom}}]
+    for k in range(1, SEGMENTS + 1):
+        probes.append({"name": f"top_upto_{k}", "type": "boundary_force", "where": {"tag": top[:k]}})
+        probes.append({"name": f"bottom_upto_{k}", "type": "boundary_force", "where": {"tag": bottom[:k]}})
     scene = {"name": "cfd1_body_fitted", "settings": settings(0.5, 1e-10, output={"every": 16, "formats": []}),
              "objects": [fluid(MESHES / "turek_hron_channel_bar_cut.geo",
                                {"N": level, "B": b, "K": SEGMENTS, "D": d_mm * 1e-3}, walls)],
              "probes": probes}
     r = run(moreau, scene, work / f"body_fitted_n{level}_b{b}_d{d_mm}")
-    fx = {name: float(r[f"{name}.force.x"]) for name in walls[1:]}
-    fy = {name: float(r[f"{name}.force.y"]) for name in walls[1:]}
+    force = lambda name, c: float(r[f"{name}.force.{c}"]) if name else 0.0  # noqa: E731
+    upto = lambda side, k: f"{side}_upto_{k}" if k > 0 else None  # noqa: E731
+    end_y = force("bar", "y") - force(upto("top", SEGMENTS), "y") - force(upto("bottom", SEGMENTS), "y")
     # Tip deflection of a cantilever: a force P at distance a from the clamp, P a^2 (3L - a) / (6 EI);
     # a moment M there, M a (2L - a) / (2 EI). A segment's shear force f_x on the face at height
     # y_c above the axis is a moment -y_c f_x.
-    deflection = fy["end"] * LENGTH ** 3 / (3 * ei)
+    deflection = end_y * LENGTH ** 3 / (3 * ei)
     for k in range(1, SEGMENTS + 1):
         a = LENGTH * (k - 0.5) / SEGMENTS
         for side, y in (("bottom", -0.01), ("top", 0.01)):
-            name = f"{side}_{k}"
-            deflection += fy[name] * a * a * (3 * LENGTH - a) / (6 * ei) - y * fx[name] * a * (2 * LENGTH - a) / (2 * ei)
-    bar_lift = sum(v for name, v in fy.items() if name != "cylinder")
-    return {"lift": bar_lift + fy["cylinder"], "bar_lift": bar_lift, "g_mm": deflection * 1e3}
+            fx = force(upto(side, k), "x") - force(upto(side, k - 1), "x")
+            fy = force(upto(side, k), "y") - force(upto(side, k - 1), "y")
+            deflection += fy * a * a * (3 * LENGTH - a) / (6 * ei) - y * fx * a * (2 * LENGTH - a) / (2 * ei)
+    # The bar's share: the obstacle's less the cylinder's (the two corners where they meet count
+    # with the cylinder).
+    return {"drag": force("obstacle", "x"), "lift": force("obstacle", "y"),
+            "bar_drag": force("obstacle", "x") - force("cylinder", "x"),
+            "bar_lift": force("obstacle", "y") - force("cylinder", "y"), "g_mm": deflection * 1e3}
 
 
 def immersed(moreau, work, level, b, d_mm):
@@ -114,8 +131,8 @@ def immersed(moreau, work, level, b, d_mm):
                         {"name": "cylinder", "type": "boundary_force", "where": {"tag": "cylinder"}},
                         {"name": "bar", "type": "force", "object": "bar"}]}
     r = run(moreau, scene, work / f"immersed_n{level}_b{b}_d{d_mm}")
-    return {"lift": float(r["cylinder.force.y"]) + float(r["bar.y"]), "bar_lift": float(r["bar.y"]),
-            "g_mm": STIFFER * float(r["A.displacement.y"]) * 1e3}
+    return {"drag": float(r["cylinder.force.x"]) + float(r["bar.x"]), "lift": float(r["cylinder.force.y"]) + float(r["bar.y"]),
+            "bar_drag": float(r["bar.x"]), "bar_lift": float(r["bar.y"]), "g_mm": STIFFER * float(r["A.displacement.y"]) * 1e3}
 
 
 def main():
@@ -129,8 +146,9 @@ def main():
     parser.add_argument("--skip-body-fitted", action="store_true")
     args = parser.parse_args()
     for b in args.b:
-        ei = bar_alone_stiffness(args.moreau, args.work, b)
-        print(f"B = {b}: the {70 * b} x {4 * b} bar alone, EI = {ei:.4f} N m^2/m")
+        ei = None if args.skip_body_fitted else bar_alone_stiffness(args.moreau, args.work, b)
+        if ei:
+            print(f"B = {b}: the {70 * b} x {4 * b} bar alone, EI = {ei:.4f} N m^2/m")
         for d in args.deflections:
             kinds = [("body-fitted", lambda: body_fitted(args.moreau, args.work, args.level, b, d, ei), args.skip_body_fitted),
                      ("immersed", lambda: immersed(args.moreau, args.work, args.level, b, d), args.skip_immersed)]
@@ -138,8 +156,8 @@ def main():
                 if skip:
                     continue
                 r = compute()
-                print(f"  D = {d} mm, {kind}: lift {r['lift']:.4f} N/m (bar {r['bar_lift']:.4f}), "
-                      f"FSI1's bar under this load: {r['g_mm']:.4f} mm at A", flush=True)
+                print(f"  D = {d} mm, {kind}: drag {r['drag']:.4f} N/m (bar {r['bar_drag']:.4f}), lift {r['lift']:.4f} "
+                      f"(bar {r['bar_lift']:.4f}), FSI1's bar under this load: {r['g_mm']:.4f} mm at A", flush=True)
 
 
 if __name__ == "__main__":
