@@ -118,19 +118,21 @@ def body_fitted(moreau, work, level, b, d_mm, ei):
             "bar_lift": force("obstacle", "y") - force("cylinder", "y"), "g_mm": deflection * 1e3}
 
 
-def immersed(moreau, work, level, b, d_mm):
+def immersed(moreau, work, level, b, d_mm, bar_b=None):
+    bar_b = bar_b or b
     scene = {"name": "cfd1_immersed_bent", "settings": settings(0.1, 1e-8, output={"every": 80, "formats": []}),
              "objects": [fluid(ROOT / "scenes" / "meshes" / "turek_hron_channel_refined.geo", {"N": level, "B": b},
                                ["walls", "cylinder"]),
                          {"name": "bar", "kind": "solid",
                           "material": dict(BAR, lame_lambda=STIFFER * BAR["lame_lambda"], lame_mu=STIFFER * BAR["lame_mu"]),
                           "mesh": {"type": "geo", "file": str(MESHES / "turek_hron_bar_bent.geo"),
-                                   "parameters": {"NX": 70 * b, "NY": 4 * b, "D": d_mm * 1e-3}},
+                                   "parameters": {"NX": 70 * bar_b, "NY": 4 * bar_b, "D": d_mm * 1e-3}},
                           "dirichlet": [{"where": {"boundary": "clamp"}, "value": [0, 0]}]}],
              "probes": [{"name": "A", "type": "point", "object": "bar", "nearest": [0.6, 0.2], "quantity": "displacement"},
                         {"name": "cylinder", "type": "boundary_force", "where": {"tag": "cylinder"}},
                         {"name": "bar", "type": "force", "object": "bar"}]}
-    r = run(moreau, scene, work / f"immersed_n{level}_b{b}_d{d_mm}")
+    bar = "" if bar_b == b else f"_bar{bar_b}"
+    r = run(moreau, scene, work / f"immersed_n{level}_b{b}{bar}_d{d_mm}")
     return {"drag": float(r["cylinder.force.x"]) + float(r["bar.x"]), "lift": float(r["cylinder.force.y"]) + float(r["bar.y"]),
             "bar_drag": float(r["bar.x"]), "bar_lift": float(r["bar.y"]), "g_mm": STIFFER * float(r["A.displacement.y"]) * 1e3}
 
@@ -141,6 +143,7 @@ def main():
     parser.add_argument("--work", required=True, type=pathlib.Path)
     parser.add_argument("--level", type=int, default=8, help="N: the channel's cells are 0.05/N m")
     parser.add_argument("--b", type=int, nargs="+", default=[2], help="B: the bar zone's cells are 0.05/(N B) m")
+    parser.add_argument("--bar-b", type=int, help="the immersed bar's cells 70 b x 4 b (default: B's)")
     parser.add_argument("--deflections", type=float, nargs="+", default=[0, 0.82], help="tip rises D in mm")
     parser.add_argument("--skip-immersed", action="store_true")
     parser.add_argument("--skip-body-fitted", action="store_true")
@@ -151,7 +154,7 @@ def main():
             print(f"B = {b}: the {70 * b} x {4 * b} bar alone, EI = {ei:.4f} N m^2/m")
         for d in args.deflections:
             kinds = [("body-fitted", lambda: body_fitted(args.moreau, args.work, args.level, b, d, ei), args.skip_body_fitted),
-                     ("immersed", lambda: immersed(args.moreau, args.work, args.level, b, d), args.skip_immersed)]
+                     ("immersed", lambda: immersed(args.moreau, args.work, args.level, b, d, args.bar_b), args.skip_immersed)]
             for kind, compute, skip in kinds:
                 if skip:
                     continue

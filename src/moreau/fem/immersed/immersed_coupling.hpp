@@ -31,9 +31,10 @@
 // multiplier of the fluid's continuity equation, which holds over the whole domain, and the pressure
 // is shared (the immersed structural potential method of Gil, Arranz Carreno, Bonet & Hassan 2010,
 // JCP 229, does the same). That would make the solid's motion incompressible, but it does not
-// for a solid with cells about the fluid's size (why is not established; it does not depend on
-// PSPG's tau): measured, Turek & Hron's bar (nu = 0.4) under a static load bends and changes
-// volume as it does alone, within 0.3 % (docs/validation.md). The fluid's
+// for a solid with cells about the fluid's size (why is not established; its resting place does not
+// depend on PSPG's tau, which a leak through the solid at a rate set by tau would not change
+// either): measured, Turek & Hron's bar (nu = 0.4) under a static load bends and changes volume as
+// it does alone, within 0.3 % (docs/validation.md). The fluid's
 // viscous stress is replaced by the solid's own, 2 mu_s d: with the default mu_s = mu_f the solid is
 // a Kelvin-Voigt material with the fluid's viscosity and nothing is subtracted; mu_s = 0 removes
 // the fluid's viscous stress from the solid entirely, as the seed's formula writes.
