@@ -3,9 +3,9 @@
 // cells the fluid's size or larger, here with its nodes on the fluid's: such a solid changes
 // volume as it does alone (why is not established; in a build with PSPG's tau scaled by 1e-3 the
 // result below moved by less than 1e-8 of it, which a leak at a rate set by tau would not change
-// either: it would change how fast the bar comes to rest; docs/validation.md). Checked through the command line: a cantilever at rest in a closed box of
-// fluid, heavier than the fluid, settles where the same cantilever alone settles under the same net
-// load, not where an incompressible one would.
+// either: it would change how fast the bar comes to rest; docs/validation.md). Checked through the
+// command line: a cantilever at rest in a closed box of fluid, heavier than the fluid, settles where
+// the same cantilever alone settles under the same net load, not where an incompressible one would.
 #include <gtest/gtest.h>
 
 #include <fmt/format.h>
