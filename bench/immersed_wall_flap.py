@@ -25,25 +25,15 @@ One immersed run takes 1-4 minutes on one core, up to 15 where Newton needs many
 (docs/validation.md).
 """
 import argparse
-import csv
-import json
 import pathlib
-import subprocess
+
+from cantilever_loads import cantilever_deflection, growing_run_probes, run_scene, segment_forces
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SEGMENTS = 10
 HEIGHT, WIDTH, X0 = 0.05, 0.01, 0.1
 INFLOW = "(t < 5 ? t / 5 : 1) * 1.5 * 0.1 * 4 * y * (0.1 - y) / 0.01"
 FLAP = {"model": "st_venant_kirchhoff", "lame_lambda": 2e6, "lame_mu": 5e5, "density": 1000}
-
-
-def run(moreau, scene, work):
-    work.mkdir(parents=True, exist_ok=True)
-    path = work / f"{scene['name']}.json"
-    path.write_text(json.dumps(scene, indent=1))
-    subprocess.run([moreau, "run", str(path), "--out", str(work / scene["name"]), "--threads", "1", "--quiet"], check=True)
-    with open(work / scene["name"] / "probes.csv") as f:
-        return list(csv.DictReader(f))[-1]
 
 
 def settings(dt, **extra):
@@ -59,26 +49,19 @@ def body_fitted(moreau, work, h):
     """The load on the flap: per face, the x and y forces on each segment; and the top's x force."""
     up = [f"up_{k}" for k in range(1, SEGMENTS + 1)]
     down = [f"down_{k}" for k in range(1, SEGMENTS + 1)]
-    # A boundary_force probe counts each node once and neighbouring segments share one: growing runs
-    # of segments from the wall, a segment's force the difference of two (as in turek_hron_fsi1_bending.py).
     probes = [{"name": "walls", "type": "boundary_force", "where": {"tag": "walls"}},
               {"name": "flap", "type": "boundary_force", "where": {"tag": ["flap_top"] + up + down}}]
-    for k in range(1, SEGMENTS + 1):
-        probes.append({"name": f"up_upto_{k}", "type": "boundary_force", "where": {"tag": up[:k]}})
-        probes.append({"name": f"down_upto_{k}", "type": "boundary_force", "where": {"tag": down[:k]}})
+    probes += growing_run_probes({"up": up, "down": down})
     fluid = {"name": "fluid", "kind": "fluid", "density": 1000, "viscosity": 1.0,
              "mesh": {"type": "geo", "file": str(ROOT / "bench" / "scenes" / "meshes" / "wall_flap_channel_cut.geo"),
                       "parameters": {"h": h, "K": SEGMENTS}},
              "boundaries": [{"where": {"tag": ["walls", "flap_top"] + up + down}, "type": "no_slip"},
                             {"where": {"tag": "inlet"}, "velocity": [INFLOW, "0"]},
                             {"where": {"tag": "outlet"}, "type": "outflow"}]}
-    r = run(moreau, {"name": f"body_fitted_h{h}", "settings": settings(0.5, output={"every": 40, "formats": []}),
-                     "objects": [fluid], "probes": probes}, work)
-    force = lambda name, c: float(r[f"{name}.force.{c}"]) if name else 0.0  # noqa: E731
-    upto = lambda side, k: f"{side}_upto_{k}" if k > 0 else None  # noqa: E731
-    segments = [(side, k, force(upto(side, k), "x") - force(upto(side, k - 1), "x"),
-                 force(upto(side, k), "y") - force(upto(side, k - 1), "y"))
-                for k in range(1, SEGMENTS + 1) for side in ("up", "down")]
+    r = run_scene(moreau, {"name": f"body_fitted_h{h}", "settings": settings(0.5, output={"every": 40, "formats": []}),
+                           "objects": [fluid], "probes": probes}, work / f"body_fitted_h{h}")
+    force = lambda name, c: float(r[f"{name}.force.{c}"])  # noqa: E731
+    segments = [(side, k) + segment_forces(r, side, k) for k in range(1, SEGMENTS + 1) for side in ("up", "down")]
     top_x = force("flap", "x") - sum(s[2] for s in segments)
     return {"flap_drag": force("flap", "x"), "walls_drag": force("walls", "x"), "segments": segments, "top_x": top_x}
 
@@ -93,20 +76,17 @@ def flap_alone_stiffness(moreau, work, sx, sy):
                           "dirichlet": [{"where": {"boundary": "bottom"}, "value": [0, 0]}]}],
              "probes": [{"name": "tip", "type": "point", "object": "flap", "nearest": [X0 + WIDTH / 2, HEIGHT],
                          "quantity": "displacement"}]}
-    w = float(run(moreau, scene, work)["tip.x"])  # a solid alone names a displacement probe's columns without the quantity
+    # A solid alone names a displacement probe's columns without the quantity.
+    w = float(run_scene(moreau, scene, work / scene["name"])["tip.x"])
     return load * HEIGHT ** 4 / (8 * w)
 
 
 def beam_deflection(load, ei):
-    """The cantilever's tip deflection under the body-fitted segment forces (a force P at height a:
-    P a^2 (3L - a) / (6 EI); a segment's shear f_y on the face at x_c from the axis is a moment
-    -x_c f_y, which deflects the tip by -x_c f_y a (2L - a) / (2 EI)) and the top's force."""
-    g = load["top_x"] * HEIGHT ** 3 / (3 * ei)
-    for side, k, fx, fy in load["segments"]:
-        a = HEIGHT * (k - 0.5) / SEGMENTS
-        x_c = -WIDTH / 2 if side == "up" else WIDTH / 2
-        g += fx * a * a * (3 * HEIGHT - a) / (6 * ei) - x_c * fy * a * (2 * HEIGHT - a) / (2 * ei)
-    return g
+    """The flap's tip deflection under the body-fitted forces: each segment's at its middle, on its face
+    half the flap's width upstream or downstream of the axis, and the top's."""
+    loads = [(HEIGHT * (k - 0.5) / SEGMENTS, -WIDTH / 2 if side == "up" else WIDTH / 2, fx, fy)
+             for side, k, fx, fy in load["segments"]]
+    return cantilever_deflection(HEIGHT, ei, loads, load["top_x"])
 
 
 def immersed(moreau, work, ny, sx, sy, dt, base):
@@ -124,7 +104,7 @@ def immersed(moreau, work, ny, sx, sy, dt, base):
                          "quantity": "displacement"},
                         {"name": "walls", "type": "boundary_force", "where": {"side": ["top", "bottom"]}},
                         {"name": "flap", "type": "force", "object": "flap"}]}
-    r = run(moreau, scene, work)
+    r = run_scene(moreau, scene, work / name)
     return {"tip": float(r["tip.displacement.x"]), "flap_drag": float(r["flap.x"]), "walls_drag": float(r["walls.force.x"])}
 
 

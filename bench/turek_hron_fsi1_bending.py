@@ -27,11 +27,10 @@ One body-fitted solve takes about a minute on one core (N = 8, B = 2), an immers
 to 45 minutes (B = 3).
 """
 import argparse
-import csv
-import json
 import math
 import pathlib
-import subprocess
+
+from cantilever_loads import cantilever_deflection, growing_run_probes, run_scene, segment_forces
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 MESHES = ROOT / "bench" / "scenes" / "meshes"
@@ -56,15 +55,6 @@ def settings(dt, tolerance, **extra):
             "newton": {"tolerance": tolerance, "max_iterations": 40}, **extra}
 
 
-def run(moreau, scene, out):
-    out.parent.mkdir(parents=True, exist_ok=True)
-    path = out.with_suffix(".json")
-    path.write_text(json.dumps(scene, indent=1))
-    subprocess.run([moreau, "run", str(path), "--out", str(out), "--threads", "1", "--quiet"], check=True)
-    with open(out / "probes.csv") as f:
-        return list(csv.DictReader(f))[-1]
-
-
 def bar_alone_stiffness(moreau, work, b):
     """EI of the 70B x 4B bar mesh: its tip deflection w under a uniform load q is q L^4 / (8 EI)."""
     load = 20.0 * 0.02  # 20 N/m^3 over the bar's 0.02 m: N/m
@@ -75,7 +65,7 @@ def bar_alone_stiffness(moreau, work, b):
                                    "parameters": {"NX": 70 * b, "NY": 4 * b, "D": 0}},
                           "dirichlet": [{"where": {"boundary": "clamp"}, "value": [0, 0]}]}],
              "probes": [{"name": "A", "type": "point", "object": "bar", "nearest": [0.6, 0.2], "quantity": "displacement"}]}
-    r = run(moreau, scene, work / f"bar_alone_b{b}")
+    r = run_scene(moreau, scene, work / f"bar_alone_b{b}")
     w = -float(r["A.y"])  # a solid alone names a displacement probe's columns without the quantity
     return load * LENGTH ** 4 / (8 * w)
 
@@ -84,33 +74,24 @@ def body_fitted(moreau, work, level, b, d_mm, ei):
     top = [f"top_{k}" for k in range(1, SEGMENTS + 1)]
     bottom = [f"bottom_{k}" for k in range(1, SEGMENTS + 1)]
     walls = ["walls", "cylinder", "end"] + top + bottom
-    # A boundary_force probe sums the reactions at its tags' nodes, each node once, and neighbouring
-    # segments share a node; so the probes take growing runs of segments from the cylinder, and a
-    # segment's force is the difference of two (the node between segments k and k + 1 counts in k).
     probes = [{"name": "cylinder", "type": "boundary_force", "where": {"tag": "cylinder"}},
               {"name": "obstacle", "type": "boundary_force", "where": {"tag": ["cylinder", "end"] + top + bottom}},
               {"name": "bar", "type": "boundary_force", "where": {"tag": ["end"] + top + bottom}}]
-    for k in range(1, SEGMENTS + 1):
-        probes.append({"name": f"top_upto_{k}", "type": "boundary_force", "where": {"tag": top[:k]}})
-        probes.append({"name": f"bottom_upto_{k}", "type": "boundary_force", "where": {"tag": bottom[:k]}})
+    probes += growing_run_probes({"top": top, "bottom": bottom})
     scene = {"name": "cfd1_body_fitted", "settings": settings(0.5, 1e-10, output={"every": 16, "formats": []}),
              "objects": [fluid(MESHES / "turek_hron_channel_bar_cut.geo",
                                {"N": level, "B": b, "K": SEGMENTS, "D": d_mm * 1e-3}, walls)],
              "probes": probes}
-    r = run(moreau, scene, work / f"body_fitted_n{level}_b{b}_d{d_mm}")
-    force = lambda name, c: float(r[f"{name}.force.{c}"]) if name else 0.0  # noqa: E731
-    upto = lambda side, k: f"{side}_upto_{k}" if k > 0 else None  # noqa: E731
-    end_y = force("bar", "y") - force(upto("top", SEGMENTS), "y") - force(upto("bottom", SEGMENTS), "y")
-    # Tip deflection of a cantilever: a force P at distance a from the clamp, P a^2 (3L - a) / (6 EI);
-    # a moment M there, M a (2L - a) / (2 EI). A segment's shear force f_x on the face at height
-    # y_c above the axis is a moment -y_c f_x.
-    deflection = end_y * LENGTH ** 3 / (3 * ei)
+    r = run_scene(moreau, scene, work / f"body_fitted_n{level}_b{b}_d{d_mm}")
+    force = lambda name, c: float(r[f"{name}.force.{c}"])  # noqa: E731
+    end_y = force("bar", "y") - force(f"top_upto_{SEGMENTS}", "y") - force(f"bottom_upto_{SEGMENTS}", "y")
+    # Each segment's force at its middle, a from the clamp, on its face 0.01 m below or above the axis.
+    loads = []
     for k in range(1, SEGMENTS + 1):
-        a = LENGTH * (k - 0.5) / SEGMENTS
         for side, y in (("bottom", -0.01), ("top", 0.01)):
-            fx = force(upto(side, k), "x") - force(upto(side, k - 1), "x")
-            fy = force(upto(side, k), "y") - force(upto(side, k - 1), "y")
-            deflection += fy * a * a * (3 * LENGTH - a) / (6 * ei) - y * fx * a * (2 * LENGTH - a) / (2 * ei)
+            fx, fy = segment_forces(r, side, k)
+            loads.append((LENGTH * (k - 0.5) / SEGMENTS, y, fy, fx))
+    deflection = cantilever_deflection(LENGTH, ei, loads, end_y)
     # The bar's share: the obstacle's less the cylinder's (the two corners where they meet count
     # with the cylinder).
     return {"drag": force("obstacle", "x"), "lift": force("obstacle", "y"),
@@ -132,7 +113,7 @@ def immersed(moreau, work, level, b, d_mm, bar_b=None):
                         {"name": "cylinder", "type": "boundary_force", "where": {"tag": "cylinder"}},
                         {"name": "bar", "type": "force", "object": "bar"}]}
     bar = "" if bar_b == b else f"_bar{bar_b}"
-    r = run(moreau, scene, work / f"immersed_n{level}_b{b}{bar}_d{d_mm}")
+    r = run_scene(moreau, scene, work / f"immersed_n{level}_b{b}{bar}_d{d_mm}")
     return {"drag": float(r["cylinder.force.x"]) + float(r["bar.x"]), "lift": float(r["cylinder.force.y"]) + float(r["bar.y"]),
             "bar_drag": float(r["bar.x"]), "bar_lift": float(r["bar.y"]), "g_mm": STIFFER * float(r["A.displacement.y"]) * 1e3}
 
